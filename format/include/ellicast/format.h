@@ -1,0 +1,421 @@
+// ellicast format v1: packets, their payloads, quantization, container files.
+//
+// The normative description is spec/format.md; this header is its reference implementation.
+// Depends on nothing but the standard library: no geometry algorithms, no glTF.
+//
+// Every parse function takes bytes it does not trust: it checks each length against what is
+// really there, allocates at most in proportion to the input, and returns an error code that
+// names what was wrong instead of throwing or crashing.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace ellicast {
+
+// ---------------------------------------------------------------------------------------------
+// Constants of format v1.0
+
+inline constexpr uint8_t kFormatMajor = 1;
+inline constexpr uint8_t kFormatMinor = 0;
+
+inline constexpr std::array<uint8_t, 4> kPacketMagic = {0xE1, 'L', 'C', 'S'};
+inline constexpr size_t kHeaderSize = 20;                       // bytes before the payload
+inline constexpr size_t kChecksumSize = 4;                      // CRC-32C after the payload
+inline constexpr size_t kPacketOverhead = kHeaderSize + kChecksumSize;
+inline constexpr size_t kMinPacketSize = 128;                   // smallest packet size a sender may choose
+inline constexpr size_t kMaxPacketSize = 65000;                 // largest packet on the wire
+inline constexpr size_t kDefaultPacketSize = 1200;              // one UDP datagram under a 1280-byte IPv6 MTU
+
+inline constexpr uint16_t kStreamObjectId = 0xFFFF;             // object id of stream-level packets
+inline constexpr uint16_t kMaxObjects = 0xFFFF;                 // object ids are 0..65534
+
+inline constexpr uint8_t kFlagSkippable = 0x01;                 // header flags bit 0
+
+inline constexpr size_t kEllipsoidBytes = 16;                   // one quantized ellipsoid
+
+// Container file: an 8-byte signature, a 4-byte file header, then packets back to back.
+inline constexpr std::array<uint8_t, 8> kContainerSignature = {0x89, 'E', 'L', 'C', 0x0D, 0x0A, 0x1A, 0x0A};
+inline constexpr size_t kContainerHeaderSize = 12;
+inline constexpr uint8_t kContainerVersion = 1;
+
+enum class PacketType : uint8_t {
+    StreamInfo = 0x01,  // critical: frames, bit depths, object table
+    Ellipsoids = 0x02,  // critical: a batch of quantized ellipsoids of one object
+    Points = 0x03,      // critical: a batch of bit-packed surface points of one object
+    // 0x00 is invalid; 0x04..0x0F reserved for geometry; 0x10..0x1F reserved for the scene
+    // (nodes, materials, texture fragments); 0x20..0x7F future; 0x80..0xFF experimental.
+};
+
+// Name of a packet type ("STREAM_INFO", ...), or "UNKNOWN(0xNN)".
+std::string packet_type_name(uint8_t type);
+
+// True for the types this implementation decodes (format 1.0).
+bool is_known_packet_type(uint8_t type);
+
+// ---------------------------------------------------------------------------------------------
+// Errors
+
+enum class Error : uint8_t {
+    Ok = 0,
+    TooShort,             // fewer bytes than a packet header and checksum
+    BadMagic,             // the first four bytes are not E1 4C 43 53
+    UnsupportedMajor,     // major version other than 1
+    InvalidType,          // packet type 0
+    Oversized,            // header declares a packet larger than kMaxPacketSize
+    Truncated,            // the declared payload runs past the bytes available
+    LengthMismatch,       // a datagram holds bytes after the packet
+    BadChecksum,          // CRC-32C does not match: the packet is damaged
+    UnknownCriticalType,  // a type this decoder does not know, not marked skippable
+    MalformedPayload,     // payload length or fields inconsistent with the packet type
+    NoStreamInfo,         // payload needs the stream info of its object, which has not arrived
+    UnknownObject,        // object id beyond the stream's object table
+    IndexOutOfRange,      // an ellipsoid or point index beyond the object's declared count
+    StreamMismatch,       // a packet of another stream id, or stream info contradicting earlier info
+    BadSignature,         // a container file that does not start with the ellicast signature
+    UnsupportedContainer, // container version other than 1
+    IoError,              // a file could not be read or written
+};
+
+// A short readable name for an error ("bad checksum", ...).
+const char* error_name(Error e);
+
+// ---------------------------------------------------------------------------------------------
+// Checksum
+
+// CRC-32C (Castagnoli, reflected polynomial 0x82F63B78, init and final xor 0xFFFFFFFF).
+// Pass the previous result as `crc` to continue over more data. crc32c("123456789") == 0xE3069283.
+uint32_t crc32c(const uint8_t* data, size_t size, uint32_t crc = 0);
+
+// ---------------------------------------------------------------------------------------------
+// Packets
+
+struct PacketHeader {
+    uint8_t version_major = kFormatMajor;
+    uint8_t version_minor = kFormatMinor;
+    uint8_t type = 0;
+    uint8_t flags = 0;
+    uint32_t stream_id = 0;
+    uint32_t sequence = 0;
+    uint16_t object_id = kStreamObjectId;
+    uint16_t payload_length = 0;
+
+    bool skippable() const { return (flags & kFlagSkippable) != 0; }
+    size_t packet_size() const { return kPacketOverhead + payload_length; }
+};
+
+// A packet as parsed in place: the header and a view of its payload inside the caller's bytes.
+struct PacketView {
+    PacketHeader header;
+    std::span<const uint8_t> payload;
+    size_t size = 0;  // whole packet: header + payload + checksum
+};
+
+// Serializes a packet: header (payload_length taken from payload.size()), payload, CRC-32C.
+// Requires payload.size() <= kMaxPacketSize - kPacketOverhead.
+std::vector<uint8_t> write_packet(PacketHeader header, std::span<const uint8_t> payload);
+
+// Parses the packet at the start of `bytes`, which may continue with other data (a container).
+// Checks magic, major version, type, declared length against kMaxPacketSize and against the bytes
+// available, then the checksum. Does not look inside the payload.
+Error parse_packet_prefix(std::span<const uint8_t> bytes, PacketView& out);
+
+// Parses a datagram that must hold exactly one packet (LengthMismatch if bytes follow it).
+Error parse_packet(std::span<const uint8_t> bytes, PacketView& out);
+
+// ---------------------------------------------------------------------------------------------
+// Geometry values (dequantized)
+
+// An ellipsoid: the points x with |diag(1/radii) * R^T (x - center)|^2 <= 1, where R is the rotation
+// of the unit quaternion `rotation` = (w, x, y, z); column i of R is the direction of semi-axis i.
+// As an implicit quadric: x'Ax + 2b'x + c <= 0 with A = R diag(1/r^2) R^T, b = -A center,
+// c = center' A center - 1 (the paper normalizes c to 1).
+struct Ellipsoid {
+    std::array<float, 3> center{};
+    std::array<float, 3> radii{};
+    std::array<float, 4> rotation{1, 0, 0, 0};
+};
+
+// A surface sample: an original vertex with the attributes its object carries.
+struct SurfacePoint {
+    std::array<float, 3> position{};
+    std::array<float, 3> normal{};      // unit length, when the object has normals
+    std::array<float, 2> texcoord{};    // when the object has TEXCOORD_0
+    std::array<float, 4> color{0, 0, 0, 1};  // linear RGBA in [0,1], when the object has COLOR_0
+};
+
+// ---------------------------------------------------------------------------------------------
+// Stream info
+
+enum class ObjectKind : uint8_t {
+    Surface = 0,   // a triangle mesh: ellipsoids + points, reconstructed as a surface
+    PointSet = 1,  // a point primitive: points only, shown as points
+};
+
+inline constexpr uint8_t kAttrNormal = 0x01;
+inline constexpr uint8_t kAttrTexcoord = 0x02;
+inline constexpr uint8_t kAttrColor = 0x04;
+inline constexpr uint8_t kAttrColorAlpha = 0x08;  // colour has 4 channels (RGBA), else 3 (RGB)
+inline constexpr uint8_t kAttrKnownMask = 0x0F;
+
+// The quantization frame of an object: an axis-aligned cube with its minimum corner at `origin`
+// and edge length `scale` (> 0). Positions and ellipsoid centres are quantized inside it.
+struct Frame {
+    std::array<float, 3> origin{};
+    float scale = 1;
+};
+
+struct ObjectInfo {
+    Frame frame;
+    uint32_t ellipsoid_count = 0;
+    uint32_t point_count = 0;
+    ObjectKind kind = ObjectKind::Surface;
+    uint8_t attributes = 0;                    // kAttr* bits
+    std::array<float, 2> texcoord_origin{};    // texture coordinates quantized in
+    std::array<float, 2> texcoord_scale{1, 1}; // [origin, origin + scale] per component
+
+    bool has(uint8_t attr) const { return (attributes & attr) == attr; }
+    int color_channels() const { return has(kAttrColor) ? (has(kAttrColorAlpha) ? 4 : 3) : 0; }
+};
+
+inline constexpr size_t kStreamInfoFixedSize = 32;  // v1.0 stream-level part of STREAM_INFO
+inline constexpr size_t kObjectEntrySize = 44;      // v1.0 object table entry
+
+struct StreamInfo {
+    uint16_t packet_size = kDefaultPacketSize;  // the sender's maximum packet size
+    uint8_t position_bits = 14;                 // 8..16 per axis
+    uint8_t normal_bits = 10;                   // 4..16 per octahedral component
+    uint8_t texcoord_bits = 12;                 // 4..16 per component
+    uint8_t color_bits = 8;                     // 2..16 per channel
+    uint8_t ellipsoid_encoding = 0;             // 0: the 16-byte layout of format 1.0
+    uint32_t content_id = 0;                    // changes whenever the sender's content changes
+    uint16_t grid_hint = 0;                     // suggested decoder grid resolution, 0 = none
+    float coverage_target = 0;                  // encoder parameter: covered volume fraction aimed at
+    uint32_t seed = 0;                          // encoder parameter: random seed
+    std::vector<ObjectInfo> objects;            // the whole object table
+};
+
+// Number of bits of one point record of `object` at the stream's bit depths.
+size_t point_record_bits(const StreamInfo& info, const ObjectInfo& object);
+
+// Checks that the stream-level fields and every object are in range (bit depths, packet size,
+// finite frames with positive scale, attributes known, kind known). Returns MalformedPayload or Ok.
+Error check_stream_info(const StreamInfo& info);
+
+// ---------------------------------------------------------------------------------------------
+// Quantization (section "Quantization" of the spec states every error bound)
+
+// A quantized ellipsoid, 16 bytes: centre 3 x 15 bits, radii 3 x 13 bits, rotation as the
+// "smallest three" of its quaternion (2-bit index + 3 x 14 bits).
+struct QuantizedEllipsoid {
+    std::array<uint16_t, 3> center{};   // 0..32767 across the frame
+    std::array<uint16_t, 3> radii{};    // 0..8191, radius = q * scale / 8191
+    uint8_t largest = 0;                // index (0=w,1=x,2=y,3=z) of the dropped quaternion component
+    std::array<uint16_t, 3> rotation{}; // 0..16383, the other three components in order
+};
+
+QuantizedEllipsoid quantize_ellipsoid(const Ellipsoid& e, const Frame& frame);
+Ellipsoid dequantize_ellipsoid(const QuantizedEllipsoid& q, const Frame& frame);
+void pack_ellipsoid(const QuantizedEllipsoid& q, uint8_t out[kEllipsoidBytes]);
+QuantizedEllipsoid unpack_ellipsoid(const uint8_t in[kEllipsoidBytes]);
+
+// Largest distance between a point of the true ellipsoid surface and its image on the
+// dequantized ellipsoid (the bound of spec section "Quantization"), for radii up to max_radius.
+double ellipsoid_error_bound(const Frame& frame, double max_radius);
+
+// A point record as integers, before bit packing.
+struct QuantizedPoint {
+    std::array<uint32_t, 3> position{};
+    std::array<uint32_t, 2> normal{};
+    std::array<uint32_t, 2> texcoord{};
+    std::array<uint32_t, 4> color{};
+};
+
+QuantizedPoint quantize_point(const SurfacePoint& p, const StreamInfo& info, const ObjectInfo& object);
+SurfacePoint dequantize_point(const QuantizedPoint& q, const StreamInfo& info, const ObjectInfo& object);
+
+// Octahedral normal encoding at `bits` per component (the unit vector n -> two integers).
+std::array<uint32_t, 2> encode_octahedral(const std::array<float, 3>& n, int bits);
+std::array<float, 3> decode_octahedral(const std::array<uint32_t, 2>& q, int bits);
+
+// ---------------------------------------------------------------------------------------------
+// Payloads
+
+// A part of the stream info as one STREAM_INFO packet carries it: the stream-level fields and the
+// entries of objects [first_object, first_object + objects.size()) of a table of object_count.
+struct StreamInfoPart {
+    StreamInfo info;            // info.objects holds only this part's entries
+    uint16_t object_count = 0;  // size of the whole object table
+    uint16_t first_object = 0;
+};
+
+struct EllipsoidBatch {
+    uint32_t first_index = 0;
+    std::vector<QuantizedEllipsoid> ellipsoids;
+};
+
+struct PointBatch {
+    uint32_t first_index = 0;
+    std::vector<QuantizedPoint> points;
+};
+
+// Payload encoders. They do not split: the caller chooses counts that fit its packet size.
+std::vector<uint8_t> encode_stream_info_payload(const StreamInfo& info, uint16_t first_object, uint16_t count);
+std::vector<uint8_t> encode_ellipsoids_payload(const EllipsoidBatch& batch);
+std::vector<uint8_t> encode_points_payload(const PointBatch& batch, const StreamInfo& info, const ObjectInfo& object);
+
+// Payload decoders: MalformedPayload when a length or field is inconsistent.
+Error decode_stream_info_payload(std::span<const uint8_t> payload, StreamInfoPart& out);
+Error decode_ellipsoids_payload(std::span<const uint8_t> payload, EllipsoidBatch& out);
+// Needs the object's info: the record size depends on its attributes and the bit depths.
+Error decode_points_payload(std::span<const uint8_t> payload, const StreamInfo& info, const ObjectInfo& object,
+                            PointBatch& out);
+
+// How many ellipsoids / points / object entries fit the payload of a packet of `packet_size` bytes.
+size_t ellipsoids_per_packet(size_t packet_size);
+size_t points_per_packet(size_t packet_size, const StreamInfo& info, const ObjectInfo& object);
+size_t objects_per_stream_info_packet(size_t packet_size);
+
+// ---------------------------------------------------------------------------------------------
+// Packetizing a whole stream
+
+// The content of one object, quantized, ready to be cut into packets.
+struct ObjectContent {
+    std::vector<QuantizedEllipsoid> ellipsoids;  // must match info.objects[i].ellipsoid_count
+    std::vector<QuantizedPoint> points;          // in stream order; must match point_count
+};
+
+struct StreamPackets {
+    std::vector<std::vector<uint8_t>> stream_info;  // every STREAM_INFO part
+    std::vector<std::vector<uint8_t>> ellipsoids;   // every ELLIPSOIDS packet, object by object
+    std::vector<std::vector<uint8_t>> points;       // every POINTS packet, in stream order
+};
+
+// Cuts a stream into packets of at most info.packet_size bytes. Sequence numbers run from 0 in the
+// order stream info, ellipsoids, points. Requires check_stream_info(info) == Ok and contents that
+// match the object table (checked: MalformedPayload otherwise).
+Error packetize_stream(const StreamInfo& info, const std::vector<ObjectContent>& contents, uint32_t stream_id,
+                       StreamPackets& out);
+
+// ---------------------------------------------------------------------------------------------
+// Receiving: collects whatever packets arrive, in any order, with duplicates and damage
+
+struct ReceivedObject {
+    std::optional<ObjectInfo> info;                 // once its stream info entry arrived
+    std::map<uint32_t, QuantizedEllipsoid> ellipsoids;  // by index; duplicates collapse
+    std::map<uint32_t, QuantizedPoint> points;          // by index
+};
+
+struct Rejection {
+    uint64_t where = 0;  // packet ordinal (datagrams) or byte offset (container files)
+    Error error = Error::Ok;
+    std::string detail;
+};
+
+struct ReceiveCounters {
+    uint64_t accepted = 0;     // packets whose content was taken in
+    uint64_t duplicates = 0;   // valid packets that brought nothing new
+    uint64_t skipped = 0;      // valid packets of a skippable type this decoder does not know
+    uint64_t rejected = 0;     // damaged or invalid packets
+    uint64_t pending = 0;      // valid packets held until their stream info arrives
+};
+
+class ReceivedStream {
+public:
+    // Limits that keep memory bounded whatever arrives.
+    struct Limits {
+        size_t max_pending_bytes = 64u << 20;     // payloads held while waiting for stream info
+        uint64_t max_elements = 50'000'000;       // ellipsoids + points declared by a stream
+        size_t max_rejections_kept = 10'000;      // detailed rejection records kept
+    };
+
+    ReceivedStream();
+    explicit ReceivedStream(Limits limits);
+
+    // Takes one packet that arrived (a datagram, or a packet read from a container). `where` is
+    // reported with a rejection. The first valid packet fixes the stream id; packets of another
+    // stream are rejected with StreamMismatch. Returns Ok when the packet was accepted, skipped,
+    // held, or was a duplicate; the error otherwise (also recorded in rejections()).
+    Error add_packet(std::span<const uint8_t> bytes, uint64_t where);
+    // Same, for a packet already parsed (checksum already checked).
+    Error add_parsed(const PacketView& packet, uint64_t where);
+
+    bool has_stream_id() const { return stream_id_.has_value(); }
+    uint32_t stream_id() const { return stream_id_.value_or(0); }
+    // Stream-level info once any STREAM_INFO part arrived (objects are in objects()).
+    const std::optional<StreamInfo>& info() const { return info_; }
+    const std::vector<ReceivedObject>& objects() const { return objects_; }
+    const ReceiveCounters& counters() const { return counters_; }
+    const std::vector<Rejection>& rejections() const { return rejections_; }
+    // Highest minor version seen among accepted packets.
+    uint8_t newest_minor() const { return newest_minor_; }
+
+    // The dequantized geometry received so far for object `index` (ellipsoids by index order,
+    // points by stream order). Empty when the object's info has not arrived.
+    std::vector<Ellipsoid> ellipsoids(size_t index) const;
+    std::vector<SurfacePoint> points(size_t index) const;
+
+private:
+    Error reject(uint64_t where, Error e, std::string detail);
+    Error take_stream_info(const PacketView& packet, uint64_t where);
+    Error take_object_packet(const PacketView& packet, uint64_t where);
+    void release_pending(uint16_t object_id);
+
+    Limits limits_;
+    std::optional<uint32_t> stream_id_;
+    std::optional<StreamInfo> info_;
+    uint16_t object_count_ = 0;
+    std::vector<ReceivedObject> objects_;
+    struct Pending {
+        PacketHeader header;
+        std::vector<uint8_t> payload;
+        uint64_t where;
+    };
+    std::vector<Pending> pending_;
+    size_t pending_bytes_ = 0;
+    ReceiveCounters counters_;
+    std::vector<Rejection> rejections_;
+    uint8_t newest_minor_ = 0;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Container files (.ellc): a recorded stream
+
+// The container header followed by the packets in the given order.
+std::vector<uint8_t> write_container(const std::vector<std::vector<uint8_t>>& packets);
+
+// A contiguous run of bytes of a container that holds no valid packet.
+struct DamagedRegion {
+    uint64_t offset = 0;
+    uint64_t length = 0;
+    Error first_error = Error::Ok;  // why the first packet expected at `offset` did not parse
+};
+
+struct ContainerPacket {
+    uint64_t offset = 0;  // byte offset of the packet in the file
+    PacketView view;      // points into the bytes given to read_container
+};
+
+struct ContainerContents {
+    Error header_error = Error::Ok;  // BadSignature / UnsupportedContainer / TooShort: nothing read
+    std::vector<ContainerPacket> packets;
+    std::vector<DamagedRegion> damaged;
+};
+
+// Reads every intact packet of a container held in memory. After damage it resynchronizes on the
+// next offset where a whole packet with a valid checksum starts, so every intact packet after a
+// damaged region is kept. The returned views point into `bytes`.
+ContainerContents read_container(std::span<const uint8_t> bytes);
+
+// Reads a whole file into memory. Returns IoError (with the reason in `message`) when it cannot.
+Error read_file(const std::string& path, std::vector<uint8_t>& out, std::string& message);
+// Writes a file through a temporary name and a rename, so a failed write leaves no partial file.
+Error write_file(const std::string& path, std::span<const uint8_t> bytes, std::string& message);
+
+}  // namespace ellicast

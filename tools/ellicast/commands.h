@@ -1,0 +1,38 @@
+// The `ellicast` command line: each subcommand lives in its own cmd_*.cpp and registers itself here,
+// so adding a command touches no other file.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ellicast::cli {
+
+// A subcommand: `setup` adds it to the app; its callback stores the process exit code in `exit_code`.
+struct Command {
+    int order;  // position in `ellicast --help`
+    std::function<void(CLI::App& app, int& exit_code)> setup;
+};
+
+std::vector<Command>& command_registry();
+
+struct RegisterCommand {
+    explicit RegisterCommand(Command command) { command_registry().push_back(std::move(command)); }
+};
+
+// Exit codes shared by every command.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitInvalid = 1;   // the input is not valid / the check failed
+inline constexpr int kExitUsage = 2;     // bad options or arguments (CLI11's own code too)
+inline constexpr int kExitFailure = 3;   // the work could not be done (I/O, unsupported input)
+
+// Prints "ellicast: error: <message>" on stderr and returns `code`.
+int fail(int code, const std::string& message);
+
+// Refuses to overwrite an input: true (and an error printed) when `output` is the same file as one
+// of `inputs`.
+bool output_clobbers_input(const std::string& output, const std::vector<std::string>& inputs);
+
+}  // namespace ellicast::cli

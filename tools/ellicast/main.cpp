@@ -1,0 +1,49 @@
+// ellicast: encode, inspect, validate and decode ellicast streams.
+#include "commands.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+
+namespace ellicast::cli {
+
+std::vector<Command>& command_registry() {
+    static std::vector<Command> commands;
+    return commands;
+}
+
+int fail(int code, const std::string& message) {
+    std::cerr << "ellicast: error: " << message << "\n";
+    return code;
+}
+
+bool output_clobbers_input(const std::string& output, const std::vector<std::string>& inputs) {
+    std::error_code ec;
+    for (const auto& input : inputs) {
+        if (std::filesystem::exists(output, ec) && std::filesystem::equivalent(output, input, ec)) {
+            fail(kExitUsage, "refusing to overwrite the input " + input + " with the output");
+            return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace ellicast::cli
+
+int main(int argc, char** argv) {
+    using namespace ellicast::cli;
+    CLI::App app{"ellicast: 3D models over lossy one-way channels (format 1.0)", "ellicast"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", std::string("ellicast 1.0.0, format 1.0"));
+    int exit_code = kExitOk;
+    auto commands = command_registry();
+    std::sort(commands.begin(), commands.end(), [](const Command& a, const Command& b) { return a.order < b.order; });
+    for (auto& command : commands) command.setup(app, exit_code);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int code = app.exit(e);
+        return code == 0 ? 0 : kExitUsage;
+    }
+    return exit_code;
+}
