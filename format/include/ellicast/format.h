@@ -129,6 +129,11 @@ Error parse_packet_prefix(std::span<const uint8_t> bytes, PacketView& out);
 // Parses a datagram that must hold exactly one packet (LengthMismatch if bytes follow it).
 Error parse_packet(std::span<const uint8_t> bytes, PacketView& out);
 
+// Sets the sequence number of a serialized packet and recomputes its checksum. The sequence number
+// counts transmissions (a carousel's repeats get new numbers); receivers estimate loss from its gaps
+// and never use it to identify content. Returns false if `packet` is not a valid packet.
+bool restamp_packet(std::vector<uint8_t>& packet, uint32_t sequence);
+
 // ---------------------------------------------------------------------------------------------
 // Geometry values (dequantized)
 
@@ -169,6 +174,7 @@ inline constexpr uint8_t kAttrKnownMask = 0x0F;
 struct Frame {
     std::array<float, 3> origin{};
     float scale = 1;
+    bool operator==(const Frame&) const = default;
 };
 
 struct ObjectInfo {
@@ -180,6 +186,7 @@ struct ObjectInfo {
     std::array<float, 2> texcoord_origin{};    // texture coordinates quantized in
     std::array<float, 2> texcoord_scale{1, 1}; // [origin, origin + scale] per component
 
+    bool operator==(const ObjectInfo&) const = default;
     bool has(uint8_t attr) const { return (attributes & attr) == attr; }
     int color_channels() const { return has(kAttrColor) ? (has(kAttrColorAlpha) ? 4 : 3) : 0; }
 };

@@ -1,0 +1,78 @@
+// Little-endian integers and LSB-first bit packing, private to the format library.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <span>
+#include <vector>
+
+namespace ellicast::detail {
+
+static_assert(sizeof(float) == 4, "IEEE-754 binary32 floats are required");
+
+inline void put_u8(std::vector<uint8_t>& out, uint8_t v) { out.push_back(v); }
+inline void put_u16(std::vector<uint8_t>& out, uint16_t v) {
+    out.push_back(static_cast<uint8_t>(v));
+    out.push_back(static_cast<uint8_t>(v >> 8));
+}
+inline void put_u32(std::vector<uint8_t>& out, uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
+}
+inline void put_f32(std::vector<uint8_t>& out, float f) {
+    uint32_t v;
+    std::memcpy(&v, &f, 4);
+    put_u32(out, v);
+}
+
+inline uint16_t get_u16(const uint8_t* p) { return static_cast<uint16_t>(p[0] | (p[1] << 8)); }
+inline uint32_t get_u32(const uint8_t* p) {
+    return static_cast<uint32_t>(p[0]) | (static_cast<uint32_t>(p[1]) << 8) | (static_cast<uint32_t>(p[2]) << 16) |
+           (static_cast<uint32_t>(p[3]) << 24);
+}
+inline float get_f32(const uint8_t* p) {
+    uint32_t v = get_u32(p);
+    float f;
+    std::memcpy(&f, &v, 4);
+    return f;
+}
+inline void set_u32(uint8_t* p, uint32_t v) {
+    for (int i = 0; i < 4; ++i) p[i] = static_cast<uint8_t>(v >> (8 * i));
+}
+
+// Appends values of 1..32 bits, least significant bit first, into bytes (bit 0 of byte 0 first).
+class BitWriter {
+public:
+    explicit BitWriter(std::vector<uint8_t>& out) : out_(out) {}
+    void put(uint32_t value, int bits) {
+        for (int i = 0; i < bits; ++i) {
+            if (used_ == 0) out_.push_back(0);
+            if ((value >> i) & 1u) out_.back() = static_cast<uint8_t>(out_.back() | (1u << used_));
+            used_ = (used_ + 1) & 7;
+        }
+    }
+
+private:
+    std::vector<uint8_t>& out_;
+    int used_ = 0;  // bits used in out_.back(); 0 means a new byte is needed
+};
+
+// Reads what BitWriter wrote. The caller checks the total size beforehand; reading past the end
+// returns zero bits rather than touching memory outside the span.
+class BitReader {
+public:
+    explicit BitReader(std::span<const uint8_t> in) : in_(in) {}
+    uint32_t get(int bits) {
+        uint32_t v = 0;
+        for (int i = 0; i < bits; ++i, ++pos_) {
+            size_t byte = pos_ >> 3;
+            if (byte < in_.size() && ((in_[byte] >> (pos_ & 7)) & 1u)) v |= 1u << i;
+        }
+        return v;
+    }
+
+private:
+    std::span<const uint8_t> in_;
+    size_t pos_ = 0;
+};
+
+}  // namespace ellicast::detail

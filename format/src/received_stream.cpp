@@ -1,0 +1,186 @@
+// Collects the packets of one stream as they arrive: any order, duplicates, damage, late stream info.
+#include "ellicast/format.h"
+
+#include <algorithm>
+
+namespace ellicast {
+
+namespace {
+
+bool same_stream_fields(const StreamInfo& a, const StreamInfo& b) {
+    return a.packet_size == b.packet_size && a.position_bits == b.position_bits && a.normal_bits == b.normal_bits &&
+           a.texcoord_bits == b.texcoord_bits && a.color_bits == b.color_bits &&
+           a.ellipsoid_encoding == b.ellipsoid_encoding && a.content_id == b.content_id && a.grid_hint == b.grid_hint &&
+           a.coverage_target == b.coverage_target && a.seed == b.seed;
+}
+
+}  // namespace
+
+ReceivedStream::ReceivedStream() : ReceivedStream(Limits{}) {}
+ReceivedStream::ReceivedStream(Limits limits) : limits_(limits) {}
+
+Error ReceivedStream::reject(uint64_t where, Error e, std::string detail) {
+    ++counters_.rejected;
+    if (rejections_.size() < limits_.max_rejections_kept) rejections_.push_back({where, e, std::move(detail)});
+    return e;
+}
+
+Error ReceivedStream::add_packet(std::span<const uint8_t> bytes, uint64_t where) {
+    PacketView view;
+    Error e = parse_packet(bytes, view);
+    if (e != Error::Ok) return reject(where, e, std::to_string(bytes.size()) + "-byte datagram");
+    return add_parsed(view, where);
+}
+
+Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
+    const PacketHeader& h = packet.header;
+    if (stream_id_ && *stream_id_ != h.stream_id)
+        return reject(where, Error::StreamMismatch, "stream id " + std::to_string(h.stream_id) + ", expected " +
+                                                        std::to_string(*stream_id_));
+    if (!is_known_packet_type(h.type)) {
+        if (!h.skippable())
+            return reject(where, Error::UnknownCriticalType, "type " + packet_type_name(h.type));
+        stream_id_ = h.stream_id;
+        ++counters_.skipped;
+        newest_minor_ = std::max(newest_minor_, h.version_minor);
+        return Error::Ok;
+    }
+    Error e = h.type == static_cast<uint8_t>(PacketType::StreamInfo) ? take_stream_info(packet, where)
+                                                                     : take_object_packet(packet, where);
+    if (e == Error::Ok) {
+        stream_id_ = h.stream_id;
+        newest_minor_ = std::max(newest_minor_, h.version_minor);
+    }
+    return e;
+}
+
+Error ReceivedStream::take_stream_info(const PacketView& packet, uint64_t where) {
+    if (packet.header.object_id != kStreamObjectId)
+        return reject(where, Error::MalformedPayload, "STREAM_INFO with object id " +
+                                                          std::to_string(packet.header.object_id) + ", expected 65535");
+    StreamInfoPart part;
+    if (decode_stream_info_payload(packet.payload, part) != Error::Ok)
+        return reject(where, Error::MalformedPayload, "STREAM_INFO payload inconsistent or out of range");
+    if (info_) {
+        if (!same_stream_fields(*info_, part.info) || part.object_count != object_count_)
+            return reject(where, Error::StreamMismatch, "STREAM_INFO contradicts the stream info received before");
+    } else {
+        uint64_t declared = 0;
+        for (const auto& o : part.info.objects) declared += uint64_t(o.ellipsoid_count) + o.point_count;
+        if (declared > limits_.max_elements)
+            return reject(where, Error::MalformedPayload, "declares more elements than this receiver accepts");
+        StreamInfo stream = part.info;
+        stream.objects.clear();
+        info_ = std::move(stream);
+        object_count_ = part.object_count;
+        objects_.assign(object_count_, ReceivedObject{});
+    }
+    bool news = false;
+    uint64_t declared = 0;
+    for (const auto& object : objects_)
+        if (object.info) declared += uint64_t(object.info->ellipsoid_count) + object.info->point_count;
+    for (size_t i = 0; i < part.info.objects.size(); ++i) {
+        const ObjectInfo& entry = part.info.objects[i];
+        ReceivedObject& object = objects_[part.first_object + i];
+        if (object.info) {
+            if (!(*object.info == entry))
+                return reject(where, Error::StreamMismatch,
+                              "object " + std::to_string(part.first_object + i) + " entry contradicts an earlier one");
+            continue;
+        }
+        declared += uint64_t(entry.ellipsoid_count) + entry.point_count;
+        if (declared > limits_.max_elements)
+            return reject(where, Error::MalformedPayload, "declares more elements than this receiver accepts");
+    }
+    for (size_t i = 0; i < part.info.objects.size(); ++i) {
+        ReceivedObject& object = objects_[part.first_object + i];
+        if (object.info) continue;
+        object.info = part.info.objects[i];
+        news = true;
+        release_pending(static_cast<uint16_t>(part.first_object + i));
+    }
+    if (news || part.info.objects.empty()) ++counters_.accepted;
+    else ++counters_.duplicates;
+    return Error::Ok;
+}
+
+Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t where) {
+    const uint16_t id = packet.header.object_id;
+    const std::string name = packet_type_name(packet.header.type) + " of object " + std::to_string(id);
+    if (info_ && id >= object_count_)
+        return reject(where, Error::UnknownObject, name + ", the stream has " + std::to_string(object_count_) + " objects");
+    if (!info_ || !objects_[id].info) {
+        if (pending_bytes_ + packet.payload.size() > limits_.max_pending_bytes)
+            return reject(where, Error::NoStreamInfo, name + " arrived before its stream info and the hold is full");
+        pending_.push_back({packet.header, {packet.payload.begin(), packet.payload.end()}, where});
+        pending_bytes_ += packet.payload.size();
+        ++counters_.pending;
+        return Error::Ok;
+    }
+    ReceivedObject& object = objects_[id];
+    const ObjectInfo& oi = *object.info;
+    bool news = false;
+    if (packet.header.type == static_cast<uint8_t>(PacketType::Ellipsoids)) {
+        EllipsoidBatch batch;
+        if (decode_ellipsoids_payload(packet.payload, batch) != Error::Ok)
+            return reject(where, Error::MalformedPayload, name + ": payload length does not match its count");
+        if (uint64_t(batch.first_index) + batch.ellipsoids.size() > oi.ellipsoid_count)
+            return reject(where, Error::IndexOutOfRange,
+                          name + ": ellipsoids " + std::to_string(batch.first_index) + "+" +
+                              std::to_string(batch.ellipsoids.size()) + " of " + std::to_string(oi.ellipsoid_count));
+        for (size_t i = 0; i < batch.ellipsoids.size(); ++i)
+            news |= object.ellipsoids.emplace(batch.first_index + static_cast<uint32_t>(i), batch.ellipsoids[i]).second;
+    } else {
+        PointBatch batch;
+        if (decode_points_payload(packet.payload, *info_, oi, batch) != Error::Ok)
+            return reject(where, Error::MalformedPayload, name + ": payload length does not match its count");
+        if (uint64_t(batch.first_index) + batch.points.size() > oi.point_count)
+            return reject(where, Error::IndexOutOfRange,
+                          name + ": points " + std::to_string(batch.first_index) + "+" +
+                              std::to_string(batch.points.size()) + " of " + std::to_string(oi.point_count));
+        for (size_t i = 0; i < batch.points.size(); ++i)
+            news |= object.points.emplace(batch.first_index + static_cast<uint32_t>(i), batch.points[i]).second;
+    }
+    if (news) ++counters_.accepted;
+    else ++counters_.duplicates;
+    return Error::Ok;
+}
+
+void ReceivedStream::release_pending(uint16_t object_id) {
+    std::vector<Pending> held;
+    for (auto it = pending_.begin(); it != pending_.end();) {
+        if (it->header.object_id == object_id) {
+            held.push_back(std::move(*it));
+            it = pending_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+    for (const Pending& p : held) {
+        pending_bytes_ -= p.payload.size();
+        --counters_.pending;
+        PacketView view;
+        view.header = p.header;
+        view.payload = p.payload;
+        view.size = p.header.packet_size();
+        take_object_packet(view, p.where);
+    }
+}
+
+std::vector<Ellipsoid> ReceivedStream::ellipsoids(size_t index) const {
+    std::vector<Ellipsoid> out;
+    if (index >= objects_.size() || !objects_[index].info) return out;
+    out.reserve(objects_[index].ellipsoids.size());
+    for (const auto& [i, q] : objects_[index].ellipsoids) out.push_back(dequantize_ellipsoid(q, objects_[index].info->frame));
+    return out;
+}
+
+std::vector<SurfacePoint> ReceivedStream::points(size_t index) const {
+    std::vector<SurfacePoint> out;
+    if (index >= objects_.size() || !objects_[index].info || !info_) return out;
+    out.reserve(objects_[index].points.size());
+    for (const auto& [i, q] : objects_[index].points) out.push_back(dequantize_point(q, *info_, *objects_[index].info));
+    return out;
+}
+
+}  // namespace ellicast
