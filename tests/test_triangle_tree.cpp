@@ -1,0 +1,94 @@
+// The triangle tree answers closest-point queries exactly like a brute-force scan.
+#include "ellicast/codec/triangle_tree.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace ellicast;
+
+namespace {
+
+// A closed octahedron-like sphere: a UV sphere with `n` rings.
+void make_sphere(int n, std::vector<std::array<float, 3>>& pos, std::vector<std::array<uint32_t, 3>>& tri) {
+    pos.clear();
+    tri.clear();
+    pos.push_back({0, 0, 1});
+    for (int i = 1; i < n; ++i)
+        for (int j = 0; j < 2 * n; ++j) {
+            double th = M_PI * i / n, ph = M_PI * j / n;
+            pos.push_back({float(std::sin(th) * std::cos(ph)), float(std::sin(th) * std::sin(ph)), float(std::cos(th))});
+        }
+    pos.push_back({0, 0, -1});
+    auto ring = [&](int i, int j) { return uint32_t(1 + (i - 1) * 2 * n + (j % (2 * n))); };
+    for (int j = 0; j < 2 * n; ++j) tri.push_back({0, ring(1, j), ring(1, j + 1)});
+    for (int i = 1; i < n - 1; ++i)
+        for (int j = 0; j < 2 * n; ++j) {
+            tri.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
+            tri.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
+        }
+    uint32_t south = uint32_t(pos.size() - 1);
+    for (int j = 0; j < 2 * n; ++j) tri.push_back({ring(n - 1, j + 1), ring(n - 1, j), south});
+}
+
+}  // namespace
+
+TEST_CASE("triangle tree closest point matches a brute-force scan") {
+    std::vector<std::array<float, 3>> pos;
+    std::vector<std::array<uint32_t, 3>> tri;
+    make_sphere(24, pos, tri);
+    TriangleTree tree(pos, tri);
+    REQUIRE(tree.triangle_count() == tri.size());
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-2, 2);
+    for (int q = 0; q < 300; ++q) {
+        std::array<double, 3> p{u(rng), u(rng), u(rng)};
+        double brute = INFINITY;
+        for (const auto& t : tri) {
+            std::array<double, 3> a{pos[t[0]][0], pos[t[0]][1], pos[t[0]][2]};
+            std::array<double, 3> b{pos[t[1]][0], pos[t[1]][1], pos[t[1]][2]};
+            std::array<double, 3> c{pos[t[2]][0], pos[t[2]][1], pos[t[2]][2]};
+            auto cp = closest_point_on_triangle(p, a, b, c);
+            double d = (cp[0] - p[0]) * (cp[0] - p[0]) + (cp[1] - p[1]) * (cp[1] - p[1]) + (cp[2] - p[2]) * (cp[2] - p[2]);
+            brute = std::min(brute, d);
+        }
+        ClosestPoint c = tree.closest_point(p);
+        REQUIRE(c.found);
+        CHECK(c.squared_distance == doctest::Approx(brute).epsilon(1e-12));
+        CHECK(c.triangle < tri.size());
+        // The reported point lies on the reported triangle.
+        const auto& t = tri[c.triangle];
+        std::array<double, 3> a{pos[t[0]][0], pos[t[0]][1], pos[t[0]][2]};
+        std::array<double, 3> b{pos[t[1]][0], pos[t[1]][1], pos[t[1]][2]};
+        std::array<double, 3> cc{pos[t[2]][0], pos[t[2]][1], pos[t[2]][2]};
+        auto on = closest_point_on_triangle(c.point, a, b, cc);
+        CHECK(std::abs(on[0] - c.point[0]) + std::abs(on[1] - c.point[1]) + std::abs(on[2] - c.point[2]) < 1e-9);
+        // A radius-limited query finds nothing when the surface is farther.
+        double d = std::sqrt(brute);
+        CHECK_FALSE(tree.closest_point(p, d * 0.99).found);
+        CHECK(tree.any_within(p, d * 1.01 + 1e-12));
+        CHECK_FALSE(tree.any_within(p, d * 0.99));
+    }
+}
+
+TEST_CASE("triangle tree ignores out-of-range indices and non-finite corners, and handles empty input") {
+    std::vector<std::array<float, 3>> pos{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {NAN, 0, 0}};
+    std::vector<std::array<uint32_t, 3>> tri{{0, 1, 2}, {0, 1, 9}, {0, 1, 3}};
+    TriangleTree tree(pos, tri);
+    CHECK(tree.triangle_count() == 1);
+    ClosestPoint c = tree.closest_point({0.2, 0.2, 1.0});
+    REQUIRE(c.found);
+    CHECK(c.triangle == 0);
+    CHECK(c.squared_distance == doctest::Approx(1.0));
+    TriangleTree empty(std::span<const std::array<float, 3>>{}, std::span<const std::array<uint32_t, 3>>{});
+    CHECK(empty.empty());
+    CHECK_FALSE(empty.closest_point({0, 0, 0}).found);
+    CHECK(std::isinf(empty.distance({0, 0, 0})));
+}
+
+TEST_CASE("closest point on a degenerate triangle is on its longest edge") {
+    auto p = closest_point_on_triangle({0.5, 1, 0}, {0, 0, 0}, {1, 0, 0}, {2, 0, 0});
+    CHECK(p[0] == doctest::Approx(0.5));
+    CHECK(p[1] == doctest::Approx(0.0));
+}
