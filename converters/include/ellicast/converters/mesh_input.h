@@ -1,0 +1,47 @@
+// Reading models into ellicast::Mesh objects: glTF 2.0 (.gltf, .glb, with KHR_draco_mesh_compression
+// and KHR_mesh_quantization) and OBJ / PLY / OFF / STL through OpenMesh.
+//
+// One Mesh per triangle primitive of every mesh instance of the default scene (node transforms
+// applied); point primitives become point sets; line primitives are skipped with a warning.
+// Degenerate and duplicate faces are dropped with a warning; what cannot be read raises InputError.
+#pragma once
+
+#include "ellicast/codec/mesh.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ellicast {
+
+// A model that cannot be read: the message names the file and what is wrong with it.
+class InputError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct LoadResult {
+    std::vector<Mesh> meshes;           // in scene order; never empty on success
+    std::vector<std::string> warnings;  // things dropped, repaired or ignored, one sentence each
+};
+
+// Reads any supported model, choosing the reader by the file's extension (and, for glTF, its
+// magic). Throws InputError when the file cannot be read, holds no triangles or points, has
+// non-finite coordinates, or needs an unsupported glTF extension.
+LoadResult load_meshes(const std::string& path);
+
+// Reads a glTF 2.0 file (.gltf or .glb). Same contract as load_meshes.
+LoadResult load_gltf(const std::string& path);
+
+// Reads OBJ, PLY, OFF or STL through OpenMesh. Same contract as load_meshes. Per-corner texture
+// coordinates (OBJ) split vertices at seams, as glTF does.
+LoadResult load_openmesh(const std::string& path);
+
+// Checks and repairs a mesh read from `source` (used in error messages): throws InputError on a
+// non-finite coordinate or an index beyond the vertex count; drops degenerate (repeated-index or
+// zero-area) and duplicate triangles, drops attribute arrays whose size does not match, and
+// replaces non-finite attribute values, each with a warning. Non-manifold edges are kept (the
+// encoder needs no manifold) and reported.
+void check_and_repair_mesh(Mesh& mesh, const std::string& source, std::vector<std::string>& warnings);
+
+}  // namespace ellicast

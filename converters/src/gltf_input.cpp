@@ -1,0 +1,434 @@
+// glTF 2.0 reading (.gltf, .glb), in the words of the glTF object model: accessors are read into
+// floats, primitives become meshes, nodes are traversed from the default scene with their
+// transforms. KHR_draco_mesh_compression is decoded by our own tinygltf copy (built with
+// TINYGLTF_ENABLE_DRACO); KHR_mesh_quantization needs nothing more than normalized and integer
+// accessors read correctly (the dequantizing scale lives in the node transforms).
+#include "ellicast/converters/mesh_input.h"
+
+#include <tiny_gltf.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <set>
+
+// GCC 12 warns falsely (-Wrestrict) inside std::string concatenation of error messages (GCC bug 105651).
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wrestrict"
+#endif
+
+namespace ellicast {
+
+namespace {
+
+// Extensions we implement, or that change nothing of the geometry we read.
+const std::set<std::string> kGeometryExtensions = {"KHR_draco_mesh_compression", "KHR_mesh_quantization"};
+const std::set<std::string> kAppearanceOnlyPrefixes = {"KHR_materials_", "KHR_texture_", "EXT_texture_",
+                                                       "KHR_lights_", "EXT_lights_"};
+
+bool appearance_only(const std::string& ext) {
+    for (const auto& prefix : kAppearanceOnlyPrefixes)
+        if (ext.rfind(prefix, 0) == 0) return true;
+    return false;
+}
+
+// Images are not needed for geometry: accept them without decoding.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Accessors
+
+int component_count(int type) {
+    switch (type) {
+        case TINYGLTF_TYPE_SCALAR: return 1;
+        case TINYGLTF_TYPE_VEC2: return 2;
+        case TINYGLTF_TYPE_VEC3: return 3;
+        case TINYGLTF_TYPE_VEC4: return 4;
+        default: return 0;
+    }
+}
+
+int component_size(int component_type) {
+    switch (component_type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+        default: return 0;
+    }
+}
+
+// One component as a double, with glTF's normalization rules.
+double read_component(const unsigned char* p, int component_type, bool normalized) {
+    switch (component_type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            int8_t v;
+            std::memcpy(&v, p, 1);
+            return normalized ? std::max(v / 127.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.0 : p[0];
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            int16_t v;
+            std::memcpy(&v, p, 2);
+            return normalized ? std::max(v / 32767.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            uint16_t v;
+            std::memcpy(&v, p, 2);
+            return normalized ? v / 65535.0 : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+            uint32_t v;
+            std::memcpy(&v, p, 4);
+            return normalized ? v / 4294967295.0 : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+            float v;
+            std::memcpy(&v, p, 4);
+            return v;
+        }
+        default: return 0;
+    }
+}
+
+// Reads `count` elements of `components` values of a buffer view, checking every byte is there.
+void read_view(const tinygltf::Model& model, int view_index, size_t byte_offset, size_t count, int components,
+               int component_type, bool normalized, size_t stride_override, const std::string& what,
+               std::vector<double>& out) {
+    if (view_index < 0 || size_t(view_index) >= model.bufferViews.size())
+        throw InputError(what + " refers to bufferView " + std::to_string(view_index) + ", which does not exist");
+    const tinygltf::BufferView& view = model.bufferViews[view_index];
+    if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+        throw InputError(what + ": bufferView " + std::to_string(view_index) + " refers to a missing buffer");
+    const tinygltf::Buffer& buffer = model.buffers[view.buffer];
+    const size_t csize = size_t(component_size(component_type));
+    const size_t elem = csize * size_t(components);
+    const size_t stride = stride_override ? stride_override : (view.byteStride ? view.byteStride : elem);
+    if (stride < elem)
+        throw InputError(what + ": byteStride " + std::to_string(stride) + " is smaller than an element");
+    if (count > 0) {
+        size_t need = byte_offset + stride * (count - 1) + elem;
+        if (need > view.byteLength || view.byteOffset + view.byteLength > buffer.data.size() ||
+            view.byteOffset + view.byteLength < view.byteOffset)
+            throw InputError(what + " runs past the end of its buffer (needs " + std::to_string(need) +
+                             " bytes of bufferView " + std::to_string(view_index) + ", which has " +
+                             std::to_string(view.byteLength) + "; buffer holds " +
+                             std::to_string(buffer.data.size()) + ")");
+    }
+    out.resize(count * components);
+    const unsigned char* base = buffer.data.data() + view.byteOffset + byte_offset;
+    for (size_t i = 0; i < count; ++i)
+        for (int c = 0; c < components; ++c)
+            out[i * components + c] = read_component(base + i * stride + c * csize, component_type, normalized);
+}
+
+// An accessor as doubles (count x components), sparse substitution applied.
+std::vector<double> read_accessor(const tinygltf::Model& model, int index, const std::string& what, int& components) {
+    if (index < 0 || size_t(index) >= model.accessors.size())
+        throw InputError(what + " refers to accessor " + std::to_string(index) + ", which does not exist");
+    const tinygltf::Accessor& acc = model.accessors[index];
+    const std::string name = what + " (accessor " + std::to_string(index) + ")";
+    components = component_count(acc.type);
+    if (components == 0 || component_size(acc.componentType) == 0)
+        throw InputError(name + " has an unsupported type or component type");
+    if (acc.count > (size_t(1) << 28)) throw InputError(name + " declares an absurd count " + std::to_string(acc.count));
+    std::vector<double> values;
+    if (acc.bufferView >= 0) {
+        read_view(model, acc.bufferView, acc.byteOffset, acc.count, components, acc.componentType, acc.normalized, 0,
+                  name, values);
+    } else {
+        values.assign(acc.count * components, 0.0);  // no view: zeros, possibly replaced by sparse values
+    }
+    if (acc.sparse.isSparse) {
+        size_t n = size_t(std::max(acc.sparse.count, 0));
+        if (n > acc.count) throw InputError(name + ": sparse count exceeds the accessor count");
+        std::vector<double> idx, val;
+        read_view(model, acc.sparse.indices.bufferView, size_t(std::max(acc.sparse.indices.byteOffset, 0)), n, 1,
+                  acc.sparse.indices.componentType, false, 0, name + " sparse indices", idx);
+        read_view(model, acc.sparse.values.bufferView, size_t(std::max(acc.sparse.values.byteOffset, 0)), n,
+                  components, acc.componentType, acc.normalized, 0, name + " sparse values", val);
+        for (size_t i = 0; i < n; ++i) {
+            size_t target = size_t(idx[i]);
+            if (target >= acc.count) throw InputError(name + ": sparse index beyond the accessor count");
+            for (int c = 0; c < components; ++c) values[target * components + c] = val[i * components + c];
+        }
+    }
+    return values;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Nodes
+
+Eigen::Matrix4d local_transform(const tinygltf::Node& node) {
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    if (node.matrix.size() == 16) {
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) m(r, c) = node.matrix[c * 4 + r];  // column-major
+        return m;
+    }
+    Eigen::Matrix4d t = Eigen::Matrix4d::Identity(), r = Eigen::Matrix4d::Identity(), s = Eigen::Matrix4d::Identity();
+    if (node.translation.size() == 3)
+        for (int k = 0; k < 3; ++k) t(k, 3) = node.translation[k];
+    if (node.rotation.size() == 4) {
+        Eigen::Quaterniond q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+        if (q.norm() > 0) r.topLeftCorner<3, 3>() = q.normalized().toRotationMatrix();
+    }
+    if (node.scale.size() == 3)
+        for (int k = 0; k < 3; ++k) s(k, k) = node.scale[k];
+    return t * r * s;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Primitives
+
+std::vector<std::array<uint32_t, 3>> primitive_triangles(const std::vector<uint32_t>& idx, int mode) {
+    std::vector<std::array<uint32_t, 3>> tris;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+        for (size_t i = 0; i + 2 < idx.size(); i += 3) tris.push_back({idx[i], idx[i + 1], idx[i + 2]});
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        for (size_t i = 0; i + 2 < idx.size(); ++i)
+            tris.push_back(i % 2 == 0 ? std::array<uint32_t, 3>{idx[i], idx[i + 1], idx[i + 2]}
+                                      : std::array<uint32_t, 3>{idx[i + 1], idx[i], idx[i + 2]});
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        for (size_t i = 1; i + 1 < idx.size(); ++i) tris.push_back({idx[0], idx[i], idx[i + 1]});
+    }
+    return tris;
+}
+
+const char* mode_name(int mode) {
+    switch (mode) {
+        case TINYGLTF_MODE_POINTS: return "POINTS";
+        case TINYGLTF_MODE_LINE: return "LINES";
+        case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+        case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+        case TINYGLTF_MODE_TRIANGLES: return "TRIANGLES";
+        case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
+        case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
+        default: return "unknown";
+    }
+}
+
+// One primitive, transformed by `world`, as a Mesh. Returns false (with a warning) when skipped.
+bool primitive_to_mesh(const tinygltf::Model& model, const tinygltf::Primitive& prim, const Eigen::Matrix4d& world,
+                       const std::string& where, Mesh& mesh, std::vector<std::string>& warnings) {
+    int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
+        warnings.push_back(where + ": a " + std::string(mode_name(mode)) + " primitive, skipped (ellicast carries "
+                           "triangles and points)");
+        return false;
+    }
+    if (mode != TINYGLTF_MODE_POINTS && mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        warnings.push_back(where + ": primitive mode " + std::to_string(mode) + " is not a glTF mode, skipped");
+        return false;
+    }
+    auto pos_it = prim.attributes.find("POSITION");
+    if (pos_it == prim.attributes.end()) {
+        warnings.push_back(where + ": primitive without POSITION, skipped");
+        return false;
+    }
+    if (prim.extensions.count("KHR_draco_mesh_compression")) {
+        // tinygltf rewrites the accessors to the decoded data; when decoding failed it says nothing.
+        const auto& acc = model.accessors.at(size_t(pos_it->second));
+        if (acc.bufferView < 0)
+            throw InputError(where + ": its KHR_draco_mesh_compression data could not be decoded");
+    }
+    int comps = 0;
+    std::vector<double> pos = read_accessor(model, pos_it->second, where + " POSITION", comps);
+    if (comps != 3) throw InputError(where + ": POSITION is not a VEC3 accessor");
+    const size_t n = pos.size() / 3;
+
+    Eigen::Matrix3d linear = world.topLeftCorner<3, 3>();
+    Eigen::Vector3d offset = world.topRightCorner<3, 1>();
+    Eigen::Matrix3d normal_matrix = linear.inverse().transpose();
+    if (!normal_matrix.allFinite()) normal_matrix = Eigen::Matrix3d::Identity();
+    mesh.positions.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        Eigen::Vector3d p = linear * Eigen::Vector3d(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]) + offset;
+        mesh.positions[i] = {float(p.x()), float(p.y()), float(p.z())};
+    }
+
+    if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
+        std::vector<double> nrm = read_accessor(model, it->second, where + " NORMAL", comps);
+        if (comps == 3 && nrm.size() == pos.size()) {
+            mesh.normals.resize(n);
+            for (size_t i = 0; i < n; ++i) {
+                Eigen::Vector3d v = normal_matrix * Eigen::Vector3d(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]);
+                double len = v.norm();
+                if (len > 0) v /= len;
+                mesh.normals[i] = {float(v.x()), float(v.y()), float(v.z())};
+            }
+        } else {
+            warnings.push_back(where + ": NORMAL is not a VEC3 of the vertex count; ignored");
+        }
+    }
+    if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
+        std::vector<double> uv = read_accessor(model, it->second, where + " TEXCOORD_0", comps);
+        if (comps == 2 && uv.size() == 2 * n) {
+            mesh.texcoords.resize(n);
+            for (size_t i = 0; i < n; ++i) mesh.texcoords[i] = {float(uv[2 * i]), float(uv[2 * i + 1])};
+        } else {
+            warnings.push_back(where + ": TEXCOORD_0 is not a VEC2 of the vertex count; ignored");
+        }
+    }
+    if (auto it = prim.attributes.find("COLOR_0"); it != prim.attributes.end()) {
+        std::vector<double> col = read_accessor(model, it->second, where + " COLOR_0", comps);
+        if ((comps == 3 || comps == 4) && col.size() == size_t(comps) * n) {
+            mesh.colors.resize(n);
+            mesh.colors_have_alpha = comps == 4;
+            for (size_t i = 0; i < n; ++i)
+                for (int c = 0; c < 4; ++c) mesh.colors[i][c] = c < comps ? float(col[i * comps + c]) : 1.0f;
+        } else {
+            warnings.push_back(where + ": COLOR_0 is not a VEC3/VEC4 of the vertex count; ignored");
+        }
+    }
+    if (prim.targets.size() > 0)
+        warnings.push_back(where + ": " + std::to_string(prim.targets.size()) +
+                           " morph targets ignored (the base shape is sent)");
+
+    std::vector<uint32_t> idx;
+    if (prim.indices >= 0) {
+        std::vector<double> raw = read_accessor(model, prim.indices, where + " indices", comps);
+        if (comps != 1) throw InputError(where + ": its indices accessor is not SCALAR");
+        idx.resize(raw.size());
+        for (size_t i = 0; i < raw.size(); ++i) {
+            if (raw[i] >= double(n))
+                throw InputError(where + ": index " + std::to_string(size_t(raw[i])) + " at position " +
+                                 std::to_string(i) + " is beyond the " + std::to_string(n) + " vertices");
+            idx[i] = uint32_t(raw[i]);
+        }
+    } else {
+        idx.resize(n);
+        for (size_t i = 0; i < n; ++i) idx[i] = uint32_t(i);
+    }
+
+    if (mode == TINYGLTF_MODE_POINTS) {
+        mesh.is_point_set = true;
+        if (prim.indices >= 0) {  // keep only the referenced points, in index order
+            Mesh sub;
+            sub.is_point_set = true;
+            sub.colors_have_alpha = mesh.colors_have_alpha;
+            for (uint32_t i : idx) {
+                sub.positions.push_back(mesh.positions[i]);
+                if (mesh.has_normals()) sub.normals.push_back(mesh.normals[i]);
+                if (mesh.has_texcoords()) sub.texcoords.push_back(mesh.texcoords[i]);
+                if (mesh.has_colors()) sub.colors.push_back(mesh.colors[i]);
+            }
+            sub.name = mesh.name;
+            mesh = std::move(sub);
+        }
+        return true;
+    }
+    mesh.triangles = primitive_triangles(idx, mode);
+    if (linear.determinant() < 0)  // a mirroring transform turns faces inside out: keep them outward
+        for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+    return true;
+}
+
+struct Traversal {
+    const tinygltf::Model& model;
+    const std::string& path;
+    LoadResult& result;
+    size_t visited = 0;
+};
+
+void visit_node(Traversal& tr, int index, const Eigen::Matrix4d& parent, int depth) {
+    const auto& model = tr.model;
+    if (index < 0 || size_t(index) >= model.nodes.size())
+        throw InputError(tr.path + ": a scene refers to node " + std::to_string(index) + ", which does not exist");
+    if (depth > 256 || ++tr.visited > 1'000'000)
+        throw InputError(tr.path + ": the node hierarchy is too deep or cyclic (at node " + std::to_string(index) + ")");
+    const tinygltf::Node& node = model.nodes[index];
+    Eigen::Matrix4d world = parent * local_transform(node);
+    if (node.mesh >= 0) {
+        if (size_t(node.mesh) >= model.meshes.size())
+            throw InputError(tr.path + ": node " + std::to_string(index) + " refers to mesh " +
+                             std::to_string(node.mesh) + ", which does not exist");
+        if (node.skin >= 0)
+            tr.result.warnings.push_back(tr.path + ": node " + std::to_string(index) +
+                                         " is skinned; its mesh is sent in the bind pose");
+        const tinygltf::Mesh& gmesh = model.meshes[node.mesh];
+        for (size_t p = 0; p < gmesh.primitives.size(); ++p) {
+            std::string label = gmesh.name.empty() ? "mesh " + std::to_string(node.mesh) : gmesh.name;
+            std::string where = tr.path + ": " + label + " primitive " + std::to_string(p) + " (node " +
+                                std::to_string(index) + ")";
+            Mesh mesh;
+            mesh.name = label + (gmesh.primitives.size() > 1 ? "#" + std::to_string(p) : "");
+            if (!primitive_to_mesh(model, gmesh.primitives[p], world, where, mesh, tr.result.warnings)) continue;
+            check_and_repair_mesh(mesh, where, tr.result.warnings);
+            if (!mesh.is_point_set && mesh.triangles.empty()) {
+                tr.result.warnings.push_back(where + ": no usable triangles, skipped");
+                continue;
+            }
+            if (mesh.positions.empty()) {
+                tr.result.warnings.push_back(where + ": no vertices, skipped");
+                continue;
+            }
+            tr.result.meshes.push_back(std::move(mesh));
+        }
+    }
+    for (int child : node.children) visit_node(tr, child, world, depth + 1);
+}
+
+}  // namespace
+
+LoadResult load_gltf(const std::string& path) {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(skip_image, nullptr);
+    tinygltf::Model model;
+    std::string err, warn;
+    bool binary = false;
+    {
+        FILE* f = std::fopen(path.c_str(), "rb");
+        if (!f) throw InputError(path + ": cannot be opened for reading");
+        char magic[4] = {};
+        binary = std::fread(magic, 1, 4, f) == 4 && std::memcmp(magic, "glTF", 4) == 0;
+        std::fclose(f);
+    }
+    bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                     : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+    if (!ok) {
+        while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+        throw InputError(path + ": not a readable glTF 2.0 " + std::string(binary ? "binary (.glb)" : "(.gltf)") +
+                         " file: " + (err.empty() ? "unknown error" : err));
+    }
+    if (!model.asset.version.empty() && model.asset.version.rfind("2.", 0) != 0)
+        throw InputError(path + ": glTF version " + model.asset.version + " (ellicast reads glTF 2.x)");
+
+    LoadResult result;
+    for (const auto& ext : model.extensionsRequired) {
+        if (kGeometryExtensions.count(ext)) continue;
+        if (appearance_only(ext)) {
+            result.warnings.push_back(path + ": required extension " + ext +
+                                      " only changes appearance; ignored (geometry is sent)");
+            continue;
+        }
+        throw InputError(path + ": requires the glTF extension " + ext + ", which ellicast does not support");
+    }
+
+    Traversal tr{model, path, result};
+    if (!model.scenes.empty()) {
+        int scene = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size() ? model.defaultScene : 0;
+        for (int root : model.scenes[scene].nodes) visit_node(tr, root, Eigen::Matrix4d::Identity(), 0);
+    } else {
+        // No scene: nothing would be drawn; send every mesh untransformed rather than nothing.
+        result.warnings.push_back(path + ": no scene; every mesh is sent without node transforms");
+        for (size_t m = 0; m < model.meshes.size(); ++m) {
+            tinygltf::Node fake;
+            fake.mesh = int(m);
+            model.nodes.push_back(fake);
+            visit_node(tr, int(model.nodes.size() - 1), Eigen::Matrix4d::Identity(), 0);
+        }
+    }
+    if (result.meshes.empty())
+        throw InputError(path + ": the scene holds no triangle or point primitive to send");
+    return result;
+}
+
+}  // namespace ellicast

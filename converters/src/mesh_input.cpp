@@ -1,0 +1,154 @@
+// Choosing a reader for a model file, and the checks every reader's output goes through.
+#include "ellicast/converters/mesh_input.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+namespace ellicast {
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+bool starts_with_gltf_magic(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    char magic[4] = {};
+    in.read(magic, 4);
+    return in.gcount() == 4 && magic[0] == 'g' && magic[1] == 'l' && magic[2] == 'T' && magic[3] == 'F';
+}
+
+}  // namespace
+
+LoadResult load_meshes(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
+    if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a model file");
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) throw InputError(path + ": cannot be opened for reading");
+    probe.seekg(0, std::ios::end);
+    if (probe.tellg() <= 0) throw InputError(path + ": the file is empty");
+    probe.close();
+
+    std::string ext = lower_extension(path);
+    if (ext == ".gltf" || ext == ".glb" || starts_with_gltf_magic(path)) return load_gltf(path);
+    if (ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl") return load_openmesh(path);
+    throw InputError(path + ": unsupported file type '" + ext +
+                     "' (ellicast reads .gltf, .glb, .obj, .ply, .off and .stl)");
+}
+
+void check_and_repair_mesh(Mesh& mesh, const std::string& source, std::vector<std::string>& warnings) {
+    const size_t n = mesh.positions.size();
+    for (size_t i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k)
+            if (!std::isfinite(mesh.positions[i][k]))
+                throw InputError(source + ": vertex " + std::to_string(i) + " has a non-finite coordinate (" +
+                                 std::to_string(mesh.positions[i][k]) + ")");
+
+    auto drop_mismatched = [&](auto& attr, const char* name) {
+        if (!attr.empty() && attr.size() != n) {
+            warnings.push_back(source + ": " + name + " has " + std::to_string(attr.size()) + " values for " +
+                               std::to_string(n) + " vertices; dropped");
+            attr.clear();
+        }
+    };
+    drop_mismatched(mesh.normals, "normal attribute");
+    drop_mismatched(mesh.texcoords, "TEXCOORD_0");
+    drop_mismatched(mesh.colors, "COLOR_0");
+
+    size_t bad_normals = 0, bad_uv = 0, bad_colors = 0;
+    for (auto& v : mesh.normals) {
+        double len = std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
+        if (!std::isfinite(len) || len < 1e-12) {
+            v = {0, 0, 1};
+            ++bad_normals;
+        } else if (std::abs(len - 1) > 1e-6) {
+            for (auto& c : v) c = float(c / len);
+        }
+    }
+    for (auto& v : mesh.texcoords)
+        for (auto& c : v)
+            if (!std::isfinite(c)) {
+                c = 0;
+                ++bad_uv;
+            }
+    for (auto& v : mesh.colors)
+        for (auto& c : v)
+            if (!std::isfinite(c) || c < 0 || c > 1) {
+                c = std::isfinite(c) ? std::clamp(c, 0.0f, 1.0f) : 0.0f;
+                ++bad_colors;
+            }
+    if (bad_normals)
+        warnings.push_back(source + ": " + std::to_string(bad_normals) + " zero or non-finite normals replaced");
+    if (bad_uv) warnings.push_back(source + ": " + std::to_string(bad_uv) + " non-finite texture coordinates set to 0");
+    if (bad_colors) warnings.push_back(source + ": " + std::to_string(bad_colors) + " colour values clamped to [0,1]");
+
+    if (mesh.is_point_set) {
+        mesh.triangles.clear();
+        return;
+    }
+
+    std::vector<std::array<uint32_t, 3>> kept;
+    kept.reserve(mesh.triangles.size());
+    std::set<std::array<uint32_t, 3>> seen;
+    size_t degenerate = 0, duplicate = 0;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const auto& tri = mesh.triangles[t];
+        for (uint32_t v : tri)
+            if (v >= n)
+                throw InputError(source + ": triangle " + std::to_string(t) + " refers to vertex " + std::to_string(v) +
+                                 " of " + std::to_string(n));
+        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+            ++degenerate;
+            continue;
+        }
+        const auto &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
+        double u[3], w[3];
+        for (int k = 0; k < 3; ++k) {
+            u[k] = double(b[k]) - a[k];
+            w[k] = double(c[k]) - a[k];
+        }
+        double cx = u[1] * w[2] - u[2] * w[1], cy = u[2] * w[0] - u[0] * w[2], cz = u[0] * w[1] - u[1] * w[0];
+        if (cx * cx + cy * cy + cz * cz == 0) {
+            ++degenerate;
+            continue;
+        }
+        // The same three positions in any order and orientation is a duplicate face.
+        std::array<uint32_t, 3> key = tri;
+        std::sort(key.begin(), key.end());
+        if (!seen.insert(key).second) {
+            ++duplicate;
+            continue;
+        }
+        kept.push_back(tri);
+    }
+    if (degenerate)
+        warnings.push_back(source + ": " + std::to_string(degenerate) + " degenerate (zero-area) triangles dropped");
+    if (duplicate) warnings.push_back(source + ": " + std::to_string(duplicate) + " duplicate triangles dropped");
+    mesh.triangles = std::move(kept);
+
+    // Non-manifold edges (three or more faces) are harmless to the encoder; say so once.
+    std::map<std::pair<uint32_t, uint32_t>, int> edge_faces;
+    for (const auto& tri : mesh.triangles)
+        for (int e = 0; e < 3; ++e) {
+            uint32_t a = tri[e], b = tri[(e + 1) % 3];
+            ++edge_faces[{std::min(a, b), std::max(a, b)}];
+        }
+    size_t nonmanifold = 0;
+    for (const auto& [edge, count] : edge_faces)
+        if (count > 2) ++nonmanifold;
+    if (nonmanifold)
+        warnings.push_back(source + ": " + std::to_string(nonmanifold) +
+                           " non-manifold edges (3 or more faces) kept as they are; the encoder does not need a "
+                           "manifold surface");
+}
+
+}  // namespace ellicast

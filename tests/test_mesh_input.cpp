@@ -1,0 +1,211 @@
+// Reading real models: every sample loads (or fails with a clear message), Draco and plain glTF
+// agree, node transforms are applied, point primitives become point sets, bad files are refused.
+#include "ellicast/converters/mesh_input.h"
+#include "support.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+using namespace ellicast;
+using ellicast::test::have_sample;
+using ellicast::test::shared_samples;
+
+namespace {
+
+std::string sample(const std::string& rel) { return (shared_samples() / rel).string(); }
+
+std::vector<uint8_t> slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+void spit(const std::filesystem::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+}
+
+std::string error_of(const std::string& path) {
+    try {
+        load_meshes(path);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("every sample mesh and glTF loads with triangles or points") {
+    const char* files[] = {"meshes/bunny.ply", "meshes/spot.obj", "meshes/fandisk.obj", "meshes/teapot.obj",
+                           "meshes/suzanne.obj", "meshes/woody.obj", "gltf/Box-glb/Box.glb",
+                           "gltf/Box-glb/Box_Draco.glb", "gltf/Duck/Duck.gltf", "gltf/Duck-glb/Duck.glb",
+                           "gltf/CesiumMilkTruck/CesiumMilkTruck.gltf", "gltf/Fox/Fox.gltf",
+                           "gltf/VertexColorTest/VertexColorTest.gltf",
+                           "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf"};
+    for (const char* f : files) {
+        if (!have_sample(f)) continue;
+        CAPTURE(f);
+        LoadResult r = load_meshes(sample(f));
+        REQUIRE(!r.meshes.empty());
+        for (const Mesh& m : r.meshes) {
+            CHECK(!m.positions.empty());
+            CHECK((m.is_point_set || !m.triangles.empty()));
+            for (const auto& p : m.positions)
+                for (float c : p) REQUIRE(std::isfinite(c));
+            for (const auto& t : m.triangles)
+                for (uint32_t v : t) REQUIRE(v < m.positions.size());
+        }
+    }
+}
+
+TEST_CASE("the bunny keeps all its vertices and faces") {
+    if (!have_sample("meshes/bunny.ply")) return;
+    LoadResult r = load_meshes(sample("meshes/bunny.ply"));
+    REQUIRE(r.meshes.size() == 1);
+    CHECK(r.meshes[0].positions.size() == 35947);
+    CHECK(r.meshes[0].triangles.size() >= 69000);
+}
+
+TEST_CASE("OBJ texture coordinates are read and split at seams") {
+    if (!have_sample("meshes/spot.obj")) return;
+    LoadResult r = load_meshes(sample("meshes/spot.obj"));
+    REQUIRE(r.meshes.size() == 1);
+    const Mesh& m = r.meshes[0];
+    CHECK(m.has_texcoords());
+    CHECK(m.positions.size() >= 2930);  // seams add vertices
+    CHECK(m.triangles.size() == 5856);
+}
+
+TEST_CASE("Draco-compressed Box gives the same triangles as the plain Box") {
+    if (!have_sample("gltf/Box-glb/Box.glb") || !have_sample("gltf/Box-glb/Box_Draco.glb")) return;
+    LoadResult plain = load_meshes(sample("gltf/Box-glb/Box.glb"));
+    LoadResult draco = load_meshes(sample("gltf/Box-glb/Box_Draco.glb"));
+    REQUIRE(plain.meshes.size() == 1);
+    REQUIRE(draco.meshes.size() == 1);
+    auto corners = [](const Mesh& m) {
+        std::vector<std::array<float, 3>> out;
+        for (const auto& t : m.triangles)
+            for (uint32_t v : t) out.push_back(m.positions[v]);
+        std::sort(out.begin(), out.end());
+        return out;
+    };
+    auto a = corners(plain.meshes[0]), b = corners(draco.meshes[0]);
+    REQUIRE(a.size() == b.size());
+    for (size_t i = 0; i < a.size(); ++i)
+        for (int k = 0; k < 3; ++k) CHECK(std::abs(a[i][k] - b[i][k]) < 1e-3f);
+    CHECK(draco.meshes[0].has_normals());
+}
+
+TEST_CASE("glTF node transforms are applied") {
+    // Box.glb has a root node rotating Y-up to Z-up: its extent along y and z swap.
+    if (!have_sample("gltf/Box-glb/Box.glb")) return;
+    LoadResult r = load_meshes(sample("gltf/Box-glb/Box.glb"));
+    const Mesh& m = r.meshes[0];
+    float lo[3] = {1e9f, 1e9f, 1e9f}, hi[3] = {-1e9f, -1e9f, -1e9f};
+    for (const auto& p : m.positions)
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], p[k]);
+            hi[k] = std::max(hi[k], p[k]);
+        }
+    for (int k = 0; k < 3; ++k) CHECK(hi[k] - lo[k] == doctest::Approx(1.0).epsilon(1e-4));
+}
+
+TEST_CASE("a glTF with a point primitive gives a point set and a surface") {
+    const char* f = "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf";
+    if (!have_sample(f)) return;
+    LoadResult r = load_meshes(sample(f));
+    size_t surfaces = 0, point_sets = 0;
+    for (const Mesh& m : r.meshes) (m.is_point_set ? point_sets : surfaces)++;
+    CHECK(surfaces >= 1);
+    CHECK(point_sets >= 1);
+}
+
+TEST_CASE("COLOR_0 is read from the vertex colour test") {
+    if (!have_sample("gltf/VertexColorTest/VertexColorTest.gltf")) return;
+    LoadResult r = load_meshes(sample("gltf/VertexColorTest/VertexColorTest.gltf"));
+    bool any = std::any_of(r.meshes.begin(), r.meshes.end(), [](const Mesh& m) { return m.has_colors(); });
+    CHECK(any);
+}
+
+TEST_CASE("the milk truck gives one mesh per primitive instance") {
+    if (!have_sample("gltf/CesiumMilkTruck/CesiumMilkTruck.gltf")) return;
+    LoadResult r = load_meshes(sample("gltf/CesiumMilkTruck/CesiumMilkTruck.gltf"));
+    CHECK(r.meshes.size() >= 4);  // wheels instanced twice, body, windows...
+}
+
+TEST_CASE("bad input files are refused with a message naming the file and the problem") {
+    auto dir = ellicast::test::scratch_dir("mesh_input_bad");
+    SUBCASE("missing file") {
+        std::string e = error_of((dir / "nothing.ply").string());
+        CHECK(e.find("nothing.ply") != std::string::npos);
+        CHECK(e.find("no such file") != std::string::npos);
+    }
+    SUBCASE("empty file") {
+        spit(dir / "empty.obj", "");
+        CHECK(error_of((dir / "empty.obj").string()).find("empty") != std::string::npos);
+    }
+    SUBCASE("unknown extension") {
+        spit(dir / "model.xyz", "1 2 3\n");
+        CHECK(error_of((dir / "model.xyz").string()).find("unsupported file type") != std::string::npos);
+    }
+    SUBCASE("NaN coordinates") {
+        spit(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+        std::string e = error_of((dir / "nan.obj").string());
+        CHECK(e.find("not a finite number") != std::string::npos);
+        CHECK(e.find("line 3") != std::string::npos);
+        CHECK(e.find("nan.obj") != std::string::npos);
+        spit(dir / "nan.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                              "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                              "0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n");
+        CHECK(!error_of((dir / "nan.ply").string()).empty());
+    }
+    SUBCASE("no triangles") {
+        spit(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        CHECK(error_of((dir / "points.obj").string()).find("no faces could be read") != std::string::npos);
+    }
+    SUBCASE("only degenerate faces") {
+        spit(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+        CHECK(!error_of((dir / "flat.obj").string()).empty());
+    }
+    SUBCASE("truncated glb") {
+        if (!have_sample("gltf/Box-glb/Box.glb")) return;
+        auto bytes = slurp(sample("gltf/Box-glb/Box.glb"));
+        bytes.resize(bytes.size() / 2);
+        std::ofstream(dir / "cut.glb", std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                                               std::streamsize(bytes.size()));
+        std::string e = error_of((dir / "cut.glb").string());
+        CHECK(e.find("cut.glb") != std::string::npos);
+        CHECK(!e.empty());
+    }
+    SUBCASE("unsupported required extension") {
+        spit(dir / "ext.gltf",
+             R"({"asset":{"version":"2.0"},"extensionsUsed":["EXT_meshopt_compression"],
+                 "extensionsRequired":["EXT_meshopt_compression"],"scenes":[{"nodes":[]}],"scene":0})");
+        std::string e = error_of((dir / "ext.gltf").string());
+        CHECK(e.find("EXT_meshopt_compression") != std::string::npos);
+    }
+    SUBCASE("glTF accessor past the end of its buffer") {
+        spit(dir / "short.gltf",
+             R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+                 "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+                 "accessors":[{"bufferView":0,"componentType":5126,"count":300,"type":"VEC3",
+                               "min":[0,0,0],"max":[1,1,1]}],
+                 "bufferViews":[{"buffer":0,"byteLength":36}],
+                 "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})");
+        std::string e = error_of((dir / "short.gltf").string());
+        CHECK(!e.empty());
+        CHECK(e.find("short.gltf") != std::string::npos);
+    }
+}
+
+TEST_CASE("degenerate and duplicate faces are dropped with a warning") {
+    auto dir = ellicast::test::scratch_dir("mesh_input_repair");
+    spit(dir / "dup.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\nf 1 2 2\n");
+    LoadResult r = load_meshes((dir / "dup.obj").string());
+    REQUIRE(r.meshes.size() == 1);
+    CHECK(r.meshes[0].triangles.size() == 4);
+}
