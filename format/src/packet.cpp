@@ -17,6 +17,9 @@ std::string packet_type_name(uint8_t type) {
     case 0x01: return "STREAM_INFO";
     case 0x02: return "ELLIPSOIDS";
     case 0x03: return "POINTS";
+    case 0x10: return "SCENE";
+    case 0x11: return "MATERIAL";
+    case 0x12: return "TEXTURE_FRAGMENT";
     default: {
         char buf[24];
         std::snprintf(buf, sizeof buf, "UNKNOWN(0x%02X)", type);
@@ -25,7 +28,7 @@ std::string packet_type_name(uint8_t type) {
     }
 }
 
-bool is_known_packet_type(uint8_t type) { return type >= 0x01 && type <= 0x03; }
+bool is_known_packet_type(uint8_t type) { return (type >= 0x01 && type <= 0x03) || (type >= 0x10 && type <= 0x12); }
 
 const char* error_name(Error e) {
     switch (e) {

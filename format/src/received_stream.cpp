@@ -45,8 +45,14 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
         newest_minor_ = std::max(newest_minor_, h.version_minor);
         return Error::Ok;
     }
-    Error e = h.type == static_cast<uint8_t>(PacketType::StreamInfo) ? take_stream_info(packet, where)
-                                                                     : take_object_packet(packet, where);
+    Error e;
+    switch (static_cast<PacketType>(h.type)) {
+    case PacketType::StreamInfo: e = take_stream_info(packet, where); break;
+    case PacketType::Scene: e = take_scene(packet, where); break;
+    case PacketType::Material: e = take_material(packet, where); break;
+    case PacketType::TextureFragment: e = take_texture_fragment(packet, where); break;
+    default: e = take_object_packet(packet, where); break;
+    }
     if (e == Error::Ok) {
         stream_id_ = h.stream_id;
         newest_minor_ = std::max(newest_minor_, h.version_minor);
@@ -165,6 +171,121 @@ void ReceivedStream::release_pending(uint16_t object_id) {
         view.size = p.header.packet_size();
         take_object_packet(view, p.where);
     }
+}
+
+Error ReceivedStream::take_scene(const PacketView& packet, uint64_t where) {
+    SceneBatch batch;
+    if (decode_scene_payload(packet.payload, batch) != Error::Ok)
+        return reject(where, Error::MalformedPayload, "SCENE payload inconsistent or out of range");
+    if (has_scene() && (batch.node_count != scene_node_count_ || batch.mesh_count != scene_mesh_count_))
+        return reject(where, Error::StreamMismatch, "SCENE table sizes contradict earlier SCENE packets");
+    for (const auto& n : batch.nodes) {
+        auto it = scene_nodes_.find(n.index);
+        if (it != scene_nodes_.end() && !(it->second == n))
+            return reject(where, Error::StreamMismatch, "node " + std::to_string(n.index) + " contradicts an earlier one");
+    }
+    for (const auto& m : batch.meshes) {
+        auto it = scene_meshes_.find(m.index);
+        if (it != scene_meshes_.end() && !(it->second == m))
+            return reject(where, Error::StreamMismatch, "mesh " + std::to_string(m.index) + " contradicts an earlier one");
+    }
+    scene_node_count_ = batch.node_count;
+    scene_mesh_count_ = batch.mesh_count;
+    bool news = false;
+    for (auto& n : batch.nodes) news |= scene_nodes_.emplace(n.index, std::move(n)).second;
+    for (auto& m : batch.meshes) news |= scene_meshes_.emplace(m.index, std::move(m)).second;
+    if (news) ++counters_.accepted;
+    else ++counters_.duplicates;
+    return Error::Ok;
+}
+
+Error ReceivedStream::take_material(const PacketView& packet, uint64_t where) {
+    Material m;
+    if (decode_material_payload(packet.payload, m) != Error::Ok)
+        return reject(where, Error::MalformedPayload, "MATERIAL payload inconsistent or out of range");
+    if (!materials_.empty() && materials_.begin()->second.material_count != m.material_count)
+        return reject(where, Error::StreamMismatch, "MATERIAL table size contradicts earlier MATERIAL packets");
+    auto it = materials_.find(m.index);
+    if (it != materials_.end()) {
+        if (!(it->second == m))
+            return reject(where, Error::StreamMismatch, "material " + std::to_string(m.index) + " contradicts an earlier one");
+        ++counters_.duplicates;
+        return Error::Ok;
+    }
+    materials_.emplace(m.index, std::move(m));
+    ++counters_.accepted;
+    return Error::Ok;
+}
+
+Error ReceivedStream::take_texture_fragment(const PacketView& packet, uint64_t where) {
+    TextureFragment f;
+    if (decode_texture_fragment_payload(packet.payload, f) != Error::Ok)
+        return reject(where, Error::MalformedPayload, "TEXTURE_FRAGMENT payload inconsistent or out of range");
+    if (!textures_.empty() && textures_.begin()->second.info.texture_count != f.info.texture_count)
+        return reject(where, Error::StreamMismatch, "TEXTURE_FRAGMENT table size contradicts earlier fragments");
+    auto it = textures_.find(f.info.index);
+    if (it == textures_.end()) {
+        if (texture_bytes_ + f.info.image_size > limits_.max_texture_bytes)
+            return reject(where, Error::MalformedPayload,
+                          "texture " + std::to_string(f.info.index) + " of " + std::to_string(f.info.image_size) +
+                              " bytes is over this receiver's texture memory limit");
+        ReceivedTexture t;
+        t.info = f.info;
+        t.image.assign(f.info.image_size, 0);
+        texture_bytes_ += f.info.image_size;
+        it = textures_.emplace(f.info.index, std::move(t)).first;
+    } else if (!(it->second.info == f.info)) {
+        return reject(where, Error::StreamMismatch,
+                      "texture " + std::to_string(f.info.index) + " fragment contradicts earlier fragments");
+    }
+    ReceivedTexture& t = it->second;
+    // Merge [begin, end) into the disjoint ranges received so far; copy only the bytes that are new.
+    uint32_t begin = f.offset, end = static_cast<uint32_t>(f.offset + f.data.size());
+    uint64_t fresh = 0;
+    uint32_t cursor = begin;
+    auto next = t.received.upper_bound(begin);
+    if (next != t.received.begin()) {
+        auto prev = std::prev(next);
+        if (prev->second >= begin) {
+            begin = prev->first;
+            cursor = std::max(cursor, prev->second);
+            end = std::max(end, prev->second);
+            next = t.received.erase(prev);
+        }
+    }
+    while (next != t.received.end() && next->first <= end) {
+        if (next->first > cursor) {
+            std::copy(f.data.begin() + (cursor - f.offset), f.data.begin() + (next->first - f.offset), t.image.begin() + cursor);
+            fresh += next->first - cursor;
+        }
+        cursor = std::max(cursor, next->second);
+        end = std::max(end, next->second);
+        next = t.received.erase(next);
+    }
+    const uint32_t fragment_end = static_cast<uint32_t>(f.offset + f.data.size());
+    if (cursor < fragment_end) {
+        std::copy(f.data.begin() + (cursor - f.offset), f.data.end(), t.image.begin() + cursor);
+        fresh += fragment_end - cursor;
+    }
+    t.received.emplace(begin, end);
+    t.received_bytes += fresh;
+    if (fresh == 0) {
+        ++counters_.duplicates;
+        return Error::Ok;
+    }
+    ++counters_.accepted;
+    if (t.received_bytes == t.info.image_size) {
+        if (crc32c(t.image.data(), t.image.size()) == t.info.image_crc) {
+            t.complete = true;
+        } else {
+            // Fragments that each passed their packet CRC but do not make the announced image: start over.
+            t.received.clear();
+            t.received_bytes = 0;
+            return reject(where, Error::StreamMismatch,
+                          "texture " + std::to_string(t.info.index) + " is complete but its image CRC does not match");
+        }
+    }
+    return Error::Ok;
 }
 
 std::vector<Ellipsoid> ReceivedStream::ellipsoids(size_t index) const {

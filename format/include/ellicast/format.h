@@ -1,4 +1,4 @@
-// ellicast format v1: packets, their payloads, quantization, container files.
+// ellicast format v1.1: packets, their payloads, quantization, container files.
 //
 // The normative description is spec/format.md; this header is its reference implementation.
 // Depends on nothing but the standard library: no geometry algorithms, no glTF.
@@ -20,10 +20,10 @@
 namespace ellicast {
 
 // ---------------------------------------------------------------------------------------------
-// Constants of format v1.0
+// Constants of format v1.1
 
 inline constexpr uint8_t kFormatMajor = 1;
-inline constexpr uint8_t kFormatMinor = 0;
+inline constexpr uint8_t kFormatMinor = 1;  // 1.1 added SCENE, MATERIAL, TEXTURE_FRAGMENT
 
 inline constexpr std::array<uint8_t, 4> kPacketMagic = {0xE1, 'L', 'C', 'S'};
 inline constexpr size_t kHeaderSize = 20;                       // bytes before the payload
@@ -49,8 +49,11 @@ enum class PacketType : uint8_t {
     StreamInfo = 0x01,  // critical: frames, bit depths, object table
     Ellipsoids = 0x02,  // critical: a batch of quantized ellipsoids of one object
     Points = 0x03,      // critical: a batch of bit-packed surface points of one object
-    // 0x00 is invalid; 0x04..0x0F reserved for geometry; 0x10..0x1F reserved for the scene
-    // (nodes, materials, texture fragments); 0x20..0x7F future; 0x80..0xFF experimental.
+    Scene = 0x10,       // 1.1, skippable: nodes (hierarchy, names, transforms) and meshes (object + material)
+    Material = 0x11,    // 1.1, skippable: one PBR material
+    TextureFragment = 0x12,  // 1.1, skippable: a piece of one texture image, at its byte offset
+    // 0x00 is invalid; 0x04..0x0F reserved for geometry; 0x13..0x1F reserved for the scene;
+    // 0x20..0x7F future; 0x80..0xFF experimental.
 };
 
 // Name of a packet type ("STREAM_INFO", ...), or "UNKNOWN(0xNN)".
@@ -311,6 +314,128 @@ Error packetize_stream(const StreamInfo& info, const std::vector<ObjectContent>&
                        StreamPackets& out);
 
 // ---------------------------------------------------------------------------------------------
+// Scene, materials, textures (format 1.1). All three types are sent with the skippable flag:
+// a 1.0 decoder still reconstructs every object, only without placement and appearance.
+
+inline constexpr uint16_t kNone = 0xFFFF;  // "no parent / no mesh / no material / no texture"
+
+// A node of the scene graph. Roots have parent == kNone; a node's children are the nodes naming it
+// as parent, in index order. The transform is either a column-major 4x4 matrix or T * R * S.
+struct SceneNode {
+    uint16_t index = 0;
+    uint16_t parent = kNone;
+    uint16_t mesh = kNone;  // index into the mesh table
+    std::string name;       // UTF-8, at most 255 bytes
+    bool has_matrix = false;
+    std::array<float, 16> matrix{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    std::array<float, 3> translation{0, 0, 0};
+    std::array<float, 4> rotation{0, 0, 0, 1};  // quaternion x, y, z, w (glTF order)
+    std::array<float, 3> scale{1, 1, 1};
+    bool operator==(const SceneNode&) const = default;
+};
+
+// A mesh: primitives, each an object of the stream drawn with a material. Several nodes naming the
+// same mesh instance it: its objects travel once.
+struct ScenePrimitive {
+    uint16_t object = 0;
+    uint16_t material = kNone;
+    bool operator==(const ScenePrimitive&) const = default;
+};
+struct SceneMesh {
+    uint16_t index = 0;
+    std::string name;
+    std::vector<ScenePrimitive> primitives;
+    bool operator==(const SceneMesh&) const = default;
+};
+
+// The records one SCENE packet carries, and the sizes of the whole tables.
+struct SceneBatch {
+    uint16_t node_count = 0;
+    uint16_t mesh_count = 0;
+    std::vector<SceneNode> nodes;
+    std::vector<SceneMesh> meshes;
+};
+
+enum class AlphaMode : uint8_t { Opaque = 0, Mask = 1, Blend = 2 };
+
+struct TextureRef {
+    uint16_t texture = kNone;  // index into the texture table
+    uint8_t texcoord = 0;      // TEXCOORD_n set
+    float scale = 1;           // normalTexture.scale / occlusionTexture.strength; 1 otherwise
+    bool operator==(const TextureRef&) const = default;
+};
+
+// glTF PBR metallic-roughness material.
+struct Material {
+    uint16_t index = 0;
+    uint16_t material_count = 0;  // size of the whole material table
+    std::string name;
+    std::array<float, 4> base_color{1, 1, 1, 1};
+    float metallic = 1;
+    float roughness = 1;
+    std::array<float, 3> emissive{0, 0, 0};
+    AlphaMode alpha_mode = AlphaMode::Opaque;
+    float alpha_cutoff = 0.5f;
+    bool double_sided = false;
+    TextureRef base_color_texture, metallic_roughness_texture, normal_texture, occlusion_texture, emissive_texture;
+    bool operator==(const Material&) const = default;
+};
+
+enum class ImageType : uint8_t { Png = 1, Jpeg = 2 };
+
+// What every fragment of a texture repeats, so that any fragment is useful on its own.
+struct TextureInfo {
+    uint16_t index = 0;
+    uint16_t texture_count = 0;  // size of the whole texture table
+    ImageType image_type = ImageType::Png;
+    uint16_t mag_filter = 0, min_filter = 0;  // glTF sampler values, 0 = unset
+    uint16_t wrap_s = 10497, wrap_t = 10497;  // REPEAT
+    uint32_t image_size = 0;                  // bytes of the whole image file
+    uint32_t image_crc = 0;                   // CRC-32C of the whole image file
+    bool operator==(const TextureInfo&) const = default;
+};
+
+struct TextureFragment {
+    TextureInfo info;
+    uint32_t offset = 0;
+    std::vector<uint8_t> data;
+};
+
+inline constexpr size_t kTextureFragmentHeaderSize = 28;
+
+// Everything of the scene that travels besides geometry.
+struct SceneDescription {
+    std::vector<SceneNode> nodes;  // node i has index i
+    std::vector<SceneMesh> meshes; // mesh i has index i
+    std::vector<Material> materials;
+    struct Texture {
+        TextureInfo info;           // index, counts, size and CRC are filled in by packetize_scene
+        std::vector<uint8_t> image; // the image file bytes as the asset had them
+    };
+    std::vector<Texture> textures;
+};
+
+std::vector<uint8_t> encode_scene_payload(const SceneBatch& batch);
+Error decode_scene_payload(std::span<const uint8_t> payload, SceneBatch& out);
+std::vector<uint8_t> encode_material_payload(const Material& material);
+Error decode_material_payload(std::span<const uint8_t> payload, Material& out);
+std::vector<uint8_t> encode_texture_fragment_payload(const TextureFragment& fragment);
+Error decode_texture_fragment_payload(std::span<const uint8_t> payload, TextureFragment& out);
+
+struct ScenePackets {
+    std::vector<std::vector<uint8_t>> scene;      // SCENE packets
+    std::vector<std::vector<uint8_t>> materials;  // one MATERIAL packet per material
+    std::vector<std::vector<uint8_t>> textures;   // TEXTURE_FRAGMENT packets, texture by texture
+};
+
+// Cuts a scene description into packets of at most `packet_size` bytes, numbered from
+// `first_sequence`. MalformedPayload when a table is larger than 65535 entries, a name longer than
+// 255 bytes, a record does not fit one packet, a reference points outside its table, or an image is
+// empty or over 4 GiB.
+Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_t stream_id, uint32_t first_sequence,
+                      ScenePackets& out);
+
+// ---------------------------------------------------------------------------------------------
 // Receiving: collects whatever packets arrive, in any order, with duplicates and damage
 
 struct ReceivedObject {
@@ -340,6 +465,7 @@ public:
         size_t max_pending_bytes = 64u << 20;     // payloads held while waiting for stream info
         uint64_t max_elements = 50'000'000;       // ellipsoids + points declared by a stream
         size_t max_rejections_kept = 10'000;      // detailed rejection records kept
+        size_t max_texture_bytes = 256u << 20;    // all texture images together
     };
 
     ReceivedStream();
@@ -368,7 +494,27 @@ public:
     std::vector<Ellipsoid> ellipsoids(size_t index) const;
     std::vector<SurfacePoint> points(size_t index) const;
 
+    // Scene (format 1.1): what has arrived of the node and mesh tables, materials and textures.
+    struct ReceivedTexture {
+        TextureInfo info;
+        std::vector<uint8_t> image;             // image_size bytes, zero where nothing arrived yet
+        std::map<uint32_t, uint32_t> received;  // disjoint byte ranges that arrived: offset -> end
+        uint64_t received_bytes = 0;
+        bool complete = false;                  // every byte arrived and the image CRC matches
+    };
+    bool has_scene() const { return scene_node_count_ > 0 || scene_mesh_count_ > 0; }
+    uint16_t scene_node_count() const { return scene_node_count_; }
+    uint16_t scene_mesh_count() const { return scene_mesh_count_; }
+    const std::map<uint16_t, SceneNode>& scene_nodes() const { return scene_nodes_; }
+    const std::map<uint16_t, SceneMesh>& scene_meshes() const { return scene_meshes_; }
+    const std::map<uint16_t, Material>& materials() const { return materials_; }
+    const std::map<uint16_t, ReceivedTexture>& textures() const { return textures_; }
+
 private:
+    Error take_scene(const PacketView& packet, uint64_t where);
+    Error take_material(const PacketView& packet, uint64_t where);
+    Error take_texture_fragment(const PacketView& packet, uint64_t where);
+
     Error reject(uint64_t where, Error e, std::string detail);
     Error take_stream_info(const PacketView& packet, uint64_t where);
     Error take_object_packet(const PacketView& packet, uint64_t where);
@@ -389,6 +535,12 @@ private:
     ReceiveCounters counters_;
     std::vector<Rejection> rejections_;
     uint8_t newest_minor_ = 0;
+    uint16_t scene_node_count_ = 0, scene_mesh_count_ = 0;
+    std::map<uint16_t, SceneNode> scene_nodes_;
+    std::map<uint16_t, SceneMesh> scene_meshes_;
+    std::map<uint16_t, Material> materials_;
+    std::map<uint16_t, ReceivedTexture> textures_;
+    size_t texture_bytes_ = 0;
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -1,0 +1,410 @@
+// Payloads of SCENE, MATERIAL and TEXTURE_FRAGMENT packets (format 1.1), and cutting a scene
+// description into packets.
+#include "ellicast/format.h"
+
+#include "bytes.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ellicast {
+
+using namespace detail;
+
+namespace {
+
+constexpr uint8_t kRecordNode = 1;
+constexpr uint8_t kRecordMesh = 2;
+constexpr size_t kSceneHeaderSize = 8;
+constexpr size_t kMaterialFixedSize = 88;
+constexpr size_t kMaxName = 255;
+
+bool all_finite(std::span<const float> values) {
+    return std::all_of(values.begin(), values.end(), [](float f) { return std::isfinite(f); });
+}
+
+// The longest prefix of `name` of at most `limit` bytes that does not cut a UTF-8 sequence.
+std::string utf8_prefix(const std::string& name, size_t limit) {
+    if (name.size() <= limit) return name;
+    size_t n = limit;
+    while (n > 0 && (static_cast<uint8_t>(name[n]) & 0xC0) == 0x80) --n;
+    return name.substr(0, n);
+}
+
+void put_name(std::vector<uint8_t>& out, const std::string& name) {
+    std::string n = utf8_prefix(name, kMaxName);
+    put_u8(out, static_cast<uint8_t>(n.size()));
+    out.insert(out.end(), n.begin(), n.end());
+}
+
+// Reads bounded fields from a payload; any read past the end sets `failed`.
+class Reader {
+public:
+    explicit Reader(std::span<const uint8_t> in) : in_(in) {}
+    bool failed = false;
+    size_t left() const { return in_.size() - pos_; }
+    size_t pos() const { return pos_; }
+    void skip(size_t n) {
+        if (n > left()) failed = true;
+        else pos_ += n;
+    }
+    uint8_t u8() { return need(1) ? in_[pos_++] : 0; }
+    uint16_t u16() {
+        if (!need(2)) return 0;
+        uint16_t v = get_u16(in_.data() + pos_);
+        pos_ += 2;
+        return v;
+    }
+    uint32_t u32() {
+        if (!need(4)) return 0;
+        uint32_t v = get_u32(in_.data() + pos_);
+        pos_ += 4;
+        return v;
+    }
+    float f32() {
+        if (!need(4)) return 0;
+        float v = get_f32(in_.data() + pos_);
+        pos_ += 4;
+        return v;
+    }
+    std::string name() {
+        size_t n = u8();
+        if (!need(n)) return {};
+        std::string s(reinterpret_cast<const char*>(in_.data() + pos_), n);
+        pos_ += n;
+        return s;
+    }
+
+private:
+    bool need(size_t n) {
+        if (failed || n > left()) {
+            failed = true;
+            return false;
+        }
+        return true;
+    }
+    std::span<const uint8_t> in_;
+    size_t pos_ = 0;
+};
+
+std::vector<uint8_t> node_record(const SceneNode& n) {
+    std::vector<uint8_t> body;
+    put_u16(body, n.index);
+    put_u16(body, n.parent);
+    put_u16(body, n.mesh);
+    put_u8(body, n.has_matrix ? 1 : 0);
+    put_name(body, n.name);
+    if (n.has_matrix) {
+        for (float f : n.matrix) put_f32(body, f);
+    } else {
+        for (float f : n.translation) put_f32(body, f);
+        for (float f : n.rotation) put_f32(body, f);
+        for (float f : n.scale) put_f32(body, f);
+    }
+    return body;
+}
+
+std::vector<uint8_t> mesh_record(const SceneMesh& m) {
+    std::vector<uint8_t> body;
+    put_u16(body, m.index);
+    put_name(body, m.name);
+    put_u16(body, static_cast<uint16_t>(m.primitives.size()));
+    for (const auto& p : m.primitives) {
+        put_u16(body, p.object);
+        put_u16(body, p.material);
+    }
+    return body;
+}
+
+void put_record(std::vector<uint8_t>& out, uint8_t kind, const std::vector<uint8_t>& body) {
+    put_u8(out, kind);
+    put_u16(out, static_cast<uint16_t>(body.size()));
+    out.insert(out.end(), body.begin(), body.end());
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------
+// SCENE
+
+std::vector<uint8_t> encode_scene_payload(const SceneBatch& batch) {
+    std::vector<uint8_t> out;
+    put_u16(out, batch.node_count);
+    put_u16(out, batch.mesh_count);
+    put_u16(out, static_cast<uint16_t>(batch.nodes.size() + batch.meshes.size()));
+    put_u16(out, 0);
+    for (const auto& n : batch.nodes) put_record(out, kRecordNode, node_record(n));
+    for (const auto& m : batch.meshes) put_record(out, kRecordMesh, mesh_record(m));
+    return out;
+}
+
+Error decode_scene_payload(std::span<const uint8_t> payload, SceneBatch& out) {
+    Reader r(payload);
+    SceneBatch batch;
+    batch.node_count = r.u16();
+    batch.mesh_count = r.u16();
+    const size_t records = r.u16();
+    r.u16();
+    if (r.failed) return Error::MalformedPayload;
+    for (size_t i = 0; i < records; ++i) {
+        const uint8_t kind = r.u8();
+        const size_t length = r.u16();
+        if (r.failed || length > r.left()) return Error::MalformedPayload;
+        Reader body(payload.subspan(r.pos(), length));
+        r.skip(length);
+        if (kind == kRecordNode) {
+            SceneNode n;
+            n.index = body.u16();
+            n.parent = body.u16();
+            n.mesh = body.u16();
+            const uint8_t flags = body.u8();
+            n.name = body.name();
+            n.has_matrix = (flags & 1) != 0;
+            if (n.has_matrix) {
+                for (float& f : n.matrix) f = body.f32();
+            } else {
+                for (float& f : n.translation) f = body.f32();
+                for (float& f : n.rotation) f = body.f32();
+                for (float& f : n.scale) f = body.f32();
+            }
+            if (body.failed || n.index >= batch.node_count || n.parent == n.index ||
+                (n.parent != kNone && n.parent >= batch.node_count) || (n.mesh != kNone && n.mesh >= batch.mesh_count) ||
+                !all_finite(n.matrix) || !all_finite(n.translation) || !all_finite(n.rotation) || !all_finite(n.scale))
+                return Error::MalformedPayload;
+            batch.nodes.push_back(std::move(n));
+        } else if (kind == kRecordMesh) {
+            SceneMesh m;
+            m.index = body.u16();
+            m.name = body.name();
+            const size_t count = body.u16();
+            if (body.failed || count * 4 > body.left() || m.index >= batch.mesh_count) return Error::MalformedPayload;
+            for (size_t k = 0; k < count; ++k) {
+                ScenePrimitive p;
+                p.object = body.u16();
+                p.material = body.u16();
+                m.primitives.push_back(p);
+            }
+            if (body.failed) return Error::MalformedPayload;
+            batch.meshes.push_back(std::move(m));
+        }
+        // Record kinds of a newer minor version are skipped: their length says how far.
+    }
+    if (r.left() != 0) return Error::MalformedPayload;
+    out = std::move(batch);
+    return Error::Ok;
+}
+
+// ------------------------------------------------------------------------------------------
+// MATERIAL
+
+std::vector<uint8_t> encode_material_payload(const Material& m) {
+    std::vector<uint8_t> out;
+    std::string name = utf8_prefix(m.name, kMaxName);
+    put_u16(out, m.index);
+    put_u16(out, m.material_count);
+    put_u8(out, static_cast<uint8_t>(m.alpha_mode));
+    put_u8(out, m.double_sided ? 1 : 0);
+    put_u8(out, static_cast<uint8_t>(name.size()));
+    put_u8(out, 0);
+    for (float f : m.base_color) put_f32(out, f);
+    put_f32(out, m.metallic);
+    put_f32(out, m.roughness);
+    for (float f : m.emissive) put_f32(out, f);
+    put_f32(out, m.alpha_cutoff);
+    for (const TextureRef* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
+                                &m.occlusion_texture, &m.emissive_texture}) {
+        put_u16(out, t->texture);
+        put_u8(out, t->texcoord);
+        put_u8(out, 0);
+        put_f32(out, t->scale);
+    }
+    out.insert(out.end(), name.begin(), name.end());
+    return out;
+}
+
+Error decode_material_payload(std::span<const uint8_t> payload, Material& out) {
+    if (payload.size() < kMaterialFixedSize) return Error::MalformedPayload;
+    Reader r(payload);
+    Material m;
+    m.index = r.u16();
+    m.material_count = r.u16();
+    const uint8_t alpha = r.u8();
+    m.double_sided = r.u8() != 0;
+    const size_t name_length = r.u8();
+    r.u8();
+    for (float& f : m.base_color) f = r.f32();
+    m.metallic = r.f32();
+    m.roughness = r.f32();
+    for (float& f : m.emissive) f = r.f32();
+    m.alpha_cutoff = r.f32();
+    for (TextureRef* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
+                          &m.occlusion_texture, &m.emissive_texture}) {
+        t->texture = r.u16();
+        t->texcoord = r.u8();
+        r.u8();
+        t->scale = r.f32();
+    }
+    if (r.failed || payload.size() != kMaterialFixedSize + name_length) return Error::MalformedPayload;
+    m.name.assign(reinterpret_cast<const char*>(payload.data() + kMaterialFixedSize), name_length);
+    float scalars[] = {m.metallic, m.roughness, m.alpha_cutoff, m.base_color_texture.scale,
+                       m.metallic_roughness_texture.scale, m.normal_texture.scale, m.occlusion_texture.scale,
+                       m.emissive_texture.scale};
+    if (m.index >= m.material_count || alpha > 2 || !all_finite(m.base_color) || !all_finite(m.emissive) ||
+        !all_finite(scalars))
+        return Error::MalformedPayload;
+    m.alpha_mode = static_cast<AlphaMode>(alpha);
+    out = std::move(m);
+    return Error::Ok;
+}
+
+// ------------------------------------------------------------------------------------------
+// TEXTURE_FRAGMENT
+
+std::vector<uint8_t> encode_texture_fragment_payload(const TextureFragment& f) {
+    std::vector<uint8_t> out;
+    out.reserve(kTextureFragmentHeaderSize + f.data.size());
+    const TextureInfo& t = f.info;
+    put_u16(out, t.index);
+    put_u16(out, t.texture_count);
+    put_u8(out, static_cast<uint8_t>(t.image_type));
+    put_u8(out, 0);
+    put_u16(out, t.mag_filter);
+    put_u16(out, t.min_filter);
+    put_u16(out, t.wrap_s);
+    put_u16(out, t.wrap_t);
+    put_u16(out, 0);
+    put_u32(out, t.image_size);
+    put_u32(out, t.image_crc);
+    put_u32(out, f.offset);
+    out.insert(out.end(), f.data.begin(), f.data.end());
+    return out;
+}
+
+Error decode_texture_fragment_payload(std::span<const uint8_t> payload, TextureFragment& out) {
+    if (payload.size() <= kTextureFragmentHeaderSize) return Error::MalformedPayload;
+    const uint8_t* p = payload.data();
+    TextureFragment f;
+    TextureInfo& t = f.info;
+    t.index = get_u16(p);
+    t.texture_count = get_u16(p + 2);
+    const uint8_t type = p[4];
+    t.mag_filter = get_u16(p + 6);
+    t.min_filter = get_u16(p + 8);
+    t.wrap_s = get_u16(p + 10);
+    t.wrap_t = get_u16(p + 12);
+    t.image_size = get_u32(p + 16);
+    t.image_crc = get_u32(p + 20);
+    f.offset = get_u32(p + 24);
+    const size_t length = payload.size() - kTextureFragmentHeaderSize;
+    if (t.index >= t.texture_count || (type != 1 && type != 2) || uint64_t(f.offset) + length > t.image_size)
+        return Error::MalformedPayload;
+    t.image_type = static_cast<ImageType>(type);
+    f.data.assign(payload.begin() + kTextureFragmentHeaderSize, payload.end());
+    out = std::move(f);
+    return Error::Ok;
+}
+
+// ------------------------------------------------------------------------------------------
+// Packetizing
+
+Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_t stream_id, uint32_t first_sequence,
+                      ScenePackets& out) {
+    if (packet_size < kMinPacketSize || packet_size > kMaxPacketSize) return Error::MalformedPayload;
+    if (scene.nodes.size() > 0xFFFE || scene.meshes.size() > 0xFFFE || scene.materials.size() > 0xFFFE ||
+        scene.textures.size() > 0xFFFE)
+        return Error::MalformedPayload;
+    const size_t capacity = packet_size - kPacketOverhead;
+    const auto node_count = static_cast<uint16_t>(scene.nodes.size());
+    const auto mesh_count = static_cast<uint16_t>(scene.meshes.size());
+    for (size_t i = 0; i < scene.nodes.size(); ++i) {
+        const SceneNode& n = scene.nodes[i];
+        if (n.index != i || n.parent == n.index || (n.parent != kNone && n.parent >= node_count) ||
+            (n.mesh != kNone && n.mesh >= mesh_count))
+            return Error::MalformedPayload;
+    }
+    for (size_t i = 0; i < scene.meshes.size(); ++i) {
+        if (scene.meshes[i].index != i) return Error::MalformedPayload;
+        for (const auto& p : scene.meshes[i].primitives)
+            if (p.material != kNone && p.material >= scene.materials.size()) return Error::MalformedPayload;
+    }
+
+    ScenePackets packets;
+    uint32_t sequence = first_sequence;
+    auto emit = [&](PacketType type, const std::vector<uint8_t>& payload) {
+        PacketHeader h;
+        h.type = static_cast<uint8_t>(type);
+        h.flags = kFlagSkippable;
+        h.stream_id = stream_id;
+        h.sequence = sequence++;
+        h.object_id = kStreamObjectId;
+        return write_packet(h, payload);
+    };
+
+    // SCENE: whole records, as many as fit each packet. A name is shortened when its record would
+    // not fit a packet at all (only possible with the smallest packet sizes).
+    SceneBatch batch{node_count, mesh_count, {}, {}};
+    size_t used = kSceneHeaderSize;
+    auto flush = [&]() {
+        if (batch.nodes.empty() && batch.meshes.empty()) return;
+        packets.scene.push_back(emit(PacketType::Scene, encode_scene_payload(batch)));
+        batch.nodes.clear();
+        batch.meshes.clear();
+        used = kSceneHeaderSize;
+    };
+    auto fit_name = [&](std::string& name, size_t size_without_name) -> bool {
+        if (kSceneHeaderSize + size_without_name > capacity) return false;
+        name = utf8_prefix(name, std::min(kMaxName, capacity - kSceneHeaderSize - size_without_name));
+        return true;
+    };
+    for (SceneNode n : scene.nodes) {
+        const size_t fixed = 3 + 7 + 1 + (n.has_matrix ? 64 : 40);
+        if (!fit_name(n.name, fixed)) return Error::MalformedPayload;
+        const size_t size = fixed + n.name.size();
+        if (used + size > capacity) flush();
+        batch.nodes.push_back(std::move(n));
+        used += size;
+    }
+    for (SceneMesh m : scene.meshes) {
+        const size_t fixed = 3 + 2 + 1 + 2 + 4 * m.primitives.size();
+        if (!fit_name(m.name, fixed)) return Error::MalformedPayload;
+        const size_t size = fixed + m.name.size();
+        if (used + size > capacity) flush();
+        batch.meshes.push_back(std::move(m));
+        used += size;
+    }
+    flush();
+
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+        Material m = scene.materials[i];
+        m.index = static_cast<uint16_t>(i);
+        m.material_count = static_cast<uint16_t>(scene.materials.size());
+        if (capacity < kMaterialFixedSize) return Error::MalformedPayload;
+        m.name = utf8_prefix(m.name, std::min(kMaxName, capacity - kMaterialFixedSize));
+        for (const TextureRef* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
+                                    &m.occlusion_texture, &m.emissive_texture})
+            if (t->texture != kNone && t->texture >= scene.textures.size()) return Error::MalformedPayload;
+        packets.materials.push_back(emit(PacketType::Material, encode_material_payload(m)));
+    }
+
+    const size_t per_fragment = capacity - kTextureFragmentHeaderSize;
+    for (size_t i = 0; i < scene.textures.size(); ++i) {
+        const auto& texture = scene.textures[i];
+        if (texture.image.empty() || texture.image.size() > 0xFFFFFFFFull) return Error::MalformedPayload;
+        TextureFragment f;
+        f.info = texture.info;
+        f.info.index = static_cast<uint16_t>(i);
+        f.info.texture_count = static_cast<uint16_t>(scene.textures.size());
+        f.info.image_size = static_cast<uint32_t>(texture.image.size());
+        f.info.image_crc = crc32c(texture.image.data(), texture.image.size());
+        for (size_t offset = 0; offset < texture.image.size(); offset += per_fragment) {
+            size_t n = std::min(per_fragment, texture.image.size() - offset);
+            f.offset = static_cast<uint32_t>(offset);
+            f.data.assign(texture.image.begin() + offset, texture.image.begin() + offset + n);
+            packets.textures.push_back(emit(PacketType::TextureFragment, encode_texture_fragment_payload(f)));
+        }
+    }
+    out = std::move(packets);
+    return Error::Ok;
+}
+
+}  // namespace ellicast
