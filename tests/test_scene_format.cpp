@@ -1,0 +1,174 @@
+// Format 1.1: scene graph, materials and texture fragments.
+#include "support.h"
+
+#include "ellicast/format.h"
+
+#include <algorithm>
+#include <random>
+
+using namespace ellicast;
+
+namespace {
+
+SceneDescription sample_scene(size_t image_bytes) {
+    SceneDescription scene;
+    for (uint16_t i = 0; i < 6; ++i) {
+        SceneNode n;
+        n.index = i;
+        n.parent = i == 0 ? kNone : static_cast<uint16_t>((i - 1) / 2);
+        n.mesh = i % 2 ? 0 : kNone;
+        n.name = "node " + std::to_string(i);
+        n.translation = {float(i), 2.5f, -1};
+        n.rotation = {0, 0.70710677f, 0, 0.70710677f};
+        if (i == 5) {  // a matrix node: no TRS travels for it
+            n = SceneNode{};
+            n.index = i;
+            n.parent = 2;
+            n.has_matrix = true;
+            n.matrix[12] = 7;
+        }
+        scene.nodes.push_back(n);
+    }
+    SceneMesh mesh;
+    mesh.name = "truck";
+    mesh.primitives = {{0, 0}, {1, kNone}};
+    scene.meshes.push_back(mesh);
+    Material m;
+    m.name = "paint";
+    m.base_color = {0.8f, 0.1f, 0.1f, 1};
+    m.metallic = 0.2f;
+    m.roughness = 0.7f;
+    m.alpha_mode = AlphaMode::Mask;
+    m.alpha_cutoff = 0.25f;
+    m.double_sided = true;
+    m.base_color_texture = {0, 0, 1};
+    m.normal_texture = {0, 1, 0.5f};
+    scene.materials.push_back(m);
+    SceneDescription::Texture t;
+    std::mt19937 rng(11);
+    for (size_t i = 0; i < image_bytes; ++i) t.image.push_back(static_cast<uint8_t>(rng()));
+    t.info.image_type = ImageType::Png;
+    t.info.min_filter = 9987;
+    scene.textures.push_back(t);
+    return scene;
+}
+
+std::vector<std::vector<uint8_t>> all_packets(const ScenePackets& p) {
+    std::vector<std::vector<uint8_t>> out;
+    for (const auto* v : {&p.scene, &p.materials, &p.textures}) out.insert(out.end(), v->begin(), v->end());
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("a scene, its materials and a texture come back whole from shuffled, duplicated packets") {
+    const auto scene = sample_scene(20000);
+    ScenePackets packets;
+    REQUIRE(packetize_scene(scene, 1200, 9, 0, packets) == Error::Ok);
+    auto all = all_packets(packets);
+    auto copy = all;
+    all.insert(all.end(), copy.begin(), copy.end());
+    std::shuffle(all.begin(), all.end(), std::mt19937(5));
+    ReceivedStream rs;
+    for (size_t i = 0; i < all.size(); ++i) REQUIRE(rs.add_packet(all[i], i) == Error::Ok);
+    CHECK(rs.counters().rejected == 0);
+    CHECK(rs.counters().duplicates == copy.size());
+    REQUIRE(rs.scene_nodes().size() == scene.nodes.size());
+    for (const auto& n : scene.nodes) CHECK(rs.scene_nodes().at(n.index) == n);
+    CHECK(rs.scene_meshes().at(0) == SceneMesh{0, "truck", {{0, 0}, {1, kNone}}});
+    Material expected = scene.materials[0];
+    expected.material_count = 1;
+    CHECK(rs.materials().at(0) == expected);
+    const auto& t = rs.textures().at(0);
+    CHECK(t.complete);
+    CHECK(t.image == scene.textures[0].image);
+    CHECK(t.info.min_filter == 9987);
+}
+
+TEST_CASE("scene packets are marked skippable so a 1.0 decoder still decodes the geometry") {
+    ScenePackets packets;
+    REQUIRE(packetize_scene(sample_scene(3000), 1200, 1, 0, packets) == Error::Ok);
+    for (const auto& p : all_packets(packets)) {
+        PacketView v;
+        REQUIRE(parse_packet(p, v) == Error::Ok);
+        CHECK(v.header.skippable());
+        CHECK(v.header.version_minor == 1);
+    }
+}
+
+TEST_CASE("every texture fragment is useful alone: its bytes land at their offset, the rest stays missing") {
+    const auto scene = sample_scene(5000);
+    ScenePackets packets;
+    REQUIRE(packetize_scene(scene, 600, 1, 0, packets) == Error::Ok);
+    REQUIRE(packets.textures.size() > 3);
+    ReceivedStream rs;
+    REQUIRE(rs.add_packet(packets.textures[2], 0) == Error::Ok);
+    const auto& t = rs.textures().at(0);
+    CHECK_FALSE(t.complete);
+    REQUIRE(t.received.size() == 1);
+    const auto [begin, end] = *t.received.begin();
+    CHECK(t.received_bytes == end - begin);
+    CHECK(std::equal(t.image.begin() + begin, t.image.begin() + end, scene.textures[0].image.begin() + begin));
+    // The remaining fragments, in reverse order, complete it.
+    for (size_t i = packets.textures.size(); i-- > 0;) rs.add_packet(packets.textures[i], i);
+    CHECK(rs.textures().at(0).complete);
+    CHECK(rs.textures().at(0).image == scene.textures[0].image);
+}
+
+TEST_CASE("texture fragments that contradict the image they announce are rejected") {
+    ScenePackets a, b;
+    auto scene = sample_scene(4000);
+    REQUIRE(packetize_scene(scene, 1200, 1, 0, a) == Error::Ok);
+    scene.textures[0].image[10] ^= 1;  // another image of the same size: another CRC
+    REQUIRE(packetize_scene(scene, 1200, 1, 0, b) == Error::Ok);
+    ReceivedStream rs;
+    REQUIRE(rs.add_packet(a.textures[0], 0) == Error::Ok);
+    CHECK(rs.add_packet(b.textures[1], 1) == Error::StreamMismatch);
+}
+
+TEST_CASE("a texture announcing more bytes than the receiver's limit is rejected without allocating it") {
+    ReceivedStream::Limits limits;
+    limits.max_texture_bytes = 1000;
+    ReceivedStream rs(limits);
+    ScenePackets packets;
+    REQUIRE(packetize_scene(sample_scene(5000), 1200, 1, 0, packets) == Error::Ok);
+    CHECK(rs.add_packet(packets.textures[0], 0) == Error::MalformedPayload);
+    CHECK(rs.textures().empty());
+}
+
+TEST_CASE("scene records referring outside their tables are refused at both ends") {
+    auto scene = sample_scene(100);
+    scene.nodes[3].parent = 40;
+    ScenePackets packets;
+    CHECK(packetize_scene(scene, 1200, 1, 0, packets) == Error::MalformedPayload);
+
+    SceneBatch batch;
+    batch.node_count = 2;
+    SceneNode n;
+    n.index = 1;
+    n.parent = 7;  // beyond node_count
+    batch.nodes.push_back(n);
+    auto payload = encode_scene_payload(batch);
+    SceneBatch decoded;
+    CHECK(decode_scene_payload(payload, decoded) == Error::MalformedPayload);
+    payload.pop_back();  // and a record cut short
+    CHECK(decode_scene_payload(payload, decoded) == Error::MalformedPayload);
+}
+
+TEST_CASE("names too long for the smallest packets are shortened at a UTF-8 boundary") {
+    auto scene = sample_scene(100);
+    std::string name;
+    for (int i = 0; i < 100; ++i) name += "\xC3\xA9";  // 'é', two bytes each
+    scene.nodes[0].name = name;
+    scene.materials[0].name = name;
+    ScenePackets packets;
+    REQUIRE(packetize_scene(scene, kMinPacketSize, 1, 0, packets) == Error::Ok);
+    ReceivedStream rs;
+    for (const auto& p : all_packets(packets)) REQUIRE(rs.add_packet(p, 0) == Error::Ok);
+    const std::string& got = rs.scene_nodes().at(0).name;
+    CHECK(got.size() < name.size());
+    CHECK(got.size() % 2 == 0);
+    CHECK(name.compare(0, got.size(), got) == 0);
+    CHECK(rs.materials().at(0).name.size() % 2 == 0);
+    for (const auto& p : all_packets(packets)) CHECK(p.size() <= kMinPacketSize);
+}
