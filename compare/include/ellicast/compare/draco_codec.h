@@ -1,0 +1,51 @@
+// Draco compression of an ellicast::Mesh at the settings glTF-Transform uses by default
+// (`gltf-transform draco`): Edgebreaker, 14-bit positions, 10-bit normals, 12-bit texture
+// coordinates, 8-bit colours, encoding and decoding speed 5. The baselines of `ellicast compare`
+// are built on it.
+#pragma once
+
+#include "ellicast/codec/mesh.h"
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ellicast::compare {
+
+// Something the comparison cannot do (Draco refused a mesh, an absurd option, ...): the message
+// says what and why.
+class CompareError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct DracoSettings {
+    int position_bits = 14;
+    int normal_bits = 10;
+    int texcoord_bits = 12;
+    int color_bits = 8;
+    int encoding_speed = 5;  // 0 (best compression) .. 10 (fastest)
+    int decoding_speed = 5;
+    // When set, positions are quantized on this grid (origin, cube edge) instead of the mesh's own
+    // bounding box, so that separately compressed pieces of one model share one grid (no cracks).
+    std::optional<std::array<float, 3>> position_origin;
+    float position_range = 0;
+};
+
+// The Draco bitstream of `mesh` (Edgebreaker) with every attribute it has (normals, TEXCOORD_0,
+// COLOR_0). Throws CompareError when the mesh has no triangles or Draco refuses it.
+std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& settings);
+
+// Decodes a Draco bitstream into a mesh (positions, triangles, and the attributes it carries).
+// Returns false with `error` set when the bytes are not a decodable Draco mesh.
+bool draco_decode(std::span<const uint8_t> bytes, Mesh& out, std::string& error);
+
+// The axis-aligned cube (origin, edge) around the mesh's positions that Draco's own quantization
+// would use: the bounding box's minimum corner and its largest extent.
+std::pair<std::array<float, 3>, float> position_cube(const Mesh& mesh);
+
+}  // namespace ellicast::compare

@@ -1,0 +1,146 @@
+// The ways of sending one mesh through a lossy slotted channel that `ellicast compare` puts side by
+// side. A scheme is a set of distinct packets (each a real packet of at most the packet size, with
+// the ellicast header and CRC-32C) and a schedule saying which of them goes out in each slot; a
+// receiver keeps every distinct packet that arrives, across cycles, and the scheme says what it can
+// show from the packets held.
+//
+//   draco_whole.cpp     the Draco file cut into packets, repeated; decodable once every packet is held
+//   draco_fec.cpp       the same bytes plus Reed-Solomon parity (ISA-L); decodable from any k of each block
+//   draco_clusters.cpp  spatial clusters that each compress into one packet and decode alone
+//   ellicast_scheme.cpp ellicast's stream, scheduled by its carousel, rebuilt by its decoder
+#pragma once
+
+#include "ellicast/codec/mesh.h"
+#include "ellicast/compare/draco_codec.h"
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace ellicast::compare {
+
+// Packet types of the baselines: experimental types of format 1.0, marked skippable so that an
+// ellicast receiver that meets one ignores it.
+inline constexpr uint8_t kDracoFragmentType = 0x80;  // a piece of a Draco file
+inline constexpr uint8_t kDracoShardType = 0x81;     // a Reed-Solomon shard of a Draco file
+inline constexpr uint8_t kDracoClusterType = 0x82;   // one cluster's whole Draco file
+inline constexpr uint32_t kBaselineStreamId = 0xD7AC0;
+
+class Scheme {
+public:
+    virtual ~Scheme() = default;
+
+    // Short name used in the CSV and the plots ("ellicast", "draco-whole", ...).
+    virtual std::string name() const = 0;
+    // One sentence: what the scheme sends and how it is scheduled.
+    virtual std::string describe() const = 0;
+
+    // The distinct packets the scheme sends.
+    const std::vector<std::vector<uint8_t>>& packets() const { return packets_; }
+    // Slots after which the schedule repeats (the scheme's own period).
+    virtual uint64_t period() const { return packets_.size(); }
+    // Index into packets() of the packet sent in slot `slot` (slots count from the sender's start).
+    virtual uint32_t packet_at(uint64_t slot) const { return static_cast<uint32_t>(slot % packets_.size()); }
+
+    // What a receiver holding the packets `held` (distinct indices into packets(), ascending) can
+    // show: true with the mesh when it has a surface to show, false (out empty) when it has none.
+    // Parses the real packet bytes: a damaged packet would be rejected by its CRC.
+    virtual bool reconstruct(const std::vector<uint32_t>& held, Mesh& out) const = 0;
+
+    // Bytes the scheme sends in slots [first, first + count).
+    uint64_t bytes_in_slots(uint64_t first, uint64_t count) const;
+
+protected:
+    std::vector<std::vector<uint8_t>> packets_;
+};
+
+// Wraps `payload` in a packet of `type` (skippable) with the baseline stream id and `sequence`.
+std::vector<uint8_t> baseline_packet(uint8_t type, uint32_t sequence, std::span<const uint8_t> payload);
+// The payload of a baseline packet of `type`; empty when the bytes are not an intact packet of that
+// type (bad CRC, other type, other stream).
+std::span<const uint8_t> baseline_payload(std::span<const uint8_t> packet, uint8_t type);
+// Largest payload of a packet of `packet_size` bytes.
+size_t payload_capacity(size_t packet_size);
+
+// ---------------------------------------------------------------------------------------------
+// Draco whole mesh: the Draco file cut into packets of the packet size, sent round robin; the receiver
+// can decode only once it holds every packet.
+class DracoWhole : public Scheme {
+public:
+    DracoWhole(const Mesh& mesh, const DracoSettings& settings, size_t packet_size);
+    std::string name() const override { return "draco-whole"; }
+    std::string describe() const override;
+    bool reconstruct(const std::vector<uint32_t>& held, Mesh& out) const override;
+    const std::vector<uint8_t>& draco_bytes() const { return draco_; }
+
+private:
+    std::vector<uint8_t> draco_;
+};
+
+// Cuts `bytes` into fragments that each fit a payload of `capacity` bytes after an 8-byte fragment
+// header (file size, fragment count, fragment index): the payloads of DracoWhole's packets.
+std::vector<std::vector<uint8_t>> fragment_payloads(std::span<const uint8_t> bytes, size_t capacity);
+
+// ---------------------------------------------------------------------------------------------
+// Draco + erasure code: the Draco file in k data shards of one packet each, plus m = ceil(k * r)
+// Reed-Solomon parity shards (ISA-L), in blocks of at most 255 shards; data and parity interleaved
+// block by block and sent round robin. Decodable once every block holds any k of its shards.
+class DracoFec : public Scheme {
+public:
+    // `redundancy` r >= 0: parity shards per data shard.
+    DracoFec(const Mesh& mesh, const DracoSettings& settings, size_t packet_size, double redundancy);
+    std::string name() const override { return "draco-fec"; }
+    std::string describe() const override;
+    bool reconstruct(const std::vector<uint32_t>& held, Mesh& out) const override;
+
+    struct Block {
+        int data = 0;    // k
+        int parity = 0;  // m
+    };
+    const std::vector<Block>& blocks() const { return blocks_; }
+    size_t data_shards() const;
+    size_t parity_shards() const;
+    double redundancy() const { return redundancy_; }
+    const std::vector<uint8_t>& draco_bytes() const { return draco_; }
+    // The block and the shard index inside it of packet `packet`.
+    std::pair<int, int> shard_of(uint32_t packet) const;
+
+private:
+    std::vector<uint8_t> draco_;
+    double redundancy_;
+    size_t shard_bytes_ = 0;
+    std::vector<Block> blocks_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Draco per cluster: the triangles cut into spatially compact clusters (recursive bisection of
+// triangle centroids along the longest axis) until each cluster's own Draco file fits one packet;
+// every cluster decodes alone, on one position grid shared by all (no cracks between clusters), and
+// a lost packet is a hole.
+class DracoClusters : public Scheme {
+public:
+    DracoClusters(const Mesh& mesh, const DracoSettings& settings, size_t packet_size);
+    std::string name() const override { return "draco-clusters"; }
+    std::string describe() const override;
+    bool reconstruct(const std::vector<uint32_t>& held, Mesh& out) const override;
+
+    size_t cluster_count() const { return packets_.size(); }
+    // The triangles (indices into the input mesh) of each cluster, in packet order.
+    const std::vector<std::vector<uint32_t>>& cluster_triangles() const { return clusters_; }
+    // Mean fill of the packets (payload bytes / capacity).
+    double mean_fill() const { return mean_fill_; }
+
+private:
+    std::vector<std::vector<uint32_t>> clusters_;
+    double mean_fill_ = 0;
+};
+
+// The sub-mesh of `mesh` made of the triangles `triangles` (vertices renumbered, attributes kept).
+Mesh submesh(const Mesh& mesh, std::span<const uint32_t> triangles);
+
+// Concatenates meshes (vertices are not welded).
+Mesh concatenate(const std::vector<Mesh>& parts);
+
+}  // namespace ellicast::compare

@@ -1,0 +1,143 @@
+// ellicast::Mesh <-> Draco, at glTF-Transform's default Draco settings.
+#include "ellicast/compare/draco_codec.h"
+
+#include <draco/compression/decode.h>
+#include <draco/compression/encode.h>
+#include <draco/mesh/mesh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+namespace ellicast::compare {
+
+namespace {
+
+// Adds a per-vertex float attribute with one value per point (identity mapping).
+template <size_t N>
+void add_attribute(draco::Mesh& dm, draco::GeometryAttribute::Type type, const std::vector<std::array<float, N>>& values) {
+    draco::GeometryAttribute ga;
+    ga.Init(type, nullptr, static_cast<uint8_t>(N), draco::DT_FLOAT32, false, sizeof(float) * N, 0);
+    int id = dm.AddAttribute(ga, true, static_cast<uint32_t>(values.size()));
+    draco::PointAttribute* pa = dm.attribute(id);
+    for (size_t i = 0; i < values.size(); ++i) pa->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), values[i].data());
+}
+
+// Reads attribute `type` of a decoded mesh, per point, as N floats (false when absent).
+template <size_t N>
+bool read_attribute(const draco::Mesh& dm, draco::GeometryAttribute::Type type, std::vector<std::array<float, N>>& out) {
+    const draco::PointAttribute* pa = dm.GetNamedAttribute(type);
+    if (pa == nullptr) return false;
+    out.assign(dm.num_points(), {});
+    std::array<float, 4> tmp{};
+    for (uint32_t p = 0; p < dm.num_points(); ++p) {
+        tmp = {0, 0, 0, 1};
+        // ConvertValue normalizes integer colours to [0,1] when the attribute is normalized.
+        if (!pa->ConvertValue<float>(pa->mapped_index(draco::PointIndex(p)), static_cast<int8_t>(N), tmp.data()))
+            return false;
+        for (size_t c = 0; c < N; ++c) out[p][c] = tmp[c];
+    }
+    return true;
+}
+
+}  // namespace
+
+std::pair<std::array<float, 3>, float> position_cube(const Mesh& mesh) {
+    std::array<float, 3> lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
+                            std::numeric_limits<float>::max()};
+    std::array<float, 3> hi{-lo[0], -lo[1], -lo[2]};
+    for (const auto& p : mesh.positions)
+        for (int c = 0; c < 3; ++c) {
+            lo[c] = std::min(lo[c], p[c]);
+            hi[c] = std::max(hi[c], p[c]);
+        }
+    if (mesh.positions.empty()) return {{0, 0, 0}, 1.f};
+    float range = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    if (!(range > 0)) range = 1;
+    return {lo, range};
+}
+
+std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& settings) {
+    if (mesh.triangles.empty() || mesh.positions.empty())
+        throw CompareError("Draco: mesh '" + mesh.name + "' has no triangles to compress");
+    draco::Mesh dm;
+    dm.set_num_points(static_cast<uint32_t>(mesh.positions.size()));
+    add_attribute(dm, draco::GeometryAttribute::POSITION, mesh.positions);
+    if (mesh.has_normals()) add_attribute(dm, draco::GeometryAttribute::NORMAL, mesh.normals);
+    if (mesh.has_texcoords()) add_attribute(dm, draco::GeometryAttribute::TEX_COORD, mesh.texcoords);
+    if (mesh.has_colors()) {
+        if (mesh.colors_have_alpha) {
+            add_attribute(dm, draco::GeometryAttribute::COLOR, mesh.colors);
+        } else {
+            std::vector<std::array<float, 3>> rgb(mesh.colors.size());
+            for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = {mesh.colors[i][0], mesh.colors[i][1], mesh.colors[i][2]};
+            add_attribute(dm, draco::GeometryAttribute::COLOR, rgb);
+        }
+    }
+    dm.SetNumFaces(mesh.triangles.size());
+    for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+        const auto& t = mesh.triangles[f];
+        for (uint32_t v : t)
+            if (v >= mesh.positions.size())
+                throw CompareError("Draco: triangle " + std::to_string(f) + " of '" + mesh.name +
+                                   "' refers to vertex " + std::to_string(v) + " beyond the vertex count");
+        dm.SetFace(draco::FaceIndex(uint32_t(f)),
+                   {draco::PointIndex(t[0]), draco::PointIndex(t[1]), draco::PointIndex(t[2])});
+    }
+
+    draco::Encoder encoder;
+    encoder.SetEncodingMethod(draco::MESH_EDGEBREAKER_ENCODING);
+    encoder.SetSpeedOptions(settings.encoding_speed, settings.decoding_speed);
+    if (settings.position_origin) {
+        encoder.SetAttributeExplicitQuantization(draco::GeometryAttribute::POSITION, settings.position_bits, 3,
+                                                 settings.position_origin->data(), settings.position_range);
+    } else {
+        encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, settings.position_bits);
+    }
+    encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, settings.normal_bits);
+    encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, settings.texcoord_bits);
+    encoder.SetAttributeQuantization(draco::GeometryAttribute::COLOR, settings.color_bits);
+    draco::EncoderBuffer buffer;
+    draco::Status status = encoder.EncodeMeshToBuffer(dm, &buffer);
+    if (!status.ok()) throw CompareError("Draco could not compress '" + mesh.name + "': " + status.error_msg_string());
+    return std::vector<uint8_t>(buffer.data(), buffer.data() + buffer.size());
+}
+
+bool draco_decode(std::span<const uint8_t> bytes, Mesh& out, std::string& error) {
+    out = Mesh{};
+    draco::DecoderBuffer buffer;
+    buffer.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    draco::Decoder decoder;
+    auto result = decoder.DecodeMeshFromBuffer(&buffer);
+    if (!result.ok()) {
+        error = "not a decodable Draco mesh: " + result.status().error_msg_string();
+        return false;
+    }
+    const std::unique_ptr<draco::Mesh>& dm = result.value();
+    if (!read_attribute(*dm, draco::GeometryAttribute::POSITION, out.positions)) {
+        error = "Draco mesh without positions";
+        return false;
+    }
+    read_attribute(*dm, draco::GeometryAttribute::NORMAL, out.normals);
+    read_attribute(*dm, draco::GeometryAttribute::TEX_COORD, out.texcoords);
+    if (const draco::PointAttribute* c = dm->GetNamedAttribute(draco::GeometryAttribute::COLOR)) {
+        out.colors_have_alpha = c->num_components() == 4;
+        if (out.colors_have_alpha) {
+            read_attribute(*dm, draco::GeometryAttribute::COLOR, out.colors);
+        } else {
+            std::vector<std::array<float, 3>> rgb;
+            read_attribute(*dm, draco::GeometryAttribute::COLOR, rgb);
+            out.colors.resize(rgb.size());
+            for (size_t i = 0; i < rgb.size(); ++i) out.colors[i] = {rgb[i][0], rgb[i][1], rgb[i][2], 1.f};
+        }
+    }
+    out.triangles.resize(dm->num_faces());
+    for (uint32_t f = 0; f < dm->num_faces(); ++f) {
+        const auto& face = dm->face(draco::FaceIndex(f));
+        out.triangles[f] = {face[0].value(), face[1].value(), face[2].value()};
+    }
+    return true;
+}
+
+}  // namespace ellicast::compare
