@@ -2,10 +2,14 @@
 #include "support.h"
 
 #include "ellicast/compare/erasure_code.h"
+#include "ellicast/compare/experiment.h"
+#include "ellicast/compare/report.h"
 #include "ellicast/compare/schemes.h"
 #include "ellicast/converters/mesh_input.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <numeric>
 #include <random>
 
@@ -135,4 +139,113 @@ TEST_CASE("a damaged baseline packet is rejected by its checksum") {
     CHECK_FALSE(baseline_payload(packet, kDracoClusterType).empty());
     packet[packet.size() / 2] ^= 0x10;
     CHECK(baseline_payload(packet, kDracoClusterType).empty());
+}
+
+namespace {
+
+// A stand-in metric for the experiment's own tests: the share of the original's triangles missing.
+MeasureFn triangle_share_metric(size_t original_triangles) {
+    return [original_triangles](const Mesh& m) {
+        Distance d;
+        d.holes = 100.0 * (1.0 - std::min(1.0, double(m.triangles.size()) / double(original_triangles)));
+        d.rms = d.holes / 100.0;
+        d.hausdorff = d.rms;
+        return d;
+    };
+}
+
+// Independent loss for the experiment's own tests (the real runs use the channel simulator).
+TraceFn channel_trace(size_t) {
+    return [](double loss, double, uint64_t seed, uint64_t slots) {
+        std::mt19937_64 rng(seed);
+        std::bernoulli_distribution lose(loss);
+        std::vector<bool> lost(slots);
+        for (uint64_t k = 0; k < slots; ++k) lost[k] = lose(rng);
+        return lost;
+    };
+}
+
+std::string read_text(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST_CASE("the experiment gives the same CSV for the same seed, whatever the thread count") {
+    if (!test::have_sample("meshes/spot.obj")) return;
+    Mesh spot = load_sample("meshes/spot.obj");
+    DracoWhole whole(spot, DracoSettings{}, 600);
+    DracoClusters clusters(spot, DracoSettings{}, 600);
+    std::vector<const Scheme*> schemes{&whole, &clusters};
+    ExperimentOptions options;
+    options.loss_rates = {0, 0.3};
+    options.time_loss_rates = {0.3};
+    options.times = {0.5, 1, 2};
+    options.trials = 3;
+    options.cycle_slots = 2 * clusters.packets().size();
+    options.seed = 11;
+    auto dir = test::scratch_dir("compare_determinism");
+    auto a = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(600), options);
+    options.threads = 2;
+    auto b = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(600), options);
+    write_trials_csv(a, (dir / "a.csv").string());
+    write_trials_csv(b, (dir / "b.csv").string());
+    CHECK(read_text(dir / "a.csv") == read_text(dir / "b.csv"));
+    options.seed = 12;
+    auto c = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(600), options);
+    write_trials_csv(c, (dir / "c.csv").string());
+    CHECK(read_text(dir / "a.csv") != read_text(dir / "c.csv"));
+
+    // Every scheme of a trial loses the very same slots; without loss every scheme shows everything.
+    for (const auto& r : a.trials) {
+        for (const auto& s : a.trials)
+            if (s.trial == r.trial && s.loss == r.loss && s.time == r.time) {
+                CHECK(s.trace_loss == r.trace_loss);
+                CHECK(s.tune_in == r.tune_in);
+            }
+        if (r.loss == 0 && r.time >= 1) {
+            CHECK(r.shown);
+            CHECK(r.distance.holes == doctest::Approx(0));
+        }
+    }
+    // At 30% loss the clusters scheme shows something with holes; Draco whole rarely completes in one cycle.
+    Cell lossy = summarize(a, 1, 0.3, 0, 1.0);
+    CHECK(lossy.trials == 3);
+    CHECK(lossy.shown_share == 1.0);
+    CHECK(lossy.holes_median > 0);
+}
+
+TEST_CASE("the report writes the CSVs, SVG and PNG plots and a Markdown report that starts with the command") {
+    if (!test::have_sample("meshes/spot.obj")) return;
+    Mesh spot = load_sample("meshes/spot.obj");
+    DracoWhole whole(spot, DracoSettings{}, 1200);
+    DracoFec fec(spot, DracoSettings{}, 1200, 0.2);
+    std::vector<const Scheme*> schemes{&whole, &fec};
+    ExperimentOptions options;
+    options.loss_rates = {0, 0.1};
+    options.time_loss_rates = {0.1};
+    options.times = {1, 2};
+    options.trials = 2;
+    options.cycle_slots = fec.packets().size() + 2;
+    auto result = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(1200), options);
+    auto dir = test::scratch_dir("compare_report");
+    write_trials_csv(result, (dir / "trials.csv").string());
+    write_summary_csv(result, (dir / "summary.csv").string());
+    auto plots = write_plots(result, dir.string());
+    ReportSetup setup;
+    setup.command = "ellicast compare spot.obj --trials 2 -o out";
+    setup.model = "spot.obj";
+    write_report(result, setup, plots, dir.string());
+    REQUIRE(plots.size() == 2);
+    for (const auto& p : plots) {
+        CHECK(std::filesystem::file_size(dir / (p + ".svg")) > 1000);
+        CHECK(std::filesystem::file_size(dir / (p + ".png")) > 1000);
+    }
+    const std::string md = read_text(dir / "report.md");
+    CHECK(md.find("ellicast compare spot.obj --trials 2 -o out") < 200);
+    CHECK(md.find("| draco-fec |") != std::string::npos);
+    // 1 header + 2 schemes x (2 losses at one cycle + 1 extra time at 10%) lines... counted exactly:
+    const std::string csv = read_text(dir / "trials.csv");
+    CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 2 * 2 * (1 + 2));
 }

@@ -49,6 +49,12 @@ public:
     // Parses the real packet bytes: a damaged packet would be rejected by its CRC.
     virtual bool reconstruct(const std::vector<uint32_t>& held, Mesh& out) const = 0;
 
+    // Share (0..1) of the model's data in the packets `held`: for ellicast the share of surface
+    // points received; by default the share of distinct packets.
+    virtual double data_fraction(const std::vector<uint32_t>& held) const {
+        return packets_.empty() ? 0 : double(held.size()) / double(packets_.size());
+    }
+
     // Bytes the scheme sends in slots [first, first + count).
     uint64_t bytes_in_slots(uint64_t first, uint64_t count) const;
 
