@@ -155,7 +155,7 @@ MeasureFn triangle_share_metric(size_t original_triangles) {
 }
 
 // Independent loss for the experiment's own tests (the real runs use the channel simulator).
-TraceFn channel_trace(size_t) {
+TraceFn bernoulli_trace(size_t) {
     return [](double loss, double, uint64_t seed, uint64_t slots) {
         std::mt19937_64 rng(seed);
         std::bernoulli_distribution lose(loss);
@@ -186,14 +186,14 @@ TEST_CASE("the experiment gives the same CSV for the same seed, whatever the thr
     options.cycle_slots = 2 * clusters.packets().size();
     options.seed = 11;
     auto dir = test::scratch_dir("compare_determinism");
-    auto a = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(600), options);
+    auto a = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), bernoulli_trace(600), options);
     options.threads = 2;
-    auto b = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(600), options);
+    auto b = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), bernoulli_trace(600), options);
     write_trials_csv(a, (dir / "a.csv").string());
     write_trials_csv(b, (dir / "b.csv").string());
     CHECK(read_text(dir / "a.csv") == read_text(dir / "b.csv"));
     options.seed = 12;
-    auto c = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(600), options);
+    auto c = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), bernoulli_trace(600), options);
     write_trials_csv(c, (dir / "c.csv").string());
     CHECK(read_text(dir / "a.csv") != read_text(dir / "c.csv"));
 
@@ -228,7 +228,7 @@ TEST_CASE("the report writes the CSVs, SVG and PNG plots and a Markdown report t
     options.times = {1, 2};
     options.trials = 2;
     options.cycle_slots = fec.packets().size() + 2;
-    auto result = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(1200), options);
+    auto result = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), bernoulli_trace(1200), options);
     auto dir = test::scratch_dir("compare_report");
     write_trials_csv(result, (dir / "trials.csv").string());
     write_summary_csv(result, (dir / "summary.csv").string());
