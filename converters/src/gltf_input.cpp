@@ -3,11 +3,7 @@
 // transforms. KHR_draco_mesh_compression is decoded by our own tinygltf copy (built with
 // TINYGLTF_ENABLE_DRACO); KHR_mesh_quantization needs nothing more than normalized and integer
 // accessors read correctly (the dequantizing scale lives in the node transforms).
-#include "ellicast/converters/mesh_input.h"
-
-#include <tiny_gltf.h>
-
-#include <Eigen/Dense>
+#include "gltf_read.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +17,7 @@
 
 namespace ellicast {
 
-namespace {
+namespace gltf_read {
 
 // Extensions we implement, or that change nothing of the geometry we read.
 const std::set<std::string> kGeometryExtensions = {"KHR_draco_mesh_compression", "KHR_mesh_quantization"};
@@ -34,7 +30,6 @@ bool appearance_only(const std::string& ext) {
     return false;
 }
 
-// Images are not needed for geometry: accept them without decoding.
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
     return true;
 }
@@ -64,7 +59,6 @@ int component_size(int component_type) {
     }
 }
 
-// One component as a double, with glTF's normalization rules.
 double read_component(const unsigned char* p, int component_type, bool normalized) {
     switch (component_type) {
         case TINYGLTF_COMPONENT_TYPE_BYTE: {
@@ -97,7 +91,6 @@ double read_component(const unsigned char* p, int component_type, bool normalize
     }
 }
 
-// Reads `count` elements of `components` values of a buffer view, checking every byte is there.
 void read_view(const tinygltf::Model& model, int view_index, size_t byte_offset, size_t count, int components,
                int component_type, bool normalized, size_t stride_override, const std::string& what,
                std::vector<double>& out) {
@@ -128,7 +121,6 @@ void read_view(const tinygltf::Model& model, int view_index, size_t byte_offset,
             out[i * components + c] = read_component(base + i * stride + c * csize, component_type, normalized);
 }
 
-// An accessor as doubles (count x components), sparse substitution applied.
 std::vector<double> read_accessor(const tinygltf::Model& model, int index, const std::string& what, int& components) {
     if (index < 0 || size_t(index) >= model.accessors.size())
         throw InputError(what + " refers to accessor " + std::to_string(index) + ", which does not exist");
@@ -214,7 +206,6 @@ const char* mode_name(int mode) {
     }
 }
 
-// One primitive, transformed by `world`, as a Mesh. Returns false (with a warning) when skipped.
 bool primitive_to_mesh(const tinygltf::Model& model, const tinygltf::Primitive& prim, const Eigen::Matrix4d& world,
                        const std::string& where, Mesh& mesh, std::vector<std::string>& warnings) {
     int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
@@ -331,6 +322,46 @@ bool primitive_to_mesh(const tinygltf::Model& model, const tinygltf::Primitive& 
     return true;
 }
 
+void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadImageDataFunction image_loader,
+                void* image_user_data, std::vector<std::string>& warnings) {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(image_loader, image_user_data);
+    std::string err, warn;
+    bool binary = false;
+    {
+        FILE* f = std::fopen(path.c_str(), "rb");
+        if (!f) throw InputError(path + ": cannot be opened for reading");
+        char magic[4] = {};
+        binary = std::fread(magic, 1, 4, f) == 4 && std::memcmp(magic, "glTF", 4) == 0;
+        std::fclose(f);
+    }
+    bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                     : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+    if (!ok) {
+        while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+        throw InputError(path + ": not a readable glTF 2.0 " + std::string(binary ? "binary (.glb)" : "(.gltf)") +
+                         " file: " + (err.empty() ? "unknown error" : err));
+    }
+    if (!model.asset.version.empty() && model.asset.version.rfind("2.", 0) != 0)
+        throw InputError(path + ": glTF version " + model.asset.version + " (ellicast reads glTF 2.x)");
+
+    for (const auto& ext : model.extensionsRequired) {
+        if (kGeometryExtensions.count(ext)) continue;
+        if (appearance_only(ext)) {
+            warnings.push_back(path + ": required extension " + ext +
+                               " only changes appearance; ignored (geometry is sent)");
+            continue;
+        }
+        throw InputError(path + ": requires the glTF extension " + ext + ", which ellicast does not support");
+    }
+}
+
+}  // namespace gltf_read
+
+namespace {
+
+using namespace gltf_read;
+
 struct Traversal {
     const tinygltf::Model& model;
     const std::string& path;
@@ -379,38 +410,9 @@ void visit_node(Traversal& tr, int index, const Eigen::Matrix4d& parent, int dep
 }  // namespace
 
 LoadResult load_gltf(const std::string& path) {
-    tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(skip_image, nullptr);
     tinygltf::Model model;
-    std::string err, warn;
-    bool binary = false;
-    {
-        FILE* f = std::fopen(path.c_str(), "rb");
-        if (!f) throw InputError(path + ": cannot be opened for reading");
-        char magic[4] = {};
-        binary = std::fread(magic, 1, 4, f) == 4 && std::memcmp(magic, "glTF", 4) == 0;
-        std::fclose(f);
-    }
-    bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                     : loader.LoadASCIIFromFile(&model, &err, &warn, path);
-    if (!ok) {
-        while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-        throw InputError(path + ": not a readable glTF 2.0 " + std::string(binary ? "binary (.glb)" : "(.gltf)") +
-                         " file: " + (err.empty() ? "unknown error" : err));
-    }
-    if (!model.asset.version.empty() && model.asset.version.rfind("2.", 0) != 0)
-        throw InputError(path + ": glTF version " + model.asset.version + " (ellicast reads glTF 2.x)");
-
     LoadResult result;
-    for (const auto& ext : model.extensionsRequired) {
-        if (kGeometryExtensions.count(ext)) continue;
-        if (appearance_only(ext)) {
-            result.warnings.push_back(path + ": required extension " + ext +
-                                      " only changes appearance; ignored (geometry is sent)");
-            continue;
-        }
-        throw InputError(path + ": requires the glTF extension " + ext + ", which ellicast does not support");
-    }
+    gltf_read::load_model(path, model, skip_image, nullptr, result.warnings);
 
     Traversal tr{model, path, result};
     if (!model.scenes.empty()) {

@@ -1,0 +1,463 @@
+// Reading a model with its scene: glTF nodes, meshes, materials and textures as they are, each
+// distinct primitive once in its mesh's own frame (instances share it). OBJ / PLY / OFF / STL
+// become one node with one mesh. Accessor and primitive reading is shared with gltf_input.cpp.
+#include "ellicast/converters/asset.h"
+
+#include "gltf_read.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <tuple>
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wrestrict"  // false positive in string concatenation (GCC bug 105651)
+#endif
+
+namespace ellicast {
+
+namespace {
+
+using namespace gltf_read;
+
+constexpr size_t kMaxTable = 0xFFFE;  // entries of a scene table (0xFFFF means "none")
+constexpr size_t kMaxName = 255;       // bytes of a name on the wire
+
+// The raw bytes of images that came from a URI (data: or external file), by image index. Images
+// stored in a bufferView are read from it afterwards, with their bounds checked.
+struct CapturedImages {
+    std::map<int, std::vector<uint8_t>> bytes;
+};
+
+bool capture_image(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
+                   const unsigned char* bytes, int size, void* user) {
+    if (image->bufferView >= 0) return true;  // tinygltf does not check the view's bounds: read it ourselves
+    if (bytes && size > 0) static_cast<CapturedImages*>(user)->bytes[index].assign(bytes, bytes + size);
+    return true;
+}
+
+bool is_png(const std::vector<uint8_t>& b) {
+    static const uint8_t sig[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+    return b.size() >= 8 && std::memcmp(b.data(), sig, 8) == 0;
+}
+bool is_jpeg(const std::vector<uint8_t>& b) { return b.size() >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF; }
+
+// A name cut to the wire's 255 bytes without splitting a UTF-8 sequence.
+std::string wire_name(const std::string& name, const std::string& what, std::vector<std::string>& warnings) {
+    if (name.size() <= kMaxName) return name;
+    size_t n = kMaxName;
+    while (n > 0 && (uint8_t(name[n]) & 0xC0) == 0x80) --n;
+    warnings.push_back(what + ": name longer than 255 bytes, shortened");
+    return name.substr(0, n);
+}
+
+std::string join(const std::vector<std::string>& items) {
+    std::string out;
+    for (size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + items[i];
+    return out;
+}
+
+// Everything of one glTF file while it becomes an Asset.
+class GltfAssetReader {
+public:
+    GltfAssetReader(const std::string& path, const tinygltf::Model& model, const CapturedImages& images, Asset& asset)
+        : path_(path), model_(model), images_(images), asset_(asset), warnings_(asset.warnings) {}
+
+    void read() {
+        warn_not_carried();
+        std::vector<int> roots = scene_roots();
+        for (int root : roots) visit(root, -1, 0);
+        if (node_order_.size() > kMaxTable) throw InputError(path_ + ": more than 65534 nodes in the scene");
+        // Node table in the file's order (indices stay as the asset had them when every node is shown).
+        std::vector<int> order = node_order_;
+        std::sort(order.begin(), order.end());
+        for (size_t i = 0; i < order.size(); ++i) new_node_[order[i]] = uint16_t(i);
+        read_materials();
+        for (int old : order) add_node(old);
+        if (asset_.objects.empty()) throw InputError(path_ + ": the scene holds no triangle or point primitive to send");
+    }
+
+private:
+    // Roots of the default scene (or, with no scene at all, one made-up node per mesh).
+    std::vector<int> scene_roots() {
+        if (model_.scenes.empty()) {
+            warnings_.push_back(path_ + ": no scene; every mesh is sent as a root node without transform");
+            std::vector<int> roots;
+            for (size_t m = 0; m < model_.meshes.size(); ++m) {
+                tinygltf::Node node;
+                node.mesh = int(m);
+                node.name = model_.meshes[m].name;
+                extra_nodes_.push_back(node);
+                roots.push_back(int(model_.nodes.size() + extra_nodes_.size() - 1));
+            }
+            return roots;
+        }
+        int scene = model_.defaultScene >= 0 && size_t(model_.defaultScene) < model_.scenes.size() ? model_.defaultScene : 0;
+        if (model_.scenes.size() > 1)
+            warnings_.push_back(path_ + ": " + std::to_string(model_.scenes.size() - 1) +
+                                " scene(s) besides the default scene " + std::to_string(scene) + " are not sent");
+        return model_.scenes[size_t(scene)].nodes;
+    }
+
+    const tinygltf::Node& node_at(int index) const {
+        return size_t(index) < model_.nodes.size() ? model_.nodes[size_t(index)]
+                                                   : extra_nodes_[size_t(index) - model_.nodes.size()];
+    }
+
+    // Depth-first over the default scene: records each node once with its parent.
+    void visit(int index, int parent, int depth) {
+        if (index < 0 || size_t(index) >= model_.nodes.size() + extra_nodes_.size())
+            throw InputError(path_ + ": a scene refers to node " + std::to_string(index) + ", which does not exist");
+        if (depth > 256) throw InputError(path_ + ": the node hierarchy is deeper than 256 (at node " +
+                                          std::to_string(index) + "), or cyclic");
+        if (parent_.count(index)) {
+            warnings_.push_back(path_ + ": node " + std::to_string(index) +
+                                " appears more than once in the scene (glTF forbids it); kept at its first place");
+            return;
+        }
+        parent_[index] = parent;
+        node_order_.push_back(index);
+        for (int child : node_at(index).children) visit(child, index, depth + 1);
+    }
+
+    // The scene node of glTF node `old`; its mesh becomes the Asset mesh table entry.
+    void add_node(int old) {
+        const tinygltf::Node& node = node_at(old);
+        const std::string where = path_ + ": node " + std::to_string(old) + (node.name.empty() ? "" : " (" + node.name + ")");
+        SceneNode out;
+        out.index = new_node_.at(old);
+        int parent = parent_.at(old);
+        out.parent = parent < 0 ? kNone : new_node_.at(parent);
+        out.name = wire_name(node.name, where, warnings_);
+        if (node.matrix.size() == 16) {
+            out.has_matrix = true;
+            for (int k = 0; k < 16; ++k) out.matrix[k] = float(node.matrix[k]);
+        } else {
+            if (node.translation.size() == 3)
+                for (int k = 0; k < 3; ++k) out.translation[k] = float(node.translation[k]);
+            if (node.rotation.size() == 4)
+                for (int k = 0; k < 4; ++k) out.rotation[k] = float(node.rotation[k]);
+            if (node.scale.size() == 3)
+                for (int k = 0; k < 3; ++k) out.scale[k] = float(node.scale[k]);
+        }
+        for (float v : out.matrix)
+            if (!std::isfinite(v)) throw InputError(where + ": its transform has a non-finite value");
+        for (float v : out.translation)
+            if (!std::isfinite(v)) throw InputError(where + ": its translation has a non-finite value");
+        for (float v : out.rotation)
+            if (!std::isfinite(v)) throw InputError(where + ": its rotation has a non-finite value");
+        for (float v : out.scale)
+            if (!std::isfinite(v)) throw InputError(where + ": its scale has a non-finite value");
+        if (node.skin >= 0) warnings_.push_back(where + ": its skin is not sent; the mesh is sent in its bind pose");
+        if (!node.weights.empty()) warnings_.push_back(where + ": its morph target weights are not sent");
+        for (const auto& [name, value] : node.extensions) {
+            (void)value;
+            warnings_.push_back(where + ": extension " + name + " of the node is not sent");
+        }
+        if (node.mesh >= 0) {
+            if (size_t(node.mesh) >= model_.meshes.size())
+                throw InputError(where + ": refers to mesh " + std::to_string(node.mesh) + ", which does not exist");
+            out.mesh = mesh_index(node.mesh, where);
+        }
+        asset_.scene.nodes.push_back(std::move(out));
+    }
+
+    // The Asset mesh of glTF mesh `m` (read once, at its first use); kNone when it has no primitive to send.
+    uint16_t mesh_index(int m, const std::string& where) {
+        if (auto it = mesh_map_.find(m); it != mesh_map_.end()) return it->second;
+        const tinygltf::Mesh& gmesh = model_.meshes[size_t(m)];
+        const std::string label = gmesh.name.empty() ? "mesh " + std::to_string(m) : gmesh.name;
+        SceneMesh out;
+        out.name = wire_name(gmesh.name, path_ + ": mesh " + std::to_string(m), warnings_);
+        for (size_t p = 0; p < gmesh.primitives.size(); ++p) {
+            const tinygltf::Primitive& prim = gmesh.primitives[p];
+            const std::string pwhere = path_ + ": " + label + " primitive " + std::to_string(p);
+            int object = object_index(prim, label + (gmesh.primitives.size() > 1 ? "#" + std::to_string(p) : ""), pwhere);
+            if (object < 0) continue;
+            ScenePrimitive sp;
+            sp.object = uint16_t(object);
+            if (prim.material >= 0) {
+                if (size_t(prim.material) >= model_.materials.size())
+                    warnings_.push_back(pwhere + ": refers to material " + std::to_string(prim.material) +
+                                        ", which does not exist; drawn with the default material");
+                else
+                    sp.material = uint16_t(prim.material);
+            }
+            out.primitives.push_back(sp);
+        }
+        uint16_t index = kNone;
+        if (out.primitives.empty()) {
+            warnings_.push_back(where + ": its mesh " + label + " has no primitive ellicast can send; the node is sent "
+                                "without it");
+        } else {
+            if (asset_.scene.meshes.size() >= kMaxTable) throw InputError(path_ + ": more than 65534 meshes");
+            index = uint16_t(asset_.scene.meshes.size());
+            out.index = index;
+            asset_.scene.meshes.push_back(std::move(out));
+        }
+        mesh_map_[m] = index;
+        return index;
+    }
+
+    // The object of a primitive: primitives with the same accessors and mode are one object.
+    int object_index(const tinygltf::Primitive& prim, const std::string& name, const std::string& where) {
+        auto key = std::make_tuple(prim.attributes, prim.indices, prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode,
+                                   prim.extensions.count("KHR_draco_mesh_compression") > 0);
+        if (auto it = object_map_.find(key); it != object_map_.end()) return it->second;
+        for (const auto& [attr, accessor] : prim.attributes) {
+            (void)accessor;
+            if (attr == "POSITION" || attr == "NORMAL" || attr == "TEXCOORD_0" || attr == "COLOR_0") continue;
+            not_carried_attributes_[attr] = true;
+        }
+        Mesh mesh;
+        mesh.name = name;
+        int result = -1;
+        if (primitive_to_mesh(model_, prim, Eigen::Matrix4d::Identity(), where, mesh, warnings_)) {
+            check_and_repair_mesh(mesh, where, warnings_);
+            if (mesh.positions.empty()) {
+                warnings_.push_back(where + ": no vertices, skipped");
+            } else if (!mesh.is_point_set && mesh.triangles.empty()) {
+                warnings_.push_back(where + ": no usable triangles, skipped");
+            } else {
+                if (asset_.objects.size() >= kMaxObjects) throw InputError(path_ + ": more than 65535 objects");
+                result = int(asset_.objects.size());
+                asset_.objects.push_back(std::move(mesh));
+            }
+        }
+        object_map_[key] = result;
+        return result;
+    }
+
+    void read_materials() {
+        if (model_.materials.size() > kMaxTable) throw InputError(path_ + ": more than 65534 materials");
+        for (size_t i = 0; i < model_.materials.size(); ++i) {
+            const tinygltf::Material& gm = model_.materials[i];
+            const std::string where =
+                path_ + ": material " + std::to_string(i) + (gm.name.empty() ? "" : " (" + gm.name + ")");
+            Material m;
+            m.index = uint16_t(i);
+            m.name = wire_name(gm.name, where, warnings_);
+            const auto& pbr = gm.pbrMetallicRoughness;
+            for (size_t k = 0; k < 4 && k < pbr.baseColorFactor.size(); ++k) m.base_color[k] = float(pbr.baseColorFactor[k]);
+            m.metallic = float(pbr.metallicFactor);
+            m.roughness = float(pbr.roughnessFactor);
+            for (size_t k = 0; k < 3 && k < gm.emissiveFactor.size(); ++k) m.emissive[k] = float(gm.emissiveFactor[k]);
+            if (gm.alphaMode == "MASK") m.alpha_mode = AlphaMode::Mask;
+            else if (gm.alphaMode == "BLEND") m.alpha_mode = AlphaMode::Blend;
+            else if (!gm.alphaMode.empty() && gm.alphaMode != "OPAQUE")
+                warnings_.push_back(where + ": alphaMode \"" + gm.alphaMode + "\" is not a glTF mode; sent as OPAQUE");
+            m.alpha_cutoff = float(gm.alphaCutoff);
+            m.double_sided = gm.doubleSided;
+            m.base_color_texture = texture_ref(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, 1,
+                                               where + " baseColorTexture");
+            m.metallic_roughness_texture = texture_ref(pbr.metallicRoughnessTexture.index,
+                                                       pbr.metallicRoughnessTexture.texCoord, 1,
+                                                       where + " metallicRoughnessTexture");
+            m.normal_texture = texture_ref(gm.normalTexture.index, gm.normalTexture.texCoord, gm.normalTexture.scale,
+                                           where + " normalTexture");
+            m.occlusion_texture = texture_ref(gm.occlusionTexture.index, gm.occlusionTexture.texCoord,
+                                              gm.occlusionTexture.strength, where + " occlusionTexture");
+            m.emissive_texture = texture_ref(gm.emissiveTexture.index, gm.emissiveTexture.texCoord, 1,
+                                             where + " emissiveTexture");
+            std::vector<std::string> exts;
+            for (const auto& [name, value] : gm.extensions) exts.push_back(name);
+            for (const auto& [name, value] : pbr.extensions) exts.push_back(name);
+            if (!exts.empty())
+                warnings_.push_back(where + ": extension(s) " + join(exts) + " not sent (the core PBR values are)");
+            asset_.scene.materials.push_back(std::move(m));
+        }
+    }
+
+    // The Asset texture for glTF texture `index` (identical image bytes + sampler are one texture).
+    TextureRef texture_ref(int index, int texcoord, double scale, const std::string& where) {
+        TextureRef ref;
+        ref.scale = float(scale);
+        if (index < 0) return ref;
+        if (texcoord < 0 || texcoord > 255) {
+            warnings_.push_back(where + ": texCoord " + std::to_string(texcoord) + " is out of range; texture not sent");
+            return ref;
+        }
+        if (texcoord > 0)
+            warnings_.push_back(where + " uses TEXCOORD_" + std::to_string(texcoord) +
+                                "; ellicast carries TEXCOORD_0 only, so the receiver cannot show this texture");
+        ref.texcoord = uint8_t(texcoord);
+        ref.texture = texture_index(index, where);
+        return ref;
+    }
+
+    uint16_t texture_index(int index, const std::string& where) {
+        if (size_t(index) >= model_.textures.size()) {
+            warnings_.push_back(where + ": refers to texture " + std::to_string(index) + ", which does not exist; not sent");
+            return kNone;
+        }
+        const tinygltf::Texture& tex = model_.textures[size_t(index)];
+        for (const auto& [name, value] : tex.extensions) {
+            (void)value;
+            warnings_.push_back(where + ": texture " + std::to_string(index) + " extension " + name + " not sent");
+        }
+        if (tex.source < 0 || size_t(tex.source) >= model_.images.size()) {
+            warnings_.push_back(where + ": texture " + std::to_string(index) +
+                                " has no core image source (PNG or JPEG); not sent");
+            return kNone;
+        }
+        const std::vector<uint8_t>* bytes = image_bytes(tex.source);
+        const std::string image_where = path_ + ": image " + std::to_string(tex.source);
+        if (!bytes || bytes->empty()) {
+            warnings_.push_back(image_where + " could not be read; its texture is not sent");
+            return kNone;
+        }
+        SceneDescription::Texture out;
+        if (is_png(*bytes)) out.info.image_type = ImageType::Png;
+        else if (is_jpeg(*bytes)) out.info.image_type = ImageType::Jpeg;
+        else {
+            std::string mime = model_.images[size_t(tex.source)].mimeType;
+            warnings_.push_back(image_where + " is neither PNG nor JPEG" + (mime.empty() ? "" : " (" + mime + ")") +
+                                "; its texture is not sent");
+            return kNone;
+        }
+        if (bytes->size() > 0xFFFFFFFFu) {
+            warnings_.push_back(image_where + " is larger than 4 GiB; not sent");
+            return kNone;
+        }
+        if (tex.sampler >= 0 && size_t(tex.sampler) < model_.samplers.size()) {
+            const tinygltf::Sampler& s = model_.samplers[size_t(tex.sampler)];
+            out.info.mag_filter = uint16_t(std::max(s.magFilter, 0));
+            out.info.min_filter = uint16_t(std::max(s.minFilter, 0));
+            out.info.wrap_s = uint16_t(std::max(s.wrapS, 0));
+            out.info.wrap_t = uint16_t(std::max(s.wrapT, 0));
+        }
+        auto key = std::make_tuple(tex.source, out.info.mag_filter, out.info.min_filter, out.info.wrap_s, out.info.wrap_t);
+        if (auto it = texture_map_.find(key); it != texture_map_.end()) return it->second;
+        // The same bytes from another image index (a copy in the file) are sent once too.
+        for (size_t t = 0; t < asset_.scene.textures.size(); ++t) {
+            const auto& other = asset_.scene.textures[t];
+            if (other.image == *bytes && other.info.mag_filter == out.info.mag_filter &&
+                other.info.min_filter == out.info.min_filter && other.info.wrap_s == out.info.wrap_s &&
+                other.info.wrap_t == out.info.wrap_t)
+                return texture_map_[key] = uint16_t(t);
+        }
+        if (asset_.scene.textures.size() >= kMaxTable) throw InputError(path_ + ": more than 65534 textures");
+        out.image = *bytes;
+        out.info.index = uint16_t(asset_.scene.textures.size());
+        asset_.scene.textures.push_back(std::move(out));
+        return texture_map_[key] = uint16_t(asset_.scene.textures.size() - 1);
+    }
+
+    // The file bytes of image `i`: from its URI (captured while loading) or its bufferView.
+    const std::vector<uint8_t>* image_bytes(int i) {
+        if (auto it = view_images_.find(i); it != view_images_.end()) return &it->second;
+        const tinygltf::Image& image = model_.images[size_t(i)];
+        if (image.bufferView < 0) {
+            auto it = images_.bytes.find(i);
+            return it == images_.bytes.end() ? nullptr : &it->second;
+        }
+        const auto& views = model_.bufferViews;
+        if (size_t(image.bufferView) >= views.size()) return nullptr;
+        const tinygltf::BufferView& view = views[size_t(image.bufferView)];
+        if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size()) return nullptr;
+        const auto& data = model_.buffers[size_t(view.buffer)].data;
+        if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) {
+            warnings_.push_back(path_ + ": image " + std::to_string(i) + ": bufferView " +
+                                std::to_string(image.bufferView) + " runs past the end of its buffer");
+            return nullptr;
+        }
+        auto& bytes = view_images_[i];
+        bytes.assign(data.begin() + long(view.byteOffset), data.begin() + long(view.byteOffset + view.byteLength));
+        return &bytes;
+    }
+
+    // Whole-file things ellicast does not carry.
+    void warn_not_carried() {
+        if (!model_.animations.empty())
+            warnings_.push_back(path_ + ": " + std::to_string(model_.animations.size()) +
+                                " animation(s) not sent; geometry is sent in its rest pose");
+        if (!model_.skins.empty())
+            warnings_.push_back(path_ + ": " + std::to_string(model_.skins.size()) +
+                                " skin(s) not sent; skinned meshes are sent in their bind pose");
+        if (!model_.cameras.empty())
+            warnings_.push_back(path_ + ": " + std::to_string(model_.cameras.size()) + " camera(s) not sent");
+        if (!model_.lights.empty())
+            warnings_.push_back(path_ + ": " + std::to_string(model_.lights.size()) + " light(s) not sent");
+        std::vector<std::string> unknown;
+        for (const auto& ext : model_.extensionsUsed)
+            if (!kGeometryExtensions.count(ext)) unknown.push_back(ext);
+        if (!unknown.empty())
+            warnings_.push_back(path_ + ": extension(s) " + join(unknown) + " not sent");
+    }
+
+public:
+    void warn_attributes() {
+        std::vector<std::string> names;
+        for (const auto& [name, seen] : not_carried_attributes_) names.push_back(name);
+        if (!names.empty())
+            warnings_.push_back(path_ + ": vertex attribute(s) " + join(names) +
+                                " not sent (ellicast carries POSITION, NORMAL, TEXCOORD_0 and COLOR_0" +
+                                (not_carried_attributes_.count("TANGENT") ? "; viewers compute missing tangents)" : ")"));
+    }
+
+private:
+    const std::string& path_;
+    const tinygltf::Model& model_;
+    const CapturedImages& images_;
+    Asset& asset_;
+    std::vector<std::string>& warnings_;
+    std::vector<tinygltf::Node> extra_nodes_;
+    std::map<int, int> parent_;
+    std::vector<int> node_order_;
+    std::map<int, uint16_t> new_node_;
+    std::map<int, uint16_t> mesh_map_;
+    std::map<std::tuple<std::map<std::string, int>, int, int, bool>, int> object_map_;
+    std::map<std::tuple<int, uint16_t, uint16_t, uint16_t, uint16_t>, uint16_t> texture_map_;
+    std::map<int, std::vector<uint8_t>> view_images_;
+    std::map<std::string, bool> not_carried_attributes_;
+};
+
+bool is_gltf_path(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".gltf" || ext == ".glb") return true;
+    FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return false;
+    char magic[4] = {};
+    bool glb = std::fread(magic, 1, 4, f) == 4 && std::memcmp(magic, "glTF", 4) == 0;
+    std::fclose(f);
+    return glb;
+}
+
+}  // namespace
+
+Asset load_asset(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
+    if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a model file");
+    Asset asset;
+    if (!is_gltf_path(path)) {
+        LoadResult loaded = load_meshes(path);  // OBJ / PLY / OFF / STL, with its checks
+        asset.warnings = std::move(loaded.warnings);
+        SceneMesh mesh;
+        mesh.index = 0;
+        for (size_t i = 0; i < loaded.meshes.size() && i < kMaxObjects; ++i)
+            mesh.primitives.push_back({uint16_t(i), kNone});
+        asset.objects = std::move(loaded.meshes);
+        SceneNode node;
+        node.index = 0;
+        node.mesh = 0;
+        node.name = wire_name(std::filesystem::path(path).stem().string(), path, asset.warnings);
+        mesh.name = node.name;
+        asset.scene.nodes.push_back(node);
+        asset.scene.meshes.push_back(std::move(mesh));
+        return asset;
+    }
+    if (std::filesystem::file_size(path, ec) == 0) throw InputError(path + ": the file is empty");
+    tinygltf::Model model;
+    CapturedImages images;
+    load_model(path, model, capture_image, &images, asset.warnings);
+    GltfAssetReader reader(path, model, images, asset);
+    reader.read();
+    reader.warn_attributes();
+    return asset;
+}
+
+}  // namespace ellicast

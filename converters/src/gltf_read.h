@@ -1,0 +1,63 @@
+// Internal to converters: glTF reading pieces shared by gltf_input.cpp (flattened meshes) and
+// asset_input.cpp (the scene as it is). Implemented in gltf_input.cpp. Every function checks what it
+// reads against what is really there and throws InputError naming the file, element and problem.
+#pragma once
+
+#include "ellicast/converters/mesh_input.h"
+
+#include <tiny_gltf.h>
+
+#include <Eigen/Dense>
+
+#include <set>
+#include <string>
+#include <vector>
+
+namespace ellicast::gltf_read {
+
+// Extensions that change how geometry is stored and that the reader implements.
+extern const std::set<std::string> kGeometryExtensions;
+
+// True for extensions that only change appearance (materials, textures, lights).
+bool appearance_only(const std::string& ext);
+
+// An image loader for tinygltf that accepts every image without decoding or keeping it.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*);
+
+// Reads `path` as .gltf or .glb (chosen by its magic) into `model`, images going through
+// `image_loader`. Throws InputError when the file cannot be read, is not glTF 2.x, or requires an
+// extension that is neither a geometry extension above nor appearance-only (those give a warning).
+void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadImageDataFunction image_loader,
+                void* image_user_data, std::vector<std::string>& warnings);
+
+// Values per element of a glTF accessor type (1 for SCALAR ... 4 for VEC4; 0 otherwise), and bytes
+// per component of a component type (0 when unknown).
+int component_count(int type);
+int component_size(int component_type);
+
+// One component at `p` as a double, with glTF's normalization rules.
+double read_component(const unsigned char* p, int component_type, bool normalized);
+
+// Reads `count` elements of `components` values of a buffer view, checking every byte is there.
+void read_view(const tinygltf::Model& model, int view_index, size_t byte_offset, size_t count, int components,
+               int component_type, bool normalized, size_t stride_override, const std::string& what,
+               std::vector<double>& out);
+
+// An accessor as doubles (count x components), sparse substitution applied.
+std::vector<double> read_accessor(const tinygltf::Model& model, int index, const std::string& what, int& components);
+
+// A node's local transform: its matrix, or T * R * S.
+Eigen::Matrix4d local_transform(const tinygltf::Node& node);
+
+// Triangles of an index list in a triangle mode (TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN).
+std::vector<std::array<uint32_t, 3>> primitive_triangles(const std::vector<uint32_t>& idx, int mode);
+
+// "TRIANGLES", "POINTS", ... for a primitive mode.
+const char* mode_name(int mode);
+
+// One primitive, transformed by `world` (identity: the mesh's own frame), as a Mesh with POSITION,
+// NORMAL, TEXCOORD_0 and COLOR_0. Returns false (with a warning) when skipped (lines, no POSITION).
+bool primitive_to_mesh(const tinygltf::Model& model, const tinygltf::Primitive& prim, const Eigen::Matrix4d& world,
+                       const std::string& where, Mesh& mesh, std::vector<std::string>& warnings);
+
+}  // namespace ellicast::gltf_read

@@ -1,0 +1,249 @@
+// Reading a glTF as a scene (load_asset): nodes, meshes, materials and textures as the asset has
+// them, each distinct primitive once in its mesh's own frame, texture files byte for byte, and a
+// warning for everything that is not carried.
+#include "ellicast/converters/asset.h"
+#include "support.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+using namespace ellicast;
+using ellicast::test::have_sample;
+using ellicast::test::shared_samples;
+
+namespace {
+
+std::string sample(const std::string& rel) { return (shared_samples() / rel).string(); }
+
+std::vector<uint8_t> slurp(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+void spit(const std::filesystem::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+}
+
+bool any_warning(const Asset& a, const std::string& needle) {
+    return std::any_of(a.warnings.begin(), a.warnings.end(),
+                       [&](const std::string& w) { return w.find(needle) != std::string::npos; });
+}
+
+std::string base64(const std::vector<uint8_t>& in) {
+    static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    size_t i = 0;
+    for (; i + 2 < in.size(); i += 3) {
+        uint32_t v = (in[i] << 16) | (in[i + 1] << 8) | in[i + 2];
+        for (int k = 3; k >= 0; --k) out += t[(v >> (6 * k)) & 63];
+    }
+    if (i + 1 == in.size()) {
+        uint32_t v = in[i] << 16;
+        out += t[(v >> 18) & 63];
+        out += t[(v >> 12) & 63];
+        out += "==";
+    } else if (i + 2 == in.size()) {
+        uint32_t v = (in[i] << 16) | (in[i + 1] << 8);
+        out += t[(v >> 18) & 63];
+        out += t[(v >> 12) & 63];
+        out += t[(v >> 6) & 63];
+        out += "=";
+    }
+    return out;
+}
+
+// A one-triangle glTF with a material using an image given by `image_json`.
+std::string triangle_gltf(const std::string& image_json) {
+    // positions (0,0,0) (1,0,0) (0,1,0) and uv; 3 * 12 + 3 * 8 = 60 bytes
+    std::vector<uint8_t> bin(60, 0);
+    float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    float uv[6] = {0, 0, 1, 0, 0, 1};
+    std::memcpy(bin.data(), pos, 36);
+    std::memcpy(bin.data() + 36, uv, 24);
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0,"name":"tri"}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"material":0}]}],
+"materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],
+"textures":[{"source":0}],"images":[)" +
+           image_json + R"(],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+{"bufferView":1,"componentType":5126,"count":3,"type":"VEC2"}],
+"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":24}],
+"buffers":[{"byteLength":60,"uri":"data:application/octet-stream;base64,)" +
+           base64(bin) + R"("}]})";
+}
+
+}  // namespace
+
+TEST_CASE("the Duck keeps its three nodes, its material and its texture file byte for byte") {
+    for (const char* f : {"gltf/Duck/Duck.gltf", "gltf/Duck-glb/Duck.glb"}) {
+        if (!have_sample(f) || !have_sample("gltf/Duck/DuckCM.png")) continue;
+        CAPTURE(f);
+        Asset a = load_asset(sample(f));
+        REQUIRE(a.scene.nodes.size() == 3);
+        CHECK(a.scene.nodes[0].parent == kNone);
+        CHECK(a.scene.nodes[0].has_matrix);
+        CHECK(a.scene.nodes[0].matrix[0] == doctest::Approx(0.01));
+        CHECK(a.scene.nodes[1].parent == 0);
+        CHECK(a.scene.nodes[2].parent == 0);
+        CHECK(a.scene.nodes[2].mesh == 0);
+        CHECK(a.scene.nodes[1].mesh == kNone);
+        REQUIRE(a.objects.size() == 1);
+        CHECK(a.objects[0].positions.size() == 2399);
+        CHECK(a.objects[0].has_texcoords());
+        REQUIRE(a.scene.meshes.size() == 1);
+        REQUIRE(a.scene.meshes[0].primitives.size() == 1);
+        CHECK(a.scene.meshes[0].primitives[0].object == 0);
+        CHECK(a.scene.meshes[0].primitives[0].material == 0);
+        REQUIRE(a.scene.materials.size() == 1);
+        CHECK(a.scene.materials[0].metallic == 0);
+        CHECK(a.scene.materials[0].base_color_texture.texture == 0);
+        REQUIRE(a.scene.textures.size() == 1);
+        CHECK(a.scene.textures[0].info.image_type == ImageType::Png);
+        CHECK(a.scene.textures[0].info.mag_filter == 9729);
+        CHECK(a.scene.textures[0].info.min_filter == 9986);
+        CHECK(a.scene.textures[0].image == slurp(shared_samples() / "gltf/Duck/DuckCM.png"));
+        CHECK(any_warning(a, "camera"));
+    }
+}
+
+TEST_CASE("objects stay in their mesh's frame: the flattened reader equals them under the node transforms") {
+    if (!have_sample("gltf/Duck/Duck.gltf")) return;
+    Asset a = load_asset(sample("gltf/Duck/Duck.gltf"));
+    LoadResult flat = load_gltf(sample("gltf/Duck/Duck.gltf"));
+    REQUIRE(flat.meshes.size() == 1);
+    REQUIRE(a.objects[0].positions.size() == flat.meshes[0].positions.size());
+    // The Duck's root scales by 0.01; the mesh node has no transform.
+    for (size_t i = 0; i < flat.meshes[0].positions.size(); i += 97)
+        for (int k = 0; k < 3; ++k)
+            CHECK(flat.meshes[0].positions[i][k] == doctest::Approx(a.objects[0].positions[i][k] * 0.01).epsilon(1e-4));
+}
+
+TEST_CASE("an instanced mesh is one set of objects: the milk truck's two wheel nodes share one object") {
+    if (!have_sample("gltf/CesiumMilkTruck/CesiumMilkTruck.gltf")) return;
+    Asset a = load_asset(sample("gltf/CesiumMilkTruck/CesiumMilkTruck.gltf"));
+    REQUIRE(a.scene.nodes.size() == 5);
+    REQUIRE(a.scene.meshes.size() == 2);
+    CHECK(a.scene.meshes[0].primitives.size() == 3);
+    CHECK(a.scene.meshes[1].primitives.size() == 1);
+    CHECK(a.objects.size() == 4);  // 3 truck primitives + 1 wheel, though 2 nodes show the wheels
+    CHECK(a.scene.nodes[2].mesh == 1);
+    CHECK(a.scene.nodes[4].mesh == 1);
+    CHECK(a.scene.nodes[1].has_matrix);
+    CHECK(a.scene.nodes[1].matrix[12] == doctest::Approx(-1.35233));
+    CHECK(a.scene.nodes[2].rotation[2] == doctest::Approx(0.0884859));
+    REQUIRE(a.scene.materials.size() == 4);
+    CHECK(a.scene.materials[1].name == "glass");
+    CHECK(a.scene.materials[1].base_color[1] == doctest::Approx(0.0405063));
+    // glTF textures 0 and 1 are the same image with the same sampler: sent once.
+    REQUIRE(a.scene.textures.size() == 1);
+    CHECK(a.scene.materials[0].base_color_texture.texture == 0);
+    CHECK(a.scene.materials[3].base_color_texture.texture == 0);
+    CHECK(a.scene.textures[0].image == slurp(shared_samples() / "gltf/CesiumMilkTruck/CesiumMilkTruck.png"));
+    CHECK(any_warning(a, "animation"));
+}
+
+TEST_CASE("the Fox comes in its bind pose with its whole node tree, and skin and animations are named") {
+    if (!have_sample("gltf/Fox/Fox.gltf")) return;
+    Asset a = load_asset(sample("gltf/Fox/Fox.gltf"));
+    CHECK(a.scene.nodes.size() == 26);
+    REQUIRE(a.objects.size() == 1);
+    CHECK(a.objects[0].positions.size() == 1728);
+    CHECK(any_warning(a, "skin"));
+    CHECK(any_warning(a, "3 animation(s)"));
+    CHECK(any_warning(a, "JOINTS_0"));
+    CHECK(any_warning(a, "WEIGHTS_0"));
+    REQUIRE(a.scene.materials.size() == 1);
+    CHECK(a.scene.materials[0].roughness == doctest::Approx(0.58));
+}
+
+TEST_CASE("two materials on one mesh: a triangle object and a point object, four glTF textures sent as two") {
+    const char* f = "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf";
+    if (!have_sample(f)) return;
+    Asset a = load_asset(sample(f));
+    REQUIRE(a.scene.meshes.size() == 1);
+    REQUIRE(a.scene.meshes[0].primitives.size() == 2);
+    REQUIRE(a.objects.size() == 2);
+    CHECK(!a.objects[0].is_point_set);
+    CHECK(a.objects[1].is_point_set);
+    REQUIRE(a.scene.materials.size() == 2);
+    CHECK(a.scene.materials[1].alpha_mode == AlphaMode::Blend);
+    CHECK(a.scene.materials[0].normal_texture.texture != kNone);
+    CHECK(a.scene.textures.size() == 2);
+    CHECK(any_warning(a, "TANGENT"));
+}
+
+TEST_CASE("a Draco-compressed glTF gives the same object as the plain one") {
+    if (!have_sample("gltf/Box-glb/Box.glb") || !have_sample("gltf/Box-glb/Box_Draco.glb")) return;
+    Asset plain = load_asset(sample("gltf/Box-glb/Box.glb"));
+    Asset draco = load_asset(sample("gltf/Box-glb/Box_Draco.glb"));
+    REQUIRE(plain.objects.size() == 1);
+    REQUIRE(draco.objects.size() == 1);
+    CHECK(plain.objects[0].triangles.size() == draco.objects[0].triangles.size());
+    CHECK(plain.scene.nodes.size() == draco.scene.nodes.size());
+    CHECK(plain.scene.materials.size() == draco.scene.materials.size());
+}
+
+TEST_CASE("an OBJ becomes one node with one mesh and no material") {
+    if (!have_sample("meshes/woody.obj")) return;
+    Asset a = load_asset(sample("meshes/woody.obj"));
+    REQUIRE(a.scene.nodes.size() == 1);
+    CHECK(a.scene.nodes[0].name == "woody");
+    CHECK(a.scene.nodes[0].mesh == 0);
+    REQUIRE(a.scene.meshes.size() == 1);
+    CHECK(a.scene.meshes[0].primitives.size() == a.objects.size());
+    CHECK(a.scene.materials.empty());
+}
+
+TEST_CASE("an image in a data: URI is kept byte for byte; a GIF is dropped with a warning") {
+    auto dir = ellicast::test::scratch_dir("asset_input_images");
+    // The smallest valid PNG signature + IHDR is enough: images are carried, not decoded.
+    std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A, 0, 0, 0, 13, 'I', 'H', 'D', 'R',
+                                0, 0, 0, 1, 0, 0, 0, 1, 8, 2, 0, 0, 0, 0x90, 0x77, 0x53, 0xDE};
+    spit(dir / "png.gltf", triangle_gltf(R"({"uri":"data:image/png;base64,)" + base64(png) + R"("})"));
+    Asset a = load_asset((dir / "png.gltf").string());
+    REQUIRE(a.scene.textures.size() == 1);
+    CHECK(a.scene.textures[0].image == png);
+    CHECK(a.scene.materials[0].base_color_texture.texture == 0);
+
+    std::vector<uint8_t> gif = {'G', 'I', 'F', '8', '9', 'a', 1, 0, 1, 0, 0, 0, 0, ';'};
+    spit(dir / "pic.gif", std::string(gif.begin(), gif.end()));
+    spit(dir / "gif.gltf", triangle_gltf(R"({"uri":"pic.gif"})"));
+    Asset g = load_asset((dir / "gif.gltf").string());
+    CHECK(g.scene.textures.empty());
+    CHECK(g.scene.materials[0].base_color_texture.texture == kNone);
+    CHECK(any_warning(g, "neither PNG nor JPEG"));
+
+    spit(dir / "missing.gltf", triangle_gltf(R"({"uri":"nowhere.png"})"));
+    Asset m = load_asset((dir / "missing.gltf").string());
+    CHECK(m.scene.textures.empty());
+    CHECK(any_warning(m, "could not be read"));
+}
+
+TEST_CASE("load_asset refuses missing, empty and broken files with a message naming them") {
+    auto dir = ellicast::test::scratch_dir("asset_input_errors");
+    auto message = [](const std::string& path) -> std::string {
+        try {
+            load_asset(path);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    CHECK(message((dir / "absent.glb").string()).find("no such file") != std::string::npos);
+    spit(dir / "empty.gltf", "");
+    CHECK(message((dir / "empty.gltf").string()).find("empty") != std::string::npos);
+    spit(dir / "broken.gltf", "{\"asset\":{\"version\":\"2.0\"},\"nodes\":[");
+    CHECK(message((dir / "broken.gltf").string()).find("broken.gltf") != std::string::npos);
+    if (have_sample("gltf/Box-glb/Box.glb")) {
+        auto bytes = slurp(shared_samples() / "gltf/Box-glb/Box.glb");
+        bytes.resize(bytes.size() / 2);
+        spit(dir / "half.glb", std::string(bytes.begin(), bytes.end()));
+        CHECK(message((dir / "half.glb").string()).find("half.glb") != std::string::npos);
+    }
+}
