@@ -1,0 +1,262 @@
+// The decoder: rebuilds a surface from whatever ellipsoids and surface points of an object arrived.
+//
+// Pipeline (Bischoff & Kobbelt 2002), one algorithm per source file:
+//   rasterize.cpp        ellipsoids -> a grid of clamped signed distances (sign = inside/outside)
+//   marching_cubes.cpp   grid -> closed, consistently oriented OpenMesh triangle mesh (the base)
+//   face_grid.cpp        a uniform grid of faces: nearest triangle while the mesh changes
+//   point_insertion.cpp  each point goes into its nearest triangle (1-to-3 or edge split)
+//   edge_flip.cpp        local flips after each insertion (min angle where flat, smoothness where curved)
+//   mc_collapse.cpp      marching-cubes vertices collapse into original vertices once enough arrived
+//   decoder.cpp          a whole object / stream, attribute transfer, snapshots, progress, timings
+//
+// Everything here is deterministic: the same ellipsoids and points (in any order, with duplicate
+// ellipsoids) give the same mesh, bit for bit. Points are inserted in stream order.
+#pragma once
+
+#include "ellicast/codec/mesh.h"
+#include "ellicast/format.h"
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace ellicast {
+
+// The decoder's mutable mesh (double precision: insertion and flips compare small angles).
+struct DecoderMeshTraits : public OpenMesh::DefaultTraits {
+    using Point = OpenMesh::Vec3d;
+    using Normal = OpenMesh::Vec3d;
+};
+using DecoderTriMesh = OpenMesh::TriMesh_ArrayKernelT<DecoderMeshTraits>;
+
+// ---------------------------------------------------------------------------------------------
+// Rasterization (rasterize.cpp)
+
+inline constexpr int kDefaultGridResolution = 96;  // cells along the frame's edge when nothing else is asked
+inline constexpr int kMinGridResolution = 4;
+inline constexpr int kMaxGridResolution = 1024;
+inline constexpr size_t kMaxGridNodes = size_t(48) << 20;  // ~200 MB of floats: refuse larger grids
+
+// A grid of nodes over the part of an object's frame that its ellipsoids cover (plus one cell).
+// value > 0 inside the union of ellipsoids, <= 0 outside. Each value is the largest, over the
+// ellipsoids whose bounding box holds the node, of the signed distance to that ellipsoid measured
+// along the ray from its centre (exact for spheres), clamped below at -cell.
+struct EllipsoidGrid {
+    std::array<double, 3> origin{};  // position of node (0,0,0)
+    double cell = 1;                 // node spacing
+    std::array<int, 3> nodes{};      // node counts along x, y, z
+    std::vector<float> value;        // x fastest, then y, then z
+
+    size_t index(int i, int j, int k) const { return (size_t(k) * nodes[1] + j) * nodes[0] + i; }
+    bool empty() const { return value.empty(); }
+};
+
+// Rasterizes `ellipsoids` with node spacing frame.scale / resolution. Only nodes inside each
+// ellipsoid's bounding box (grown by one cell) are visited. The result does not depend on the order
+// of the ellipsoids nor on duplicates. Degenerate ellipsoids (a radius <= 0 or a non-finite value)
+// are skipped and counted in `skipped`. Returns false with `error` set when the grid would exceed
+// kMaxGridNodes or the resolution is out of [kMinGridResolution, kMaxGridResolution]; an empty grid
+// (no usable ellipsoid) is not an error.
+bool rasterize_ellipsoids(const std::vector<Ellipsoid>& ellipsoids, const Frame& frame, int resolution,
+                          EllipsoidGrid& out, std::string& error, size_t* skipped = nullptr);
+
+// ---------------------------------------------------------------------------------------------
+// Marching cubes (marching_cubes.cpp)
+
+// Extracts the zero level set of `grid` as a closed 2-manifold triangle mesh whose faces are
+// oriented outwards (away from the inside). Vertices lie on grid edges. Deterministic. Face
+// ambiguities are resolved by separating the inside corners, identically from both cells, so the
+// mesh has no cracks. The returned mesh has vertex, edge and face status attributes requested.
+DecoderTriMesh marching_cubes(const EllipsoidGrid& grid);
+
+// ---------------------------------------------------------------------------------------------
+// Nearest triangle while the mesh changes (face_grid.cpp)
+
+// Closest point on triangle (a, b, c) to p; `bary` receives its barycentric coordinates.
+OpenMesh::Vec3d closest_point_on_triangle(const OpenMesh::Vec3d& p, const OpenMesh::Vec3d& a,
+                                          const OpenMesh::Vec3d& b, const OpenMesh::Vec3d& c,
+                                          std::array<double, 3>& bary);
+
+// A uniform grid of cells, each listing the faces whose bounding box overlaps it. Faces are
+// (re)registered after every change; stale entries are skipped by a per-face version and swept
+// out when they outnumber the live ones, so queries stay fast as the mesh is refined.
+class FaceGrid {
+public:
+    // Covers [lo, hi] (points outside are clamped to the border cells) with cells of edge `cell`.
+    void reset(const OpenMesh::Vec3d& lo, const OpenMesh::Vec3d& hi, double cell);
+    // Registers every live face of `mesh`.
+    void build(const DecoderTriMesh& mesh);
+    // (Re)registers face `f` at its current position; call after any change to its vertices.
+    void update(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f);
+    // Forgets face `f` (call when it is deleted).
+    void remove(OpenMesh::FaceHandle f);
+    // The live face nearest to p (invalid handle when the mesh has no face), its closest point and
+    // the barycentric coordinates of that point.
+    OpenMesh::FaceHandle nearest(const DecoderTriMesh& mesh, const OpenMesh::Vec3d& p, OpenMesh::Vec3d& closest,
+                                 std::array<double, 3>& bary) const;
+    size_t live_faces() const { return live_; }
+
+private:
+    struct Entry {
+        uint32_t face;
+        uint32_t version;
+    };
+    size_t cell_of(int i, int j, int k) const { return (size_t(k) * dims_[1] + j) * dims_[0] + i; }
+    void cell_range(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f, std::array<int, 3>& lo,
+                    std::array<int, 3>& hi) const;
+    void add_entries(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f);
+    void sweep(const DecoderTriMesh& mesh);
+
+    OpenMesh::Vec3d lo_{0, 0, 0};
+    double cell_ = 1;
+    std::array<int, 3> dims_{1, 1, 1};
+    std::vector<std::vector<Entry>> cells_;
+    std::vector<uint32_t> version_;    // per face; even = not registered, odd = registered
+    mutable std::vector<uint32_t> seen_;  // per face: query stamp
+    mutable uint32_t stamp_ = 0;
+    size_t live_ = 0;
+    size_t entries_ = 0;               // entries in cells, stale ones included
+    size_t sweep_at_ = size_t(1) << 16;  // sweep stale entries when entries_ passes this
+};
+
+// ---------------------------------------------------------------------------------------------
+// The progressive reconstruction shared by insertion, flips and collapses
+
+struct ReconstructionOptions {
+    double flat_angle_degrees = 20;    // dihedral angle under which a region counts as flat
+    double foldover_degrees = 80;      // a flip/collapse may not turn a face normal further than this
+    int collapse_min_originals = 3;    // original neighbours a marching-cubes vertex needs to go
+    double collapse_min_fraction = 0.5;  // ... and this fraction of its neighbours must be original
+    int max_flips_per_insertion = 64;
+};
+
+struct Reconstruction {
+    DecoderTriMesh mesh;                          // with vertex/edge/face status
+    FaceGrid faces;                               // nearest-face index over `mesh`
+    std::vector<std::vector<uint32_t>> vertex_points;  // per vertex: indices of the points at it ({} = MC vertex)
+    std::unordered_map<uint64_t, std::vector<OpenMesh::VertexHandle>> by_position;  // seam detection
+    size_t mc_vertices = 0;                       // marching-cubes vertices still in the mesh
+    size_t original_vertices = 0;
+    ReconstructionOptions options;
+
+    // Counters
+    size_t face_splits = 0, edge_splits = 0, vertex_moves = 0, seam_merges = 0, flips = 0, collapses = 0,
+           rejected_collapses = 0;
+
+    bool is_original(OpenMesh::VertexHandle v) const { return !vertex_points[v.idx()].empty(); }
+};
+
+// Takes ownership of a base mesh (from marching_cubes): builds the face index over `frame`
+// (grown to cover the mesh) and marks every vertex as a marching-cubes vertex.
+void start_reconstruction(Reconstruction& r, DecoderTriMesh&& base, const Frame& frame, double cell,
+                          const ReconstructionOptions& options);
+
+// Re-registers every face around v in r.faces (after v moved or its faces changed).
+void reindex_faces_around(Reconstruction& r, OpenMesh::VertexHandle v);
+
+// ---------------------------------------------------------------------------------------------
+// Point insertion (point_insertion.cpp)
+
+enum class Insertion : uint8_t {
+    FaceSplit,     // the point fell inside its nearest triangle: 1-to-3 split
+    EdgeSplit,     // it fell on (near) an edge: the edge was split (2-to-4, or 1-to-2 on a border)
+    VertexMoved,   // it fell on a marching-cubes vertex, which became this original vertex
+    SeamDuplicate, // an original vertex already had this exact position: one more attribute set
+    NoMesh,        // the mesh has no face
+};
+
+// Inserts SurfacePoint number `point_index` at `position` into its nearest triangle and returns
+// what happened; `vertex` receives the vertex that now carries the point. Does not flip.
+Insertion insert_point(Reconstruction& r, uint32_t point_index, const std::array<float, 3>& position,
+                       OpenMesh::VertexHandle& vertex);
+
+// ---------------------------------------------------------------------------------------------
+// Edge flips (edge_flip.cpp)
+
+// Flips edges around vertex v until no flip improves: where the two faces of an edge are nearly
+// flat (dihedral under options.flat_angle_degrees) towards a larger minimum angle; where curved,
+// towards a smaller dihedral angle, never turning a face by more than options.foldover_degrees.
+// Returns the number of flips.
+size_t flip_edges_around(Reconstruction& r, OpenMesh::VertexHandle v);
+
+// ---------------------------------------------------------------------------------------------
+// Collapse of marching-cubes vertices (mc_collapse.cpp)
+
+// Looks at the marching-cubes vertices next to v and collapses each into its nearest original
+// neighbour once it has enough original neighbours (options.collapse_min_*), when the collapse
+// is topologically legal and turns no face by more than options.foldover_degrees. Returns the
+// number of collapses.
+size_t collapse_mc_vertices_near(Reconstruction& r, OpenMesh::VertexHandle v);
+
+// Tries every remaining marching-cubes vertex. With `force`, any original neighbour is enough and
+// vertices with none collapse into a marching-cubes neighbour, pass after pass, so that a fully
+// received stream ends with original vertices only (only topologically impossible collapses stay).
+size_t collapse_all_mc_vertices(Reconstruction& r, bool force);
+
+// ---------------------------------------------------------------------------------------------
+// Whole objects and streams (decoder.cpp)
+
+// Stage timings in seconds.
+struct DecodeTimings {
+    double rasterize = 0;
+    double marching_cubes = 0;
+    double insertion = 0;  // insertions with their flips and collapses
+    double cleanup = 0;    // final collapse pass
+    double output = 0;     // building the output mesh (attribute transfer)
+    double total() const { return rasterize + marching_cubes + insertion + cleanup + output; }
+};
+
+struct DecodeOptions {
+    int grid_resolution = 0;     // cells along the frame edge; 0 = the stream's grid_hint, else default
+    size_t snapshot_every = 0;   // > 0: call `snapshot` for the base and after every N inserted points
+    ReconstructionOptions reconstruction;
+    // Progress of the current stage: (stage name, fraction 0..1). May be empty.
+    std::function<void(const std::string& stage, double fraction)> progress;
+    // A snapshot of object `object` after `points` points (0 = the base). May be empty.
+    std::function<void(size_t object, size_t points, const Mesh& mesh)> snapshot;
+};
+
+struct ObjectDecodeReport {
+    size_t ellipsoids = 0;           // received
+    size_t skipped_ellipsoids = 0;   // degenerate ones
+    size_t points = 0;               // received
+    size_t base_vertices = 0, base_faces = 0;
+    size_t vertices_out = 0, faces_out = 0;
+    size_t mc_vertices_left = 0;     // marching-cubes vertices still in the output
+    size_t face_splits = 0, edge_splits = 0, vertex_moves = 0, seam_merges = 0, flips = 0, collapses = 0;
+    bool complete = false;           // every declared point arrived
+    bool has_surface = false;        // false: output is a point set (no ellipsoids, or a PointSet object)
+    std::vector<std::string> notes;  // what the user should know ("no ellipsoids: points only", ...)
+    DecodeTimings timings;
+};
+
+// Reconstructs one object from the ellipsoids and points that arrived (points in stream order,
+// as ReceivedStream::points gives them; `point_count` is the object's declared count and tells
+// whether the stream is complete). Returns false with `error` only when nothing can be built
+// (e.g. the grid would be too large); a missing base gives a point set and a note.
+bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipsoids,
+                   const std::vector<SurfacePoint>& points, int grid_hint, const DecodeOptions& options,
+                   size_t object_index, Mesh& out, ObjectDecodeReport& report, std::string& error);
+
+struct StreamDecodeReport {
+    std::vector<ObjectDecodeReport> objects;  // one per object of the table (empty for absent ones)
+    size_t objects_without_info = 0;          // object table entries that never arrived
+    DecodeTimings timings;                    // summed over objects
+};
+
+// Reconstructs every object of a received stream whose info arrived. Fails with a clear `error`
+// when no STREAM_INFO arrived at all. Objects with no geometry at all are left out of `meshes`.
+bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, std::vector<Mesh>& meshes,
+                   StreamDecodeReport& report, std::string& error);
+
+// The output mesh of a reconstruction in its current state, with attributes: seams are split by
+// attribute set (each face corner takes the set closest to the face's other corners), and
+// marching-cubes vertices take the attributes of their nearest original vertex.
+Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::vector<SurfacePoint>& points);
+
+}  // namespace ellicast

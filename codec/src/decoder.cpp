@@ -1,0 +1,349 @@
+// Whole-object and whole-stream reconstruction, and the output mesh with its attributes.
+#include "ellicast/codec/decoder.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <unordered_map>
+
+namespace ellicast {
+
+using Vec3 = OpenMesh::Vec3d;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Distance between two attribute sets, for choosing a face corner's set at a seam.
+double attribute_distance(const SurfacePoint& a, const SurfacePoint& b, const ObjectInfo& info) {
+    if (info.has(kAttrTexcoord)) {
+        double du = a.texcoord[0] - b.texcoord[0], dv = a.texcoord[1] - b.texcoord[1];
+        return du * du + dv * dv;
+    }
+    if (info.has(kAttrNormal))
+        return 1.0 - (a.normal[0] * b.normal[0] + a.normal[1] * b.normal[1] + a.normal[2] * b.normal[2]);
+    if (info.has(kAttrColor)) {
+        double s = 0;
+        for (int k = 0; k < 4; ++k) s += (a.color[k] - b.color[k]) * (a.color[k] - b.color[k]);
+        return s;
+    }
+    return 0;
+}
+
+void copy_attributes(Mesh& out, const SurfacePoint& p, const ObjectInfo& info) {
+    if (info.has(kAttrNormal)) out.normals.push_back(p.normal);
+    if (info.has(kAttrTexcoord)) out.texcoords.push_back(p.texcoord);
+    if (info.has(kAttrColor)) out.colors.push_back(p.color);
+}
+
+// Points of an object as a point set; identical positions of a surface object are one vertex.
+Mesh point_set(const ObjectInfo& info, const std::vector<SurfacePoint>& points, bool merge_identical) {
+    Mesh out;
+    out.is_point_set = true;
+    out.colors_have_alpha = info.has(kAttrColorAlpha);
+    std::unordered_map<uint64_t, std::vector<uint32_t>> seen;
+    for (const auto& p : points) {
+        if (merge_identical) {
+            uint64_t key = 0;
+            for (float f : p.position) key = key * 1000003u ^ std::hash<float>{}(f);
+            auto& list = seen[key];
+            bool dup = false;
+            for (uint32_t i : list) dup |= out.positions[i] == p.position;
+            if (dup) continue;
+            list.push_back(uint32_t(out.positions.size()));
+        }
+        out.positions.push_back(p.position);
+        copy_attributes(out, p, info);
+    }
+    return out;
+}
+
+// When every point arrived, a connected component holding no original vertex is an artefact of
+// the ellipsoids (every part of the original surface has vertices): it is removed.
+size_t remove_components_without_originals(Reconstruction& r) {
+    DecoderTriMesh& mesh = r.mesh;
+    std::vector<int> component(mesh.n_faces(), -1);
+    size_t removed = 0;
+    std::vector<OpenMesh::FaceHandle> stack, members;
+    for (auto f : mesh.faces()) {
+        if (component[f.idx()] >= 0) continue;
+        members.clear();
+        stack.assign(1, f);
+        component[f.idx()] = 1;
+        bool has_original = false;
+        while (!stack.empty()) {
+            auto g = stack.back();
+            stack.pop_back();
+            members.push_back(g);
+            for (auto v : mesh.fv_range(g)) has_original |= r.is_original(v);
+            for (auto n : mesh.ff_range(g))
+                if (component[n.idx()] < 0) component[n.idx()] = 1, stack.push_back(n);
+        }
+        if (has_original) continue;
+        for (auto g : members) {
+            std::array<OpenMesh::VertexHandle, 3> vs;
+            int k = 0;
+            for (auto v : mesh.fv_range(g)) vs[k++] = v;
+            r.faces.remove(g);
+            mesh.delete_face(g, true);
+            for (auto v : vs)
+                if (mesh.status(v).deleted()) --r.mc_vertices;
+        }
+        ++removed;
+    }
+    return removed;
+}
+
+}  // namespace
+
+Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::vector<SurfacePoint>& points) {
+    const DecoderTriMesh& mesh = r.mesh;
+    Mesh out;
+    out.colors_have_alpha = info.has(kAttrColorAlpha);
+    const size_t nv = mesh.n_vertices();
+    // Each marching-cubes vertex borrows the attribute sets of its nearest original vertex (along
+    // the mesh: a multi-source Dijkstra from every original vertex).
+    std::vector<int> source(nv, -1);
+    std::vector<double> dist(nv, std::numeric_limits<double>::max());
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    for (auto v : mesh.vertices()) {
+        if (r.is_original(v)) {
+            source[v.idx()] = v.idx();
+            dist[v.idx()] = 0;
+            queue.push({0.0, v.idx()});
+        }
+    }
+    while (!queue.empty()) {
+        auto [d, vi] = queue.top();
+        queue.pop();
+        if (d > dist[vi]) continue;
+        OpenMesh::VertexHandle v(vi);
+        for (auto w : mesh.vv_range(v)) {
+            double nd = d + (mesh.point(w) - mesh.point(v)).norm();
+            if (nd < dist[w.idx()]) {
+                dist[w.idx()] = nd;
+                source[w.idx()] = source[vi];
+                queue.push({nd, w.idx()});
+            }
+        }
+    }
+    const bool any_original = r.original_vertices > 0;
+    const bool has_attributes = any_original && (info.attributes & (kAttrNormal | kAttrTexcoord | kAttrColor)) != 0;
+    // Geometric vertex normals, for vertices with no original to borrow from.
+    auto geometric_normal = [&](OpenMesh::VertexHandle v) {
+        Vec3 n(0, 0, 0);
+        for (auto f : mesh.vf_range(v)) {
+            auto it = mesh.cfv_iter(f);
+            Vec3 a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
+            n += OpenMesh::cross(b - a, c - a);
+        }
+        double l = n.norm();
+        return l > 0 ? std::array<float, 3>{float(n[0] / l), float(n[1] / l), float(n[2] / l)}
+                     : std::array<float, 3>{0, 0, 1};
+    };
+    auto sets_of = [&](OpenMesh::VertexHandle v) -> const std::vector<uint32_t>* {
+        int s = source[v.idx()];
+        if (s < 0) return nullptr;
+        return &r.vertex_points[s];
+    };
+
+    std::unordered_map<uint64_t, uint32_t> output_index;  // (vertex, point) -> output vertex
+    output_index.reserve(nv * 2);
+    for (auto f : mesh.faces()) {
+        OpenMesh::VertexHandle corner[3];
+        int k = 0;
+        for (auto v : mesh.fv_range(f)) corner[k++] = v;
+        std::array<uint32_t, 3> tri;
+        for (int c = 0; c < 3; ++c) {
+            const auto* sets = has_attributes ? sets_of(corner[c]) : nullptr;
+            int64_t chosen = -1;
+            if (sets && !sets->empty()) {
+                chosen = (*sets)[0];
+                if (sets->size() > 1) {
+                    double best = std::numeric_limits<double>::max();
+                    for (uint32_t s : *sets) {
+                        double cost = 0;
+                        for (int o = 0; o < 3; ++o) {
+                            if (o == c) continue;
+                            const auto* other = sets_of(corner[o]);
+                            if (!other || other->empty()) continue;
+                            double m = std::numeric_limits<double>::max();
+                            for (uint32_t t : *other) m = std::min(m, attribute_distance(points[s], points[t], info));
+                            cost += m;
+                        }
+                        if (cost < best) best = cost, chosen = s;
+                    }
+                }
+            }
+            uint64_t key = (uint64_t(uint32_t(corner[c].idx())) << 32) | uint32_t(chosen < 0 ? 0xFFFFFFFFu : chosen);
+            auto [it, fresh] = output_index.emplace(key, uint32_t(out.positions.size()));
+            if (fresh) {
+                const Vec3& p = mesh.point(corner[c]);
+                out.positions.push_back({float(p[0]), float(p[1]), float(p[2])});
+                if (chosen >= 0) {
+                    copy_attributes(out, points[size_t(chosen)], info);
+                } else if (info.has(kAttrNormal)) {
+                    out.normals.push_back(geometric_normal(corner[c]));
+                }
+            }
+            tri[c] = it->second;
+        }
+        out.triangles.push_back(tri);
+    }
+    // Attribute arrays are either complete or empty.
+    if (out.normals.size() != out.positions.size()) out.normals.clear();
+    if (out.texcoords.size() != out.positions.size()) out.texcoords.clear();
+    if (out.colors.size() != out.positions.size()) out.colors.clear();
+    return out;
+}
+
+bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipsoids,
+                   const std::vector<SurfacePoint>& points, int grid_hint, const DecodeOptions& options,
+                   size_t object_index, Mesh& out, ObjectDecodeReport& report, std::string& error) {
+    report = ObjectDecodeReport{};
+    report.ellipsoids = ellipsoids.size();
+    report.points = points.size();
+    report.complete = points.size() >= info.point_count;
+    out = Mesh{};
+    auto progress = [&](const char* stage, double fraction) {
+        if (options.progress) options.progress(stage, fraction);
+    };
+    auto t0 = std::chrono::steady_clock::now();
+
+    if (info.kind == ObjectKind::PointSet) {
+        out = point_set(info, points, false);
+        report.vertices_out = out.positions.size();
+        report.timings.output = seconds_since(t0);
+        return true;
+    }
+    auto points_only = [&](const std::string& why) {
+        out = point_set(info, points, true);
+        report.notes.push_back(why + (points.empty() ? ": nothing to build"
+                                                     : ": no base surface; writing the " +
+                                                           std::to_string(out.positions.size()) +
+                                                           " received points as a point set"));
+        report.vertices_out = out.positions.size();
+        report.timings.output = seconds_since(t0);
+        return true;
+    };
+    if (ellipsoids.empty()) return points_only("no ellipsoid received");
+
+    int resolution = options.grid_resolution > 0 ? options.grid_resolution
+                                                 : (grid_hint > 0 ? grid_hint : kDefaultGridResolution);
+    EllipsoidGrid grid;
+    progress("rasterize", 0);
+    if (!rasterize_ellipsoids(ellipsoids, info.frame, resolution, grid, error, &report.skipped_ellipsoids))
+        return false;
+    report.timings.rasterize = seconds_since(t0);
+    progress("rasterize", 1);
+    if (report.skipped_ellipsoids > 0)
+        report.notes.push_back(std::to_string(report.skipped_ellipsoids) + " degenerate ellipsoid(s) skipped");
+    if (grid.empty()) return points_only("no usable ellipsoid");
+
+    auto t1 = std::chrono::steady_clock::now();
+    DecoderTriMesh base = marching_cubes(grid);
+    grid.value = {};
+    report.timings.marching_cubes = seconds_since(t1);
+    report.base_vertices = base.n_vertices();
+    report.base_faces = base.n_faces();
+    if (base.n_faces() == 0) return points_only("the ellipsoids enclose no grid node");
+    report.has_surface = true;
+
+    Reconstruction r;
+    start_reconstruction(r, std::move(base), info.frame, grid.cell, options.reconstruction);
+    if (options.snapshot) options.snapshot(object_index, 0, extract_mesh(r, info, points));
+
+    auto t2 = std::chrono::steady_clock::now();
+    double snapshot_time = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        OpenMesh::VertexHandle v;
+        Insertion kind = insert_point(r, uint32_t(i), points[i].position, v);
+        if (kind == Insertion::NoMesh) break;
+        if (kind != Insertion::SeamDuplicate) {
+            flip_edges_around(r, v);
+            collapse_mc_vertices_near(r, v);
+        }
+        if ((i & 1023) == 0) progress("insert points", double(i) / points.size());
+        if (options.snapshot && options.snapshot_every > 0 && (i + 1) % options.snapshot_every == 0 &&
+            i + 1 < points.size()) {
+            auto ts = std::chrono::steady_clock::now();
+            options.snapshot(object_index, i + 1, extract_mesh(r, info, points));
+            snapshot_time += seconds_since(ts);
+        }
+    }
+    progress("insert points", 1);
+    report.timings.insertion = seconds_since(t2) - snapshot_time;
+
+    auto t3 = std::chrono::steady_clock::now();
+    collapse_all_mc_vertices(r, report.complete && !points.empty());
+    if (report.complete && r.original_vertices > 0) {
+        size_t removed = remove_components_without_originals(r);
+        if (removed > 0)
+            report.notes.push_back(std::to_string(removed) + " base component(s) with no original vertex removed");
+    }
+    report.timings.cleanup = seconds_since(t3);
+
+    auto t4 = std::chrono::steady_clock::now();
+    out = extract_mesh(r, info, points);
+    report.timings.output = seconds_since(t4);
+    report.vertices_out = out.positions.size();
+    report.faces_out = out.triangles.size();
+    report.mc_vertices_left = r.mc_vertices;
+    report.face_splits = r.face_splits;
+    report.edge_splits = r.edge_splits;
+    report.vertex_moves = r.vertex_moves;
+    report.seam_merges = r.seam_merges;
+    report.flips = r.flips;
+    report.collapses = r.collapses;
+    if (report.complete && r.mc_vertices > 0)
+        report.notes.push_back(std::to_string(r.mc_vertices) +
+                               " marching-cubes vertex(es) could not be collapsed (topology)");
+    if (options.snapshot && options.snapshot_every > 0 && !points.empty())
+        options.snapshot(object_index, points.size(), out);
+    return true;
+}
+
+bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, std::vector<Mesh>& meshes,
+                   StreamDecodeReport& report, std::string& error) {
+    meshes.clear();
+    report = StreamDecodeReport{};
+    if (!stream.info()) {
+        error = "no STREAM_INFO packet arrived: the object table and quantization frames are unknown, so "
+                "nothing can be decoded";
+        return false;
+    }
+    const StreamInfo& info = *stream.info();
+    const auto& objects = stream.objects();
+    report.objects.resize(objects.size());
+    for (size_t i = 0; i < objects.size(); ++i) {
+        if (!objects[i].info) {
+            ++report.objects_without_info;
+            report.objects[i].notes.push_back("its STREAM_INFO entry never arrived: skipped");
+            continue;
+        }
+        Mesh mesh;
+        std::string object_error;
+        if (!decode_object(*objects[i].info, stream.ellipsoids(i), stream.points(i), info.grid_hint, options, i, mesh,
+                           report.objects[i], object_error)) {
+            error = "object " + std::to_string(i) + ": " + object_error;
+            return false;
+        }
+        const auto& t = report.objects[i].timings;
+        report.timings.rasterize += t.rasterize;
+        report.timings.marching_cubes += t.marching_cubes;
+        report.timings.insertion += t.insertion;
+        report.timings.cleanup += t.cleanup;
+        report.timings.output += t.output;
+        if (mesh.positions.empty()) continue;
+        mesh.name = "object" + std::to_string(i);
+        meshes.push_back(std::move(mesh));
+    }
+    return true;
+}
+
+}  // namespace ellicast

@@ -1,0 +1,107 @@
+// Local edge flips after an insertion or a collapse.
+//
+// An edge (a, b) between faces (a, b, c) and (b, a, d) may become (c, d):
+//  - flat (both dihedral angles, before and after, under the flat threshold): flip when the
+//    smallest angle of the two faces grows (the surface analogue of a Delaunay flip);
+//  - curved: flip only when the smallest angle grows AND the dihedral angle shrinks, so creases and
+//    curvature lines are kept; or when the edge is folded over (dihedral beyond the fold-over bound)
+//    and the flip unfolds it;
+//  - never when a new face would turn more than the fold-over bound away from the old faces' mean
+//    normal, or would be degenerate.
+#include "ellicast/codec/decoder.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ellicast {
+
+using Vec3 = OpenMesh::Vec3d;
+
+namespace {
+
+// Cosine of the smallest angle of triangle (p, q, r); larger = worse.
+double worst_cos(const Vec3& p, const Vec3& q, const Vec3& r) {
+    auto c = [](const Vec3& o, const Vec3& x, const Vec3& y) {
+        Vec3 u = x - o, v = y - o;
+        double l = std::sqrt(u.sqrnorm() * v.sqrnorm());
+        return l > 0 ? OpenMesh::dot(u, v) / l : 1.0;
+    };
+    return std::max({c(p, q, r), c(q, r, p), c(r, p, q)});
+}
+
+bool unit(Vec3& n) {
+    double l = n.norm();
+    if (!(l > 1e-300)) return false;
+    n /= l;
+    return true;
+}
+
+}  // namespace
+
+// Returns true when edge e was flipped.
+static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat, double cos_fold) {
+    DecoderTriMesh& mesh = r.mesh;
+    if (mesh.status(e).deleted() || mesh.is_boundary(e) || !mesh.is_flip_ok(e)) return false;
+    auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+    const Vec3& a = mesh.point(mesh.from_vertex_handle(h0));
+    const Vec3& b = mesh.point(mesh.to_vertex_handle(h0));
+    const Vec3& c = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h0)));
+    const Vec3& d = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h1)));
+    Vec3 n1 = OpenMesh::cross(b - a, c - a), n2 = OpenMesh::cross(a - b, d - b);
+    Vec3 m1 = OpenMesh::cross(d - a, c - a), m2 = OpenMesh::cross(b - d, c - d);
+    // New faces must not be (nearly) degenerate: compare their area with their squared edge length.
+    const double scale = std::max({(a - b).sqrnorm(), (c - d).sqrnorm(), (a - c).sqrnorm(), (b - d).sqrnorm()});
+    if (m1.norm() < 1e-6 * scale || m2.norm() < 1e-6 * scale) return false;
+    if (!unit(m1) || !unit(m2)) return false;
+    bool old_ok = unit(n1) && unit(n2);
+    const double old_worst = std::max(worst_cos(a, b, c), worst_cos(b, a, d));
+    const double new_worst = std::max(worst_cos(a, d, c), worst_cos(d, b, c));
+    if (!old_ok) return new_worst < old_worst;  // a degenerate old face: any legal flip that helps
+    Vec3 mean = n1 + n2;
+    if (!unit(mean)) mean = n1;
+    const double new_dot = OpenMesh::dot(m1, m2), old_dot = OpenMesh::dot(n1, n2);
+    const bool folded = old_dot < cos_fold;
+    if (OpenMesh::dot(m1, mean) < cos_fold || OpenMesh::dot(m2, mean) < cos_fold) {
+        if (!folded) return false;
+    }
+    bool flip;
+    if (folded) flip = new_dot > old_dot + 1e-9;
+    else if (old_dot > cos_flat && new_dot > cos_flat) flip = new_worst < old_worst - 1e-12;
+    else flip = new_worst < old_worst - 1e-12 && new_dot > old_dot + 1e-9;
+    if (!flip) return false;
+    mesh.flip(e);
+    r.faces.update(mesh, mesh.face_handle(h0));
+    r.faces.update(mesh, mesh.face_handle(h1));
+    ++r.flips;
+    return true;
+}
+
+size_t flip_edges_around(Reconstruction& r, OpenMesh::VertexHandle v) {
+    DecoderTriMesh& mesh = r.mesh;
+    const double cos_flat = std::cos(r.options.flat_angle_degrees * M_PI / 180.0);
+    const double cos_fold = std::cos(r.options.foldover_degrees * M_PI / 180.0);
+    std::vector<OpenMesh::EdgeHandle> stack;
+    for (auto h : mesh.voh_range(v)) {
+        if (mesh.is_boundary(h)) continue;
+        stack.push_back(mesh.edge_handle(mesh.next_halfedge_handle(h)));
+        stack.push_back(mesh.edge_handle(h));
+    }
+    size_t flips = 0;
+    const size_t budget = size_t(std::max(1, r.options.max_flips_per_insertion));
+    while (!stack.empty() && flips < budget) {
+        auto e = stack.back();
+        stack.pop_back();
+        if (!try_flip(r, e, cos_flat, cos_fold)) continue;
+        ++flips;
+        // The quad's four outer edges may now want a flip.
+        auto h = mesh.halfedge_handle(e, 0);
+        auto o = mesh.halfedge_handle(e, 1);
+        stack.push_back(mesh.edge_handle(mesh.next_halfedge_handle(h)));
+        stack.push_back(mesh.edge_handle(mesh.prev_halfedge_handle(h)));
+        stack.push_back(mesh.edge_handle(mesh.next_halfedge_handle(o)));
+        stack.push_back(mesh.edge_handle(mesh.prev_halfedge_handle(o)));
+    }
+    return flips;
+}
+
+}  // namespace ellicast

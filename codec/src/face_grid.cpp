@@ -1,0 +1,194 @@
+// Nearest triangle of a changing mesh: a uniform grid of face lists with lazy deletion.
+#include "ellicast/codec/decoder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ellicast {
+
+using Vec3 = OpenMesh::Vec3d;
+
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
+                               std::array<double, 3>& bary) {
+    // Ericson, Real-Time Collision Detection, 5.1.5: Voronoi regions of the triangle.
+    Vec3 ab = b - a, ac = c - a, ap = p - a;
+    double d1 = OpenMesh::dot(ab, ap), d2 = OpenMesh::dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) return bary = {1, 0, 0}, a;
+    Vec3 bp = p - b;
+    double d3 = OpenMesh::dot(ab, bp), d4 = OpenMesh::dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) return bary = {0, 1, 0}, b;
+    double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        double v = d1 / (d1 - d3);
+        bary = {1 - v, v, 0};
+        return a + v * ab;
+    }
+    Vec3 cp = p - c;
+    double d5 = OpenMesh::dot(ab, cp), d6 = OpenMesh::dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) return bary = {0, 0, 1}, c;
+    double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        double w = d2 / (d2 - d6);
+        bary = {1 - w, 0, w};
+        return a + w * ac;
+    }
+    double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        bary = {0, 1 - w, w};
+        return b + w * (c - b);
+    }
+    double denom = va + vb + vc;
+    if (!(std::abs(denom) > 0)) {  // degenerate triangle: nearest of its vertices
+        double da = (p - a).sqrnorm(), db = (p - b).sqrnorm(), dc = (p - c).sqrnorm();
+        if (da <= db && da <= dc) return bary = {1, 0, 0}, a;
+        if (db <= dc) return bary = {0, 1, 0}, b;
+        return bary = {0, 0, 1}, c;
+    }
+    double v = vb / denom, w = vc / denom;
+    bary = {1 - v - w, v, w};
+    return a + v * ab + w * ac;
+}
+
+void FaceGrid::reset(const Vec3& lo, const Vec3& hi, double cell) {
+    lo_ = lo;
+    cell_ = cell > 0 ? cell : 1;
+    for (int k = 0; k < 3; ++k) {
+        double extent = std::max(0.0, hi[k] - lo[k]);
+        dims_[k] = std::clamp(int(std::ceil(extent / cell_)) + 1, 1, 1024);
+    }
+    // Keep the number of cells bounded (a few million at most).
+    while (size_t(dims_[0]) * dims_[1] * dims_[2] > (size_t(4) << 20)) {
+        cell_ *= 1.25;
+        for (int k = 0; k < 3; ++k)
+            dims_[k] = std::clamp(int(std::ceil(std::max(0.0, hi[k] - lo[k]) / cell_)) + 1, 1, 1024);
+    }
+    cells_.assign(size_t(dims_[0]) * dims_[1] * dims_[2], {});
+    version_.clear();
+    seen_.clear();
+    stamp_ = 0;
+    live_ = entries_ = 0;
+    sweep_at_ = size_t(1) << 16;
+}
+
+void FaceGrid::cell_range(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f, std::array<int, 3>& lo,
+                          std::array<int, 3>& hi) const {
+    Vec3 mn(std::numeric_limits<double>::max()), mx(-std::numeric_limits<double>::max());
+    for (auto v : mesh.fv_range(f)) {
+        mn.minimize(mesh.point(v));
+        mx.maximize(mesh.point(v));
+    }
+    for (int k = 0; k < 3; ++k) {
+        lo[k] = std::clamp(int(std::floor((mn[k] - lo_[k]) / cell_)), 0, dims_[k] - 1);
+        hi[k] = std::clamp(int(std::floor((mx[k] - lo_[k]) / cell_)), 0, dims_[k] - 1);
+    }
+}
+
+void FaceGrid::add_entries(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f) {
+    std::array<int, 3> lo, hi;
+    cell_range(mesh, f, lo, hi);
+    const uint32_t ver = version_[f.idx()];
+    for (int k = lo[2]; k <= hi[2]; ++k)
+        for (int j = lo[1]; j <= hi[1]; ++j)
+            for (int i = lo[0]; i <= hi[0]; ++i) {
+                cells_[cell_of(i, j, k)].push_back({uint32_t(f.idx()), ver});
+                ++entries_;
+            }
+}
+
+void FaceGrid::build(const DecoderTriMesh& mesh) {
+    for (auto& c : cells_) c.clear();
+    version_.assign(mesh.n_faces(), 0);
+    live_ = entries_ = 0;
+    for (auto f : mesh.faces()) {
+        version_[f.idx()] = 1;
+        ++live_;
+        add_entries(mesh, f);
+    }
+    sweep_at_ = 2 * entries_ + (size_t(1) << 16);
+}
+
+void FaceGrid::update(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f) {
+    if (size_t(f.idx()) >= version_.size()) version_.resize(mesh.n_faces(), 0);
+    uint32_t& ver = version_[f.idx()];
+    if (ver & 1) {
+        // Its old entries go stale; sweep() drops them later.
+        ver += 2;
+    } else {
+        ver += 1;
+        ++live_;
+    }
+    add_entries(mesh, f);
+    if (entries_ > sweep_at_) sweep(mesh);
+}
+
+void FaceGrid::remove(OpenMesh::FaceHandle f) {
+    if (size_t(f.idx()) >= version_.size()) return;
+    uint32_t& ver = version_[f.idx()];
+    if (ver & 1) {
+        ver += 1;
+        --live_;
+    }
+}
+
+void FaceGrid::sweep(const DecoderTriMesh& mesh) {
+    (void)mesh;
+    entries_ = 0;
+    for (auto& c : cells_) {
+        c.erase(std::remove_if(c.begin(), c.end(),
+                               [&](const Entry& e) { return e.version != version_[e.face]; }),
+                c.end());
+        entries_ += c.size();
+    }
+    sweep_at_ = 2 * entries_ + (size_t(1) << 16);
+}
+
+OpenMesh::FaceHandle FaceGrid::nearest(const DecoderTriMesh& mesh, const Vec3& p, Vec3& closest,
+                                       std::array<double, 3>& bary) const {
+    OpenMesh::FaceHandle best;
+    if (live_ == 0) return best;
+    if (seen_.size() < version_.size()) seen_.resize(version_.size(), 0);
+    if (++stamp_ == 0) {
+        std::fill(seen_.begin(), seen_.end(), 0);
+        stamp_ = 1;
+    }
+    int c[3];
+    for (int k = 0; k < 3; ++k) c[k] = std::clamp(int(std::floor((p[k] - lo_[k]) / cell_)), 0, dims_[k] - 1);
+    double best_d2 = std::numeric_limits<double>::max();
+    const int max_ring = std::max({dims_[0], dims_[1], dims_[2]});
+    auto visit = [&](int i, int j, int k) {
+        for (const Entry& e : cells_[cell_of(i, j, k)]) {
+            if (e.version != version_[e.face] || seen_[e.face] == stamp_) continue;
+            seen_[e.face] = stamp_;
+            OpenMesh::FaceHandle f(int(e.face));
+            auto fv = mesh.cfv_iter(f);
+            const Vec3& a = mesh.point(*fv);
+            const Vec3& b = mesh.point(*++fv);
+            const Vec3& cc = mesh.point(*++fv);
+            std::array<double, 3> bc;
+            Vec3 q = closest_point_on_triangle(p, a, b, cc, bc);
+            double d2 = (q - p).sqrnorm();
+            if (d2 < best_d2) best_d2 = d2, best = f, closest = q, bary = bc;
+        }
+    };
+    for (int r = 0; r <= max_ring; ++r) {
+        int i0 = c[0] - r, i1 = c[0] + r, j0 = c[1] - r, j1 = c[1] + r, k0 = c[2] - r, k1 = c[2] + r;
+        for (int k = std::max(k0, 0); k <= std::min(k1, dims_[2] - 1); ++k)
+            for (int j = std::max(j0, 0); j <= std::min(j1, dims_[1] - 1); ++j) {
+                bool shell = (k == k0 || k == k1 || j == j0 || j == j1);
+                if (shell) {
+                    for (int i = std::max(i0, 0); i <= std::min(i1, dims_[0] - 1); ++i) visit(i, j, k);
+                } else {
+                    if (i0 >= 0) visit(i0, j, k);
+                    if (i1 < dims_[0]) visit(i1, j, k);
+                }
+            }
+        // Cells beyond ring r are at least r cells from p's (clamped) cell.
+        double reach = r * cell_;
+        if (best.is_valid() && best_d2 <= reach * reach) break;
+    }
+    return best;
+}
+
+}  // namespace ellicast

@@ -1,0 +1,138 @@
+// Removing marching-cubes vertices by collapsing them into nearby original vertices.
+#include "ellicast/codec/decoder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ellicast {
+
+using Vec3 = OpenMesh::Vec3d;
+
+namespace {
+
+// The smallest cosine between a face's normal before and after moving `from` onto `to`'s position,
+// over the faces around `from` that survive the collapse of halfedge from -> to; -2 when one of
+// them would become degenerate.
+double collapse_worst_dot(const DecoderTriMesh& mesh, OpenMesh::HalfedgeHandle h) {
+    const auto from = mesh.from_vertex_handle(h), to = mesh.to_vertex_handle(h);
+    const Vec3 target = mesh.point(to);
+    double worst = 1;
+    for (auto f : mesh.vf_range(from)) {
+        Vec3 p[3], q[3];
+        int n = 0;
+        bool has_to = false;
+        for (auto v : mesh.fv_range(f)) {
+            has_to |= v == to;
+            p[n] = mesh.point(v);
+            q[n] = v == from ? target : p[n];
+            ++n;
+        }
+        if (has_to) continue;  // removed by the collapse
+        Vec3 before = OpenMesh::cross(p[1] - p[0], p[2] - p[0]);
+        Vec3 after = OpenMesh::cross(q[1] - q[0], q[2] - q[0]);
+        double lb = before.norm(), la = after.norm();
+        double scale = std::max({(q[1] - q[0]).sqrnorm(), (q[2] - q[0]).sqrnorm(), (q[2] - q[1]).sqrnorm()});
+        if (!(la > 1e-6 * scale)) return -2;
+        if (!(lb > 0)) continue;  // a degenerate face gets better, whatever its new normal
+        worst = std::min(worst, OpenMesh::dot(before, after) / (la * lb));
+    }
+    return worst;
+}
+
+// Collapses marching-cubes vertex m. Without `force` it needs enough original neighbours and a
+// collapse that turns no face beyond the fold-over bound; with `force` it takes the best legal
+// collapse into an original neighbour, or into any neighbour when `any_target` is set.
+bool try_collapse(Reconstruction& r, OpenMesh::VertexHandle m, bool force, bool any_target) {
+    DecoderTriMesh& mesh = r.mesh;
+    if (mesh.status(m).deleted() || r.is_original(m)) return false;
+    int total = 0, originals = 0;
+    for (auto v : mesh.vv_range(m)) {
+        ++total;
+        originals += r.is_original(v) ? 1 : 0;
+    }
+    if (!force) {
+        if (originals < r.options.collapse_min_originals) return false;
+        if (originals < r.options.collapse_min_fraction * total) return false;
+    } else if (originals == 0 && !any_target) {
+        return false;
+    }
+    const double cos_fold = std::cos(r.options.foldover_degrees * M_PI / 180.0);
+    const Vec3 pm = mesh.point(m);
+    // Candidates: nearest first.
+    std::array<std::pair<double, OpenMesh::HalfedgeHandle>, 64> cand;
+    int n = 0;
+    for (auto h : mesh.voh_range(m)) {
+        auto to = mesh.to_vertex_handle(h);
+        if (originals > 0 && !r.is_original(to)) continue;
+        if (n < int(cand.size())) cand[n++] = {(mesh.point(to) - pm).sqrnorm(), h};
+    }
+    std::sort(cand.begin(), cand.begin() + n,
+              [](const auto& x, const auto& y) { return x.first < y.first || (x.first == y.first && x.second.idx() < y.second.idx()); });
+    OpenMesh::HalfedgeHandle chosen;
+    double chosen_dot = -3;
+    for (int i = 0; i < n; ++i) {
+        auto h = cand[i].second;
+        if (!mesh.is_collapse_ok(h)) continue;
+        double d = collapse_worst_dot(mesh, h);
+        if (d >= cos_fold) {
+            chosen = h;
+            break;
+        }
+        if (force && d > chosen_dot && d > -2) chosen = h, chosen_dot = d;
+    }
+    if (!chosen.is_valid()) {
+        ++r.rejected_collapses;
+        return false;
+    }
+    const auto target = mesh.to_vertex_handle(chosen);
+    std::array<OpenMesh::FaceHandle, 64> around;
+    int na = 0;
+    for (auto f : mesh.vf_range(m))
+        if (na < int(around.size())) around[na++] = f;
+    mesh.collapse(chosen);
+    for (int i = 0; i < na; ++i) {
+        if (mesh.status(around[i]).deleted()) r.faces.remove(around[i]);
+    }
+    reindex_faces_around(r, target);
+    --r.mc_vertices;
+    ++r.collapses;
+    flip_edges_around(r, target);
+    return true;
+}
+
+}  // namespace
+
+size_t collapse_mc_vertices_near(Reconstruction& r, OpenMesh::VertexHandle v) {
+    if (r.mc_vertices == 0) return 0;
+    std::array<OpenMesh::VertexHandle, 64> ring;
+    int n = 0;
+    for (auto w : r.mesh.vv_range(v))
+        if (!r.is_original(w) && n < int(ring.size())) ring[n++] = w;
+    size_t done = 0;
+    for (int i = 0; i < n; ++i) done += try_collapse(r, ring[i], false, false) ? 1 : 0;
+    return done;
+}
+
+size_t collapse_all_mc_vertices(Reconstruction& r, bool force) {
+    size_t total = 0;
+    if (r.mc_vertices == 0) return 0;
+    // Ordinary passes first, then (when forcing) collapses into any original neighbour, then
+    // marching-cubes neighbours, until nothing changes.
+    for (int stage = 0; stage < (force ? 3 : 1); ++stage) {
+        for (int pass = 0; pass < 64 && r.mc_vertices > 0; ++pass) {
+            size_t done = 0;
+            const size_t nv = r.mesh.n_vertices();
+            for (size_t i = 0; i < nv && r.mc_vertices > 0; ++i) {
+                OpenMesh::VertexHandle m(int(i));
+                if (r.mesh.status(m).deleted() || r.is_original(m)) continue;
+                done += try_collapse(r, m, stage >= 1, stage >= 2) ? 1 : 0;
+            }
+            total += done;
+            if (done == 0) break;
+        }
+    }
+    return total;
+}
+
+}  // namespace ellicast

@@ -1,0 +1,146 @@
+// Inserting an original vertex into the nearest triangle of the current mesh.
+#include "ellicast/codec/decoder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace ellicast {
+
+using Vec3 = OpenMesh::Vec3d;
+
+namespace {
+
+// Barycentric coordinate under which a point counts as lying on the opposite edge.
+constexpr double kOnEdge = 0.1;
+
+uint64_t position_key(const std::array<float, 3>& p) {
+    uint32_t b[3];
+    std::memcpy(b, p.data(), sizeof b);
+    uint64_t h = 1469598103934665603ull;
+    for (uint32_t x : b) h = (h ^ x) * 1099511628211ull;
+    return h;
+}
+
+Vec3 face_normal(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f, OpenMesh::VertexHandle moved,
+                 const Vec3& moved_to) {
+    Vec3 p[3];
+    int n = 0;
+    for (auto v : mesh.fv_range(f)) p[n++] = v == moved ? moved_to : mesh.point(v);
+    return OpenMesh::cross(p[1] - p[0], p[2] - p[0]);
+}
+
+// Moving v to `to` keeps every face around it within the fold-over bound and non-degenerate.
+bool move_is_safe(const DecoderTriMesh& mesh, OpenMesh::VertexHandle v, const Vec3& to, double cos_limit) {
+    for (auto f : mesh.vf_range(v)) {
+        Vec3 before = face_normal(mesh, f, v, mesh.point(v));
+        Vec3 after = face_normal(mesh, f, v, to);
+        double lb = before.norm(), la = after.norm();
+        if (!(la > 0) || !(lb > 0)) return false;
+        if (OpenMesh::dot(before, after) < cos_limit * la * lb) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+void reindex_faces_around(Reconstruction& r, OpenMesh::VertexHandle v) {
+    for (auto f : r.mesh.vf_range(v)) r.faces.update(r.mesh, f);
+}
+
+void start_reconstruction(Reconstruction& r, DecoderTriMesh&& base, const Frame& frame, double cell,
+                          const ReconstructionOptions& options) {
+    r.mesh = std::move(base);
+    r.mesh.request_vertex_status();
+    r.mesh.request_edge_status();
+    r.mesh.request_face_status();
+    r.options = options;
+    r.vertex_points.assign(r.mesh.n_vertices(), {});
+    r.by_position.clear();
+    r.mc_vertices = r.mesh.n_vertices();
+    r.original_vertices = 0;
+    Vec3 lo(frame.origin[0], frame.origin[1], frame.origin[2]);
+    Vec3 hi = lo + Vec3(frame.scale, frame.scale, frame.scale);
+    for (auto v : r.mesh.vertices()) {
+        lo.minimize(r.mesh.point(v));
+        hi.maximize(r.mesh.point(v));
+    }
+    // Cells of about two grid cells: a marching-cubes face overlaps one or two of them.
+    r.faces.reset(lo, hi, 2 * cell);
+    r.faces.build(r.mesh);
+}
+
+Insertion insert_point(Reconstruction& r, uint32_t point_index, const std::array<float, 3>& position,
+                       OpenMesh::VertexHandle& vertex) {
+    DecoderTriMesh& mesh = r.mesh;
+    const Vec3 p(position[0], position[1], position[2]);
+    const uint64_t key = position_key(position);
+    auto& same = r.by_position[key];
+    for (auto v : same) {
+        if (!mesh.status(v).deleted() && mesh.point(v) == p) {
+            r.vertex_points[v.idx()].push_back(point_index);
+            ++r.seam_merges;
+            vertex = v;
+            return Insertion::SeamDuplicate;
+        }
+    }
+
+    Vec3 closest;
+    std::array<double, 3> bary;
+    OpenMesh::FaceHandle f = r.faces.nearest(mesh, p, closest, bary);
+    if (!f.is_valid()) return Insertion::NoMesh;
+    OpenMesh::VertexHandle fv[3];
+    OpenMesh::HalfedgeHandle opposite[3];  // halfedge of f opposite corner i
+    {
+        // Same corner order as FaceGrid::nearest's barycentric coordinates.
+        int n = 0;
+        for (auto v : mesh.fv_range(f)) fv[n++] = v;
+        for (auto h : mesh.fh_range(f)) {
+            auto a = mesh.from_vertex_handle(h), b = mesh.to_vertex_handle(h);
+            for (int i = 0; i < 3; ++i)
+                if (fv[i] != a && fv[i] != b) opposite[i] = h;
+        }
+    }
+    const double cos_limit = std::cos(r.options.foldover_degrees * M_PI / 180.0);
+
+    int small = 0, smallest = 0, largest = 0;
+    for (int i = 0; i < 3; ++i) {
+        if (bary[i] < kOnEdge) ++small;
+        if (bary[i] < bary[smallest]) smallest = i;
+        if (bary[i] > bary[largest]) largest = i;
+    }
+
+    // On a marching-cubes vertex: that vertex becomes the original one.
+    if (small == 2 && !r.is_original(fv[largest]) && move_is_safe(mesh, fv[largest], p, cos_limit)) {
+        vertex = fv[largest];
+        mesh.set_point(vertex, p);
+        r.vertex_points[vertex.idx()].push_back(point_index);
+        --r.mc_vertices;
+        ++r.original_vertices;
+        ++r.vertex_moves;
+        same.push_back(vertex);
+        reindex_faces_around(r, vertex);
+        return Insertion::VertexMoved;
+    }
+
+    vertex = mesh.add_vertex(p);
+    r.vertex_points.resize(mesh.n_vertices());
+    r.vertex_points[vertex.idx()].push_back(point_index);
+    ++r.original_vertices;
+    same.push_back(vertex);
+    Insertion kind;
+    if (small >= 1) {
+        OpenMesh::EdgeHandle e = mesh.edge_handle(opposite[smallest]);
+        mesh.split(e, vertex);
+        ++r.edge_splits;
+        kind = Insertion::EdgeSplit;
+    } else {
+        mesh.split(f, vertex);
+        ++r.face_splits;
+        kind = Insertion::FaceSplit;
+    }
+    reindex_faces_around(r, vertex);
+    return kind;
+}
+
+}  // namespace ellicast
