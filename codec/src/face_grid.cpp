@@ -9,7 +9,11 @@ namespace ellicast {
 
 using Vec3 = OpenMesh::Vec3d;
 
-Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
+namespace {
+
+// Closest point of triangle (a, b, c) to p, with its barycentric coordinates (insertion needs them
+// to tell a face split from an edge split).
+Vec3 closest_point_barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
                                std::array<double, 3>& bary) {
     // Ericson, Real-Time Collision Detection, 5.1.5: Voronoi regions of the triangle.
     Vec3 ab = b - a, ac = c - a, ap = p - a;
@@ -50,6 +54,8 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
     bary = {1 - v - w, v, w};
     return a + v * ab + w * ac;
 }
+
+}  // namespace
 
 void FaceGrid::reset(const Vec3& lo, const Vec3& hi, double cell) {
     lo_ = lo;
@@ -167,7 +173,7 @@ OpenMesh::FaceHandle FaceGrid::nearest(const DecoderTriMesh& mesh, const Vec3& p
             const Vec3& b = mesh.point(*++fv);
             const Vec3& cc = mesh.point(*++fv);
             std::array<double, 3> bc;
-            Vec3 q = closest_point_on_triangle(p, a, b, cc, bc);
+            Vec3 q = closest_point_barycentric(p, a, b, cc, bc);
             double d2 = (q - p).sqrnorm();
             if (d2 < best_d2) best_d2 = d2, best = f, closest = q, bary = bc;
         }

@@ -77,11 +77,6 @@ DecoderTriMesh marching_cubes(const EllipsoidGrid& grid);
 // ---------------------------------------------------------------------------------------------
 // Nearest triangle while the mesh changes (face_grid.cpp)
 
-// Closest point on triangle (a, b, c) to p; `bary` receives its barycentric coordinates.
-OpenMesh::Vec3d closest_point_on_triangle(const OpenMesh::Vec3d& p, const OpenMesh::Vec3d& a,
-                                          const OpenMesh::Vec3d& b, const OpenMesh::Vec3d& c,
-                                          std::array<double, 3>& bary);
-
 // A uniform grid of cells, each listing the faces whose bounding box overlaps it. Faces are
 // (re)registered after every change; stale entries are skipped by a per-face version and swept
 // out when they outnumber the live ones, so queries stay fast as the mesh is refined.
