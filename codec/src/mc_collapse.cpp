@@ -124,7 +124,7 @@ size_t collapse_all_mc_vertices(Reconstruction& r, bool force) {
             size_t done = 0;
             const size_t nv = r.mesh.n_vertices();
             for (size_t i = 0; i < nv && r.mc_vertices > 0; ++i) {
-                OpenMesh::VertexHandle m(int(i));
+                OpenMesh::VertexHandle m{int(i)};
                 if (r.mesh.status(m).deleted() || r.is_original(m)) continue;
                 done += try_collapse(r, m, stage >= 1, stage >= 2) ? 1 : 0;
             }

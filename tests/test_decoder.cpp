@@ -1,0 +1,326 @@
+// The decoder: base mesh from ellipsoids, progressive insertion, collapses, attributes, streams.
+#include "decoder_shapes.h"
+#include "support.h"
+
+#include "ellicast/codec/decoder.h"
+#include "ellicast/codec/surface_distance.h"
+#include "ellicast/format.h"
+
+#include <algorithm>
+#include <random>
+#include <cstring>
+#include <set>
+
+using namespace ellicast;
+using namespace ellicast::test;
+
+namespace {
+
+Mesh to_mesh(const DecoderTriMesh& m) {
+    Mesh out;
+    for (auto v : m.vertices()) {
+        auto p = m.point(v);
+        out.positions.push_back({float(p[0]), float(p[1]), float(p[2])});
+    }
+    for (auto f : m.faces()) {
+        std::array<uint32_t, 3> t;
+        int k = 0;
+        for (auto v : m.fv_range(f)) t[k++] = uint32_t(v.idx());
+        out.triangles.push_back(t);
+    }
+    return out;
+}
+
+// RMS and max of | |x - c| - r | over dense samples of the mesh.
+std::pair<double, double> sphere_error(const Mesh& mesh, double r) {
+    auto samples = sample_surface({mesh}, 20000, 3);
+    double s2 = 0, mx = 0;
+    for (const auto& p : samples) {
+        double d = std::abs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - r);
+        s2 += d * d;
+        mx = std::max(mx, d);
+    }
+    return {std::sqrt(s2 / samples.size()), mx};
+}
+
+std::vector<Ellipsoid> random_ellipsoids(size_t n, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> pos(-0.6f, 0.6f), rad(0.1f, 0.5f), q(-1, 1);
+    std::vector<Ellipsoid> out(n);
+    for (auto& e : out) {
+        e.center = {pos(rng), pos(rng), pos(rng)};
+        e.radii = {rad(rng), rad(rng), rad(rng)};
+        float w = q(rng), x = q(rng), y = q(rng), z = q(rng);
+        float l = std::sqrt(w * w + x * x + y * y + z * z);
+        e.rotation = {w / l, x / l, y / l, z / l};
+    }
+    return out;
+}
+
+const Frame kUnitFrame{{-1.25f, -1.25f, -1.25f}, 2.5f};
+
+}  // namespace
+
+TEST_CASE("the base of one sphere ellipsoid is a closed outward-oriented manifold on the sphere") {
+    EllipsoidGrid grid;
+    std::string error;
+    REQUIRE(rasterize_ellipsoids({sphere_ellipsoid({0, 0, 0}, 1)}, kUnitFrame, 32, grid, error));
+    DecoderTriMesh base = marching_cubes(grid);
+    REQUIRE(base.n_faces() > 100);
+    for (auto h : base.halfedges()) CHECK_FALSE(base.is_boundary(h));
+    for (auto v : base.vertices()) CHECK(base.is_manifold(v));
+    CHECK(int(base.n_vertices()) - int(base.n_edges()) + int(base.n_faces()) == 2);
+    Mesh mesh = to_mesh(base);
+    CHECK(signed_volume(mesh) == doctest::Approx(4.0 / 3.0 * M_PI).epsilon(0.03));
+    auto [rms, mx] = sphere_error(mesh, 1.0);
+    CHECK(mx < grid.cell * 0.25);
+    CHECK(rms < grid.cell * 0.05);
+}
+
+TEST_CASE("the base does not depend on the order or duplication of ellipsoids, bit for bit") {
+    auto ellipsoids = random_ellipsoids(60, 11);
+    auto shuffled = ellipsoids;
+    shuffled.insert(shuffled.end(), ellipsoids.begin(), ellipsoids.begin() + 20);  // duplicates
+    std::mt19937 rng(5);
+    std::shuffle(shuffled.begin(), shuffled.end(), rng);
+    EllipsoidGrid g1, g2;
+    std::string error;
+    REQUIRE(rasterize_ellipsoids(ellipsoids, kUnitFrame, 48, g1, error));
+    REQUIRE(rasterize_ellipsoids(shuffled, kUnitFrame, 48, g2, error));
+    REQUIRE(g1.nodes == g2.nodes);
+    CHECK(g1.origin == g2.origin);
+    CHECK(std::memcmp(g1.value.data(), g2.value.data(), g1.value.size() * sizeof(float)) == 0);
+    Mesh m1 = to_mesh(marching_cubes(g1)), m2 = to_mesh(marching_cubes(g2));
+    CHECK(m1.positions == m2.positions);
+    CHECK(m1.triangles == m2.triangles);
+    CHECK(open_or_nonmanifold_edges(m1) == 0);
+}
+
+TEST_CASE("rasterization touches only nodes within one cell of an ellipsoid's bounding box") {
+    EllipsoidGrid grid;
+    std::string error;
+    Ellipsoid e;
+    e.center = {0, 0, 0};
+    e.radii = {0.9f, 0.1f, 0.1f};
+    e.rotation = {0.9238795f, 0, 0, 0.3826834f};  // 45 degrees about z
+    REQUIRE(rasterize_ellipsoids({e, sphere_ellipsoid({0.5f, 0.5f, 0.5f}, 0.2f)}, kUnitFrame, 40, grid, error));
+    // Every node farther than a cell outside both boxes keeps the clamp value -cell.
+    size_t checked = 0;
+    for (int k = 0; k < grid.nodes[2]; ++k)
+        for (int j = 0; j < grid.nodes[1]; ++j)
+            for (int i = 0; i < grid.nodes[0]; ++i) {
+                double p[3] = {grid.origin[0] + i * grid.cell, grid.origin[1] + j * grid.cell, grid.origin[2] + k * grid.cell};
+                bool near_needle = std::abs(p[0]) < 0.65 + 2 * grid.cell && std::abs(p[1]) < 0.65 + 2 * grid.cell &&
+                                   std::abs(p[2]) < 0.1 + 2 * grid.cell;
+                bool near_ball = std::abs(p[0] - 0.5) < 0.2 + 2 * grid.cell && std::abs(p[1] - 0.5) < 0.2 + 2 * grid.cell &&
+                                 std::abs(p[2] - 0.5) < 0.2 + 2 * grid.cell;
+                if (near_needle || near_ball) continue;
+                CHECK(grid.value[grid.index(i, j, k)] == float(-grid.cell));
+                ++checked;
+            }
+    CHECK(checked > 0);
+}
+
+TEST_CASE("an absurd grid resolution or a huge grid is refused with a clear message") {
+    EllipsoidGrid grid;
+    std::string error;
+    CHECK_FALSE(rasterize_ellipsoids({sphere_ellipsoid({0, 0, 0}, 1)}, kUnitFrame, 0, grid, error));
+    CHECK(error.find("resolution") != std::string::npos);
+    CHECK_FALSE(rasterize_ellipsoids({sphere_ellipsoid({0, 0, 0}, 1)}, kUnitFrame, 100000, grid, error));
+    Ellipsoid big = sphere_ellipsoid({0, 0, 0}, 1000);
+    CHECK_FALSE(rasterize_ellipsoids({big}, kUnitFrame, 1024, grid, error));
+    CHECK(error.find("exceed") != std::string::npos);
+}
+
+TEST_CASE("degenerate ellipsoids are skipped and counted") {
+    EllipsoidGrid grid;
+    std::string error;
+    size_t skipped = 0;
+    Ellipsoid flat = sphere_ellipsoid({0, 0, 0}, 1);
+    flat.radii[1] = 0;
+    Ellipsoid nan = sphere_ellipsoid({0, 0, 0}, 1);
+    nan.center[0] = std::nanf("");
+    REQUIRE(rasterize_ellipsoids({flat, nan}, kUnitFrame, 32, grid, error, &skipped));
+    CHECK(skipped == 2);
+    CHECK(grid.empty());
+}
+
+TEST_CASE("a fully received sphere ends as a closed mesh of original vertices only, on the sphere") {
+    auto points = fibonacci_sphere(3000, 1.0);
+    auto info = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, points.size(), kAttrNormal);
+    Mesh mesh;
+    ObjectDecodeReport report;
+    std::string error;
+    REQUIRE(decode_object(info, {sphere_ellipsoid({0, 0, 0}, 1)}, points, 0, DecodeOptions{}, 0, mesh, report, error));
+    CHECK(report.has_surface);
+    CHECK(report.complete);
+    CHECK(report.mc_vertices_left == 0);
+    std::set<std::array<float, 3>> originals;
+    for (const auto& p : points) originals.insert(p.position);
+    for (const auto& p : mesh.positions) CHECK(originals.count(p) == 1);
+    CHECK(mesh.positions.size() == points.size());
+    CHECK(open_or_nonmanifold_edges(mesh) == 0);
+    CHECK(signed_volume(mesh) > 0);
+    auto [rms, mx] = sphere_error(mesh, 1.0);
+    CHECK(rms < 0.002);  // 0.06% of the diagonal 2*sqrt(3)
+    CHECK(mx < 0.02);
+    REQUIRE(mesh.normals.size() == mesh.positions.size());
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        const auto &p = mesh.positions[i], &n = mesh.normals[i];
+        CHECK(p[0] * n[0] + p[1] * n[1] + p[2] * n[2] > 0.99f);
+    }
+}
+
+TEST_CASE("with half of the points lost the sphere is still closed and close") {
+    auto all = fibonacci_sphere(3000, 1.0);
+    std::vector<SurfacePoint> half;
+    std::mt19937 rng(9);
+    for (const auto& p : all)
+        if (rng() & 1) half.push_back(p);
+    auto info = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, all.size(), kAttrNormal);
+    Mesh mesh;
+    ObjectDecodeReport report;
+    std::string error;
+    REQUIRE(decode_object(info, {sphere_ellipsoid({0, 0, 0}, 1)}, half, 0, DecodeOptions{}, 0, mesh, report, error));
+    CHECK_FALSE(report.complete);
+    CHECK(open_or_nonmanifold_edges(mesh) == 0);
+    auto [rms, mx] = sphere_error(mesh, 1.0);
+    CHECK(rms < 0.004);
+}
+
+TEST_CASE("ellipsoids only give the closed base with geometric normals and a note-free report") {
+    auto info = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, 100, kAttrNormal | kAttrTexcoord);
+    Mesh mesh;
+    ObjectDecodeReport report;
+    std::string error;
+    REQUIRE(decode_object(info, {sphere_ellipsoid({0, 0, 0}, 1)}, {}, 0, DecodeOptions{}, 0, mesh, report, error));
+    CHECK(report.has_surface);
+    CHECK(mesh.triangles.size() == report.base_faces);
+    CHECK(open_or_nonmanifold_edges(mesh) == 0);
+    CHECK(mesh.normals.size() == mesh.positions.size());
+    CHECK(mesh.texcoords.empty());  // nothing to take them from
+}
+
+TEST_CASE("points without ellipsoids become a point set and the report says why") {
+    auto points = fibonacci_sphere(500, 1.0);
+    points.push_back(points[0]);  // a seam duplicate: one vertex
+    auto info = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 10, points.size(), kAttrNormal);
+    Mesh mesh;
+    ObjectDecodeReport report;
+    std::string error;
+    REQUIRE(decode_object(info, {}, points, 0, DecodeOptions{}, 0, mesh, report, error));
+    CHECK(mesh.is_point_set);
+    CHECK(mesh.positions.size() == 500);
+    CHECK_FALSE(report.has_surface);
+    REQUIRE(report.notes.size() == 1);
+    CHECK(report.notes[0].find("no ellipsoid") != std::string::npos);
+}
+
+TEST_CASE("identical positions are one vertex; at a seam each face corner takes the matching texcoords") {
+    auto points = seamed_uv_sphere(16, 32, 1.0);
+    std::set<std::array<float, 3>> unique;
+    for (const auto& p : points) unique.insert(p.position);
+    auto info = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, points.size(), kAttrNormal | kAttrTexcoord);
+    Mesh mesh;
+    ObjectDecodeReport report;
+    std::string error;
+    REQUIRE(decode_object(info, {sphere_ellipsoid({0, 0, 0}, 1)}, points, 0, DecodeOptions{}, 0, mesh, report, error));
+    CHECK(report.seam_merges == 15);
+    CHECK(report.mc_vertices_left == 0);
+    CHECK(open_or_nonmanifold_edges(mesh) == 0);
+    REQUIRE(mesh.texcoords.size() == mesh.positions.size());
+    // Welded by position the mesh has exactly the unique positions; split, at most the seam copies more.
+    CHECK(mesh.positions.size() >= unique.size());
+    CHECK(mesh.positions.size() <= points.size());
+    // No triangle away from the poles spans the seam (a u jump of ~1 would smear the texture).
+    size_t spanning = 0;
+    for (const auto& t : mesh.triangles) {
+        float umin = 2, umax = -1;
+        bool pole = false;
+        for (uint32_t i : t) {
+            umin = std::min(umin, mesh.texcoords[i][0]);
+            umax = std::max(umax, mesh.texcoords[i][0]);
+            pole |= std::abs(mesh.positions[i][1]) > 0.999f;
+        }
+        if (!pole && umax - umin > 0.5f) ++spanning;
+    }
+    CHECK(spanning == 0);
+}
+
+TEST_CASE("snapshots come for the base, every N points, and the end") {
+    auto points = fibonacci_sphere(1000, 1.0);
+    auto info = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, points.size(), kAttrNormal);
+    DecodeOptions options;
+    options.snapshot_every = 300;
+    std::vector<size_t> at;
+    std::vector<size_t> sizes;
+    options.snapshot = [&](size_t object, size_t n, const Mesh& m) {
+        CHECK(object == 4);
+        at.push_back(n);
+        sizes.push_back(m.triangles.size());
+    };
+    std::vector<std::string> stages;
+    options.progress = [&](const std::string& stage, double) {
+        if (stages.empty() || stages.back() != stage) stages.push_back(stage);
+    };
+    Mesh mesh;
+    ObjectDecodeReport report;
+    std::string error;
+    REQUIRE(decode_object(info, {sphere_ellipsoid({0, 0, 0}, 1)}, points, 0, options, 4, mesh, report, error));
+    CHECK(at == std::vector<size_t>{0, 300, 600, 900, 1000});
+    CHECK(sizes.back() == mesh.triangles.size());
+    CHECK(std::find(stages.begin(), stages.end(), "insert points") != stages.end());
+    CHECK(report.timings.total() > 0);
+}
+
+TEST_CASE("a stream without any STREAM_INFO packet is refused with a clear error") {
+    StreamInfo info;
+    auto object = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, 0, kAttrNormal);
+    auto packets = make_stream(object, {sphere_ellipsoid({0, 0, 0}, 1)}, fibonacci_sphere(200, 1.0), info);
+    ReceivedStream stream;
+    for (size_t i = 0; i < packets.ellipsoids.size(); ++i) stream.add_packet(packets.ellipsoids[i], i);
+    for (size_t i = 0; i < packets.points.size(); ++i) stream.add_packet(packets.points[i], 100 + i);
+    std::vector<Mesh> meshes;
+    StreamDecodeReport report;
+    std::string error;
+    CHECK_FALSE(decode_stream(stream, DecodeOptions{}, meshes, report, error));
+    CHECK(error.find("STREAM_INFO") != std::string::npos);
+}
+
+TEST_CASE("a stream with lost, duplicated, reordered and damaged packets decodes the same as its packets' content") {
+    StreamInfo info;
+    auto object = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, 0, kAttrNormal);
+    auto points = fibonacci_sphere(2000, 1.0);
+    auto packets = make_stream(object, {sphere_ellipsoid({0, 0, 0}, 1), sphere_ellipsoid({0.2f, 0, 0}, 0.7f)}, points, info);
+    std::mt19937 rng(3);
+    std::vector<std::vector<uint8_t>> sent;
+    for (auto* list : {&packets.stream_info, &packets.ellipsoids, &packets.points})
+        for (const auto& p : *list) {
+            if (list == &packets.points && rng() % 4 == 0) continue;  // a lost point packet
+            sent.push_back(p);
+            if (rng() % 5 == 0) sent.push_back(p);  // duplicated
+        }
+    auto damaged = sent.back();
+    damaged[damaged.size() / 2] ^= 0x10;
+    sent.push_back(damaged);
+    std::shuffle(sent.begin(), sent.end(), rng);
+    ReceivedStream a, b;
+    for (size_t i = 0; i < sent.size(); ++i) a.add_packet(sent[i], i);
+    std::reverse(sent.begin(), sent.end());
+    for (size_t i = 0; i < sent.size(); ++i) b.add_packet(sent[i], i);
+    CHECK(a.counters().rejected == 1);
+    std::vector<Mesh> ma, mb;
+    StreamDecodeReport ra, rb;
+    std::string error;
+    REQUIRE(decode_stream(a, DecodeOptions{}, ma, ra, error));
+    REQUIRE(decode_stream(b, DecodeOptions{}, mb, rb, error));
+    REQUIRE(ma.size() == 1);
+    REQUIRE(mb.size() == 1);
+    CHECK_FALSE(ma[0].is_point_set);
+    CHECK(ma[0].positions == mb[0].positions);
+    CHECK(ma[0].triangles == mb[0].triangles);
+    CHECK(open_or_nonmanifold_edges(ma[0]) == 0);
+    CHECK(ra.objects[0].points < points.size());
+    auto [rms, mx] = sphere_error(ma[0], 1.0);
+    CHECK(rms < 0.01);
+}

@@ -1,0 +1,145 @@
+// `ellicast decode IN.ellc -o OUT.glb|.gltf|.ply|.obj [--snapshots N] [--grid R]`: rebuild the
+// models from whatever packets a recorded stream holds.
+#include "commands.h"
+#include "progress.h"
+
+#include "ellicast/codec/decoder.h"
+#include "ellicast/converters/mesh_output.h"
+#include "ellicast/format.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+namespace ellicast::cli {
+namespace {
+
+struct DecodeArgs {
+    std::string input;
+    std::string output;
+    size_t snapshots = 0;
+    int grid = 0;
+    bool quiet = false;
+};
+
+std::string snapshot_path(const std::string& output, size_t object, size_t points) {
+    namespace fs = std::filesystem;
+    fs::path out(output);
+    char name[64];
+    std::snprintf(name, sizeof name, ".snap-o%zu-p%07zu", object, points);
+    return (out.parent_path() / (out.stem().string() + name + out.extension().string())).string();
+}
+
+int run_decode(const DecodeArgs& args) {
+    MeshFileType type;
+    if (!mesh_file_type_from_path(args.output, type))
+        return fail(kExitUsage, args.output + ": unknown output type (expected .glb, .gltf, .ply or .obj)");
+    if (output_clobbers_input(args.output, {args.input})) return kExitUsage;
+    if (type == MeshFileType::Gltf) {
+        auto bin = std::filesystem::path(args.output).replace_extension(".bin").string();
+        if (output_clobbers_input(bin, {args.input})) return kExitUsage;
+    }
+
+    auto t0 = std::chrono::steady_clock::now();
+    std::vector<uint8_t> bytes;
+    std::string message;
+    if (read_file(args.input, bytes, message) != Error::Ok) return fail(kExitFailure, message);
+    ContainerContents contents = read_container(bytes);
+    if (contents.header_error != Error::Ok)
+        return fail(kExitInvalid, args.input + ": not an ellicast container (" + error_name(contents.header_error) + ")");
+    ReceivedStream stream;
+    for (const auto& packet : contents.packets) stream.add_parsed(packet.view, packet.offset);
+    double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+    ProgressBar bar(!args.quiet);
+    DecodeOptions options;
+    options.grid_resolution = args.grid;
+    options.snapshot_every = args.snapshots;
+    options.progress = [&](const std::string& stage, double fraction) { bar.update(stage, fraction); };
+    std::string snapshot_error;
+    size_t snapshots_written = 0;
+    if (args.snapshots > 0) {
+        options.snapshot = [&](size_t object, size_t points, const Mesh& mesh) {
+            if (!snapshot_error.empty()) return;
+            Mesh named = mesh;
+            named.name = "object" + std::to_string(object);
+            std::string path = snapshot_path(args.output, object, points);
+            if (output_clobbers_input(path, {args.input})) {
+                snapshot_error = "a snapshot would overwrite the input";
+                return;
+            }
+            if (!write_meshes(path, {named}, snapshot_error)) return;
+            ++snapshots_written;
+        };
+    }
+    std::vector<Mesh> meshes;
+    StreamDecodeReport report;
+    std::string error;
+    bool ok = decode_stream(stream, options, meshes, report, error);
+    bar.finish();
+    if (!ok) return fail(kExitInvalid, args.input + ": " + error);
+    if (!snapshot_error.empty()) return fail(kExitFailure, snapshot_error);
+    if (meshes.empty())
+        return fail(kExitInvalid, args.input + ": nothing can be built: no object received any ellipsoid or point");
+
+    auto tw = std::chrono::steady_clock::now();
+    if (!write_meshes(args.output, meshes, error)) return fail(kExitFailure, error);
+    double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tw).count();
+
+    const auto& c = stream.counters();
+    uint64_t damaged_bytes = 0;
+    for (const auto& d : contents.damaged) damaged_bytes += d.length;
+    std::printf("decoded %s -> %s\n", args.input.c_str(), args.output.c_str());
+    std::printf("packets: %llu used, %llu duplicate, %llu skipped (unknown skippable type), %llu rejected, "
+                "%llu waiting for stream info; %zu damaged region(s), %llu byte(s)\n",
+                (unsigned long long)c.accepted, (unsigned long long)c.duplicates, (unsigned long long)c.skipped,
+                (unsigned long long)c.rejected, (unsigned long long)c.pending, contents.damaged.size(),
+                (unsigned long long)damaged_bytes);
+    const auto& objects = stream.objects();
+    for (size_t i = 0; i < report.objects.size(); ++i) {
+        const auto& o = report.objects[i];
+        if (!objects[i].info) {
+            std::printf("object %zu: no stream info entry arrived; skipped\n", i);
+            continue;
+        }
+        const auto& info = *objects[i].info;
+        std::printf("object %zu: %zu/%u ellipsoids, %zu/%u points -> %zu vertices, %zu faces", i, o.ellipsoids,
+                    info.ellipsoid_count, o.points, info.point_count, o.vertices_out, o.faces_out);
+        if (o.has_surface)
+            std::printf(" (base %zu vertices, %zu faces; %zu marching-cubes vertices left; %zu flips, %zu collapses)",
+                        o.base_vertices, o.base_faces, o.mc_vertices_left, o.flips, o.collapses);
+        else
+            std::printf(" (point set)");
+        std::printf("\n");
+        for (const auto& note : o.notes) std::fprintf(stderr, "ellicast: warning: object %zu: %s\n", i, note.c_str());
+    }
+    const auto& t = report.timings;
+    std::printf("time: read %.3f s, rasterize %.3f s, marching cubes %.3f s, insertion %.3f s, cleanup %.3f s, "
+                "output mesh %.3f s, write %.3f s\n",
+                read_seconds, t.rasterize, t.marching_cubes, t.insertion, t.cleanup, t.output, write_seconds);
+    if (snapshots_written > 0)
+        std::printf("snapshots: %zu written as %s\n", snapshots_written, snapshot_path(args.output, 0, 0).c_str());
+    return kExitOk;
+}
+
+const RegisterCommand kRegister{{40, [](CLI::App& app, int& exit_code) {
+    auto args = std::make_shared<DecodeArgs>();
+    auto* cmd = app.add_subcommand("decode", "Rebuild the models of a recorded stream (.ellc) from the packets it holds");
+    cmd->add_option("input", args->input, "recorded stream (.ellc)")->required();
+    cmd->add_option("-o,--output", args->output, "output model: .glb, .gltf (+ .bin), .ply or .obj")->required();
+    cmd->add_option("--snapshots", args->snapshots,
+                    "also write the reconstruction of each object as its base and after every N points "
+                    "(OUT.snap-o<object>-p<points>.<ext>)")
+        ->check(CLI::Range(size_t(1), size_t(1) << 40));
+    cmd->add_option("--grid", args->grid,
+                    "grid resolution for the base (cells along the object's frame; default: the stream's hint, "
+                    "else " + std::to_string(kDefaultGridResolution) + ")")
+        ->check(CLI::Range(kMinGridResolution, kMaxGridResolution));
+    cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
+    cmd->callback([args, &exit_code] { exit_code = run_decode(*args); });
+}}};
+
+}  // namespace
+}  // namespace ellicast::cli
