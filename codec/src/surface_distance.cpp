@@ -60,10 +60,16 @@ DirectedDistance measure(const std::vector<Mesh>& from, const TriangleTree& to, 
     size_t count = options.samples;
     if (count == 0) count = std::clamp<size_t>(10 * triangle_count(from), 100000, 2000000);
     std::vector<V3> samples = sample_surface(from, count, options.seed);
-    // Vertices count towards the maximum only (they carry no area).
+    // Vertices of triangles count towards the maximum only (they carry no area); isolated
+    // vertices are not part of the surface.
     std::vector<V3> vertices;
-    for (const auto& m : from)
-        for (const auto& p : m.positions) vertices.push_back(to_v3(p));
+    for (const auto& m : from) {
+        std::vector<char> used(m.positions.size(), 0);
+        for (const auto& t : m.triangles)
+            if (valid_triangle(m, t)) used[t[0]] = used[t[1]] = used[t[2]] = 1;
+        for (size_t i = 0; i < m.positions.size(); ++i)
+            if (used[i]) vertices.push_back(to_v3(m.positions[i]));
+    }
     unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
     threads = std::min<unsigned>(threads, 16);
     struct Partial {

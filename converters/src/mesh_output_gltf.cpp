@@ -173,7 +173,7 @@ bool write_gltf(const std::string& path, const std::vector<Mesh>& meshes, bool b
         const std::string name = mesh.name.empty() ? "object" + std::to_string(i) : mesh.name;
         roots.push_back(add_node(model, add_mesh(model, mesh, name), name));
     }
-    add_scene(model, roots);
+    if (!roots.empty()) add_scene(model, roots);  // tinygltf writes an empty scene as null
     if (!model.buffers.empty()) {
         if (binary) {
             model.buffers[0].uri.clear();  // buffer 0 with no uri goes to the GLB BIN chunk
