@@ -1,0 +1,116 @@
+// The carousel: the order in which a sender repeats a stream's packets for receivers that tune in
+// at any moment and never ask for anything.
+//
+// After Bischoff & Kobbelt: the base (every packet a receiver needs before it can show anything:
+// STREAM_INFO, ELLIPSOIDS, and any later scene/material type; in short every packet that is not
+// POINTS) is repeated between chunks of point packets, b d1 b d2 ... b dn, and the whole cycle
+// repeats. A receiver that tunes in anywhere holds a complete base after at most one chunk plus one
+// base (without loss), and every packet after at most one cycle.
+//
+// The same carousel drives the schedule file, the channel simulator and the UDP sender: slot k of a
+// transmission is cycle entry k mod cycle length, with its sequence number restamped to k so that a
+// receiver can estimate its loss from gaps.
+#pragma once
+
+#include <ellicast/format.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace ellicast::broadcast {
+
+// True for a packet a receiver needs before it can show anything: every type but POINTS.
+bool is_base_packet(const PacketHeader& header);
+
+struct CarouselOptions {
+    // POINTS packets per chunk (between two repetitions of the base); 0: derived from base_share.
+    size_t chunk_packets = 0;
+    // Wanted share of the cycle's bytes spent on the base (0 < share < 1), used when chunk_packets
+    // is 0. The chunk count is rounded, so the achieved share is close to, not exactly, this.
+    double base_share = 0.15;
+    // Restamp each transmitted packet's sequence number with its slot number (and its CRC).
+    bool restamp_sequence = true;
+};
+
+// One slot of the cycle: which input packet is sent there.
+struct CarouselEntry {
+    uint32_t packet = 0;  // index into the packet list the carousel was built from
+    bool base = false;
+    uint32_t chunk = 0;   // chunk index (0..chunk_count-1) of the base repetition or data chunk
+};
+
+struct Carousel {
+    std::vector<uint32_t> base;      // input indices of the base packets, in input order
+    std::vector<uint32_t> data;      // input indices of the POINTS packets, in input order
+    std::vector<uint32_t> sizes;     // byte size of every input packet
+    size_t chunk_packets = 0;        // POINTS packets per chunk (the last chunk may hold fewer)
+    size_t chunk_count = 0;          // n: number of base repetitions per cycle
+    std::vector<CarouselEntry> cycle;
+    std::vector<uint64_t> cycle_offsets;  // bytes of the cycle before each entry (size: cycle + 1)
+    bool restamp_sequence = true;
+
+    uint64_t base_bytes = 0;         // B: one copy of the base
+    uint64_t data_bytes = 0;         // D: every POINTS packet once
+    uint64_t cycle_bytes = 0;        // n * B + D
+    uint64_t max_chunk_bytes = 0;    // the largest chunk
+
+    // Input index of the packet sent in slot `slot` (slot 0 is the first packet the sender sends).
+    uint32_t packet_at(uint64_t slot) const { return cycle[slot % cycle.size()].packet; }
+    // Bytes sent before slot `slot` starts.
+    uint64_t bytes_before(uint64_t slot) const;
+};
+
+// Figures of a carousel, without loss unless stated.
+struct CarouselStats {
+    size_t base_packets = 0;
+    size_t data_packets = 0;
+    size_t cycle_packets = 0;
+    uint64_t base_bytes = 0;
+    uint64_t data_bytes = 0;
+    uint64_t cycle_bytes = 0;
+    // Extra bytes spent on repeating the base, relative to sending the stream once:
+    // (n - 1) B / (B + D). The paper reports about 15%.
+    double repetition_overhead = 0;
+    // Share of the cycle's bytes that are base: n B / (n B + D).
+    double base_share = 0;
+    // Worst case, over every tune-in moment, of the bytes that go by until a complete base has
+    // been received: one chunk plus one base, B + max chunk.
+    uint64_t worst_base_wait_bytes = 0;
+    // Same until every packet has been received (full quality).
+    uint64_t worst_full_wait_bytes = 0;
+    // Mean over uniformly random tune-in moments, without loss.
+    double mean_base_wait_bytes = 0;
+    double mean_full_wait_bytes = 0;
+};
+
+// Builds the carousel of `packets` (each one whole valid packet, e.g. from a container). Every
+// packet must parse; `error` names the first that does not, or an absurd option.
+bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const CarouselOptions& options,
+                    Carousel& out, std::string& error);
+
+// The bytes sent in slot `slot`: the scheduled packet, its sequence number restamped to the slot
+// (modulo 2^32) when the carousel says so.
+std::vector<uint8_t> carousel_packet(const Carousel& carousel, const std::vector<std::vector<uint8_t>>& packets,
+                                     uint64_t slot);
+
+// The no-loss figures above (exact: every tune-in moment of a cycle is examined).
+CarouselStats carousel_stats(const Carousel& carousel);
+
+// Which packets a receiver waits for.
+enum class WaitFor { Base, Everything };
+
+// Expected bytes that go by from a uniformly random tune-in moment until every packet of `what`
+// has been received at least once, when each transmitted packet is lost independently with
+// probability `loss` (0 <= loss < 1). Exact for the schedule (not an approximation of it), averaged
+// over `tune_in_samples` tune-in moments spread evenly over the cycle (0: every slot).
+double expected_wait_bytes(const Carousel& carousel, WaitFor what, double loss, size_t tune_in_samples = 0);
+
+// Slot (counted from `first_slot`, the slot at which the receiver tuned in) after which the packets
+// of `what` have all been received, given `received[k]` = whether slot first_slot + k arrived
+// intact; -1 when that never happens within received.size() slots.
+int64_t completion_slot(const Carousel& carousel, WaitFor what, uint64_t first_slot, const std::vector<bool>& received);
+
+}  // namespace ellicast::broadcast

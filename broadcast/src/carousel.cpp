@@ -1,0 +1,258 @@
+// The carousel schedule b d1 b d2 ... b dn and its figures (overhead, waits without and with loss).
+#include <ellicast/broadcast/carousel.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ellicast::broadcast {
+
+bool is_base_packet(const PacketHeader& header) { return header.type != static_cast<uint8_t>(PacketType::Points); }
+
+uint64_t Carousel::bytes_before(uint64_t slot) const {
+    if (cycle.empty()) return 0;
+    return (slot / cycle.size()) * cycle_bytes + cycle_offsets[slot % cycle.size()];
+}
+
+namespace {
+
+// Number of chunks n that brings n B / (n B + D) closest to `share`.
+size_t chunks_for_share(uint64_t base_bytes, uint64_t data_bytes, size_t data_packets, double share) {
+    if (data_packets == 0 || base_bytes == 0) return 1;
+    double n = share * static_cast<double>(data_bytes) / ((1.0 - share) * static_cast<double>(base_bytes));
+    size_t best = 1;
+    double best_error = std::numeric_limits<double>::infinity();
+    // The achieved share is monotone in n: look at the two integers around the real solution.
+    for (double candidate : {std::floor(n), std::ceil(n)}) {
+        size_t c = static_cast<size_t>(std::clamp(candidate, 1.0, static_cast<double>(data_packets)));
+        double achieved = double(c) * double(base_bytes) / (double(c) * double(base_bytes) + double(data_bytes));
+        if (std::abs(achieved - share) < best_error) {
+            best_error = std::abs(achieved - share);
+            best = c;
+        }
+    }
+    return best;
+}
+
+}  // namespace
+
+bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const CarouselOptions& options, Carousel& out,
+                    std::string& error) {
+    out = Carousel{};
+    out.restamp_sequence = options.restamp_sequence;
+    if (packets.empty()) {
+        error = "the stream holds no packet";
+        return false;
+    }
+    if (packets.size() > std::numeric_limits<uint32_t>::max()) {
+        error = "the stream holds more packets than a carousel can index";
+        return false;
+    }
+    if (options.chunk_packets == 0 && !(options.base_share > 0 && options.base_share < 1)) {
+        error = "the base share must lie strictly between 0 and 1 (got " + std::to_string(options.base_share) + ")";
+        return false;
+    }
+    for (size_t i = 0; i < packets.size(); ++i) {
+        PacketView view;
+        Error e = parse_packet(packets[i], view);
+        if (e != Error::Ok) {
+            error = "packet " + std::to_string(i) + " is not a valid ellicast packet: " + error_name(e);
+            return false;
+        }
+        out.sizes.push_back(static_cast<uint32_t>(packets[i].size()));
+        if (is_base_packet(view.header)) {
+            out.base.push_back(static_cast<uint32_t>(i));
+            out.base_bytes += packets[i].size();
+        } else {
+            out.data.push_back(static_cast<uint32_t>(i));
+            out.data_bytes += packets[i].size();
+        }
+    }
+    size_t chunks;
+    if (options.chunk_packets > 0) {
+        chunks = out.data.empty() ? 1 : (out.data.size() + options.chunk_packets - 1) / options.chunk_packets;
+    } else {
+        chunks = chunks_for_share(out.base_bytes, out.data_bytes, out.data.size(), options.base_share);
+    }
+    // Spread the points packets evenly over the chunks (sizes differ by at most one packet).
+    out.chunk_count = chunks;
+    out.chunk_packets = out.data.empty() ? 0 : (out.data.size() + chunks - 1) / chunks;
+    size_t next = 0;
+    for (size_t c = 0; c < chunks; ++c) {
+        for (uint32_t b : out.base) out.cycle.push_back({b, true, static_cast<uint32_t>(c)});
+        size_t end = out.data.size() * (c + 1) / chunks;
+        uint64_t chunk_bytes = 0;
+        for (; next < end; ++next) {
+            out.cycle.push_back({out.data[next], false, static_cast<uint32_t>(c)});
+            chunk_bytes += packets[out.data[next]].size();
+        }
+        out.max_chunk_bytes = std::max(out.max_chunk_bytes, chunk_bytes);
+    }
+    out.cycle_offsets.reserve(out.cycle.size() + 1);
+    uint64_t offset = 0;
+    for (const auto& entry : out.cycle) {
+        out.cycle_offsets.push_back(offset);
+        offset += out.sizes[entry.packet];
+    }
+    out.cycle_offsets.push_back(offset);
+    out.cycle_bytes = offset;
+    return true;
+}
+
+std::vector<uint8_t> carousel_packet(const Carousel& carousel, const std::vector<std::vector<uint8_t>>& packets,
+                                     uint64_t slot) {
+    const auto& original = packets[carousel.packet_at(slot)];
+    if (!carousel.restamp_sequence) return original;
+    PacketView view;
+    if (parse_packet(original, view) != Error::Ok) return original;  // checked by build_carousel
+    PacketHeader header = view.header;
+    header.sequence = static_cast<uint32_t>(slot);
+    return write_packet(header, view.payload);
+}
+
+namespace {
+
+// For every tune-in slot j of one cycle (the receiver gets slots j, j+1, ...), the bytes from the
+// start of slot j to the end of the slot that completes `what`, without loss. Two passes over a
+// doubled cycle suffice because every packet appears in every cycle.
+std::vector<uint64_t> lossless_waits(const Carousel& c, WaitFor what) {
+    const size_t n = c.cycle.size();
+    std::vector<uint64_t> waits(n, 0);
+    // The completion slot for start j is the latest, over needed packets p, of p's first occurrence
+    // at or after j. Sweep j backwards over a doubled cycle keeping each packet's next occurrence in
+    // a max segment tree over slots.
+    std::vector<int64_t> next_occurrence(c.sizes.size(), -1);
+    std::vector<bool> needed(c.sizes.size(), false);
+    for (uint32_t b : c.base) needed[b] = true;
+    if (what == WaitFor::Everything)
+        for (uint32_t d : c.data) needed[d] = true;
+    const size_t span = 2 * n;
+    size_t size = 1;
+    while (size < span) size <<= 1;
+    std::vector<int64_t> tree(2 * size, -1);  // max of "slot s is the next occurrence of a needed packet"
+    auto set = [&](size_t pos, int64_t value) {
+        pos += size;
+        tree[pos] = value;
+        for (pos >>= 1; pos >= 1; pos >>= 1) tree[pos] = std::max(tree[2 * pos], tree[2 * pos + 1]);
+    };
+    for (int64_t j = static_cast<int64_t>(span) - 1; j >= 0; --j) {
+        uint32_t p = c.cycle[static_cast<size_t>(j) % n].packet;
+        if (needed[p]) {
+            if (next_occurrence[p] >= 0) set(static_cast<size_t>(next_occurrence[p]), -1);
+            next_occurrence[p] = j;
+            set(static_cast<size_t>(j), j);
+        }
+        if (j < static_cast<int64_t>(n)) {
+            int64_t last = tree[1];
+            uint64_t end = (static_cast<uint64_t>(last) / n) * c.cycle_bytes + c.cycle_offsets[last % n + 1];
+            waits[static_cast<size_t>(j)] = end - c.cycle_offsets[static_cast<size_t>(j)];
+        }
+    }
+    return waits;
+}
+
+}  // namespace
+
+CarouselStats carousel_stats(const Carousel& c) {
+    CarouselStats s;
+    s.base_packets = c.base.size();
+    s.data_packets = c.data.size();
+    s.cycle_packets = c.cycle.size();
+    s.base_bytes = c.base_bytes;
+    s.data_bytes = c.data_bytes;
+    s.cycle_bytes = c.cycle_bytes;
+    if (c.cycle.empty()) return s;
+    double once = double(c.base_bytes + c.data_bytes);
+    s.repetition_overhead = double(c.cycle_bytes) / once - 1.0;
+    s.base_share = double(c.chunk_count * c.base_bytes) / double(c.cycle_bytes);
+    const size_t n = c.cycle.size();
+    for (WaitFor what : {WaitFor::Base, WaitFor::Everything}) {
+        auto waits = lossless_waits(c, what);
+        // Tuning in during slot j (at offset u into it) loses slot j: the wait is the remaining
+        // (size_j - u) plus the wait from slot j + 1.
+        uint64_t worst = 0;
+        double mean = 0;
+        for (size_t j = 0; j < n; ++j) {
+            uint64_t size = c.sizes[c.cycle[j].packet];
+            uint64_t from_next = waits[(j + 1) % n];
+            worst = std::max(worst, size + from_next);
+            mean += double(size) * (double(from_next) + double(size) / 2.0);
+        }
+        mean /= double(c.cycle_bytes);
+        if (what == WaitFor::Base) {
+            s.worst_base_wait_bytes = worst;
+            s.mean_base_wait_bytes = mean;
+        } else {
+            s.worst_full_wait_bytes = worst;
+            s.mean_full_wait_bytes = mean;
+        }
+    }
+    return s;
+}
+
+double expected_wait_bytes(const Carousel& c, WaitFor what, double loss, size_t tune_in_samples) {
+    const size_t n = c.cycle.size();
+    if (n == 0) return 0;
+    if (!(loss >= 0) || loss >= 1) return std::numeric_limits<double>::infinity();
+    std::vector<bool> needed(c.sizes.size(), false);
+    size_t needed_count = 0;
+    for (uint32_t b : c.base) needed[b] = true, ++needed_count;
+    if (what == WaitFor::Everything)
+        for (uint32_t d : c.data) needed[d] = true, ++needed_count;
+    size_t samples = tune_in_samples == 0 ? n : std::min(n, tune_in_samples);
+    const double log_loss = loss > 0 ? std::log(loss) : -std::numeric_limits<double>::infinity();
+    // Stop once the chance of not being done is negligible, or after a bounded horizon.
+    const double epsilon = 1e-12;
+    const uint64_t max_slots = static_cast<uint64_t>(n) * 2000;
+    std::vector<uint32_t> seen(c.sizes.size());
+    double total = 0, weight_total = 0;
+    for (size_t s = 0; s < samples; ++s) {
+        size_t j = samples == n ? s : (s * n) / samples;
+        // Tune in during slot j: slot j is missed, reception starts at slot j + 1.
+        double size_j = c.sizes[c.cycle[j].packet];
+        std::fill(seen.begin(), seen.end(), 0);
+        size_t missing = needed_count;
+        double log_done = 0;  // sum over needed p of log(1 - loss^seen[p]) over seen packets
+        double expected = 0;
+        for (uint64_t k = 0; k < max_slots; ++k) {
+            uint64_t slot = j + 1 + k;
+            uint32_t p = c.cycle[slot % n].packet;
+            double size = c.sizes[p];
+            double p_done_before = missing == 0 ? std::exp(log_done) : 0.0;
+            expected += size * (1.0 - p_done_before);
+            if (needed[p]) {
+                if (seen[p] == 0) {
+                    --missing;
+                } else {
+                    log_done -= std::log1p(-std::exp(log_loss * seen[p]));
+                }
+                ++seen[p];
+                log_done += loss > 0 ? std::log1p(-std::exp(log_loss * seen[p])) : 0.0;
+            }
+            if (missing == 0 && 1.0 - std::exp(log_done) < epsilon) break;
+        }
+        total += size_j * (expected + size_j / 2.0);
+        weight_total += size_j;
+    }
+    return total / weight_total;
+}
+
+int64_t completion_slot(const Carousel& c, WaitFor what, uint64_t first_slot, const std::vector<bool>& received) {
+    if (c.cycle.empty()) return -1;
+    std::vector<bool> needed(c.sizes.size(), false), have(c.sizes.size(), false);
+    size_t missing = 0;
+    for (uint32_t b : c.base) needed[b] = true, ++missing;
+    if (what == WaitFor::Everything)
+        for (uint32_t d : c.data) needed[d] = true, ++missing;
+    for (size_t k = 0; k < received.size(); ++k) {
+        if (!received[k]) continue;
+        uint32_t p = c.packet_at(first_slot + k);
+        if (needed[p] && !have[p]) {
+            have[p] = true;
+            if (--missing == 0) return static_cast<int64_t>(k);
+        }
+    }
+    return -1;
+}
+
+}  // namespace ellicast::broadcast
