@@ -101,13 +101,9 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
 
 std::vector<uint8_t> carousel_packet(const Carousel& carousel, const std::vector<std::vector<uint8_t>>& packets,
                                      uint64_t slot) {
-    const auto& original = packets[carousel.packet_at(slot)];
-    if (!carousel.restamp_sequence) return original;
-    PacketView view;
-    if (parse_packet(original, view) != Error::Ok) return original;  // checked by build_carousel
-    PacketHeader header = view.header;
-    header.sequence = static_cast<uint32_t>(slot);
-    return write_packet(header, view.payload);
+    std::vector<uint8_t> bytes = packets[carousel.packet_at(slot)];
+    if (carousel.restamp_sequence) restamp_packet(bytes, static_cast<uint32_t>(slot));  // valid: checked when built
+    return bytes;
 }
 
 namespace {

@@ -5,7 +5,8 @@
 // STREAM_INFO, ELLIPSOIDS, and any later scene/material type; in short every packet that is not
 // POINTS) is repeated between chunks of point packets, b d1 b d2 ... b dn, and the whole cycle
 // repeats. A receiver that tunes in anywhere holds a complete base after at most one chunk plus one
-// base (without loss), and every packet after at most one cycle.
+// base (without loss; counted from the first whole packet received), and every packet after at
+// most one cycle.
 //
 // The same carousel drives the schedule file, the channel simulator and the UDP sender: slot k of a
 // transmission is cycle entry k mod cycle length, with its sequence number restamped to k so that a
@@ -77,7 +78,9 @@ struct CarouselStats {
     // Share of the cycle's bytes that are base: n B / (n B + D).
     double base_share = 0;
     // Worst case, over every tune-in moment, of the bytes that go by until a complete base has
-    // been received: one chunk plus one base, B + max chunk.
+    // been received: one chunk plus one base plus the packet cut by the tune-in (tuning in just
+    // after the base's largest packet started: the rest of the base, a chunk, the base again up
+    // to that packet), B + max chunk + max base packet.
     uint64_t worst_base_wait_bytes = 0;
     // Same until every packet has been received (full quality).
     uint64_t worst_full_wait_bytes = 0;
