@@ -165,7 +165,7 @@ void print_carousel(std::FILE* out, const broadcast::Carousel& c, double bits_pe
     std::fprintf(out, "base share of the bandwidth: %.1f%%\n", s.base_share * 100);
     std::fprintf(out, "repetition overhead: %.1f%% more bytes than sending the stream once (the paper: about 15%%)\n",
                  s.repetition_overhead * 100);
-    std::fprintf(out, "worst-case wait for a complete base after tune-in: %s bytes (one chunk + one base)%s\n",
+    std::fprintf(out, "worst-case wait for a complete base after tune-in: %s bytes (one chunk + one base + one packet)%s\n",
                  with_commas(s.worst_base_wait_bytes).c_str(), at_rate(double(s.worst_base_wait_bytes)).c_str());
     std::fprintf(out, "mean wait for a complete base (no loss): %s bytes%s\n",
                  with_commas(static_cast<uint64_t>(s.mean_base_wait_bytes)).c_str(),

@@ -1,0 +1,238 @@
+// `ellicast receive --from ADDRESS:PORT -o OUT`: joins a broadcast at any moment, keeps the
+// ellicast packets of one stream (counting and dropping everything else), shows progress on stderr,
+// writes snapshots, and stops when the stream is complete or at the deadline.
+#include "broadcast_cli.h"
+#include "commands.h"
+
+#include <ellicast/broadcast/reception.h>
+#include <ellicast/broadcast/udp.h>
+#include <ellicast/format.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+namespace ellicast::cli {
+namespace {
+
+std::atomic<bool> g_stop{false};
+void on_receive_interrupt(int) { g_stop.store(true); }
+
+struct ReceiveArgs {
+    std::string from;
+    std::string output;
+    std::string snapshots;
+    std::string until = "complete";
+    std::string interface;
+    int64_t stream_id = -1;
+    bool quiet = false;
+};
+
+// A moment at which to write a snapshot: when the base is complete, at a share of the points, or
+// at a time after tune-in.
+struct Snapshot {
+    enum Kind { Base, Points, Seconds } kind;
+    double value = 0;
+    std::string label;
+    bool done = false;
+};
+
+bool parse_snapshots(const std::string& text, std::vector<Snapshot>& out, std::string& error) {
+    std::stringstream items(text);
+    std::string item;
+    while (std::getline(items, item, ',')) {
+        if (item.empty()) continue;
+        Snapshot s{Snapshot::Base, 0, "", false};
+        try {
+            if (item == "base") {
+                s.kind = Snapshot::Base;
+                s.label = "base";
+            } else if (item.back() == '%') {
+                s.kind = Snapshot::Points;
+                size_t used = 0;
+                s.value = std::stod(item.substr(0, item.size() - 1), &used);
+                if (used != item.size() - 1 || !(s.value > 0 && s.value <= 100)) throw std::invalid_argument("range");
+                s.label = item.substr(0, item.size() - 1) + "pct";
+            } else if (item.back() == 's') {
+                s.kind = Snapshot::Seconds;
+                size_t used = 0;
+                s.value = std::stod(item.substr(0, item.size() - 1), &used);
+                if (used != item.size() - 1 || !(s.value > 0 && s.value < 1e7)) throw std::invalid_argument("range");
+                s.label = item;
+            } else {
+                throw std::invalid_argument("kind");
+            }
+        } catch (const std::exception&) {
+            error = "--snapshots: \"" + item + "\" is not \"base\", a share of the points like \"50%\", or a time like \"2.5s\"";
+            return false;
+        }
+        out.push_back(s);
+        if (out.size() > 1000) {
+            error = "--snapshots: at most 1000 snapshots";
+            return false;
+        }
+    }
+    return true;
+}
+
+std::string snapshot_path(const std::string& output, const std::string& label) {
+    std::filesystem::path p(output);
+    return (p.parent_path() / (p.stem().string() + "-" + label + p.extension().string())).string();
+}
+
+// Writes what has been received so far: the packets that brought new content, as a stream file.
+bool write_received(const std::string& path, const std::vector<std::vector<uint8_t>>& kept, std::string& error) {
+    std::string message;
+    if (write_file(path, write_container(kept), message) != Error::Ok) {
+        error = "cannot write " + path + ": " + message;
+        return false;
+    }
+    return true;
+}
+
+int run_receive(const ReceiveArgs& a) {
+    double deadline_seconds = -1;
+    if (a.until != "complete") {
+        try {
+            size_t used = 0;
+            deadline_seconds = std::stod(a.until, &used);
+            if (used != a.until.size() || !(deadline_seconds > 0)) throw std::invalid_argument("x");
+        } catch (const std::exception&) {
+            return fail(kExitUsage, "--until: \"" + a.until + "\" is neither \"complete\" nor a number of seconds");
+        }
+    }
+    std::vector<Snapshot> snapshots;
+    std::string error;
+    if (!parse_snapshots(a.snapshots, snapshots, error)) return fail(kExitUsage, error);
+    std::string extension = std::filesystem::path(a.output).extension().string();
+    if (extension != ".ellc")
+        return fail(kExitUsage, "-o: \"" + a.output + "\": this build writes what it received as a stream file (.ellc)");
+    broadcast::Endpoint from;
+    if (!broadcast::parse_endpoint(a.from, from, error)) return fail(kExitUsage, "--from: " + error);
+    broadcast::ReceiverOptions receiver_options;
+    receiver_options.interface = a.interface;
+    broadcast::UdpReceiver receiver;
+    if (!receiver.open(from, receiver_options, error)) return fail(kExitFailure, error);
+
+    broadcast::Reception::Options reception_options;
+    if (a.stream_id >= 0) reception_options.stream_id = static_cast<uint32_t>(a.stream_id);
+    broadcast::Reception reception(reception_options);
+    std::vector<std::vector<uint8_t>> kept;  // packets that brought new content, bounded by the stream's sizes
+    std::vector<uint8_t> buffer(kMaxPacketSize + 1);
+
+    std::signal(SIGINT, on_receive_interrupt);
+    std::signal(SIGTERM, on_receive_interrupt);
+    const bool tty = isatty(fileno(stderr)) != 0;
+    const auto start = std::chrono::steady_clock::now();
+    auto seconds_since = [&](std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double>(t - start).count();
+    };
+    double first_packet_at = -1, base_at = -1, complete_at = -1;
+    auto last_progress = start;
+    auto print_progress = [&](bool final_line) {
+        if (a.quiet) return;
+        const auto& c = reception.counters();
+        uint64_t declared = reception.points_declared();
+        std::fprintf(stderr,
+                     "%s%.1f s: %s packets received, %s rejected (%s damaged, %s not ellicast, %s other stream, %s "
+                     "oversized), est. loss %.1f%%, base %s, points %s/%s%s",
+                     tty && !final_line ? "\r" : "", seconds_since(std::chrono::steady_clock::now()),
+                     with_commas(c.accepted + c.duplicates).c_str(), with_commas(c.rejected()).c_str(),
+                     with_commas(c.damaged).c_str(), with_commas(c.not_ellicast).c_str(),
+                     with_commas(c.other_stream).c_str(), with_commas(c.oversized).c_str(),
+                     100.0 * reception.loss().loss(), reception.base_complete() ? "complete" : "incomplete",
+                     with_commas(reception.points_received()).c_str(), declared ? with_commas(declared).c_str() : "?",
+                     tty && !final_line ? "  " : "\n");
+        std::fflush(stderr);
+    };
+    auto take_snapshot = [&](Snapshot& s) {
+        s.done = true;
+        std::string path = snapshot_path(a.output, s.label);
+        std::string e;
+        if (write_received(path, kept, e))
+            std::fprintf(stderr, "%swrote snapshot %s (%s points)\n", tty && !a.quiet ? "\n" : "", path.c_str(),
+                         with_commas(reception.points_received()).c_str());
+        else
+            std::cerr << "ellicast: warning: " << e << "\n";
+    };
+
+    while (!g_stop.load()) {
+        auto now = std::chrono::steady_clock::now();
+        double elapsed = seconds_since(now);
+        if (deadline_seconds > 0 && elapsed >= deadline_seconds) break;
+        double wait = 0.2;
+        if (deadline_seconds > 0) wait = std::min(wait, deadline_seconds - elapsed);
+        broadcast::Datagram datagram;
+        int got = receiver.receive(buffer, std::chrono::milliseconds(static_cast<int64_t>(wait * 1000) + 1), datagram,
+                                   error);
+        if (got < 0) return fail(kExitFailure, error);
+        if (got == 1) {
+            uint64_t accepted_before = reception.counters().accepted;
+            std::span<const uint8_t> bytes(buffer.data(), datagram.size);
+            if (reception.take(bytes, datagram.truncated) == Error::Ok) {
+                if (first_packet_at < 0) first_packet_at = seconds_since(std::chrono::steady_clock::now());
+                if (reception.counters().accepted > accepted_before) kept.emplace_back(bytes.begin(), bytes.end());
+            }
+        }
+        now = std::chrono::steady_clock::now();
+        if (base_at < 0 && reception.base_complete()) base_at = seconds_since(now);
+        const double share = reception.points_declared()
+                                 ? 100.0 * double(reception.points_received()) / double(reception.points_declared())
+                                 : 0.0;
+        for (auto& s : snapshots) {
+            if (s.done) continue;
+            if ((s.kind == Snapshot::Base && base_at >= 0) ||
+                (s.kind == Snapshot::Points && reception.base_complete() && share >= s.value) ||
+                (s.kind == Snapshot::Seconds && seconds_since(now) >= s.value && reception.base_complete()))
+                take_snapshot(s);
+        }
+        if (reception.complete()) {
+            complete_at = seconds_since(now);
+            break;
+        }
+        if (now - last_progress > std::chrono::milliseconds(tty ? 250 : 5000)) {
+            print_progress(false);
+            last_progress = now;
+        }
+    }
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    if (tty && !a.quiet) std::fprintf(stderr, "\n");
+    print_progress(true);
+    if (first_packet_at < 0)
+        return fail(kExitFailure, "no packet of an ellicast stream arrived on " + a.from + " (" +
+                                      with_commas(reception.counters().datagrams) + " datagrams dropped)");
+    for (auto& s : snapshots)
+        if (!s.done && reception.base_complete()) take_snapshot(s);
+    if (!write_received(a.output, kept, error)) return fail(kExitFailure, error);
+    std::fprintf(stderr, "first packet after %s; base %s; everything %s\n", seconds_text(first_packet_at).c_str(),
+                 base_at >= 0 ? ("complete after " + seconds_text(base_at)).c_str() : "incomplete",
+                 complete_at >= 0 ? ("complete after " + seconds_text(complete_at)).c_str()
+                                  : (g_stop.load() ? "not complete (interrupted)" : "not complete at the deadline"));
+    std::fprintf(stderr, "wrote %s: %s packets\n", a.output.c_str(), with_commas(kept.size()).c_str());
+    return kExitOk;
+}
+
+const RegisterCommand registered{{63, [](CLI::App& app, int& exit_code) {
+    auto args = std::make_shared<ReceiveArgs>();
+    auto* cmd = app.add_subcommand("receive", "join a UDP broadcast at any moment and rebuild the stream it carries");
+    cmd->add_option("--from", args->from,
+                    "ADDRESS:PORT to listen on: a local address (127.0.0.1:5000, [::]:5000) or a multicast group")
+        ->required();
+    cmd->add_option("-o,--output", args->output, "what was received: a stream file (.ellc)")->required();
+    cmd->add_option("--snapshots", args->snapshots,
+                    "comma-separated moments to write OUT-<moment> too: base, a share of the points (50%), a time (2.5s)");
+    cmd->add_option("--until", args->until, "stop when \"complete\" (default) or after this many seconds");
+    cmd->add_option("--interface", args->interface, "network interface to join a multicast group on, e.g. lo");
+    cmd->add_option("--stream-id", args->stream_id, "keep only this stream id (default: the first stream heard)")
+        ->check(CLI::Range(int64_t(0), int64_t(0xFFFFFFFF)));
+    cmd->add_flag("-q,--quiet", args->quiet, "no progress on stderr");
+    cmd->callback([args, &exit_code] { exit_code = run_receive(*args); });
+}}};
+
+}  // namespace
+}  // namespace ellicast::cli
