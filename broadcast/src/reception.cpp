@@ -104,6 +104,13 @@ bool Reception::base_complete() const {
         if (object.info->kind == ObjectKind::Surface && object.ellipsoids.size() < object.info->ellipsoid_count)
             return false;
     }
+    // Format 1.1: the scene tables and the materials travel with the base.
+    if (stream_.has_scene()) {
+        if (stream_.scene_nodes().size() < stream_.scene_node_count()) return false;
+        if (stream_.scene_meshes().size() < stream_.scene_mesh_count()) return false;
+    }
+    const auto& materials = stream_.materials();
+    if (!materials.empty() && materials.size() < materials.begin()->second.material_count) return false;
     return true;
 }
 
@@ -111,6 +118,10 @@ bool Reception::complete() const {
     if (!base_complete()) return false;
     for (const auto& object : stream_.objects())
         if (object.points.size() < object.info->point_count) return false;
+    const auto& textures = stream_.textures();
+    if (!textures.empty() && textures.size() < textures.begin()->second.info.texture_count) return false;
+    for (const auto& [index, texture] : textures)
+        if (!texture.complete) return false;
     return true;
 }
 

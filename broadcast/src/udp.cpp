@@ -193,7 +193,15 @@ bool UdpReceiver::open(const Endpoint& listen, const ReceiverOptions& options, s
     int buffer = options.receive_buffer_bytes;
     setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &buffer, sizeof buffer);
     if (listen.ipv6()) setsockopt(fd_, IPPROTO_IPV6, IPV6_V6ONLY, &yes, sizeof yes);
-    if (::bind(fd_, reinterpret_cast<const sockaddr*>(&listen.address), listen.length) != 0) {
+    // IPv6 multicast: bind the wildcard address on the group's port (binding a scoped group address
+    // needs a scope id the user rarely gives); the membership then selects the group.
+    sockaddr_storage bind_address = listen.address;
+    if (listen.ipv6() && listen.multicast()) {
+        auto* a = reinterpret_cast<sockaddr_in6*>(&bind_address);
+        a->sin6_addr = in6addr_any;
+        a->sin6_scope_id = 0;
+    }
+    if (::bind(fd_, reinterpret_cast<const sockaddr*>(&bind_address), listen.length) != 0) {
         error = system_error("cannot listen on " + listen.text);
         close();
         return false;

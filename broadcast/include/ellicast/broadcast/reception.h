@@ -67,10 +67,10 @@ public:
     const ReceptionCounters& counters() const { return counters_; }
     const LossEstimator& loss() const { return loss_; }
 
-    // Every STREAM_INFO entry and every ellipsoid of every surface object has arrived: a receiver
-    // can show the base mesh.
+    // Every STREAM_INFO entry, every ellipsoid of every surface object, and (format 1.1) the
+    // whole scene graph and every material have arrived: a receiver can show the base mesh.
     bool base_complete() const;
-    // Everything the stream declares has arrived: full quality.
+    // Everything the stream declares has arrived (every point, every texture): full quality.
     bool complete() const;
     // Points received / declared over all objects (declared is 0 before the stream info).
     uint64_t points_received() const;
