@@ -1,5 +1,6 @@
 // Shared pieces of the broadcast commands.
 #include "broadcast_cli.h"
+#include "commands.h"
 
 #include <ellicast/format.h>
 
@@ -35,6 +36,16 @@ bool load_stream_packets(const std::string& path, std::vector<std::vector<uint8_
         return false;
     }
     return true;
+}
+
+int load_carousel(const std::string& path, const CarouselCli& options, std::vector<std::vector<uint8_t>>& packets,
+                  broadcast::Carousel& carousel) {
+    std::string error;
+    std::vector<std::string> warnings;
+    if (!load_stream_packets(path, packets, error, warnings)) return fail(kExitFailure, error);
+    for (const auto& w : warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
+    if (!broadcast::build_carousel(packets, options.options(), carousel, error)) return fail(kExitInvalid, path + ": " + error);
+    return kExitOk;
 }
 
 void CarouselCli::add(CLI::App* app) {

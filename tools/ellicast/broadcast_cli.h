@@ -20,6 +20,13 @@ namespace ellicast::cli {
 bool load_stream_packets(const std::string& path, std::vector<std::vector<uint8_t>>& packets, std::string& error,
                          std::vector<std::string>& warnings);
 
+struct CarouselCli;
+
+// Loads a stream file (warnings for damaged regions on stderr) and builds its carousel. Returns
+// kExitOk, or the exit code after printing the error.
+int load_carousel(const std::string& path, const CarouselCli& options, std::vector<std::vector<uint8_t>>& packets,
+                  broadcast::Carousel& carousel);
+
 struct CarouselCli {
     size_t chunk = 0;
     double base_share = 0.15;

@@ -22,13 +22,9 @@ struct ScheduleArgs {
 int run_schedule(const ScheduleArgs& a) {
     if (output_clobbers_input(a.output, {a.input})) return kExitUsage;
     std::vector<std::vector<uint8_t>> packets;
-    std::string error;
-    std::vector<std::string> warnings;
-    if (!load_stream_packets(a.input, packets, error, warnings)) return fail(kExitFailure, error);
-    for (const auto& w : warnings) std::cerr << "ellicast: warning: " << w << "\n";
     broadcast::Carousel carousel;
-    if (!broadcast::build_carousel(packets, a.carousel.options(), carousel, error))
-        return fail(kExitInvalid, a.input + ": " + error);
+    if (int code = load_carousel(a.input, a.carousel, packets, carousel); code != kExitOk) return code;
+    std::string error;
     const uint64_t slots = static_cast<uint64_t>(std::ceil(a.cycles * double(carousel.cycle.size())));
     // A schedule file is a recording of what the sender sends: bound it like any output.
     const uint64_t bytes = static_cast<uint64_t>(std::ceil(a.cycles * double(carousel.cycle_bytes)));

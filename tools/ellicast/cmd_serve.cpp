@@ -31,13 +31,9 @@ struct ServeArgs {
 
 int run_serve(const ServeArgs& a) {
     std::vector<std::vector<uint8_t>> packets;
-    std::string error;
-    std::vector<std::string> warnings;
-    if (!load_stream_packets(a.input, packets, error, warnings)) return fail(kExitFailure, error);
-    for (const auto& w : warnings) std::cerr << "ellicast: warning: " << w << "\n";
     broadcast::Carousel carousel;
-    if (!broadcast::build_carousel(packets, a.carousel.options(), carousel, error))
-        return fail(kExitInvalid, a.input + ": " + error);
+    if (int code = load_carousel(a.input, a.carousel, packets, carousel); code != kExitOk) return code;
+    std::string error;
     broadcast::Endpoint to;
     if (!broadcast::parse_endpoint(a.to, to, error)) return fail(kExitUsage, "--to: " + error);
     if (to.port() == 0) return fail(kExitUsage, "--to: port 0 is not a destination");

@@ -27,13 +27,9 @@ int run_simulate(const SimulateArgs& a) {
     if (output_clobbers_input(a.output, {a.input})) return kExitUsage;
     if (!a.channel.trace_out.empty() && output_clobbers_input(a.channel.trace_out, {a.input})) return kExitUsage;
     std::vector<std::vector<uint8_t>> packets;
-    std::string error;
-    std::vector<std::string> warnings;
-    if (!load_stream_packets(a.input, packets, error, warnings)) return fail(kExitFailure, error);
-    for (const auto& w : warnings) std::cerr << "ellicast: warning: " << w << "\n";
     broadcast::Carousel carousel;
-    if (!broadcast::build_carousel(packets, a.carousel.options(), carousel, error))
-        return fail(kExitInvalid, a.input + ": " + error);
+    if (int code = load_carousel(a.input, a.carousel, packets, carousel); code != kExitOk) return code;
+    std::string error;
     const uint64_t slots = static_cast<uint64_t>(std::ceil(a.cycles * double(carousel.cycle.size())));
     if (slots > broadcast::kMaxTraceSlots)
         return fail(kExitUsage, "--cycles " + std::to_string(a.cycles) + " means " + with_commas(slots) +
