@@ -169,3 +169,29 @@ TEST_CASE("a carousel refuses an empty stream, a damaged packet and an absurd sh
     CHECK_FALSE(build_carousel(packets, bad, c, error));
     CHECK(error.find("share") != std::string::npos);
 }
+
+TEST_CASE("ellicast schedule writes the carousel cycles in the order the sender sends them") {
+    auto dir = test::scratch_dir("schedule-cli");
+    auto packets = test::synthetic_stream(120, 4000);
+    test::write_stream_file(dir / "in.ellc", packets);
+    REQUIRE(test::run_ellicast({"schedule", (dir / "in.ellc").string(), "-o", (dir / "cycle.ellc").string(), "--chunk",
+                                "6", "--cycles", "2", "--rate", "1000000"},
+                               dir / "log.txt") == 0);
+    std::string log = test::read_text(dir / "log.txt");
+    CHECK(log.find("repetition overhead") != std::string::npos);
+    CHECK(log.find("worst-case wait for a complete base") != std::string::npos);
+    auto written = test::read_stream_file(dir / "cycle.ellc");
+    CarouselOptions options;
+    options.chunk_packets = 6;
+    Carousel c;
+    std::string error;
+    REQUIRE(build_carousel(packets, options, c, error));
+    REQUIRE(written.size() == 2 * c.cycle.size());
+    for (size_t k = 0; k < written.size(); ++k) CHECK(written[k] == carousel_packet(c, packets, k));
+    // Refuses to overwrite its input, and a file that is not a stream.
+    CHECK(test::run_ellicast({"schedule", (dir / "in.ellc").string(), "-o", (dir / "in.ellc").string()},
+                             dir / "log2.txt") == 2);
+    CHECK(test::run_ellicast({"schedule", (dir / "log.txt").string(), "-o", (dir / "x.ellc").string()},
+                             dir / "log3.txt") == 3);
+    CHECK(test::read_text(dir / "log3.txt").find("not an ellicast") != std::string::npos);
+}

@@ -213,3 +213,41 @@ TEST_CASE("an impossible channel model is refused with what is wrong") {
     m = ChannelModel{};
     CHECK_FALSE(generate_trace(m, kMaxTraceSlots + 1, 1200, t, error));
 }
+
+TEST_CASE("ellicast simulate gives the same losses for the same seed and for the trace it wrote") {
+    auto dir = test::scratch_dir("simulate-cli");
+    auto packets = test::synthetic_stream(200, 8000);
+    test::write_stream_file(dir / "in.ellc", packets);
+    auto simulate = [&](const std::string& out, std::vector<std::string> extra) {
+        std::vector<std::string> args = {"simulate", (dir / "in.ellc").string(), "-o", (dir / out).string(),
+                                         "--cycles", "1.5", "--tune-in", "17"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return test::run_ellicast(args, dir / (out + ".log"));
+    };
+    REQUIRE(simulate("a.ellc", {"--loss", "0.2", "--burst", "4", "--duplicate", "0.05", "--reorder", "0.1",
+                                "--bit-errors", "1e-5", "--seed", "99", "--trace-out", (dir / "t.trace").string()}) == 0);
+    REQUIRE(simulate("b.ellc", {"--loss", "0.2", "--burst", "4", "--duplicate", "0.05", "--reorder", "0.1",
+                                "--bit-errors", "1e-5", "--seed", "99"}) == 0);
+    REQUIRE(simulate("c.ellc", {"--trace-in", (dir / "t.trace").string()}) == 0);
+    REQUIRE(simulate("d.ellc", {"--loss", "0.2", "--burst", "4", "--seed", "100"}) == 0);
+    auto a = test::read_stream_file(dir / "a.ellc");  // also checks: no damaged packet was written
+    CHECK(a == test::read_stream_file(dir / "b.ellc"));
+    CHECK(a == test::read_stream_file(dir / "c.ellc"));
+    CHECK(a != test::read_stream_file(dir / "d.ellc"));
+    std::string log = test::read_text(dir / "a.ellc.log");
+    CHECK(log.find("base complete") != std::string::npos);
+    CHECK(log.find("estimated loss") != std::string::npos);
+    // Without loss, one cycle from slot 0 is exactly the schedule.
+    REQUIRE(simulate("clean.ellc", {"--tune-in", "0", "--cycles", "1"}) != 0);  // --tune-in given twice
+    REQUIRE(test::run_ellicast({"simulate", (dir / "in.ellc").string(), "-o", (dir / "clean.ellc").string()},
+                               dir / "clean.log") == 0);
+    REQUIRE(test::run_ellicast({"schedule", (dir / "in.ellc").string(), "-o", (dir / "cycle.ellc").string()},
+                               dir / "cycle.log") == 0);
+    CHECK(test::read_stream_file(dir / "clean.ellc") == test::read_stream_file(dir / "cycle.ellc"));
+    // Absurd options are refused.
+    CHECK(test::run_ellicast({"simulate", (dir / "in.ellc").string(), "-o", (dir / "x.ellc").string(), "--loss", "2"},
+                             dir / "x.log") == 2);
+    CHECK(test::run_ellicast({"simulate", (dir / "in.ellc").string(), "-o", (dir / "x.ellc").string(), "--cycles",
+                              "900000"},
+                             dir / "y.log") == 2);
+}

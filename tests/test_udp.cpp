@@ -290,3 +290,78 @@ TEST_CASE("the pacer holds the sender to its rate") {
     double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     CHECK(elapsed >= 0.099);
 }
+
+TEST_CASE("ellicast serve sends exactly the packets of ellicast schedule, in the same order") {
+    auto dir = test::scratch_dir("serve-cli-order");
+    auto packets = test::synthetic_stream(80, 3000, 0x1234);
+    test::write_stream_file(dir / "in.ellc", packets);
+    REQUIRE(test::run_ellicast({"schedule", (dir / "in.ellc").string(), "-o", (dir / "cycle.ellc").string(), "--chunk",
+                                "5", "--cycles", "2"},
+                               dir / "schedule.log") == 0);
+    auto scheduled = test::read_stream_file(dir / "cycle.ellc");
+    UdpReceiver receiver;
+    std::string error;
+    REQUIRE(receiver.open(endpoint("127.0.0.1:0"), ReceiverOptions{}, error));
+    test::Child serve({"serve", (dir / "in.ellc").string(), "--to", "127.0.0.1:" + std::to_string(receiver.local_port()),
+                       "--rate", "5000000", "--chunk", "5", "--cycles", "2"},
+                      dir / "serve.log");
+    std::vector<std::vector<uint8_t>> got;
+    std::vector<uint8_t> buffer(kMaxPacketSize + 1);
+    const auto deadline = Clock::now() + std::chrono::seconds(15);
+    while (got.size() < scheduled.size() && Clock::now() < deadline) {
+        Datagram d;
+        if (receiver.receive(buffer, std::chrono::milliseconds(50), d, error) == 1)
+            got.emplace_back(buffer.begin(), buffer.begin() + d.size);
+    }
+    CHECK(serve.wait(std::chrono::seconds(15)) == 0);
+    CHECK(got == scheduled);
+    CHECK(test::read_text(dir / "serve.log").find("worst-case wait for a complete base") != std::string::npos);
+}
+
+TEST_CASE("ellicast receive joins a multicast broadcast from ellicast serve with loss and stops when complete") {
+    auto dir = test::scratch_dir("receive-cli");
+    auto packets = test::synthetic_stream(200, 9000, 0x4321);
+    test::write_stream_file(dir / "in.ellc", packets);
+    const std::string group = "239.255.61.8:" + std::to_string(test_port(2));
+    test::Child receive({"receive", "--from", group, "--interface", "lo", "-o", (dir / "out.ellc").string(),
+                         "--snapshots", "base,50%", "--until", "20"},
+                        dir / "receive.log");
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // let it join
+    test::Child serve({"serve", (dir / "in.ellc").string(), "--to", group, "--interface", "lo", "--ttl", "0", "--rate",
+                       "8000000", "--cycles", "30", "--loss", "0.15", "--seed", "3"},
+                      dir / "serve.log");
+    int code = receive.wait(std::chrono::seconds(25));
+    std::string log = test::read_text(dir / "receive.log");
+    INFO(log);
+    REQUIRE(code == 0);
+    CHECK(log.find("everything complete after") != std::string::npos);
+    CHECK(log.find("est. loss") != std::string::npos);
+    // What it wrote is the whole stream, each packet once.
+    auto received = test::read_stream_file(dir / "out.ellc");
+    Reception reception;
+    for (const auto& p : received) CHECK(reception.take(p) == Error::Ok);
+    CHECK(reception.complete());
+    CHECK(received.size() == packets.size());
+    CHECK(std::filesystem::exists(dir / "out-base.ellc"));
+    CHECK(std::filesystem::exists(dir / "out-50pct.ellc"));
+}
+
+TEST_CASE("ellicast receive gives up at its deadline with a clear error when nothing arrives") {
+    auto dir = test::scratch_dir("receive-cli-nothing");
+    UdpReceiver probe;  // find a free port
+    std::string error;
+    REQUIRE(probe.open(endpoint("127.0.0.1:0"), ReceiverOptions{}, error));
+    std::string port = std::to_string(probe.local_port());
+    probe.close();
+    int code = test::run_ellicast({"receive", "--from", "127.0.0.1:" + port, "-o", (dir / "out.ellc").string(),
+                                   "--until", "0.5"},
+                                  dir / "log.txt", std::chrono::seconds(10));
+    CHECK(code == 3);
+    CHECK(test::read_text(dir / "log.txt").find("no packet of an ellicast stream arrived") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(dir / "out.ellc"));
+    CHECK(test::run_ellicast({"receive", "--from", "127.0.0.1:" + port, "-o", (dir / "out.ellc").string(), "--until",
+                              "soon"},
+                             dir / "log2.txt") == 2);
+    CHECK(test::run_ellicast({"serve", (dir / "log.txt").string(), "--to", "nowhere", "--rate", "1e6"},
+                             dir / "log3.txt") != 0);
+}
