@@ -1,0 +1,77 @@
+// The ellicast encoder: meshes in, a quantized stream (stream info + per-object ellipsoids and
+// points) out, ready for packetize_stream().
+//
+// For each triangle mesh (after Bischoff & Kobbelt 2002):
+//  1. inside/outside from generalized winding numbers on a voxel grid (robust on open meshes);
+//  2. candidate ellipsoids: seeds on the surface, a sphere grown inward until it touches the
+//     surface (shrinking ball), then stretched into an ellipsoid while it stays inside;
+//  3. greedy selection: largest first, then largest gain of covered interior volume, until the
+//     coverage target or the count; then the candidates that best cover surface still far from
+//     the base (thin parts); flat ellipsoids hugging the surface where there is no inside (sheets);
+//  4. every selected ellipsoid is quantized and checked again: dequantized, it must still be
+//     clear of the surface, else it is shrunk;
+//  5. the points: every original vertex, welded by quantized position and attributes, in an order
+//     in which any subset is spread evenly over the surface.
+// Deterministic: the same meshes, options and seed give the same output, whatever the threads.
+#pragma once
+
+#include "ellicast/codec/mesh.h"
+#include "ellicast/format.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ellicast {
+
+struct EncodeOptions {
+    uint32_t max_ellipsoids = 400;   // per object, 1..100000
+    double coverage = 0.95;          // covered fraction of interior volume aimed at, (0, 1]
+    uint32_t candidates = 0;         // seeds grown into candidate ellipsoids; 0: automatic
+    uint32_t grid = 0;               // voxel grid cells along the longest axis (16..256); 0: automatic
+    uint8_t position_bits = 14;      // 8..16
+    uint8_t normal_bits = 10;        // 4..16
+    uint8_t texcoord_bits = 12;      // 4..16
+    uint8_t color_bits = 8;          // 2..16
+    uint16_t packet_size = kDefaultPacketSize;
+    uint32_t seed = 1;
+    unsigned threads = 2;            // worker threads (results do not depend on it)
+    // Called with a stage name and the fraction done (0..1); may be empty.
+    std::function<void(const std::string& stage, double fraction)> progress;
+};
+
+// Checks an options record: empty when valid, else a message naming the first bad option.
+std::string check_encode_options(const EncodeOptions& options);
+
+// What the encoder did for one object.
+struct ObjectReport {
+    std::string name;
+    bool point_set = false;
+    uint32_t vertices = 0;            // input vertices
+    uint32_t points = 0;              // points sent (after welding)
+    uint32_t candidates = 0;          // candidate ellipsoids grown
+    uint32_t ellipsoids = 0;          // ellipsoids sent
+    uint32_t surface_ellipsoids = 0;  // of those, chosen for surface (thin parts) rather than volume
+    uint32_t flat_ellipsoids = 0;     // of those, flat ones straddling a sheet without inside
+    uint32_t shrunk = 0;              // ellipsoids shrunk after quantization to stay inside
+    bool closed = false;              // no boundary edges
+    double interior_fraction = 0;     // of the grid's voxels, inside the surface
+    double coverage = 0;              // covered fraction of the interior volume (dequantized ellipsoids)
+    double outside = 0;               // volume of the ellipsoids outside the model / interior volume
+    double surface_covered = 0;       // fraction of surface samples near the base
+    uint32_t grid[3] = {0, 0, 0};     // voxel grid used
+};
+
+struct EncodeResult {
+    StreamInfo info;
+    std::vector<ObjectContent> contents;  // one per object, in info.objects order
+    std::vector<ObjectReport> reports;
+    std::vector<std::string> warnings;
+};
+
+// Encodes meshes as the objects of one stream (one object per mesh, in order). Throws
+// std::invalid_argument for invalid options, no meshes or more than kMaxObjects meshes.
+EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions& options);
+
+}  // namespace ellicast

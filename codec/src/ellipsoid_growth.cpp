@@ -1,0 +1,279 @@
+// Growing one candidate ellipsoid from a surface seed (Bischoff & Kobbelt 2002, section 3):
+// a sphere tangent at the seed grows inward until it touches the surface elsewhere (computed as a
+// shrinking ball, Ma et al. 2012: a few closest-point queries instead of a search), then it is
+// stretched along the axes of the local surface (PCA) while it stays inside.
+#include "encoder_internal.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ellicast::detail {
+
+namespace {
+
+double box_far2(const Vec3& p, const TriangleTree::Box& b) {
+    double d = 0;
+    for (int k = 0; k < 3; ++k) {
+        double e = std::max(std::abs(p[k] - b.min[k]), std::abs(b.max[k] - p[k]));
+        d += e * e;
+    }
+    return d;
+}
+
+// Area moments of the surface within `radius` of `c` (triangles by their centroids).
+std::array<double, 10> local_moments(const GrowthContext& ctx, const Vec3& c, double radius) {
+    std::array<double, 10> m{};
+    const auto& nodes = ctx.tree.nodes();
+    const auto& tris = ctx.tree.triangles();
+    const double r2 = radius * radius;
+    uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    const V3 q = to_arr(c);
+    while (top > 0) {
+        uint32_t k = stack[--top];
+        const auto& node = nodes[k];
+        if (squared_distance_to_box(q, node.bounds) > r2) continue;
+        if (box_far2(c, node.bounds) <= r2) {
+            for (int j = 0; j < 10; ++j) m[j] += ctx.node_moments[k][j];
+            continue;
+        }
+        if (node.is_leaf()) {
+            for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+                const auto& t = tris[i];
+                Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), cc = to_vec(t.v[2]);
+                Vec3 g = (a + b + cc) / 3.0;
+                if ((g - c).squaredNorm() > r2) continue;
+                double area = 0.5 * (b - a).cross(cc - a).norm();
+                m[0] += area;
+                for (int j = 0; j < 3; ++j) m[1 + j] += area * g[j];
+                m[4] += area * g.x() * g.x(), m[5] += area * g.x() * g.y(), m[6] += area * g.x() * g.z();
+                m[7] += area * g.y() * g.y(), m[8] += area * g.y() * g.z(), m[9] += area * g.z() * g.z();
+            }
+            continue;
+        }
+        if (top + 2 > 128) continue;
+        stack[top++] = node.first;
+        stack[top++] = node.right;
+    }
+    return m;
+}
+
+// Axes of the local surface around c: eigenvectors of the area covariance, largest first.
+Eigen::Matrix3d local_axes(const GrowthContext& ctx, const Vec3& c, double radius, const Vec3& fallback_normal) {
+    auto m = local_moments(ctx, c, radius);
+    Eigen::Matrix3d axes;
+    if (m[0] > 0) {
+        Vec3 mu(m[1] / m[0], m[2] / m[0], m[3] / m[0]);
+        Eigen::Matrix3d cov;
+        cov << m[4] / m[0], m[5] / m[0], m[6] / m[0], m[5] / m[0], m[7] / m[0], m[8] / m[0], m[6] / m[0],
+            m[8] / m[0], m[9] / m[0];
+        cov -= mu * mu.transpose();
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+        if (eig.info() == Eigen::Success && eig.eigenvalues().allFinite()) {
+            axes.col(0) = eig.eigenvectors().col(2);
+            axes.col(1) = eig.eigenvectors().col(1);
+            axes.col(2) = axes.col(0).cross(axes.col(1)).normalized();
+            if (axes.allFinite() && std::abs(axes.determinant() - 1) < 1e-6) return axes;
+        }
+    }
+    // No usable surface around: any frame with the normal as third axis.
+    Vec3 n = fallback_normal.normalized();
+    Vec3 t = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+    axes.col(0) = n.cross(t).normalized();
+    axes.col(1) = n.cross(axes.col(0)).normalized();
+    axes.col(2) = axes.col(0).cross(axes.col(1));
+    return axes;
+}
+
+}  // namespace
+
+void prepare_growth(GrowthContext& ctx) {
+    const auto& nodes = ctx.tree.nodes();
+    const auto& tris = ctx.tree.triangles();
+    ctx.node_moments.assign(nodes.size(), {});
+    for (size_t k = nodes.size(); k-- > 0;) {
+        const auto& node = nodes[k];
+        auto& m = ctx.node_moments[k];
+        if (node.is_leaf()) {
+            for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+                const auto& t = tris[i];
+                Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), c = to_vec(t.v[2]);
+                Vec3 g = (a + b + c) / 3.0;
+                double area = 0.5 * (b - a).cross(c - a).norm();
+                m[0] += area;
+                for (int j = 0; j < 3; ++j) m[1 + j] += area * g[j];
+                m[4] += area * g.x() * g.x(), m[5] += area * g.x() * g.y(), m[6] += area * g.x() * g.z();
+                m[7] += area * g.y() * g.y(), m[8] += area * g.y() * g.z(), m[9] += area * g.z() * g.z();
+            }
+        } else {
+            for (int j = 0; j < 10; ++j) m[j] = ctx.node_moments[node.first][j] + ctx.node_moments[node.right][j];
+        }
+    }
+}
+
+namespace {
+
+// True when triangle (already mapped to the ellipsoid's unit-ball space) meets the unit ball.
+bool triangle_meets_unit_ball(const V3 v[3]) {
+    for (int k = 0; k < 3; ++k) {
+        if (v[0][k] > 1 && v[1][k] > 1 && v[2][k] > 1) return false;
+        if (v[0][k] < -1 && v[1][k] < -1 && v[2][k] < -1) return false;
+    }
+    for (int j = 0; j < 3; ++j)
+        if (v[j][0] * v[j][0] + v[j][1] * v[j][1] + v[j][2] * v[j][2] <= 1.0) return true;
+    static const V3 origin{0, 0, 0};
+    V3 p = closest_point_on_triangle(origin, v[0], v[1], v[2]);
+    return p[0] * p[0] + p[1] * p[1] + p[2] * p[2] <= 1.0;
+}
+
+}  // namespace
+
+bool clear_of_surface(const TriangleTree& tree, const Candidate& e, uint32_t* hint) {
+    const auto& nodes = tree.nodes();
+    if (nodes.empty()) return true;
+    const auto& tris = tree.triangles();
+    if (!(e.radii.minCoeff() > 0) || !e.radii.allFinite() || !e.center.allFinite()) return false;
+    // M maps the ellipsoid to the unit ball.
+    const Eigen::Matrix3d M = e.radii.cwiseInverse().asDiagonal() * e.axes.transpose();
+    const double inv_rmin = 1.0 / e.radii.minCoeff();
+    auto mapped = [&](const TriangleTree::Triangle& t, V3 v[3]) {
+        for (int j = 0; j < 3; ++j) {
+            Vec3 w = M * (to_vec(t.v[j]) - e.center);
+            v[j] = {w.x(), w.y(), w.z()};
+        }
+    };
+    if (hint && *hint < tris.size()) {  // the triangle that stopped the previous try often stops this one
+        V3 v[3];
+        mapped(tris[*hint], v);
+        if (triangle_meets_unit_ball(v)) return false;
+    }
+    Vec3 half;
+    for (int k = 0; k < 3; ++k) half[k] = (e.axes.row(k).transpose().cwiseProduct(e.radii)).norm();
+    const V3 c = to_arr(e.center);
+    // A node is skipped when its bounding ball, mapped into unit-ball space, stays outside the unit ball.
+    auto mapped_gap = [&](const TriangleTree::Node& node) {
+        Vec3 mid, ext;
+        for (int k = 0; k < 3; ++k) {
+            mid[k] = 0.5 * (node.bounds.min[k] + node.bounds.max[k]);
+            ext[k] = 0.5 * (node.bounds.max[k] - node.bounds.min[k]);
+        }
+        return (M * (mid - e.center)).norm() - ext.norm() * inv_rmin;
+    };
+    uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const auto& node = nodes[stack[--top]];
+        bool apart = false;
+        for (int k = 0; k < 3; ++k)
+            apart = apart || node.bounds.min[k] > c[k] + half[k] || node.bounds.max[k] < c[k] - half[k];
+        if (apart || mapped_gap(node) > 1.0) continue;
+        if (node.is_leaf()) {
+            for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+                V3 v[3];
+                mapped(tris[i], v);
+                if (triangle_meets_unit_ball(v)) {
+                    if (hint) *hint = i;
+                    return false;
+                }
+            }
+            continue;
+        }
+        if (top + 2 > 128) return false;
+        // Nearer child last, so it is visited first: a blocked ellipsoid is found out sooner.
+        double gl = mapped_gap(nodes[node.first]), gr = mapped_gap(nodes[node.right]);
+        if (gl <= gr) {
+            stack[top++] = node.right;
+            stack[top++] = node.first;
+        } else {
+            stack[top++] = node.first;
+            stack[top++] = node.right;
+        }
+    }
+    return true;
+}
+
+bool ellipsoid_inside(const GrowthContext& ctx, const Candidate& e, uint32_t* hint) {
+    if (ctx.grid.sample(e.center) <= 0.5) return false;
+    if (!ctx.closed) {
+        // An open surface has holes an ellipsoid could slip through without touching a triangle:
+        // its inner part must lie inside on the winding grid too.
+        static const double d = 0.57735026919;
+        static const double dirs[14][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},  {0, -1, 0}, {0, 0, 1},
+                                           {0, 0, -1}, {d, d, d}, {d, d, -d}, {d, -d, d}, {d, -d, -d},
+                                           {-d, d, d}, {-d, d, -d}, {-d, -d, d}, {-d, -d, -d}};
+        for (const auto& dir : dirs) {
+            Vec3 local(dir[0] * e.radii.x(), dir[1] * e.radii.y(), dir[2] * e.radii.z());
+            Vec3 p = e.center + 0.75 * (e.axes * local);
+            if (ctx.grid.sample(p) <= 0.5) return false;
+        }
+    }
+    return clear_of_surface(ctx.tree, e, hint);
+}
+
+bool grow_ellipsoid(const GrowthContext& ctx, const Vec3& p, const Vec3& n, Candidate& out) {
+    // Initial radius: half the way along n until the winding grid says outside.
+    const double h = ctx.grid.h;
+    double exit = h;
+    const double limit = h * (ctx.grid.n[0] + ctx.grid.n[1] + ctx.grid.n[2]);
+    while (exit < limit && ctx.grid.sample(p + n * exit) > 0.5) exit += 0.5 * h;
+    double r = std::max(0.5 * exit, ctx.min_radius);
+
+    // Shrinking ball: the largest ball tangent at p (centre on the inward normal) holding no surface.
+    for (int it = 0; it < 40; ++it) {
+        Vec3 c = p + n * r;
+        ClosestPoint cp = ctx.tree.closest_point(to_arr(c));
+        if (!cp.found) return false;
+        double d = std::sqrt(cp.squared_distance);
+        if (d >= r * (1 - 1e-4)) break;
+        Vec3 q = to_vec(cp.point);
+        double denom = 2.0 * n.dot(q - p);
+        double next = denom > 1e-15 ? (q - p).squaredNorm() / denom : 0.5 * r;
+        r = next < r ? next : 0.5 * r;
+        if (r < ctx.min_radius) return false;
+    }
+    Candidate e;
+    e.radii = Vec3::Constant(r * 0.97);
+    e.center = p + n * r;
+    e.axes = local_axes(ctx, e.center, 2.5 * r, n);
+    uint32_t hint = UINT32_MAX;
+    int shrink = 0;
+    while (!ellipsoid_inside(ctx, e, &hint)) {
+        if (++shrink > 6) return false;
+        e.radii *= 0.7;
+        e.center = p + n * (e.radii.x() / 0.97);
+        if (e.radii.x() < ctx.min_radius) return false;
+    }
+
+    // Stretch: per axis try to extend both ends, then one end (moving the centre), with halving steps.
+    int tests = 0;
+    for (double step = 1.0; step > 0.02 && tests < 120; step *= 0.5) {
+        bool improved = true;
+        for (int round = 0; improved && round < 6 && tests < 120; ++round) {
+            improved = false;
+            for (int axis = 0; axis < 3; ++axis) {
+                double delta = step * e.radii[axis];
+                for (int mode = 0; mode < 3; ++mode) {
+                    Candidate t = e;
+                    if (mode == 0) {
+                        t.radii[axis] += delta;
+                    } else {
+                        t.radii[axis] += 0.5 * delta;
+                        t.center += e.axes.col(axis) * (mode == 1 ? 0.5 * delta : -0.5 * delta);
+                    }
+                    ++tests;
+                    if (ellipsoid_inside(ctx, t, &hint)) {
+                        e = t;
+                        improved = true;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    out = e;
+    return true;
+}
+
+}  // namespace ellicast::detail

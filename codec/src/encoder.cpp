@@ -1,0 +1,495 @@
+// The encoder pipeline: for each mesh, the inside test, candidate ellipsoids, the greedy choice,
+// flat ellipsoids for sheets, quantization with a containment re-check, and the point stream.
+#include "ellicast/codec/encoder.h"
+
+#include "encoder_internal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <tuple>
+
+namespace ellicast {
+
+using namespace detail;
+
+std::string check_encode_options(const EncodeOptions& o) {
+    if (o.max_ellipsoids < 1 || o.max_ellipsoids > 100000)
+        return "the ellipsoid count must be between 1 and 100000 (got " + std::to_string(o.max_ellipsoids) + ")";
+    if (!(o.coverage > 0) || o.coverage > 1)
+        return "the coverage target must be in (0, 1] (got " + std::to_string(o.coverage) + ")";
+    if (o.candidates > 200000)
+        return "at most 200000 candidate ellipsoids (got " + std::to_string(o.candidates) + ")";
+    if (o.grid != 0 && (o.grid < 16 || o.grid > 256))
+        return "the voxel grid must have 16 to 256 cells along the longest side (got " + std::to_string(o.grid) + ")";
+    if (o.position_bits < 8 || o.position_bits > 16)
+        return "position bits must be 8..16 (got " + std::to_string(o.position_bits) + ")";
+    if (o.normal_bits < 4 || o.normal_bits > 16)
+        return "normal bits must be 4..16 (got " + std::to_string(o.normal_bits) + ")";
+    if (o.texcoord_bits < 4 || o.texcoord_bits > 16)
+        return "texture coordinate bits must be 4..16 (got " + std::to_string(o.texcoord_bits) + ")";
+    if (o.color_bits < 2 || o.color_bits > 16)
+        return "colour bits must be 2..16 (got " + std::to_string(o.color_bits) + ")";
+    if (o.packet_size < kMinPacketSize || o.packet_size > kMaxPacketSize)
+        return "the packet size must be " + std::to_string(kMinPacketSize) + ".." + std::to_string(kMaxPacketSize) +
+               " bytes (got " + std::to_string(o.packet_size) + ")";
+    if (o.threads < 1 || o.threads > 256) return "threads must be 1..256 (got " + std::to_string(o.threads) + ")";
+    return "";
+}
+
+namespace {
+
+struct Progress {
+    const EncodeOptions& options;
+    size_t object = 0, objects = 1;
+    void operator()(const std::string& stage, double f) const {
+        if (options.progress) options.progress(stage, (double(object) + std::clamp(f, 0.0, 1.0)) / double(objects));
+    }
+};
+
+Frame frame_of(const Mesh& mesh) {
+    std::array<double, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+    for (const auto& p : mesh.positions)
+        for (int k = 0; k < 3; ++k) lo[k] = std::min<double>(lo[k], p[k]), hi[k] = std::max<double>(hi[k], p[k]);
+    double extent = 0, magnitude = 0;
+    for (int k = 0; k < 3; ++k) extent = std::max(extent, hi[k] - lo[k]);
+    for (int k = 0; k < 3; ++k) magnitude = std::max({magnitude, std::abs(lo[k]), std::abs(hi[k])});
+    extent = std::max(extent, 1e-6 * std::max(magnitude, 1.0));
+    // A small margin so that the extreme vertices do not sit on the frame's edge.
+    const double pad = extent * 1e-3;
+    Frame f;
+    for (int k = 0; k < 3; ++k) f.origin[k] = float(lo[k] - pad);
+    f.scale = float(extent + 2 * pad);
+    // float rounding must not leave a vertex outside the cube
+    for (int k = 0; k < 3; ++k)
+        while (double(f.origin[k]) + double(f.scale) < hi[k]) f.scale = std::nextafter(f.scale, INFINITY);
+    return f;
+}
+
+Ellipsoid to_ellipsoid(const Candidate& c) {
+    Eigen::Matrix3d R = c.axes;
+    if (R.determinant() < 0) R.col(2) = -R.col(2);
+    Eigen::Quaterniond q(R);
+    q.normalize();
+    Ellipsoid e;
+    for (int k = 0; k < 3; ++k) e.center[k] = float(c.center[k]), e.radii[k] = float(c.radii[k]);
+    e.rotation = {float(q.w()), float(q.x()), float(q.y()), float(q.z())};
+    return e;
+}
+
+Candidate to_candidate(const Ellipsoid& e) {
+    Candidate c;
+    c.center = Vec3(e.center[0], e.center[1], e.center[2]);
+    c.radii = Vec3(e.radii[0], e.radii[1], e.radii[2]);
+    c.axes = Eigen::Quaterniond(e.rotation[0], e.rotation[1], e.rotation[2], e.rotation[3]).normalized().toRotationMatrix();
+    return c;
+}
+
+// Vertices welded by exact position: for the boundary test, glTF seams are not holes.
+std::vector<uint32_t> weld_by_position(const Mesh& mesh) {
+    std::map<std::array<float, 3>, uint32_t> first;
+    std::vector<uint32_t> id(mesh.positions.size());
+    for (size_t i = 0; i < mesh.positions.size(); ++i) id[i] = first.try_emplace(mesh.positions[i], uint32_t(i)).first->second;
+    return id;
+}
+
+bool is_closed(const Mesh& mesh, const std::vector<uint32_t>& weld) {
+    std::vector<uint64_t> edges;
+    edges.reserve(mesh.triangles.size() * 3);
+    for (const auto& t : mesh.triangles)
+        for (int e = 0; e < 3; ++e) {
+            uint32_t a = weld[t[e]], b = weld[t[(e + 1) % 3]];
+            edges.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+        }
+    std::sort(edges.begin(), edges.end());
+    for (size_t i = 0; i < edges.size();) {
+        size_t j = i;
+        while (j < edges.size() && edges[j] == edges[i]) ++j;
+        if (j - i == 1) return false;
+        i = j;
+    }
+    return !edges.empty();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Ellipsoids of one triangle mesh
+
+std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame& frame, const EncodeOptions& options,
+                                                  uint32_t object_seed, ObjectReport& report,
+                                                  std::vector<std::string>& warnings, const Progress& progress) {
+    std::vector<QuantizedEllipsoid> out;
+    TriangleTree tree(mesh.positions, mesh.triangles);
+    if (tree.empty()) return out;
+    const auto weld = weld_by_position(mesh);
+    report.closed = is_closed(mesh, weld);
+
+    WindingNumber winding(tree);
+    const TriangleTree::Box box = tree.bounds();
+    int cells = int(options.grid);
+    if (cells == 0) cells = mesh.triangles.size() < 2000 ? 64 : 96;
+    progress("inside test", 0.0);
+    VoxelGrid grid = build_winding_grid(tree, winding, box, cells, options.threads,
+                                        [&](double f) { progress("inside test", 0.2 * f); });
+    for (int k = 0; k < 3; ++k) report.grid[k] = uint32_t(grid.n[k]);
+    size_t interior = 0;
+    for (size_t i = 0; i < grid.size(); ++i) interior += grid.inside(i);
+    report.interior_fraction = double(interior) / double(grid.size());
+
+    // Seeds: points spread over the surface by area, each with the normal pointing inside.
+    const auto& tris = tree.triangles();
+    std::vector<double> cumulative(tris.size());
+    double total_area = 0;
+    for (size_t i = 0; i < tris.size(); ++i) {
+        const auto& t = tris[i];
+        total_area += 0.5 * (to_vec(t.v[1]) - to_vec(t.v[0])).cross(to_vec(t.v[2]) - to_vec(t.v[0])).norm();
+        cumulative[i] = total_area;
+    }
+    uint32_t seeds = options.candidates ? options.candidates : std::min<uint32_t>(4 * options.max_ellipsoids + 200, 4000);
+    Random rng(object_seed);
+    struct Seed {
+        Vec3 p, n;
+    };
+    std::vector<Seed> seed_points(seeds);
+    for (auto& s : seed_points) {
+        double target = rng.uniform() * total_area;
+        size_t i = size_t(std::lower_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin());
+        i = std::min(i, tris.size() - 1);
+        double u = rng.uniform(), v = rng.uniform();
+        if (u + v > 1) u = 1 - u, v = 1 - v;
+        const auto& t = tris[i];
+        Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), c = to_vec(t.v[2]);
+        s.p = a + u * (b - a) + v * (c - a);
+        s.n = (b - a).cross(c - a);
+        double len = s.n.norm();
+        s.n = len > 0 ? Vec3(s.n / len) : Vec3::Zero();
+    }
+
+    GrowthContext ctx{tree, grid, winding, report.closed, 0.25 * grid.h, {}};
+    prepare_growth(ctx);
+    const double eps = 0.05 * grid.h;
+    std::vector<Candidate> grown(seeds);
+    std::vector<char> ok(seeds, 0);
+    std::vector<char> sheet(seeds, 0);
+    // Grow in chunks so that progress can be reported from this thread.
+    const size_t chunk = 64;
+    for (size_t start = 0; start < seeds; start += chunk) {
+        size_t end = std::min<size_t>(seeds, start + chunk);
+        parallel_for(end - start, options.threads, [&](size_t k) {
+            size_t i = start + k;
+            const Seed& s = seed_points[i];
+            if (s.n.isZero()) return;
+            double w_back = winding(to_arr(s.p - eps * s.n)), w_front = winding(to_arr(s.p + eps * s.n));
+            Vec3 inward;
+            if (w_back > 0.5 && w_back >= w_front) inward = -s.n;
+            else if (w_front > 0.5) inward = s.n;
+            else {
+                sheet[i] = 1;
+                return;
+            }
+            ok[i] = grow_ellipsoid(ctx, s.p, inward, grown[i]) ? 1 : 0;
+        });
+        progress("candidates", 0.2 + 0.5 * double(end) / double(seeds));
+    }
+    std::vector<Candidate> candidates;
+    for (size_t i = 0; i < seeds; ++i)
+        if (ok[i]) candidates.push_back(grown[i]);
+    report.candidates = uint32_t(candidates.size());
+
+    // Surface samples: the distinct vertex positions (at most 20000, a seeded subset beyond).
+    std::vector<Vec3> samples;
+    std::vector<Vec3> sample_normals;
+    {
+        std::vector<Vec3> vnormal(mesh.positions.size(), Vec3::Zero());
+        for (const auto& t : mesh.triangles) {
+            Vec3 a(mesh.positions[t[0]][0], mesh.positions[t[0]][1], mesh.positions[t[0]][2]);
+            Vec3 b(mesh.positions[t[1]][0], mesh.positions[t[1]][1], mesh.positions[t[1]][2]);
+            Vec3 c(mesh.positions[t[2]][0], mesh.positions[t[2]][1], mesh.positions[t[2]][2]);
+            Vec3 fn = (b - a).cross(c - a);
+            for (uint32_t v : t) vnormal[weld[v]] += fn;
+        }
+        std::vector<uint32_t> distinct;
+        std::vector<char> used(mesh.positions.size(), 0);
+        for (const auto& t : mesh.triangles)
+            for (uint32_t v : t) used[weld[v]] = 1;
+        for (size_t i = 0; i < mesh.positions.size(); ++i)
+            if (weld[i] == i && used[i]) distinct.push_back(uint32_t(i));
+        if (distinct.size() > 20000) {
+            Random pick(object_seed ^ 0x51ED270Bu);
+            for (size_t i = distinct.size(); i > 1; --i) std::swap(distinct[i - 1], distinct[pick.below(uint32_t(i))]);
+            distinct.resize(20000);
+            std::sort(distinct.begin(), distinct.end());
+        }
+        for (uint32_t i : distinct) {
+            samples.emplace_back(mesh.positions[i][0], mesh.positions[i][1], mesh.positions[i][2]);
+            double len = vnormal[i].norm();
+            sample_normals.push_back(len > 0 ? Vec3(vnormal[i] / len) : Vec3::Zero());
+        }
+    }
+    const double near = grid.h;
+    // An open surface keeps a fifth of the budget for its thin and sheet-like parts.
+    const uint32_t max_volume =
+        report.closed ? options.max_ellipsoids : std::max<uint32_t>(1, uint32_t(0.8 * options.max_ellipsoids));
+    const uint32_t max_inside =
+        report.closed ? options.max_ellipsoids : std::max<uint32_t>(1, uint32_t(0.9 * options.max_ellipsoids));
+    SelectionResult chosen = select_ellipsoids(grid, candidates, samples, near, options.coverage, max_volume,
+                                               max_inside, [&](double f) { progress("selection", 0.7 + 0.2 * f); });
+
+    // Quantize each chosen ellipsoid; dequantized it must still be clear of the surface.
+    const double radius_step = frame.scale / 8191.0;
+    auto place = [&](const Candidate& c, bool check) -> bool {
+        Candidate cur = c;
+        for (int attempt = 0; attempt < 40; ++attempt) {
+            QuantizedEllipsoid q = quantize_ellipsoid(to_ellipsoid(cur), frame);
+            Candidate back = to_candidate(dequantize_ellipsoid(q, frame));
+            if (back.radii.minCoeff() <= 0) return false;
+            if (!check || clear_of_surface(tree, back)) {
+                out.push_back(q);
+                if (attempt > 0) ++report.shrunk;
+                return true;
+            }
+            if (attempt < 8) cur.radii -= Vec3::Constant(radius_step);
+            else cur.radii *= 0.95;
+            if (cur.radii.minCoeff() <= radius_step) return false;
+        }
+        return false;
+    };
+    for (uint32_t i : chosen.volume) place(candidates[i], true);
+    size_t before_surface = out.size();
+    for (uint32_t i : chosen.surface) place(candidates[i], true);
+    report.surface_ellipsoids = uint32_t(out.size() - before_surface);
+
+    // Sheets: surface samples far from every ellipsoid, with no inside on either side (or anywhere
+    // on an open surface), get flat ellipsoids that straddle the surface, while the budget lasts.
+    // A closed surface never gets them: its ellipsoids must stay inside.
+    std::vector<Candidate> placed;
+    for (const auto& q : out) placed.push_back(to_candidate(dequantize_ellipsoid(q, frame)));
+    VoxelBits near_base(grid, false);
+    for (const auto& c : placed) near_base.fill(rasterize(grid, c, near + grid.h));
+    auto voxel_row = [&](const Vec3& p, size_t& x, size_t& row) {
+        int idx[3];
+        for (int k = 0; k < 3; ++k) {
+            idx[k] = int(std::lround((p[k] - grid.origin[k]) / grid.h));
+            if (idx[k] < 0 || idx[k] >= grid.n[k]) return false;
+        }
+        x = size_t(idx[0]);
+        row = size_t(idx[1]) + size_t(idx[2]) * grid.n[1];
+        return true;
+    };
+    std::vector<uint32_t> lonely;
+    size_t covered_samples = 0;
+    for (size_t s = 0; s < samples.size(); ++s) {
+        size_t x, row;
+        bool is_near = voxel_row(samples[s], x, row) && near_base.get(x, row);
+        covered_samples += is_near;
+        if (!is_near) lonely.push_back(uint32_t(s));
+    }
+    std::vector<uint32_t> sheet_samples;
+    {
+        std::vector<char> is_sheet(lonely.size(), 0);
+        parallel_for(lonely.size(), options.threads, [&](size_t k) {
+            const Vec3& p = samples[lonely[k]];
+            const Vec3& n = sample_normals[lonely[k]];
+            if (n.isZero()) return;
+            double a = winding(to_arr(p + eps * n)), b = winding(to_arr(p - eps * n));
+            is_sheet[k] = !report.closed || (a <= 0.5 && b <= 0.5);
+        });
+        for (size_t k = 0; k < lonely.size(); ++k)
+            if (is_sheet[k]) sheet_samples.push_back(lonely[k]);
+    }
+    if (!sheet_samples.empty() && out.size() < options.max_ellipsoids) {
+        const double rho = 4 * grid.h;
+        std::map<std::array<int, 3>, std::vector<uint32_t>> cells_of;
+        auto cell = [&](const Vec3& p) {
+            return std::array<int, 3>{int(std::floor(p.x() / rho)), int(std::floor(p.y() / rho)),
+                                      int(std::floor(p.z() / rho))};
+        };
+        for (uint32_t s : sheet_samples) cells_of[cell(samples[s])].push_back(s);
+        std::vector<char> assigned(samples.size(), 0);
+        for (uint32_t s : sheet_samples) {
+            if (assigned[s] || out.size() >= options.max_ellipsoids) continue;
+            std::vector<uint32_t> group;
+            auto c0 = cell(samples[s]);
+            for (int dz = -1; dz <= 1; ++dz)
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        auto it = cells_of.find({c0[0] + dx, c0[1] + dy, c0[2] + dz});
+                        if (it == cells_of.end()) continue;
+                        for (uint32_t t : it->second)
+                            if (!assigned[t] && (samples[t] - samples[s]).norm() <= rho) group.push_back(t);
+                    }
+            std::sort(group.begin(), group.end());
+            Vec3 mean = Vec3::Zero();
+            for (uint32_t t : group) mean += samples[t];
+            mean /= double(group.size());
+            Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+            Vec3 navg = Vec3::Zero();
+            for (uint32_t t : group) {
+                Vec3 d = samples[t] - mean;
+                cov += d * d.transpose();
+                navg += sample_normals[t];
+            }
+            Candidate flat;
+            flat.center = mean;
+            if (group.size() >= 3) {
+                Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+                flat.axes.col(0) = eig.eigenvectors().col(2);
+                flat.axes.col(1) = eig.eigenvectors().col(1);
+                flat.axes.col(2) = flat.axes.col(0).cross(flat.axes.col(1)).normalized();
+            } else {
+                Vec3 n = navg.norm() > 0 ? Vec3(navg.normalized()) : Vec3::UnitZ();
+                Vec3 t = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+                flat.axes.col(0) = n.cross(t).normalized();
+                flat.axes.col(1) = n.cross(flat.axes.col(0)).normalized();
+                flat.axes.col(2) = n;
+            }
+            Vec3 extent = Vec3::Zero();
+            for (uint32_t t : group) extent = extent.cwiseMax((flat.axes.transpose() * (samples[t] - mean)).cwiseAbs());
+            flat.radii = Vec3(std::max(extent.x() * 1.15 + 0.5 * grid.h, grid.h),
+                              std::max(extent.y() * 1.15 + 0.5 * grid.h, grid.h),
+                              std::max(extent.z() + 0.5 * grid.h, 0.75 * grid.h));
+            for (uint32_t t : group) assigned[t] = 1;
+            if (place(flat, false)) ++report.flat_ellipsoids;
+        }
+    }
+    report.surface_covered = samples.empty() ? 0 : double(covered_samples) / double(samples.size());
+    if (interior == 0 && report.flat_ellipsoids == 0 && out.empty())
+        warnings.push_back(mesh.name + ": no interior volume and no sheet found; no ellipsoids");
+
+    // Coverage of the dequantized ellipsoids on the grid: covered interior, and volume outside.
+    VoxelBits uni(grid, false);
+    for (const auto& q : out) uni.fill(rasterize(grid, to_candidate(dequantize_ellipsoid(q, frame)), 0));
+    size_t in_cov = 0, out_cov = 0;
+    for (size_t row = 0; row < size_t(grid.n[1]) * grid.n[2]; ++row)
+        for (int x = 0; x < grid.n[0]; ++x)
+            if (uni.get(x, row)) (grid.inside(row * grid.n[0] + x) ? in_cov : out_cov)++;
+    report.coverage = interior ? double(in_cov) / double(interior) : 0;
+    report.outside = interior ? double(out_cov) / double(interior) : 0;
+    report.ellipsoids = uint32_t(out.size());
+    if (interior > 0 && report.coverage + 1e-9 < options.coverage)
+        warnings.push_back(mesh.name + ": the ellipsoids cover " + std::to_string(int(report.coverage * 1000) / 10.0) +
+                           "% of the interior, below the target " + std::to_string(int(options.coverage * 1000) / 10.0) +
+                           "% (" + std::to_string(out.size()) + " ellipsoids; raise --ellipsoids)");
+    progress("selection", 0.95);
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Points of one mesh
+
+std::vector<QuantizedPoint> encode_points(const Mesh& mesh, const StreamInfo& info, const ObjectInfo& object,
+                                          uint32_t seed) {
+    std::vector<QuantizedPoint> all;
+    all.reserve(mesh.positions.size());
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        SurfacePoint p;
+        p.position = mesh.positions[i];
+        if (mesh.has_normals()) p.normal = mesh.normals[i];
+        if (mesh.has_texcoords()) p.texcoord = mesh.texcoords[i];
+        if (mesh.has_colors()) p.color = mesh.colors[i];
+        all.push_back(quantize_point(p, info, object));
+    }
+    auto key = [](const QuantizedPoint& q) { return std::tie(q.position, q.normal, q.texcoord, q.color); };
+    std::sort(all.begin(), all.end(), [&](const QuantizedPoint& a, const QuantizedPoint& b) { return key(a) < key(b); });
+    all.erase(std::unique(all.begin(), all.end(), [&](const QuantizedPoint& a, const QuantizedPoint& b) { return key(a) == key(b); }),
+              all.end());
+    // Distinct positions; a seam's attribute sets follow each other.
+    std::vector<std::array<uint32_t, 3>> positions;
+    std::vector<size_t> first;
+    for (size_t i = 0; i < all.size(); ++i)
+        if (i == 0 || all[i].position != all[i - 1].position) {
+            positions.push_back(all[i].position);
+            first.push_back(i);
+        }
+    first.push_back(all.size());
+    std::vector<uint32_t> order = spread_order(positions, info.position_bits, seed);
+    std::vector<QuantizedPoint> out;
+    out.reserve(all.size());
+    for (uint32_t p : order)
+        for (size_t i = first[p]; i < first[p + 1]; ++i) out.push_back(all[i]);
+    return out;
+}
+
+}  // namespace
+
+EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions& options) {
+    if (std::string why = check_encode_options(options); !why.empty()) throw std::invalid_argument(why);
+    if (meshes.empty()) throw std::invalid_argument("no meshes to encode");
+    if (meshes.size() > kMaxObjects)
+        throw std::invalid_argument("at most " + std::to_string(kMaxObjects) + " objects per stream (got " +
+                                    std::to_string(meshes.size()) + ")");
+    EncodeResult result;
+    StreamInfo& info = result.info;
+    info.packet_size = options.packet_size;
+    info.position_bits = options.position_bits;
+    info.normal_bits = options.normal_bits;
+    info.texcoord_bits = options.texcoord_bits;
+    info.color_bits = options.color_bits;
+    info.coverage_target = float(options.coverage);
+    info.seed = options.seed;
+    Progress progress{options, 0, meshes.size()};
+    uint16_t grid_hint = 0;
+    for (size_t m = 0; m < meshes.size(); ++m) {
+        const Mesh& mesh = meshes[m];
+        progress.object = m;
+        if (mesh.positions.empty()) throw std::invalid_argument("mesh " + std::to_string(m) + " has no vertices");
+        ObjectInfo object;
+        object.frame = frame_of(mesh);
+        object.kind = mesh.is_point_set ? ObjectKind::PointSet : ObjectKind::Surface;
+        if (mesh.has_normals()) object.attributes |= kAttrNormal;
+        if (mesh.has_texcoords()) {
+            object.attributes |= kAttrTexcoord;
+            std::array<float, 2> lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+            for (const auto& t : mesh.texcoords)
+                for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], t[k]), hi[k] = std::max(hi[k], t[k]);
+            for (int k = 0; k < 2; ++k) {
+                object.texcoord_origin[k] = lo[k];
+                object.texcoord_scale[k] = hi[k] > lo[k] ? hi[k] - lo[k] : 1.0f;
+                while (double(lo[k]) + double(object.texcoord_scale[k]) < hi[k])
+                    object.texcoord_scale[k] = std::nextafter(object.texcoord_scale[k], INFINITY);
+            }
+        }
+        if (mesh.has_colors()) object.attributes |= kAttrColor | (mesh.colors_have_alpha ? kAttrColorAlpha : 0);
+
+        ObjectReport report;
+        report.name = mesh.name;
+        report.point_set = mesh.is_point_set;
+        report.vertices = uint32_t(mesh.positions.size());
+        ObjectContent content;
+        const uint32_t object_seed = options.seed * 2654435761u + uint32_t(m) * 40503u + 1u;
+        if (!mesh.is_point_set && !mesh.triangles.empty()) {
+            content.ellipsoids = encode_ellipsoids(mesh, object.frame, options, object_seed, report, result.warnings,
+                                                   progress);
+            grid_hint = std::max<uint16_t>(grid_hint, uint16_t(std::max({report.grid[0], report.grid[1], report.grid[2]})));
+        }
+        progress("points", 0.97);
+        content.points = encode_points(mesh, info, object, object_seed);
+        object.ellipsoid_count = uint32_t(content.ellipsoids.size());
+        object.point_count = uint32_t(content.points.size());
+        report.points = object.point_count;
+        info.objects.push_back(object);
+        result.contents.push_back(std::move(content));
+        result.reports.push_back(report);
+        progress("points", 1.0);
+    }
+    info.grid_hint = grid_hint;
+    // The content id: a checksum of everything quantized, so a receiver can tell new content.
+    uint32_t crc = 0;
+    for (size_t m = 0; m < result.contents.size(); ++m) {
+        for (const auto& q : result.contents[m].ellipsoids) {
+            uint8_t bytes[kEllipsoidBytes];
+            pack_ellipsoid(q, bytes);
+            crc = crc32c(bytes, kEllipsoidBytes, crc);
+        }
+        for (const auto& q : result.contents[m].points) {
+            uint32_t v[11] = {q.position[0], q.position[1], q.position[2], q.normal[0], q.normal[1], q.texcoord[0],
+                              q.texcoord[1], q.color[0], q.color[1], q.color[2], q.color[3]};
+            crc = crc32c(reinterpret_cast<const uint8_t*>(v), sizeof v, crc);
+        }
+    }
+    info.content_id = crc;
+    if (check_stream_info(info) != Error::Ok) throw std::logic_error("encoder produced an invalid stream info");
+    return result;
+}
+
+}  // namespace ellicast

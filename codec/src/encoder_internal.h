@@ -1,0 +1,160 @@
+// Private interfaces between the encoder's algorithm files (one algorithm per .cpp).
+#pragma once
+
+#include "ellicast/codec/triangle_tree.h"
+
+#include <Eigen/Dense>
+
+#include <cstdint>
+#include <functional>
+#include <random>
+#include <vector>
+
+namespace ellicast::detail {
+
+using Vec3 = Eigen::Vector3d;
+using V3 = std::array<double, 3>;
+
+inline Vec3 to_vec(const V3& a) { return {a[0], a[1], a[2]}; }
+inline V3 to_arr(const Vec3& a) { return {a.x(), a.y(), a.z()}; }
+
+// Runs body(i) for i in [0, n) on `threads` threads; each index is processed exactly once and
+// results must be written per index, so the outcome does not depend on the thread count.
+void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>& body);
+
+// A deterministic random stream (std::mt19937 is specified exactly; distributions are not).
+class Random {
+public:
+    explicit Random(uint32_t seed) : engine_(seed) {}
+    double uniform() { return (engine_() >> 5) * (1.0 / 134217728.0); }  // [0, 1) with 27 bits
+    uint32_t below(uint32_t n) { return uint32_t(uniform() * n); }
+
+private:
+    std::mt19937 engine_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// winding_number.cpp
+
+// Generalized winding number of a triangle soup (Jacobson et al. 2013), evaluated fast with the
+// tree's hierarchy and a dipole far-field approximation (Barill et al. 2018). About 1 inside a
+// closed outward-oriented surface, 0 outside, in between near holes.
+class WindingNumber {
+public:
+    explicit WindingNumber(const TriangleTree& tree, double accuracy = 2.0);
+    double operator()(const V3& q) const;
+
+private:
+    struct NodeDipole {
+        V3 center{};      // area-weighted centroid
+        V3 normal{};      // sum of area-weighted normals
+        double radius2 = 0;  // squared radius of a ball around center holding the node
+    };
+    const TriangleTree& tree_;
+    double beta2_;
+    std::vector<NodeDipole> dipoles_;
+};
+
+// Winding numbers at the centres of a regular voxel grid.
+struct VoxelGrid {
+    int n[3] = {0, 0, 0};
+    V3 origin{};       // centre of voxel (0,0,0)
+    double h = 1;      // voxel edge
+    std::vector<float> w;  // winding number per voxel, x fastest
+
+    size_t index(int x, int y, int z) const { return (size_t(z) * n[1] + y) * n[0] + x; }
+    size_t size() const { return size_t(n[0]) * n[1] * n[2]; }
+    bool inside(size_t i) const { return w[i] > 0.5f; }
+    // Trilinear interpolation of the winding number (0 outside the grid).
+    double sample(const Vec3& p) const;
+};
+
+// Lays a grid over `box` with `cells` voxels along its longest side (plus a one-voxel margin)
+// and evaluates the winding number at every voxel centre; blocks far from the surface whose
+// corners agree are filled without evaluating every voxel.
+VoxelGrid build_winding_grid(const TriangleTree& tree, const WindingNumber& winding, const TriangleTree::Box& box,
+                             int cells, unsigned threads, const std::function<void(double)>& progress);
+
+// ---------------------------------------------------------------------------------------------
+// ellipsoid_growth.cpp
+
+struct Candidate {
+    Vec3 center = Vec3::Zero();
+    Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // column i: direction of semi-axis i
+    Vec3 radii = Vec3::Zero();
+    double volume() const { return 4.18879020478639 * radii.x() * radii.y() * radii.z(); }
+};
+
+struct GrowthContext {
+    const TriangleTree& tree;
+    const VoxelGrid& grid;
+    const WindingNumber& winding;
+    bool closed = false;    // no boundary edges: the exact surface test alone proves insideness
+    double min_radius = 0;  // smaller spheres are not worth a candidate
+    // Per tree node: area, area-weighted centroid sum and second moments (for local PCA).
+    std::vector<std::array<double, 10>> node_moments;
+};
+
+// Fills ctx.node_moments from the tree.
+void prepare_growth(GrowthContext& ctx);
+
+// True when the solid ellipsoid meets no triangle (exact, in double precision). `hint`, when given,
+// is a triangle (in leaf order) tested first and is set to the one found in the way.
+bool clear_of_surface(const TriangleTree& tree, const Candidate& e, uint32_t* hint = nullptr);
+
+// True when the ellipsoid is inside the model: clear of the surface, centre inside, and (for an
+// open surface) not leaking out through a hole (checked on the winding grid).
+bool ellipsoid_inside(const GrowthContext& ctx, const Candidate& e, uint32_t* hint = nullptr);
+
+// Grows a candidate from surface point `p` with unit inward normal `n`: a sphere tangent at p
+// grown until it touches the surface elsewhere, then stretched axis by axis (moving its centre
+// when that helps) while it stays inside. False when no sphere of min_radius fits.
+bool grow_ellipsoid(const GrowthContext& ctx, const Vec3& p, const Vec3& n, Candidate& out);
+
+// ---------------------------------------------------------------------------------------------
+// ellipsoid_selection.cpp
+
+// The voxels of a grid whose centres are inside an ellipsoid, as runs along x: (row, x0, x1).
+struct Span {
+    uint32_t row;  // y + z * ny
+    uint16_t x0, x1;  // [x0, x1)
+};
+std::vector<Span> rasterize(const VoxelGrid& grid, const Candidate& e, double inflate = 0);
+
+// Voxel bitset over a grid, one row of words per (y, z).
+class VoxelBits {
+public:
+    VoxelBits(const VoxelGrid& grid, bool value);
+    void set(size_t x, size_t row, bool v);
+    bool get(size_t x, size_t row) const;
+    size_t count(const std::vector<Span>& spans) const;  // set bits under the spans
+    void clear(const std::vector<Span>& spans);
+    void fill(const std::vector<Span>& spans);
+    size_t count_all() const;
+
+private:
+    size_t words_per_row_;
+    std::vector<uint64_t> bits_;
+};
+
+struct SelectionResult {
+    std::vector<uint32_t> volume;   // candidate indices chosen for volume, in order
+    std::vector<uint32_t> surface;  // candidate indices chosen for surface coverage
+    double coverage = 0;            // covered fraction of interior voxels by the chosen ones
+};
+
+// Greedy: the largest candidate first, then the one with the largest gain of covered interior
+// voxels, until `coverage` or `max_volume`; then, until `max_count` in all, the candidate covering
+// the most surface samples still farther than `near` from every chosen ellipsoid.
+SelectionResult select_ellipsoids(const VoxelGrid& grid, const std::vector<Candidate>& candidates,
+                                  const std::vector<Vec3>& surface_samples, double near, double coverage,
+                                  uint32_t max_volume, uint32_t max_count, const std::function<void(double)>& progress);
+
+// ---------------------------------------------------------------------------------------------
+// point_order.cpp
+
+// An order of `positions` (distinct points) in which every prefix, and every run of consecutive
+// points, is spread evenly: coarse-to-fine levels of a voxel hierarchy, shuffled within a level.
+std::vector<uint32_t> spread_order(const std::vector<std::array<uint32_t, 3>>& positions, int bits, uint32_t seed);
+
+}  // namespace ellicast::detail

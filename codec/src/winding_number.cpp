@@ -1,0 +1,209 @@
+// Generalized winding numbers (Jacobson, Kavan, Sorkine-Hornung 2013) evaluated with a hierarchy
+// (Barill et al. 2018, "Fast winding numbers for soups and clouds", first-order dipoles), and a
+// voxel grid of them for the encoder's inside test.
+#include "encoder_internal.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ellicast::detail {
+
+namespace {
+
+constexpr double kInvFourPi = 0.079577471545947667884;
+
+double dot3(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 sub3(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V3 cross3(const V3& a, const V3& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+// Solid angle of triangle (a, b, c) seen from q (Van Oosterom & Strackee 1983), signed.
+double solid_angle(const V3& a0, const V3& b0, const V3& c0, const V3& q) {
+    V3 a = sub3(a0, q), b = sub3(b0, q), c = sub3(c0, q);
+    double la = std::sqrt(dot3(a, a)), lb = std::sqrt(dot3(b, b)), lc = std::sqrt(dot3(c, c));
+    double num = dot3(a, cross3(b, c));
+    double den = la * lb * lc + dot3(a, b) * lc + dot3(b, c) * la + dot3(c, a) * lb;
+    return 2.0 * std::atan2(num, den);
+}
+
+}  // namespace
+
+WindingNumber::WindingNumber(const TriangleTree& tree, double accuracy) : tree_(tree), beta2_(accuracy * accuracy) {
+    const auto& nodes = tree.nodes();
+    const auto& tris = tree.triangles();
+    dipoles_.resize(nodes.size());
+    // Children have larger indices than their parent: accumulate bottom-up.
+    std::vector<double> area(nodes.size(), 0.0);
+    for (size_t k = nodes.size(); k-- > 0;) {
+        const auto& node = nodes[k];
+        NodeDipole& d = dipoles_[k];
+        if (node.is_leaf()) {
+            V3 csum{0, 0, 0};
+            double asum = 0;
+            for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+                const auto& t = tris[i];
+                V3 nrm = cross3(sub3(t.v[1], t.v[0]), sub3(t.v[2], t.v[0]));
+                for (int j = 0; j < 3; ++j) d.normal[j] += 0.5 * nrm[j];
+                double a = 0.5 * std::sqrt(dot3(nrm, nrm));
+                for (int j = 0; j < 3; ++j) csum[j] += a * (t.v[0][j] + t.v[1][j] + t.v[2][j]) / 3.0;
+                asum += a;
+            }
+            area[k] = asum;
+            for (int j = 0; j < 3; ++j)
+                d.center[j] = asum > 0 ? csum[j] / asum : 0.5 * (node.bounds.min[j] + node.bounds.max[j]);
+        } else {
+            const NodeDipole &l = dipoles_[node.first], &r = dipoles_[node.right];
+            double al = area[node.first], ar = area[node.right];
+            area[k] = al + ar;
+            for (int j = 0; j < 3; ++j) {
+                d.normal[j] = l.normal[j] + r.normal[j];
+                d.center[j] = area[k] > 0 ? (al * l.center[j] + ar * r.center[j]) / area[k]
+                                          : 0.5 * (node.bounds.min[j] + node.bounds.max[j]);
+            }
+        }
+        // A ball around the centre holding the node's box.
+        double r2 = 0;
+        for (int j = 0; j < 3; ++j) {
+            double e = std::max(std::abs(node.bounds.max[j] - d.center[j]), std::abs(d.center[j] - node.bounds.min[j]));
+            r2 += e * e;
+        }
+        d.radius2 = r2;
+    }
+}
+
+double WindingNumber::operator()(const V3& q) const {
+    const auto& nodes = tree_.nodes();
+    if (nodes.empty()) return 0;
+    const auto& tris = tree_.triangles();
+    double sum = 0;
+    uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        uint32_t k = stack[--top];
+        const auto& node = nodes[k];
+        const NodeDipole& d = dipoles_[k];
+        V3 r = sub3(d.center, q);
+        double dist2 = dot3(r, r);
+        if (dist2 > beta2_ * d.radius2) {
+            sum += dot3(d.normal, r) / (dist2 * std::sqrt(dist2));  // far: one dipole for the node
+            continue;
+        }
+        if (node.is_leaf()) {
+            for (uint32_t i = node.first; i < node.first + node.count; ++i)
+                sum += solid_angle(tris[i].v[0], tris[i].v[1], tris[i].v[2], q);
+            continue;
+        }
+        if (top + 2 > 128) continue;
+        stack[top++] = node.first;
+        stack[top++] = node.right;
+    }
+    return sum * kInvFourPi;
+}
+
+double VoxelGrid::sample(const Vec3& p) const {
+    double f[3];
+    int i0[3];
+    for (int k = 0; k < 3; ++k) {
+        double u = (p[k] - origin[k]) / h;
+        if (!(u >= 0) || u > n[k] - 1) return 0;
+        i0[k] = std::min(int(u), n[k] - 2 >= 0 ? n[k] - 2 : 0);
+        f[k] = u - i0[k];
+    }
+    double v = 0;
+    for (int dz = 0; dz < 2; ++dz)
+        for (int dy = 0; dy < 2; ++dy)
+            for (int dx = 0; dx < 2; ++dx) {
+                int x = std::min(i0[0] + dx, n[0] - 1), y = std::min(i0[1] + dy, n[1] - 1),
+                    z = std::min(i0[2] + dz, n[2] - 1);
+                double wgt = (dx ? f[0] : 1 - f[0]) * (dy ? f[1] : 1 - f[1]) * (dz ? f[2] : 1 - f[2]);
+                v += wgt * w[index(x, y, z)];
+            }
+    return v;
+}
+
+VoxelGrid build_winding_grid(const TriangleTree& tree, const WindingNumber& winding, const TriangleTree::Box& box,
+                             int cells, unsigned threads, const std::function<void(double)>& progress) {
+    VoxelGrid g;
+    double extent = 0;
+    for (int k = 0; k < 3; ++k) extent = std::max(extent, box.max[k] - box.min[k]);
+    if (!(extent > 0)) extent = 1;
+    g.h = extent / cells;
+    for (int k = 0; k < 3; ++k) {
+        double e = box.max[k] - box.min[k];
+        g.n[k] = int(std::ceil(e / g.h - 1e-9)) + 2;
+        g.origin[k] = box.min[k] - 0.5 * (g.n[k] * g.h - e) + 0.5 * g.h;
+    }
+    g.w.assign(g.size(), 0.0f);
+    auto center = [&](int x, int y, int z) -> V3 {
+        return {g.origin[0] + x * g.h, g.origin[1] + y * g.h, g.origin[2] + z * g.h};
+    };
+
+    // Lattice of block corners: every B-th voxel along each axis, and the last one.
+    constexpr int B = 4;
+    std::vector<int> lattice[3];
+    for (int k = 0; k < 3; ++k) {
+        for (int i = 0; i < g.n[k] - 1; i += B) lattice[k].push_back(i);
+        lattice[k].push_back(g.n[k] - 1);
+    }
+    const size_t lx = lattice[0].size(), ly = lattice[1].size(), lz = lattice[2].size();
+    std::vector<float> corner(lx * ly * lz);
+    parallel_for(lz, threads, [&](size_t iz) {
+        for (size_t iy = 0; iy < ly; ++iy)
+            for (size_t ix = 0; ix < lx; ++ix)
+                corner[(iz * ly + iy) * lx + ix] =
+                    float(winding(center(lattice[0][ix], lattice[1][iy], lattice[2][iz])));
+    });
+    if (progress) progress(0.2);
+
+    // Each block owns voxels [L_i, L_{i+1}) (the last block also its far end).
+    parallel_for(lz - 1, threads, [&](size_t bz) {
+        for (size_t by = 0; by + 1 < ly; ++by)
+            for (size_t bx = 0; bx + 1 < lx; ++bx) {
+                float c[8];
+                bool any_in = false, any_out = false;
+                for (int j = 0; j < 8; ++j) {
+                    c[j] = corner[((bz + (j >> 2 & 1)) * ly + by + (j >> 1 & 1)) * lx + bx + (j & 1)];
+                    (c[j] > 0.5f ? any_in : any_out) = true;
+                }
+                int lo[3] = {lattice[0][bx], lattice[1][by], lattice[2][bz]};
+                int hi[3] = {lattice[0][bx + 1], lattice[1][by + 1], lattice[2][bz + 1]};
+                int end[3];
+                for (int k = 0; k < 3; ++k) end[k] = hi[k] + (hi[k] == g.n[k] - 1 ? 1 : 0);
+                bool uniform = !(any_in && any_out);
+                if (uniform) {
+                    V3 mid = center(lo[0], lo[1], lo[2]);
+                    double half2 = 0;
+                    for (int k = 0; k < 3; ++k) {
+                        double e = 0.5 * (hi[k] - lo[k]) * g.h;
+                        mid[k] += e;
+                        half2 += e * e;
+                    }
+                    uniform = !tree.any_within(mid, std::sqrt(half2) + g.h);
+                }
+                for (int z = lo[2]; z < end[2]; ++z)
+                    for (int y = lo[1]; y < end[1]; ++y)
+                        for (int x = lo[0]; x < end[0]; ++x) {
+                            float v;
+                            if (uniform) {
+                                double fx = hi[0] > lo[0] ? double(x - lo[0]) / (hi[0] - lo[0]) : 0;
+                                double fy = hi[1] > lo[1] ? double(y - lo[1]) / (hi[1] - lo[1]) : 0;
+                                double fz = hi[2] > lo[2] ? double(z - lo[2]) / (hi[2] - lo[2]) : 0;
+                                double s = 0;
+                                for (int j = 0; j < 8; ++j)
+                                    s += c[j] * ((j & 1) ? fx : 1 - fx) * ((j >> 1 & 1) ? fy : 1 - fy) *
+                                         ((j >> 2 & 1) ? fz : 1 - fz);
+                                v = float(s);
+                            } else {
+                                v = float(winding(center(x, y, z)));
+                            }
+                            g.w[g.index(x, y, z)] = v;
+                        }
+            }
+    });
+    if (progress) progress(1.0);
+    return g;
+}
+
+}  // namespace ellicast::detail

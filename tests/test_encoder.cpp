@@ -1,0 +1,308 @@
+// The encoder: every sample becomes a valid stream, the output is deterministic, ellipsoids stay
+// inside a convex shape, Draco and plain input give the same points, the command line behaves.
+#include "ellicast/codec/encoder.h"
+#include "ellicast/converters/mesh_input.h"
+#include "ellicast/format.h"
+#include "support.h"
+
+#include <doctest/doctest.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+using namespace ellicast;
+using ellicast::test::have_sample;
+using ellicast::test::shared_samples;
+
+namespace {
+
+// Coarse settings keep the suite fast; the benchmarks run the defaults.
+EncodeOptions fast_options() {
+    EncodeOptions o;
+    o.max_ellipsoids = 40;
+    o.candidates = 200;
+    o.grid = 32;
+    return o;
+}
+
+// A closed convex polyhedron: a UV sphere squashed to radii (1, 0.6, 0.35), outward faces.
+Mesh convex_shape(int n) {
+    Mesh m;
+    m.name = "convex";
+    m.positions.push_back({0, 0, 0.35f});
+    for (int i = 1; i < n; ++i)
+        for (int j = 0; j < 2 * n; ++j) {
+            double th = M_PI * i / n, ph = M_PI * j / n;
+            m.positions.push_back({float(std::sin(th) * std::cos(ph)), float(0.6 * std::sin(th) * std::sin(ph)),
+                                   float(0.35 * std::cos(th))});
+        }
+    m.positions.push_back({0, 0, -0.35f});
+    auto ring = [&](int i, int j) { return uint32_t(1 + (i - 1) * 2 * n + (j % (2 * n))); };
+    for (int j = 0; j < 2 * n; ++j) m.triangles.push_back({0, ring(1, j), ring(1, j + 1)});
+    for (int i = 1; i < n - 1; ++i)
+        for (int j = 0; j < 2 * n; ++j) {
+            m.triangles.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
+            m.triangles.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
+        }
+    uint32_t south = uint32_t(m.positions.size() - 1);
+    for (int j = 0; j < 2 * n; ++j) m.triangles.push_back({ring(n - 1, j + 1), ring(n - 1, j), south});
+    return m;
+}
+
+// Every packet of the stream, as a container, read back through the receiver.
+ReceivedStream receive_all(const EncodeResult& r, std::vector<uint8_t>* file = nullptr) {
+    StreamPackets packets;
+    REQUIRE(packetize_stream(r.info, r.contents, 7, packets) == Error::Ok);
+    std::vector<std::vector<uint8_t>> all;
+    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.points})
+        for (auto& p : *group) {
+            CHECK(p.size() <= r.info.packet_size);
+            all.push_back(p);
+        }
+    std::vector<uint8_t> bytes = write_container(all);
+    ContainerContents contents = read_container(bytes);
+    REQUIRE(contents.header_error == Error::Ok);
+    CHECK(contents.damaged.empty());
+    ReceivedStream rx;
+    for (const auto& p : contents.packets) CHECK(rx.add_parsed(p.view, p.offset) == Error::Ok);
+    if (file) *file = bytes;
+    return rx;
+}
+
+std::string sample(const std::string& rel) { return (shared_samples() / rel).string(); }
+
+}  // namespace
+
+TEST_CASE("every sample model encodes into a stream the receiver accepts whole") {
+    const char* files[] = {"meshes/bunny.ply", "meshes/spot.obj", "meshes/fandisk.obj", "meshes/teapot.obj",
+                           "meshes/suzanne.obj", "meshes/woody.obj", "gltf/Box-glb/Box.glb",
+                           "gltf/Box-glb/Box_Draco.glb", "gltf/Duck/Duck.gltf", "gltf/Duck-glb/Duck.glb",
+                           "gltf/CesiumMilkTruck/CesiumMilkTruck.gltf", "gltf/Fox/Fox.gltf",
+                           "gltf/VertexColorTest/VertexColorTest.gltf",
+                           "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf"};
+    for (const char* f : files) {
+        if (!have_sample(f)) continue;
+        std::string name = f;
+        CAPTURE(name);
+        LoadResult loaded = load_meshes(sample(f));
+        EncodeResult r = encode_meshes(loaded.meshes, fast_options());
+        REQUIRE(r.info.objects.size() == loaded.meshes.size());
+        ReceivedStream rx = receive_all(r);
+        REQUIRE(rx.objects().size() == loaded.meshes.size());
+        for (size_t i = 0; i < loaded.meshes.size(); ++i) {
+            const Mesh& m = loaded.meshes[i];
+            const ObjectInfo& o = r.info.objects[i];
+            CHECK(rx.objects()[i].points.size() == o.point_count);
+            CHECK(rx.objects()[i].ellipsoids.size() == o.ellipsoid_count);
+            CHECK(o.point_count >= 1);
+            CHECK(o.point_count <= m.positions.size());
+            CHECK(o.ellipsoid_count <= 40);
+            CHECK((o.kind == ObjectKind::PointSet) == m.is_point_set);
+            CAPTURE(i);
+            if (!m.is_point_set) CHECK(o.ellipsoid_count >= 1);  // every surface gets a base
+            CHECK(o.has(kAttrNormal) == m.has_normals());
+            CHECK(o.has(kAttrTexcoord) == m.has_texcoords());
+            CHECK(o.has(kAttrColor) == m.has_colors());
+        }
+    }
+}
+
+TEST_CASE("every distinct vertex position arrives, welded, within half a quantization step") {
+    if (!have_sample("meshes/spot.obj")) return;
+    LoadResult loaded = load_meshes(sample("meshes/spot.obj"));
+    const Mesh& m = loaded.meshes[0];
+    EncodeResult r = encode_meshes(loaded.meshes, fast_options());
+    ReceivedStream rx = receive_all(r);
+    auto pts = rx.points(0);
+    const Frame& f = r.info.objects[0].frame;
+    const double step = f.scale / ((1 << r.info.position_bits) - 1);
+    std::set<std::array<uint32_t, 3>> sent;
+    for (const auto& [index, q] : rx.objects()[0].points) sent.insert(q.position);
+    // Seams: spot has more vertices than positions, and more points than positions (UV sets).
+    CHECK(sent.size() <= pts.size());
+    CHECK(sent.size() >= 2900);
+    for (size_t i = 0; i < m.positions.size(); i += 7) {
+        std::array<uint32_t, 3> q;
+        for (int k = 0; k < 3; ++k) q[k] = uint32_t(std::lround((m.positions[i][k] - f.origin[k]) / step));
+        CHECK(sent.count(q) == 1);
+    }
+}
+
+TEST_CASE("the same input, options and seed give a byte-identical stream, whatever the thread count") {
+    if (!have_sample("meshes/teapot.obj")) return;
+    LoadResult loaded = load_meshes(sample("meshes/teapot.obj"));
+    EncodeOptions a = fast_options();
+    a.threads = 1;
+    EncodeOptions b = fast_options();
+    b.threads = 2;
+    std::vector<uint8_t> fa, fb, fc;
+    receive_all(encode_meshes(loaded.meshes, a), &fa);
+    receive_all(encode_meshes(loaded.meshes, b), &fb);
+    CHECK(fa == fb);
+    EncodeOptions c = fast_options();
+    c.seed = 99;
+    receive_all(encode_meshes(loaded.meshes, c), &fc);
+    CHECK(fa != fc);  // the seed matters
+}
+
+TEST_CASE("ellipsoids never poke out of a convex shape by more than one quantization step") {
+    Mesh shape = convex_shape(24);
+    EncodeOptions o = fast_options();
+    o.max_ellipsoids = 60;
+    o.coverage = 1.0;  // keep adding ellipsoids: the small ones near the surface are the risky ones
+    EncodeResult r = encode_meshes({shape}, o);
+    const ObjectInfo& obj = r.info.objects[0];
+    REQUIRE(obj.ellipsoid_count >= 5);
+    const double step = obj.frame.scale / 8191.0;
+    // Face planes of the convex polyhedron.
+    std::vector<std::pair<Eigen::Vector3d, double>> planes;
+    for (const auto& t : shape.triangles) {
+        Eigen::Vector3d a(shape.positions[t[0]][0], shape.positions[t[0]][1], shape.positions[t[0]][2]);
+        Eigen::Vector3d b(shape.positions[t[1]][0], shape.positions[t[1]][1], shape.positions[t[1]][2]);
+        Eigen::Vector3d c(shape.positions[t[2]][0], shape.positions[t[2]][1], shape.positions[t[2]][2]);
+        Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+        planes.push_back({n, n.dot(a)});
+    }
+    double worst = -1e9;
+    for (const auto& q : r.contents[0].ellipsoids) {
+        Ellipsoid e = dequantize_ellipsoid(q, obj.frame);
+        Eigen::Matrix3d R =
+            Eigen::Quaterniond(e.rotation[0], e.rotation[1], e.rotation[2], e.rotation[3]).normalized().toRotationMatrix();
+        Eigen::Vector3d c(e.center[0], e.center[1], e.center[2]);
+        Eigen::Vector3d radii(e.radii[0], e.radii[1], e.radii[2]);
+        // Support function of the ellipsoid along each plane normal: its farthest point.
+        for (const auto& [n, d] : planes) {
+            Eigen::Vector3d local = R.transpose() * n;
+            double support = n.dot(c) + std::sqrt((radii.cwiseProduct(local)).squaredNorm());
+            worst = std::max(worst, support - d);
+        }
+    }
+    CHECK(worst <= step);
+    CHECK(r.reports[0].closed);
+    CHECK(r.reports[0].outside < 0.01);
+}
+
+TEST_CASE("Draco-compressed Box gives the same points as the plain Box within quantization") {
+    if (!have_sample("gltf/Box-glb/Box.glb") || !have_sample("gltf/Box-glb/Box_Draco.glb")) return;
+    EncodeResult plain = encode_meshes(load_meshes(sample("gltf/Box-glb/Box.glb")).meshes, fast_options());
+    EncodeResult draco = encode_meshes(load_meshes(sample("gltf/Box-glb/Box_Draco.glb")).meshes, fast_options());
+    ReceivedStream a = receive_all(plain), b = receive_all(draco);
+    auto pa = a.points(0), pb = b.points(0);
+    REQUIRE(pa.size() == pb.size());
+    auto by_position = [](const SurfacePoint& x, const SurfacePoint& y) {
+        return std::tie(x.position, x.normal) < std::tie(y.position, y.normal);
+    };
+    std::sort(pa.begin(), pa.end(), by_position);
+    std::sort(pb.begin(), pb.end(), by_position);
+    const double step = plain.info.objects[0].frame.scale / ((1 << plain.info.position_bits) - 1);
+    for (size_t i = 0; i < pa.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+            CHECK(std::abs(pa[i].position[k] - pb[i].position[k]) <= 2 * step);
+            CHECK(std::abs(pa[i].normal[k] - pb[i].normal[k]) <= 0.01);
+        }
+}
+
+TEST_CASE("a closed model's interior is mostly covered and little volume lies outside") {
+    if (!have_sample("meshes/spot.obj")) return;
+    EncodeOptions o = fast_options();
+    o.grid = 48;
+    o.max_ellipsoids = 150;
+    o.candidates = 600;
+    EncodeResult r = encode_meshes(load_meshes(sample("meshes/spot.obj")).meshes, o);
+    CHECK(r.reports[0].closed);
+    CHECK(r.reports[0].coverage > 0.85);
+    CHECK(r.reports[0].outside < 0.01);
+}
+
+TEST_CASE("a flat sheet with no inside still gets flat ellipsoids hugging it") {
+    Mesh sheet;
+    sheet.name = "sheet";
+    const int n = 20;
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) sheet.positions.push_back({float(i) / n, float(j) / n, 0.05f * float(i * j) / (n * n)});
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            uint32_t a = i * (n + 1) + j, b = a + 1, c = a + n + 1, d = c + 1;
+            sheet.triangles.push_back({a, c, d});
+            sheet.triangles.push_back({a, d, b});
+        }
+    EncodeResult r = encode_meshes({sheet}, fast_options());
+    const auto& rep = r.reports[0];
+    CHECK(rep.flat_ellipsoids >= 1);
+    CHECK(rep.surface_covered >= 0.0);
+    // Every ellipsoid is flat: its smallest radius is much smaller than its largest.
+    for (const auto& q : r.contents[0].ellipsoids) {
+        Ellipsoid e = dequantize_ellipsoid(q, r.info.objects[0].frame);
+        auto [lo, hi] = std::minmax({e.radii[0], e.radii[1], e.radii[2]});
+        CHECK(lo * 3 < hi);
+    }
+}
+
+TEST_CASE("encoder options out of range are refused with a message naming the option") {
+    Mesh m = convex_shape(6);
+    auto refused = [&](EncodeOptions o, const std::string& word) {
+        std::string why = check_encode_options(o);
+        CHECK(why.find(word) != std::string::npos);
+        CHECK_THROWS_AS(encode_meshes({m}, o), std::invalid_argument);
+    };
+    EncodeOptions o;
+    o.max_ellipsoids = 0;
+    refused(o, "ellipsoid count");
+    o = {};
+    o.coverage = 1.5;
+    refused(o, "coverage");
+    o = {};
+    o.position_bits = 20;
+    refused(o, "position bits");
+    o = {};
+    o.packet_size = 64;
+    refused(o, "packet size");
+    o = {};
+    o.grid = 5000;
+    refused(o, "grid");
+    CHECK_THROWS_AS(encode_meshes({}, EncodeOptions{}), std::invalid_argument);
+}
+
+TEST_CASE("ellicast encode writes a stream, refuses to overwrite its input and rejects absurd options") {
+    if (!have_sample("meshes/woody.obj")) return;
+    auto dir = ellicast::test::scratch_dir("encode_cli");
+    const std::string exe = ellicast::test::ellicast_exe().string();
+    const std::string input = sample("meshes/woody.obj");
+    const std::string out = (dir / "woody.ellc").string();
+    auto run = [&](const std::string& args) {
+        int status = std::system((exe + " " + args + " > " + (dir / "out.txt").string() + " 2> " +
+                                  (dir / "err.txt").string()).c_str());
+        return WEXITSTATUS(status);
+    };
+    auto text = [&](const char* name) {
+        std::ifstream in(dir / name);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    CHECK(run("encode -q --grid 32 -e 30 " + input + " -o " + out) == 0);
+    CHECK(std::filesystem::file_size(out) > 0);
+    CHECK(text("out.txt").find("bytes per point") != std::string::npos);
+    std::vector<uint8_t> bytes;
+    std::string message;
+    REQUIRE(read_file(out, bytes, message) == Error::Ok);
+    CHECK(read_container(bytes).damaged.empty());
+
+    // The input is never overwritten.
+    std::filesystem::copy_file(input, dir / "copy.obj");
+    auto before = std::filesystem::file_size(dir / "copy.obj");
+    CHECK(run("encode -q " + (dir / "copy.obj").string() + " -o " + (dir / "copy.obj").string()) == 2);
+    CHECK(std::filesystem::file_size(dir / "copy.obj") == before);
+    CHECK(text("err.txt").find("refusing to overwrite") != std::string::npos);
+
+    CHECK(run("encode -q " + input + " -o " + out + " --coverage 7") == 2);
+    CHECK(text("err.txt").find("coverage") != std::string::npos);
+    CHECK(run("encode -q " + input + " -o " + out + " --packet-size 10") == 2);
+    CHECK(text("err.txt").find("packet size") != std::string::npos);
+    CHECK(run("encode -q " + (dir / "missing.obj").string() + " -o " + out) == 3);
+    CHECK(text("err.txt").find("missing.obj") != std::string::npos);
+}

@@ -1,0 +1,145 @@
+// `ellicast encode INPUT -o OUT.ellc`: a model (glTF, OBJ, PLY, OFF, STL) to a recorded stream.
+#include "commands.h"
+#include "progress.h"
+
+#include "ellicast/codec/encoder.h"
+#include "ellicast/converters/mesh_input.h"
+#include "ellicast/format.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+namespace ellicast::cli {
+
+namespace {
+
+struct EncodeArgs {
+    std::string input, output;
+    uint32_t ellipsoids = 400;
+    double coverage = 0.95;
+    uint32_t candidates = 0;
+    uint32_t grid = 0;
+    int position_bits = 14, normal_bits = 10, texcoord_bits = 12, color_bits = 8;
+    int packet_size = int(kDefaultPacketSize);
+    uint32_t seed = 1;
+    uint32_t stream_id = 1;
+    unsigned threads = 2;
+    bool quiet = false;
+};
+
+int run_encode(const EncodeArgs& a) {
+    auto start = std::chrono::steady_clock::now();
+    if (output_clobbers_input(a.output, {a.input})) return kExitUsage;
+    std::error_code ec;
+    if (std::filesystem::path(a.output).has_parent_path() &&
+        !std::filesystem::is_directory(std::filesystem::path(a.output).parent_path(), ec))
+        return fail(kExitUsage, "the output directory of " + a.output + " does not exist");
+
+    EncodeOptions options;
+    options.max_ellipsoids = a.ellipsoids;
+    options.coverage = a.coverage;
+    options.candidates = a.candidates;
+    options.grid = a.grid;
+    auto bits = [](int v) { return uint8_t(v < 0 || v > 255 ? 0 : v); };
+    options.position_bits = bits(a.position_bits);
+    options.normal_bits = bits(a.normal_bits);
+    options.texcoord_bits = bits(a.texcoord_bits);
+    options.color_bits = bits(a.color_bits);
+    options.packet_size = uint16_t(a.packet_size < 0 || a.packet_size > 65535 ? 0 : a.packet_size);
+    options.seed = a.seed;
+    options.threads = a.threads;
+    if (std::string why = check_encode_options(options); !why.empty()) return fail(kExitUsage, why);
+
+    LoadResult loaded;
+    try {
+        loaded = load_meshes(a.input);
+    } catch (const InputError& e) {
+        return fail(kExitFailure, e.what());
+    }
+    for (const auto& w : loaded.warnings) std::cerr << "ellicast: warning: " << w << "\n";
+    if (loaded.meshes.size() > kMaxObjects)
+        return fail(kExitFailure, a.input + ": " + std::to_string(loaded.meshes.size()) +
+                                      " objects, more than a stream holds (" + std::to_string(kMaxObjects) + ")");
+
+    auto bar = std::make_shared<ProgressBar>(!a.quiet);
+    options.progress = [bar](const std::string& stage, double f) { bar->update(stage, f); };
+    EncodeResult encoded;
+    try {
+        encoded = encode_meshes(loaded.meshes, options);
+    } catch (const std::exception& e) {
+        bar->finish();
+        return fail(kExitFailure, a.input + ": " + e.what());
+    }
+    bar->finish();
+    for (const auto& w : encoded.warnings) std::cerr << "ellicast: warning: " << w << "\n";
+
+    StreamPackets packets;
+    if (Error e = packetize_stream(encoded.info, encoded.contents, a.stream_id, packets); e != Error::Ok)
+        return fail(kExitFailure, std::string("could not cut the stream into packets: ") + error_name(e));
+    std::vector<std::vector<uint8_t>> all;
+    size_t info_bytes = 0, base_bytes = 0, detail_bytes = 0;
+    for (auto& p : packets.stream_info) info_bytes += p.size(), all.push_back(p);
+    for (auto& p : packets.ellipsoids) base_bytes += p.size(), all.push_back(p);
+    for (auto& p : packets.points) detail_bytes += p.size(), all.push_back(p);
+    std::vector<uint8_t> file = write_container(all);
+    std::string message;
+    if (write_file(a.output, file, message) != Error::Ok) return fail(kExitFailure, message);
+
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    size_t ellipsoids = 0, points = 0;
+    for (const auto& o : encoded.info.objects) ellipsoids += o.ellipsoid_count, points += o.point_count;
+    std::printf("%s -> %s\n", a.input.c_str(), a.output.c_str());
+    for (size_t i = 0; i < encoded.reports.size(); ++i) {
+        const ObjectReport& r = encoded.reports[i];
+        if (r.point_set) {
+            std::printf("  object %zu %-24s point set: %u points\n", i, r.name.c_str(), r.points);
+            continue;
+        }
+        std::printf("  object %zu %-24s %u ellipsoids (%u for thin parts, %u flat) of %u candidates, %u points; "
+                    "%s, coverage %.1f%%, outside %.2f%%, surface near base %.1f%%\n",
+                    i, r.name.c_str(), r.ellipsoids, r.surface_ellipsoids, r.flat_ellipsoids, r.candidates, r.points,
+                    r.closed ? "closed" : "open", 100 * r.coverage, 100 * r.outside, 100 * r.surface_covered);
+    }
+    std::printf("objects %zu, ellipsoids %zu, points %zu\n", encoded.info.objects.size(), ellipsoids, points);
+    std::printf("bytes: stream info %zu (%zu packets), base %zu (%zu packets), detail %zu (%zu packets), file %zu\n",
+                info_bytes, packets.stream_info.size(), base_bytes, packets.ellipsoids.size(), detail_bytes,
+                packets.points.size(), file.size());
+    std::printf("bytes per ellipsoid %.2f, bytes per point %.2f (packet overhead included)\n",
+                ellipsoids ? double(base_bytes) / double(ellipsoids) : 0.0,
+                points ? double(detail_bytes) / double(points) : 0.0);
+    std::printf("time %.2f s\n", seconds);
+    return kExitOk;
+}
+
+const RegisterCommand registered({10, [](CLI::App& app, int& exit_code) {
+    auto args = std::make_shared<EncodeArgs>();
+    CLI::App* cmd = app.add_subcommand("encode", "Encode a model (glTF, OBJ, PLY, OFF, STL) into a stream file (.ellc)");
+    cmd->add_option("input", args->input, "model to encode")->required();
+    cmd->add_option("-o,--output", args->output, "stream file to write (.ellc)")->required();
+    cmd->add_option("-e,--ellipsoids", args->ellipsoids, "most ellipsoids per object (1..100000)")->capture_default_str();
+    cmd->add_option("-c,--coverage", args->coverage, "fraction of the interior volume to cover, (0, 1]")
+        ->capture_default_str();
+    cmd->add_option("--candidates", args->candidates, "candidate ellipsoids grown per object (0: automatic)")
+        ->capture_default_str();
+    cmd->add_option("--grid", args->grid, "voxel grid cells along the longest side (16..256, 0: automatic)")
+        ->capture_default_str();
+    cmd->add_option("--position-bits", args->position_bits, "bits per position coordinate (8..16)")->capture_default_str();
+    cmd->add_option("--normal-bits", args->normal_bits, "bits per octahedral normal component (4..16)")
+        ->capture_default_str();
+    cmd->add_option("--texcoord-bits", args->texcoord_bits, "bits per texture coordinate (4..16)")->capture_default_str();
+    cmd->add_option("--color-bits", args->color_bits, "bits per colour channel (2..16)")->capture_default_str();
+    cmd->add_option("--packet-size", args->packet_size, "largest packet in bytes (128..65000)")->capture_default_str();
+    cmd->add_option("--seed", args->seed, "random seed (same seed, same stream)")->capture_default_str();
+    cmd->add_option("--stream-id", args->stream_id, "stream id written in every packet")->capture_default_str();
+    cmd->add_option("--threads", args->threads, "worker threads (1..256; the result does not depend on it)")
+        ->capture_default_str();
+    cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
+    cmd->callback([args, &exit_code] { exit_code = run_encode(*args); });
+}});
+
+}  // namespace
+
+}  // namespace ellicast::cli
