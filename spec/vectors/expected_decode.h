@@ -1,0 +1,289 @@
+// The expected decode of a conformance vector as JSON: what a format 1.0 decoder makes of a container
+// file (spec/format.md sections 10 and 11). The vector generator (make_vectors.cpp) writes it next to
+// each .ellc; tests/test_conformance.cpp recomputes it with the library and compares. The JSON layout
+// is described in spec/vectors/README.md.
+#pragma once
+
+#include <ellicast/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace ellicast::conformance {
+
+// Elements of one kind are listed one by one up to this many per object; the digest is always given.
+inline constexpr size_t kMaxListedElements = 300;
+
+// The reason names of spec section 11.3 (stable: the vectors use them; error_name() is for people).
+inline const char* reason_name(Error e) {
+    switch (e) {
+    case Error::Ok: return "ok";
+    case Error::TooShort: return "too short";
+    case Error::BadMagic: return "bad magic";
+    case Error::UnsupportedMajor: return "unsupported major version";
+    case Error::InvalidType: return "invalid type";
+    case Error::Oversized: return "oversized";
+    case Error::Truncated: return "truncated";
+    case Error::LengthMismatch: return "length mismatch";
+    case Error::BadChecksum: return "bad checksum";
+    case Error::UnknownCriticalType: return "unknown critical type";
+    case Error::MalformedPayload: return "malformed payload";
+    case Error::NoStreamInfo: return "no stream info";
+    case Error::UnknownObject: return "unknown object";
+    case Error::IndexOutOfRange: return "index out of range";
+    case Error::StreamMismatch: return "stream mismatch";
+    case Error::BadSignature: return "bad container signature";
+    case Error::UnsupportedContainer: return "unsupported container version";
+    case Error::IoError: return "i/o error";
+    }
+    return "unknown";
+}
+
+// FNV-1a, 64 bits, over little-endian u32 words: the digest of a list of quantized elements.
+class Digest {
+public:
+    void add(uint32_t v) {
+        for (int i = 0; i < 4; ++i) {
+            h_ ^= (v >> (8 * i)) & 0xFF;
+            h_ *= 0x100000001B3ull;
+        }
+    }
+    std::string hex() const {
+        char buf[20];
+        std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h_));
+        return buf;
+    }
+
+private:
+    uint64_t h_ = 0xCBF29CE484222325ull;
+};
+
+// A float as the shortest decimal that reads back as the same float (JSON numbers are doubles).
+inline double shortest(float f) {
+    if (!std::isfinite(f)) return static_cast<double>(f);
+    char buf[32];
+    for (int digits = 6; digits <= 9; ++digits) {
+        std::snprintf(buf, sizeof buf, "%.*g", digits, static_cast<double>(f));
+        if (std::strtof(buf, nullptr) == f) break;
+    }
+    return std::strtod(buf, nullptr);
+}
+
+inline nlohmann::json floats(const float* v, size_t n) {
+    nlohmann::json a = nlohmann::json::array();
+    for (size_t i = 0; i < n; ++i) a.push_back(shortest(v[i]));
+    return a;
+}
+
+inline std::vector<uint32_t> ellipsoid_integers(const QuantizedEllipsoid& q) {
+    return {q.center[0], q.center[1], q.center[2], q.radii[0], q.radii[1], q.radii[2],
+            q.largest,   q.rotation[0], q.rotation[1], q.rotation[2]};
+}
+
+inline std::vector<uint32_t> point_integers(const QuantizedPoint& q, const ObjectInfo& o) {
+    std::vector<uint32_t> v(q.position.begin(), q.position.end());
+    if (o.has(kAttrNormal)) v.insert(v.end(), q.normal.begin(), q.normal.end());
+    if (o.has(kAttrTexcoord)) v.insert(v.end(), q.texcoord.begin(), q.texcoord.end());
+    for (int i = 0; i < o.color_channels(); ++i) v.push_back(q.color[i]);
+    return v;
+}
+
+inline nlohmann::json stream_info_json(const StreamInfo& s, size_t object_count) {
+    return {{"packet_size", s.packet_size},
+            {"position_bits", s.position_bits},
+            {"normal_bits", s.normal_bits},
+            {"texcoord_bits", s.texcoord_bits},
+            {"color_bits", s.color_bits},
+            {"ellipsoid_encoding", s.ellipsoid_encoding},
+            {"content_id", s.content_id},
+            {"object_count", object_count},
+            {"grid_hint", s.grid_hint},
+            {"coverage_target", shortest(s.coverage_target)},
+            {"seed", s.seed}};
+}
+
+inline nlohmann::json object_info_json(const ObjectInfo& o) {
+    return {{"frame_origin", floats(o.frame.origin.data(), 3)},
+            {"frame_scale", shortest(o.frame.scale)},
+            {"ellipsoid_count", o.ellipsoid_count},
+            {"point_count", o.point_count},
+            {"kind", o.kind == ObjectKind::Surface ? "surface" : "point set"},
+            {"attributes", o.attributes},
+            {"texcoord_origin", floats(o.texcoord_origin.data(), 2)},
+            {"texcoord_scale", floats(o.texcoord_scale.data(), 2)}};
+}
+
+// Decodes a container held in memory the way spec/format.md describes and returns the result.
+inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
+    using nlohmann::json;
+    json out;
+    out["file_size"] = bytes.size();
+    ContainerContents contents = read_container(bytes);
+    out["container_error"] = contents.header_error == Error::Ok ? json(nullptr) : json(reason_name(contents.header_error));
+
+    ReceivedStream stream;
+    json packets = json::array();
+    for (const ContainerPacket& p : contents.packets) {
+        const ReceiveCounters before = stream.counters();
+        Error e = stream.add_parsed(p.view, p.offset);
+        const ReceiveCounters& after = stream.counters();
+        std::string result = reason_name(e);
+        if (e == Error::Ok) {
+            if (after.accepted > before.accepted) result = "accepted";
+            else if (after.duplicates > before.duplicates) result = "duplicate";
+            else if (after.skipped > before.skipped) result = "skipped";
+            else result = "held";
+        }
+        const PacketHeader& h = p.view.header;
+        char version[8];
+        std::snprintf(version, sizeof version, "%u.%u", h.version_major, h.version_minor);
+        packets.push_back({{"offset", p.offset},
+                           {"size", p.view.size},
+                           {"version", version},
+                           {"type", packet_type_name(h.type)},
+                           {"flags", h.flags},
+                           {"stream_id", h.stream_id},
+                           {"sequence", h.sequence},
+                           {"object_id", h.object_id},
+                           {"payload_length", h.payload_length},
+                           {"result", result}});
+    }
+    out["packets"] = packets;
+
+    json damaged = json::array();
+    for (const DamagedRegion& d : contents.damaged)
+        damaged.push_back({{"offset", d.offset}, {"length", d.length}, {"reason", reason_name(d.first_error)}});
+    out["damaged"] = damaged;
+
+    json rejections = json::array();
+    for (const Rejection& r : stream.rejections())
+        rejections.push_back({{"offset", r.where}, {"reason", reason_name(r.error)}, {"detail", r.detail}});
+    out["rejections"] = rejections;
+
+    const ReceiveCounters& c = stream.counters();
+    out["counters"] = {{"accepted", c.accepted}, {"duplicates", c.duplicates}, {"skipped", c.skipped},
+                       {"rejected", c.rejected}, {"held", c.pending}};
+    out["stream_id"] = stream.has_stream_id() ? json(stream.stream_id()) : json(nullptr);
+    out["newest_minor"] = stream.newest_minor();
+    out["stream_info"] = stream.info() ? stream_info_json(*stream.info(), stream.objects().size()) : json(nullptr);
+
+    json objects = json::array();
+    for (size_t i = 0; i < stream.objects().size(); ++i) {
+        const ReceivedObject& object = stream.objects()[i];
+        json o;
+        o["id"] = i;
+        o["info"] = object.info ? object_info_json(*object.info) : json(nullptr);
+        o["ellipsoids_received"] = object.ellipsoids.size();
+        o["points_received"] = object.points.size();
+        if (object.info) {
+            const ObjectInfo& oi = *object.info;
+            Digest ed, pd;
+            json ellipsoids = json::array(), points = json::array();
+            for (const auto& [index, q] : object.ellipsoids) {
+                auto ints = ellipsoid_integers(q);
+                ed.add(index);
+                for (uint32_t v : ints) ed.add(v);
+                if (object.ellipsoids.size() > kMaxListedElements) continue;
+                Ellipsoid e = dequantize_ellipsoid(q, oi.frame);
+                ellipsoids.push_back({{"index", index},
+                                      {"q", ints},
+                                      {"center", floats(e.center.data(), 3)},
+                                      {"radii", floats(e.radii.data(), 3)},
+                                      {"rotation", floats(e.rotation.data(), 4)}});
+            }
+            for (const auto& [index, q] : object.points) {
+                auto ints = point_integers(q, oi);
+                pd.add(index);
+                for (uint32_t v : ints) pd.add(v);
+                if (object.points.size() > kMaxListedElements) continue;
+                SurfacePoint s = dequantize_point(q, *stream.info(), oi);
+                json p = {{"index", index}, {"q", ints}, {"position", floats(s.position.data(), 3)}};
+                if (oi.has(kAttrNormal)) p["normal"] = floats(s.normal.data(), 3);
+                if (oi.has(kAttrTexcoord)) p["texcoord"] = floats(s.texcoord.data(), 2);
+                if (oi.color_channels() > 0) p["color"] = floats(s.color.data(), oi.color_channels());
+                points.push_back(p);
+            }
+            o["ellipsoid_digest"] = ed.hex();
+            o["point_digest"] = pd.hex();
+            o["ellipsoids_listed"] = object.ellipsoids.size() <= kMaxListedElements;
+            o["points_listed"] = object.points.size() <= kMaxListedElements;
+            o["ellipsoids"] = ellipsoids;
+            o["points"] = points;
+        }
+        objects.push_back(o);
+    }
+    out["objects"] = objects;
+    return out;
+}
+
+// Keys that are for people only and not compared: rejection details and vector descriptions.
+inline bool is_informative_key(const std::string& key) { return key == "detail" || key == "description"; }
+
+// Compares an actual decode with the expected one: integers, strings, booleans and nulls exactly,
+// floating-point values within 1e-6 relative error. Appends one line per difference to `diffs`.
+inline void compare_json(const nlohmann::json& expected, const nlohmann::json& actual, const std::string& path,
+                         std::vector<std::string>& diffs) {
+    if (diffs.size() > 20) return;
+    if (expected.is_number() && actual.is_number()) {
+        if (expected.is_number_float() || actual.is_number_float()) {
+            double a = expected.get<double>(), b = actual.get<double>();
+            double tol = 1e-6 * std::max({1.0, std::fabs(a), std::fabs(b)});
+            if (!(std::fabs(a - b) <= tol)) diffs.push_back(path + ": expected " + expected.dump() + ", got " + actual.dump());
+        } else if (expected != actual) {
+            diffs.push_back(path + ": expected " + expected.dump() + ", got " + actual.dump());
+        }
+        return;
+    }
+    if (expected.type() != actual.type()) {
+        diffs.push_back(path + ": expected " + expected.dump().substr(0, 80) + ", got " + actual.dump().substr(0, 80));
+        return;
+    }
+    if (expected.is_object()) {
+        for (auto it = expected.begin(); it != expected.end(); ++it) {
+            if (is_informative_key(it.key())) continue;
+            if (!actual.contains(it.key())) diffs.push_back(path + "." + it.key() + ": missing");
+            else compare_json(it.value(), actual[it.key()], path + "." + it.key(), diffs);
+        }
+        for (auto it = actual.begin(); it != actual.end(); ++it)
+            if (!is_informative_key(it.key()) && !expected.contains(it.key()))
+                diffs.push_back(path + "." + it.key() + ": not expected");
+        return;
+    }
+    if (expected.is_array()) {
+        if (expected.size() != actual.size()) {
+            diffs.push_back(path + ": expected " + std::to_string(expected.size()) + " entries, got " +
+                            std::to_string(actual.size()));
+            return;
+        }
+        for (size_t i = 0; i < expected.size(); ++i)
+            compare_json(expected[i], actual[i], path + "[" + std::to_string(i) + "]", diffs);
+        return;
+    }
+    if (expected != actual) diffs.push_back(path + ": expected " + expected.dump() + ", got " + actual.dump());
+}
+
+// JSON as people read it: objects and arrays on several lines, short ones (a point, a rotation) inline.
+inline void write_readable(const nlohmann::json& j, std::string& out, int indent = 0) {
+    std::string compact = j.dump();
+    if (!j.is_structured() || j.empty() || compact.size() + static_cast<size_t>(indent) <= 250) {
+        out += compact;
+        return;
+    }
+    const std::string pad(static_cast<size_t>(indent) + 2, ' ');
+    out += j.is_object() ? "{\n" : "[\n";
+    bool first = true;
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        if (!first) out += ",\n";
+        first = false;
+        out += pad;
+        if (j.is_object()) out += nlohmann::json(it.key()).dump() + ": ";
+        write_readable(it.value(), out, indent + 2);
+    }
+    out += "\n" + std::string(static_cast<size_t>(indent), ' ') + (j.is_object() ? "}" : "]");
+}
+
+}  // namespace ellicast::conformance
