@@ -1,0 +1,73 @@
+// `ellicast validate FILE.ellc`: exit 0 only for a conforming recorded stream (spec/format.md 11.4);
+// otherwise every violation is listed with its byte offset and the exit code is 1.
+#include "commands.h"
+#include "stream_report.h"
+
+#include "ellicast/format.h"
+
+#include <algorithm>
+#include <iostream>
+#include <memory>
+
+namespace ellicast::cli {
+namespace {
+
+struct ValidateArgs {
+    std::vector<std::string> inputs;
+    bool quiet = false;
+};
+
+int validate_one(const std::string& path, bool quiet) {
+    std::vector<uint8_t> bytes;
+    std::string message;
+    if (read_file(path, bytes, message) != Error::Ok) return fail(kExitFailure, message);
+    StreamReport report = analyze_stream(path, bytes);
+    auto violations = report.violations;
+    std::stable_sort(violations.begin(), violations.end(), [](const Violation& a, const Violation& b) {
+        if (a.offset.has_value() != b.offset.has_value()) return a.offset.has_value();
+        return a.offset.value_or(0) < b.offset.value_or(0);
+    });
+    if (violations.empty()) {
+        if (!quiet) {
+            const auto& info = *report.stream.info();
+            uint64_t ellipsoids = 0, points = 0;
+            for (const auto& o : report.stream.objects()) ellipsoids += o.ellipsoids.size(), points += o.points.size();
+            std::cout << path << ": conforms to ellicast format 1." << int(report.stream.newest_minor()) << " ("
+                      << report.packets.size() << " packets, stream " << hex32(report.stream.stream_id()) << ", "
+                      << report.stream.objects().size() << " object" << (report.stream.objects().size() == 1 ? "" : "s")
+                      << ", " << ellipsoids << " ellipsoids, " << points << " points, packet size " << info.packet_size
+                      << ")\n";
+        }
+        return kExitOk;
+    }
+    for (const Violation& v : violations) {
+        std::cout << path << ": ";
+        if (v.offset) std::cout << "offset " << *v.offset << ": ";
+        std::cout << v.message << "\n";
+    }
+    std::cout << path << ": does not conform: " << violations.size() << " violation"
+              << (violations.size() == 1 ? "" : "s") << "\n";
+    return kExitInvalid;
+}
+
+int run_validate(const ValidateArgs& args) {
+    int code = kExitOk;
+    for (const auto& input : args.inputs) {
+        int c = validate_one(input, args.quiet);
+        code = std::max(code, c);
+    }
+    return code;
+}
+
+const RegisterCommand kRegister{{60, [](CLI::App& app, int& exit_code) {
+    auto args = std::make_shared<ValidateArgs>();
+    auto* cmd = app.add_subcommand("validate",
+                                   "Check that recorded streams (.ellc) conform to the format: exit 0 only if every "
+                                   "file does; every violation is listed with its byte offset");
+    cmd->add_option("files", args->inputs, "recorded streams (.ellc)")->required();
+    cmd->add_flag("-q,--quiet", args->quiet, "print nothing for a conforming file");
+    cmd->callback([args, &exit_code] { exit_code = run_validate(*args); });
+}}};
+
+}  // namespace
+}  // namespace ellicast::cli

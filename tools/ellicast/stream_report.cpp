@@ -1,0 +1,153 @@
+// Reads a recorded stream like a decoder and lists every way it departs from a conforming file
+// (spec/format.md section 11.4).
+#include "stream_report.h"
+
+#include <cstdio>
+#include <set>
+
+namespace ellicast::cli {
+
+std::string hex32(uint32_t v) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "0x%08X", v);
+    return buf;
+}
+
+std::string attribute_names(uint8_t a) {
+    std::string out;
+    auto add = [&](const char* name) {
+        if (!out.empty()) out += ",";
+        out += name;
+    };
+    if (a & kAttrNormal) add("normal");
+    if (a & kAttrTexcoord) add("texcoord");
+    if (a & kAttrColor) add(a & kAttrColorAlpha ? "rgba" : "rgb");
+    if (out.empty()) out = "-";
+    return out;
+}
+
+namespace {
+
+std::string at(uint64_t offset) { return "offset " + std::to_string(offset); }
+
+}  // namespace
+
+StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>& bytes) {
+    StreamReport r;
+    r.path = path;
+    r.file_size = bytes.size();
+    ContainerContents contents = read_container(bytes);
+    r.container_error = contents.header_error;
+    if (contents.header_error != Error::Ok) {
+        r.violations.push_back({0, contents.header_error == Error::TooShort
+                                       ? std::string("not a readable ellicast container: shorter than the 12-byte container header")
+                                       : std::string("not a readable ellicast container: ") + error_name(contents.header_error)});
+        return r;
+    }
+    r.container_version = bytes[8];
+    r.damaged = contents.damaged;
+
+    for (const ContainerPacket& p : contents.packets) {
+        const ReceiveCounters before = r.stream.counters();
+        const size_t rejections_before = r.stream.rejections().size();
+        Error e = r.stream.add_parsed(p.view, p.offset);
+        const ReceiveCounters& after = r.stream.counters();
+        const PacketHeader& h = p.view.header;
+        ReportPacket rp{p.offset, h, p.view.size, ""};
+        if (e != Error::Ok) rp.result = error_name(e);
+        else if (after.accepted > before.accepted) rp.result = "accepted";
+        else if (after.duplicates > before.duplicates) rp.result = "duplicate";
+        else if (after.skipped > before.skipped) rp.result = "skipped";
+        else rp.result = "held";
+        r.packets.push_back(rp);
+
+        auto& count = r.per_type[h.type];
+        ++count.packets;
+        count.bytes += p.view.size;
+        r.versions[std::to_string(h.version_major) + "." + std::to_string(h.version_minor)]++;
+        r.stream_ids[h.stream_id]++;
+        if (h.type == uint8_t(PacketType::StreamInfo) && e == Error::Ok) ++r.stream_info_parts;
+        if (e != Error::Ok) {
+            std::string detail;
+            if (r.stream.rejections().size() > rejections_before) detail = r.stream.rejections().back().detail;
+            r.violations.push_back({p.offset, packet_type_name(h.type) + " packet rejected: " + error_name(e) +
+                                                  (detail.empty() ? "" : " (" + detail + ")")});
+        }
+        if (is_known_packet_type(h.type) && h.skippable())
+            r.violations.push_back({p.offset, packet_type_name(h.type) + " packet marked skippable (flags bit 0 must be 0 for a known type)"});
+    }
+    for (const DamagedRegion& d : r.damaged)
+        r.violations.push_back({d.offset, std::to_string(d.length) + " damaged byte" + (d.length == 1 ? "" : "s") +
+                                              " hold no valid packet (" + error_name(d.first_error) + ")"});
+
+    if (r.stream_ids.size() > 1) {
+        std::string ids;
+        for (const auto& [id, n] : r.stream_ids) ids += (ids.empty() ? "" : ", ") + hex32(id) + " (" + std::to_string(n) + ")";
+        r.violations.push_back({std::nullopt, "packets of " + std::to_string(r.stream_ids.size()) + " stream ids: " + ids});
+    }
+
+    const auto& info = r.stream.info();
+    if (!info) {
+        r.violations.push_back({std::nullopt, contents.packets.empty() ? "no packets at all: no STREAM_INFO"
+                                                                       : "no valid STREAM_INFO: nothing can be decoded"});
+    } else {
+        for (const ReportPacket& p : r.packets)
+            if (p.size > info->packet_size)
+                r.violations.push_back({p.offset, packet_type_name(p.header.type) + " packet of " + std::to_string(p.size) +
+                                                      " bytes is larger than the declared packet size " +
+                                                      std::to_string(info->packet_size)});
+    }
+    // Packets still held: their object's stream info never arrived.
+    for (const ReportPacket& p : r.packets) {
+        if (p.result != "held") continue;
+        const auto& objects = r.stream.objects();
+        if (p.header.object_id < objects.size() && objects[p.header.object_id].info) continue;
+        r.violations.push_back({p.offset, packet_type_name(p.header.type) + " packet of object " +
+                                              std::to_string(p.header.object_id) +
+                                              (info && p.header.object_id >= objects.size()
+                                                   ? " names an object beyond the object table"
+                                                   : " never got its STREAM_INFO entry")});
+    }
+    const auto& objects = r.stream.objects();
+    for (size_t i = 0; i < objects.size(); ++i) {
+        const ReceivedObject& o = objects[i];
+        const std::string name = "object " + std::to_string(i);
+        if (!o.info) {
+            r.violations.push_back({std::nullopt, name + ": no STREAM_INFO entry arrived"});
+            continue;
+        }
+        std::string missing = missing_ranges(o.ellipsoids, o.info->ellipsoid_count);
+        if (!missing.empty())
+            r.violations.push_back({std::nullopt, name + ": " + std::to_string(o.ellipsoids.size()) + " of " +
+                                                      std::to_string(o.info->ellipsoid_count) +
+                                                      " ellipsoids received; missing " + missing});
+        missing = missing_ranges(o.points, o.info->point_count);
+        if (!missing.empty())
+            r.violations.push_back({std::nullopt, name + ": " + std::to_string(o.points.size()) + " of " +
+                                                      std::to_string(o.info->point_count) + " points received; missing " +
+                                                      missing});
+    }
+    // Format 1.1 scene tables: complete when present.
+    if (r.stream.has_scene()) {
+        std::string missing = missing_ranges(r.stream.scene_nodes(), r.stream.scene_node_count());
+        if (!missing.empty()) r.violations.push_back({std::nullopt, "scene: nodes missing: " + missing});
+        missing = missing_ranges(r.stream.scene_meshes(), r.stream.scene_mesh_count());
+        if (!missing.empty()) r.violations.push_back({std::nullopt, "scene: meshes missing: " + missing});
+    }
+    if (!r.stream.materials().empty()) {
+        std::string missing = missing_ranges(r.stream.materials(), r.stream.materials().begin()->second.material_count);
+        if (!missing.empty()) r.violations.push_back({std::nullopt, "materials missing: " + missing});
+    }
+    if (!r.stream.textures().empty()) {
+        std::string missing = missing_ranges(r.stream.textures(), r.stream.textures().begin()->second.info.texture_count);
+        if (!missing.empty()) r.violations.push_back({std::nullopt, "textures missing: " + missing});
+        for (const auto& [index, t] : r.stream.textures())
+            if (!t.complete)
+                r.violations.push_back({std::nullopt, "texture " + std::to_string(index) + ": " +
+                                                          std::to_string(t.received_bytes) + " of " +
+                                                          std::to_string(t.info.image_size) + " image bytes received"});
+    }
+    return r;
+}
+
+}  // namespace ellicast::cli
