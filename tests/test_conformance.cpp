@@ -124,7 +124,9 @@ TEST_CASE("every conformance vector is listed in spec/vectors/README.md") {
     text << in.rdbuf();
     for (const std::string set : {"valid", "unusual", "faulty"})
         for (const auto& file : vectors_in(set)) {
-            const std::string name = "`" + file.stem().string() + "`";
+            std::string name = "`";
+            name += file.stem().string();
+            name += '`';
             INFO(set << "/" << file.filename().string());
             CHECK(text.str().find(name) != std::string::npos);
         }

@@ -170,12 +170,14 @@ void reseal(Packet& p) {
 }
 // Rebuilds a packet around a new payload (payload_length and checksum follow).
 Packet with_payload(const Packet& p, const std::vector<uint8_t>& payload) {
-    Packet out(p.begin(), p.begin() + kHeaderSize);
-    out.insert(out.end(), payload.begin(), payload.end());
-    out.resize(out.size() + kChecksumSize);
-    put16(out, 18, uint16_t(payload.size()));
-    reseal(out);
-    return out;
+    Packet copy = p;
+    reseal(copy);
+    PacketView view;
+    if (parse_packet(copy, view) != Error::Ok) {
+        std::cerr << "make_vectors: with_payload needs a valid packet\n";
+        std::exit(1);
+    }
+    return write_packet(view.header, payload);
 }
 std::vector<uint8_t> payload_of(const Packet& p) {
     return {p.begin() + kHeaderSize, p.end() - kChecksumSize};

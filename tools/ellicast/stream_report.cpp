@@ -26,12 +26,6 @@ std::string attribute_names(uint8_t a) {
     return out;
 }
 
-namespace {
-
-std::string at(uint64_t offset) { return "offset " + std::to_string(offset); }
-
-}  // namespace
-
 StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>& bytes) {
     StreamReport r;
     r.path = path;
