@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 #include <ellicast/format.h>
 
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <fstream>
@@ -31,19 +32,25 @@ inline std::vector<std::vector<uint8_t>> synthetic_stream(uint32_t ellipsoids, u
     object.point_count = points;
     object.attributes = kAttrNormal;
     info.objects.push_back(object);
+    // A ball: ellipsoids inside a sphere of radius 0.5, points on it with outward normals.
     std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     ObjectContent content;
     for (uint32_t i = 0; i < ellipsoids; ++i) {
         Ellipsoid e;
-        e.center = {u(rng), u(rng), u(rng)};
-        e.radii = {0.2f + 0.1f * u(rng), 0.2f + 0.1f * u(rng), 0.2f + 0.1f * u(rng)};
+        e.center = {0.2f * u(rng), 0.2f * u(rng), 0.2f * u(rng)};
+        e.radii = {0.25f + 0.03f * u(rng), 0.25f + 0.03f * u(rng), 0.25f + 0.03f * u(rng)};
         content.ellipsoids.push_back(quantize_ellipsoid(e, object.frame));
     }
     for (uint32_t i = 0; i < points; ++i) {
+        float x, y, z, l;
+        do {
+            x = u(rng), y = u(rng), z = u(rng);
+            l = std::sqrt(x * x + y * y + z * z);
+        } while (l < 0.1f || l > 1.0f);
         SurfacePoint p;
-        p.position = {u(rng), u(rng), u(rng)};
-        p.normal = {0, 0, 1};
+        p.position = {0.5f * x / l, 0.5f * y / l, 0.5f * z / l};
+        p.normal = {x / l, y / l, z / l};
         content.points.push_back(quantize_point(p, info, object));
     }
     StreamPackets sp;

@@ -8,6 +8,10 @@
 #include <ellicast/broadcast/reception.h>
 #include <ellicast/broadcast/udp.h>
 
+#include "ellicast/codec/decoder.h"
+#include "ellicast/converters/mesh_input.h"
+#include "ellicast/converters/mesh_output.h"
+
 #include <atomic>
 #include <chrono>
 #include <thread>
@@ -60,6 +64,20 @@ Received receive_until_complete(UdpReceiver& receiver, Reception& reception, Clo
     return r;
 }
 
+// Decodes what a receiver got, writes it as GLB, and reads the file back: a valid glTF with a
+// surface. Returns the triangle count read back.
+size_t write_and_reload_glb(const ReceivedStream& stream, const std::filesystem::path& path) {
+    std::vector<Mesh> meshes;
+    StreamDecodeReport report;
+    std::string error;
+    REQUIRE_MESSAGE(decode_stream(stream, DecodeOptions{}, meshes, report, error), error);
+    REQUIRE_MESSAGE(write_meshes(path.string(), meshes, error), error);
+    LoadResult loaded = load_meshes(path.string());
+    size_t triangles = 0;
+    for (const auto& m : loaded.meshes) triangles += m.triangles.size();
+    return triangles;
+}
+
 Endpoint endpoint(const std::string& text) {
     Endpoint e;
     std::string error;
@@ -94,7 +112,7 @@ TEST_CASE("addresses are parsed as ADDRESS:PORT or [IPV6]:PORT, and bad ones are
 }
 
 TEST_CASE("one sender, two receivers on a loopback multicast group, one joining late, with sender-side loss") {
-    auto packets = test::synthetic_stream(300, 12000, 0xCAFE);
+    auto packets = test::synthetic_stream(300, 6000, 0xCAFE);
     CarouselOptions options;
     options.chunk_packets = 12;
     Carousel carousel;
@@ -151,8 +169,8 @@ TEST_CASE("one sender, two receivers on a loopback multicast group, one joining 
     CHECK(late_result.first_sequence > carousel.cycle.size());  // it really joined late
     // Both hold the same stream: every ellipsoid and point, equal.
     REQUIRE(early_reception.stream().objects().size() == 1);
-    CHECK(early_reception.stream().points(0).size() == 12000);
-    CHECK(late_reception.stream().points(0).size() == 12000);
+    CHECK(early_reception.stream().points(0).size() == 6000);
+    CHECK(late_reception.stream().points(0).size() == 6000);
     {
         auto a = early_reception.stream().points(0), b = late_reception.stream().points(0);
         bool same = a.size() == b.size();
@@ -160,6 +178,10 @@ TEST_CASE("one sender, two receivers on a loopback multicast group, one joining 
         CHECK(same);
     }
     CHECK(early_reception.stream().objects()[0].ellipsoids.size() == 300);
+    // Both finish with a valid glTF file of the whole surface.
+    auto dir = test::scratch_dir("udp-two-receivers");
+    CHECK(write_and_reload_glb(early_reception.stream(), dir / "early.glb") > 6000);
+    CHECK(write_and_reload_glb(late_reception.stream(), dir / "late.glb") > 6000);
     // The sender-side loss is visible in the receivers' estimate (about 10%).
     CHECK(late_reception.loss().loss() > 0.03);
     CHECK(late_reception.loss().loss() < 0.25);
@@ -320,12 +342,15 @@ TEST_CASE("ellicast serve sends exactly the packets of ellicast schedule, in the
 
 TEST_CASE("ellicast receive joins a multicast broadcast from ellicast serve with loss and stops when complete") {
     auto dir = test::scratch_dir("receive-cli");
-    auto packets = test::synthetic_stream(200, 9000, 0x4321);
+    auto packets = test::synthetic_stream(200, 4000, 0x4321);
     test::write_stream_file(dir / "in.ellc", packets);
     const std::string group = "239.255.61.8:" + std::to_string(test_port(2));
     test::Child receive({"receive", "--from", group, "--interface", "lo", "-o", (dir / "out.ellc").string(),
                          "--snapshots", "base,50%", "--until", "20"},
                         dir / "receive.log");
+    test::Child receive_model({"receive", "--from", group, "--interface", "lo", "-o", (dir / "out.glb").string(),
+                               "--snapshots", "base", "--until", "40"},
+                              dir / "receive-model.log");
     std::this_thread::sleep_for(std::chrono::milliseconds(300));  // let it join
     test::Child serve({"serve", (dir / "in.ellc").string(), "--to", group, "--interface", "lo", "--ttl", "0", "--rate",
                        "8000000", "--cycles", "30", "--loss", "0.15", "--seed", "3"},
@@ -344,6 +369,19 @@ TEST_CASE("ellicast receive joins a multicast broadcast from ellicast serve with
     CHECK(received.size() == packets.size());
     CHECK(std::filesystem::exists(dir / "out-base.ellc"));
     CHECK(std::filesystem::exists(dir / "out-50pct.ellc"));
+    // The receiver that rebuilds the model wrote the base as soon as it had it, then the model.
+    int model_code = receive_model.wait(std::chrono::seconds(45));
+    std::string model_log = test::read_text(dir / "receive-model.log");
+    INFO(model_log);
+    REQUIRE(model_code == 0);
+    CHECK(model_log.find("base mesh ready after") != std::string::npos);
+    CHECK(model_log.find("inserted") != std::string::npos);
+    LoadResult base = load_meshes((dir / "out-base.glb").string());
+    LoadResult model = load_meshes((dir / "out.glb").string());
+    REQUIRE(base.meshes.size() == 1);
+    REQUIRE(model.meshes.size() == 1);
+    CHECK(base.meshes[0].triangles.size() > 100);
+    CHECK(model.meshes[0].triangles.size() > 4000);
 }
 
 TEST_CASE("ellicast receive gives up at its deadline with a clear error when nothing arrives") {

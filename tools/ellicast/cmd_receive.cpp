@@ -1,8 +1,15 @@
-// `ellicast receive --from ADDRESS:PORT -o OUT`: joins a broadcast at any moment, keeps the
-// ellicast packets of one stream (counting and dropping everything else), shows progress on stderr,
-// writes snapshots, and stops when the stream is complete or at the deadline.
+// `ellicast receive --from ADDRESS:PORT -o OUT.glb`: joins a broadcast at any moment, keeps the
+// ellicast packets of one stream (counting and dropping everything else), shows the base mesh as
+// soon as the base is complete and inserts points as they arrive, shows progress on stderr, writes
+// snapshots, and stops when the stream is complete or at the deadline. The final model is decoded
+// from everything received, exactly as `ellicast decode` would from the same packets.
 #include "broadcast_cli.h"
 #include "commands.h"
+#include "live_reconstruction.h"
+#include "progress.h"
+
+#include "ellicast/codec/decoder.h"
+#include "ellicast/converters/mesh_output.h"
 
 #include <ellicast/broadcast/reception.h>
 #include <ellicast/broadcast/udp.h>
@@ -29,6 +36,7 @@ struct ReceiveArgs {
     std::string until = "complete";
     std::string interface;
     int64_t stream_id = -1;
+    int grid = 0;
     bool quiet = false;
 };
 
@@ -108,9 +116,10 @@ int run_receive(const ReceiveArgs& a) {
     std::vector<Snapshot> snapshots;
     std::string error;
     if (!parse_snapshots(a.snapshots, snapshots, error)) return fail(kExitUsage, error);
-    std::string extension = std::filesystem::path(a.output).extension().string();
-    if (extension != ".ellc")
-        return fail(kExitUsage, "-o: \"" + a.output + "\": this build writes what it received as a stream file (.ellc)");
+    const bool stream_output = std::filesystem::path(a.output).extension() == ".ellc";
+    MeshFileType mesh_type;
+    if (!stream_output && !mesh_file_type_from_path(a.output, mesh_type))
+        return fail(kExitUsage, "-o: \"" + a.output + "\": expected a model (.glb, .gltf, .ply, .obj) or a stream file (.ellc)");
     broadcast::Endpoint from;
     if (!broadcast::parse_endpoint(a.from, from, error)) return fail(kExitUsage, "--from: " + error);
     broadcast::ReceiverOptions receiver_options;
@@ -121,8 +130,10 @@ int run_receive(const ReceiveArgs& a) {
     broadcast::Reception::Options reception_options;
     if (a.stream_id >= 0) reception_options.stream_id = static_cast<uint32_t>(a.stream_id);
     broadcast::Reception reception(reception_options);
-    std::vector<std::vector<uint8_t>> kept;  // packets that brought new content, bounded by the stream's sizes
+    const ReceivedStream& stream = reception.stream();
+    std::vector<std::vector<uint8_t>> kept;  // packets that brought new content (only for .ellc output)
     std::vector<uint8_t> buffer(kMaxPacketSize + 1);
+    LiveReconstruction live(a.grid);
 
     std::signal(SIGINT, on_receive_interrupt);
     std::signal(SIGTERM, on_receive_interrupt);
@@ -131,7 +142,7 @@ int run_receive(const ReceiveArgs& a) {
     auto seconds_since = [&](std::chrono::steady_clock::time_point t) {
         return std::chrono::duration<double>(t - start).count();
     };
-    double first_packet_at = -1, base_at = -1, complete_at = -1;
+    double first_packet_at = -1, base_at = -1, shown_at = -1, complete_at = -1;
     auto last_progress = start;
     auto print_progress = [&](bool final_line) {
         if (a.quiet) return;
@@ -139,60 +150,76 @@ int run_receive(const ReceiveArgs& a) {
         uint64_t declared = reception.points_declared();
         std::fprintf(stderr,
                      "%s%.1f s: %s packets received, %s rejected (%s damaged, %s not ellicast, %s other stream, %s "
-                     "oversized), est. loss %.1f%%, base %s, points %s/%s%s",
+                     "oversized), est. loss %.1f%%, base %s, points %s/%s received, %s inserted%s",
                      tty && !final_line ? "\r" : "", seconds_since(std::chrono::steady_clock::now()),
                      with_commas(c.accepted + c.duplicates).c_str(), with_commas(c.rejected()).c_str(),
                      with_commas(c.damaged).c_str(), with_commas(c.not_ellicast).c_str(),
                      with_commas(c.other_stream).c_str(), with_commas(c.oversized).c_str(),
                      100.0 * reception.loss().loss(), reception.base_complete() ? "complete" : "incomplete",
                      with_commas(reception.points_received()).c_str(), declared ? with_commas(declared).c_str() : "?",
-                     tty && !final_line ? "  " : "\n");
+                     with_commas(live.inserted()).c_str(), tty && !final_line ? "  " : "\n");
         std::fflush(stderr);
     };
+    std::string snapshot_error;
     auto take_snapshot = [&](Snapshot& s) {
         s.done = true;
         std::string path = snapshot_path(a.output, s.label);
         std::string e;
-        if (write_received(path, kept, e))
-            std::fprintf(stderr, "%swrote snapshot %s (%s points)\n", tty && !a.quiet ? "\n" : "", path.c_str(),
-                         with_commas(reception.points_received()).c_str());
+        bool ok = stream_output ? write_received(path, kept, e) : write_meshes(path, live.meshes(), e);
+        if (ok)
+            std::fprintf(stderr, "%swrote snapshot %s (%s points %s)\n", tty && !a.quiet ? "\n" : "", path.c_str(),
+                         with_commas(stream_output ? reception.points_received() : live.inserted()).c_str(),
+                         stream_output ? "received" : "inserted");
         else
-            std::cerr << "ellicast: warning: " << e << "\n";
+            std::cerr << "ellicast: warning: snapshot: " << e << "\n";
     };
 
     while (!g_stop.load()) {
         auto now = std::chrono::steady_clock::now();
         double elapsed = seconds_since(now);
         if (deadline_seconds > 0 && elapsed >= deadline_seconds) break;
-        double wait = 0.2;
+        // Wait for datagrams only when there is no reconstruction work to do; then read every
+        // datagram that is waiting before working again.
+        const bool busy = live.started() && !live.caught_up(stream);
+        double wait = busy ? 0.0 : 0.2;
         if (deadline_seconds > 0) wait = std::min(wait, deadline_seconds - elapsed);
-        broadcast::Datagram datagram;
-        int got = receiver.receive(buffer, std::chrono::milliseconds(static_cast<int64_t>(wait * 1000) + 1), datagram,
-                                   error);
-        if (got < 0) return fail(kExitFailure, error);
-        if (got == 1) {
+        for (int n = 0; n < 1024; ++n) {
+            broadcast::Datagram datagram;
+            auto timeout = std::chrono::milliseconds(n == 0 ? static_cast<int64_t>(wait * 1000) : 0);
+            int got = receiver.receive(buffer, timeout, datagram, error);
+            if (got < 0) return fail(kExitFailure, error);
+            if (got == 0) break;
             uint64_t accepted_before = reception.counters().accepted;
             std::span<const uint8_t> bytes(buffer.data(), datagram.size);
-            if (reception.take(bytes, datagram.truncated) == Error::Ok) {
-                if (first_packet_at < 0) first_packet_at = seconds_since(std::chrono::steady_clock::now());
-                if (reception.counters().accepted > accepted_before) kept.emplace_back(bytes.begin(), bytes.end());
+            if (reception.take(bytes, datagram.truncated) != Error::Ok) continue;
+            if (first_packet_at < 0) first_packet_at = seconds_since(std::chrono::steady_clock::now());
+            if (stream_output && reception.counters().accepted > accepted_before)
+                kept.emplace_back(bytes.begin(), bytes.end());
+            if (reception.complete()) break;
+        }
+        if (base_at < 0 && reception.base_complete()) {
+            base_at = seconds_since(std::chrono::steady_clock::now());
+            if (!stream_output) {
+                if (!live.start(stream, error)) return fail(kExitFailure, "building the base mesh: " + error);
+                shown_at = seconds_since(std::chrono::steady_clock::now());
+                if (!a.quiet)
+                    std::fprintf(stderr, "%sbase mesh ready after %s (base complete after %s)\n", tty ? "\n" : "",
+                                 seconds_text(shown_at).c_str(), seconds_text(base_at).c_str());
             }
         }
-        now = std::chrono::steady_clock::now();
-        if (base_at < 0 && reception.base_complete()) base_at = seconds_since(now);
-        const double share = reception.points_declared()
-                                 ? 100.0 * double(reception.points_received()) / double(reception.points_declared())
-                                 : 0.0;
-        for (auto& s : snapshots) {
-            if (s.done) continue;
-            if ((s.kind == Snapshot::Base && base_at >= 0) ||
-                (s.kind == Snapshot::Points && reception.base_complete() && share >= s.value) ||
-                (s.kind == Snapshot::Seconds && seconds_since(now) >= s.value && reception.base_complete()))
-                take_snapshot(s);
-        }
         if (reception.complete()) {
-            complete_at = seconds_since(now);
+            complete_at = seconds_since(std::chrono::steady_clock::now());
             break;
+        }
+        if (!stream_output && live.started()) live.work(stream, std::chrono::milliseconds(20));
+        now = std::chrono::steady_clock::now();
+        const uint64_t shown_points = stream_output ? reception.points_received() : live.inserted();
+        const double share = reception.points_declared() ? 100.0 * double(shown_points) / double(reception.points_declared()) : 0.0;
+        for (auto& s : snapshots) {
+            if (s.done || base_at < 0) continue;
+            if (s.kind == Snapshot::Base || (s.kind == Snapshot::Points && share >= s.value) ||
+                (s.kind == Snapshot::Seconds && seconds_since(now) >= s.value))
+                take_snapshot(s);
         }
         if (now - last_progress > std::chrono::milliseconds(tty ? 250 : 5000)) {
             print_progress(false);
@@ -206,24 +233,58 @@ int run_receive(const ReceiveArgs& a) {
     if (first_packet_at < 0)
         return fail(kExitFailure, "no packet of an ellicast stream arrived on " + a.from + " (" +
                                       with_commas(reception.counters().datagrams) + " datagrams dropped)");
-    for (auto& s : snapshots)
-        if (!s.done && reception.base_complete()) take_snapshot(s);
-    if (!write_received(a.output, kept, error)) return fail(kExitFailure, error);
     std::fprintf(stderr, "first packet after %s; base %s; everything %s\n", seconds_text(first_packet_at).c_str(),
                  base_at >= 0 ? ("complete after " + seconds_text(base_at)).c_str() : "incomplete",
                  complete_at >= 0 ? ("complete after " + seconds_text(complete_at)).c_str()
                                   : (g_stop.load() ? "not complete (interrupted)" : "not complete at the deadline"));
-    std::fprintf(stderr, "wrote %s: %s packets\n", a.output.c_str(), with_commas(kept.size()).c_str());
+    if (stream_output) {
+        for (auto& s : snapshots)
+            if (!s.done && base_at >= 0) take_snapshot(s);
+        if (!write_received(a.output, kept, error)) return fail(kExitFailure, error);
+        std::fprintf(stderr, "wrote %s: %s packets\n", a.output.c_str(), with_commas(kept.size()).c_str());
+        return kExitOk;
+    }
+    // The final model: everything received, decoded in stream order (deterministic).
+    auto t0 = std::chrono::steady_clock::now();
+    ProgressBar bar(!a.quiet);
+    DecodeOptions options;
+    options.grid_resolution = a.grid;
+    options.progress = [&](const std::string& stage, double fraction) { bar.update(stage, fraction); };
+    std::vector<Mesh> meshes;
+    StreamDecodeReport report;
+    bool ok = decode_stream(stream, options, meshes, report, error);
+    bar.finish();
+    if (!ok) return fail(kExitInvalid, "decoding what was received: " + error);
+    if (meshes.empty()) return fail(kExitInvalid, "nothing can be built: no object received any ellipsoid or point");
+    for (size_t i = 0; i < report.objects.size(); ++i)
+        for (const auto& note : report.objects[i].notes)
+            std::fprintf(stderr, "ellicast: warning: object %zu: %s\n", i, note.c_str());
+    if (!write_meshes(a.output, meshes, error)) return fail(kExitFailure, error);
+    size_t vertices = 0, faces = 0;
+    for (const auto& m : meshes) vertices += m.positions.size(), faces += m.triangles.size();
+    std::fprintf(stderr, "decoded in %s; wrote %s: %zu object(s), %s vertices, %s triangles\n",
+                 seconds_text(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()).c_str(),
+                 a.output.c_str(), meshes.size(), with_commas(vertices).c_str(), with_commas(faces).c_str());
+    for (auto& s : snapshots)
+        if (!s.done && base_at >= 0) {
+            std::string e;
+            std::string path = snapshot_path(a.output, s.label);
+            if (write_meshes(path, meshes, e)) std::fprintf(stderr, "wrote snapshot %s (final model)\n", path.c_str());
+        }
     return kExitOk;
 }
 
 const RegisterCommand registered{{63, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<ReceiveArgs>();
-    auto* cmd = app.add_subcommand("receive", "join a UDP broadcast at any moment and rebuild the stream it carries");
+    auto* cmd = app.add_subcommand("receive", "Join a UDP broadcast at any moment and rebuild the model it carries");
     cmd->add_option("--from", args->from,
                     "ADDRESS:PORT to listen on: a local address (127.0.0.1:5000, [::]:5000) or a multicast group")
         ->required();
-    cmd->add_option("-o,--output", args->output, "what was received: a stream file (.ellc)")->required();
+    cmd->add_option("-o,--output", args->output,
+                    "the model (.glb, .gltf, .ply, .obj), or what was received as a stream file (.ellc)")
+        ->required();
+    cmd->add_option("--grid", args->grid, "decoder grid resolution (default: the stream's hint)")
+        ->check(CLI::Range(kMinGridResolution, kMaxGridResolution));
     cmd->add_option("--snapshots", args->snapshots,
                     "comma-separated moments to write OUT-<moment> too: base, a share of the points (50%), a time (2.5s)");
     cmd->add_option("--until", args->until, "stop when \"complete\" (default) or after this many seconds");

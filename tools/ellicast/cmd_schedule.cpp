@@ -45,7 +45,7 @@ int run_schedule(const ScheduleArgs& a) {
 
 const RegisterCommand registered{{60, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<ScheduleArgs>();
-    auto* cmd = app.add_subcommand("schedule", "write the broadcast carousel of a stream (b d1 b d2 ... b dn) to a file");
+    auto* cmd = app.add_subcommand("schedule", "Write the broadcast carousel of a stream (b d1 b d2 ... b dn) to a file");
     cmd->add_option("input", args->input, "stream file (.ellc)")->required()->check(CLI::ExistingFile);
     cmd->add_option("-o,--output", args->output, "the scheduled stream file to write")->required();
     args->carousel.add(cmd);

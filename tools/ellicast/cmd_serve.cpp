@@ -106,7 +106,7 @@ int run_serve(const ServeArgs& a) {
 
 const RegisterCommand registered{{62, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<ServeArgs>();
-    auto* cmd = app.add_subcommand("serve", "broadcast a stream's carousel as UDP datagrams at a steady rate");
+    auto* cmd = app.add_subcommand("serve", "Broadcast a stream's carousel as UDP datagrams at a steady rate");
     cmd->add_option("input", args->input, "stream file (.ellc)")->required()->check(CLI::ExistingFile);
     cmd->add_option("--to", args->to, "destination ADDRESS:PORT, unicast or multicast, e.g. 239.255.0.1:5000 or [::1]:5000")
         ->required();

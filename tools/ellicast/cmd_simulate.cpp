@@ -110,7 +110,7 @@ int run_simulate(const SimulateArgs& a) {
 
 const RegisterCommand registered{{61, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<SimulateArgs>();
-    auto* cmd = app.add_subcommand("simulate", "send a stream's carousel through a simulated lossy channel");
+    auto* cmd = app.add_subcommand("simulate", "Send a stream's carousel through a simulated lossy channel");
     cmd->add_option("input", args->input, "stream file (.ellc)")->required()->check(CLI::ExistingFile);
     cmd->add_option("-o,--output", args->output, "stream file of what the receiver got (.ellc)")->required();
     args->carousel.add(cmd);

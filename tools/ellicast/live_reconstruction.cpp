@@ -1,0 +1,105 @@
+// The live receiver's progressive reconstruction.
+#include "live_reconstruction.h"
+
+namespace ellicast::cli {
+
+bool LiveReconstruction::start(const ReceivedStream& stream, std::string& error) {
+    if (!stream.info()) {
+        error = "no stream info has arrived";
+        return false;
+    }
+    stream_info_ = *stream.info();
+    const auto& received = stream.objects();
+    objects_.clear();
+    objects_.resize(received.size());
+    for (size_t i = 0; i < received.size(); ++i) {
+        Object& o = objects_[i];
+        if (!received[i].info) continue;
+        o.present = true;
+        o.info = *received[i].info;
+        o.inserted.assign(o.info.point_count, false);
+        if (o.info.kind != ObjectKind::Surface) continue;
+        std::vector<Ellipsoid> ellipsoids = stream.ellipsoids(i);
+        if (ellipsoids.empty()) continue;
+        int resolution = grid_resolution_ > 0 ? grid_resolution_
+                                              : (stream_info_.grid_hint > 0 ? stream_info_.grid_hint
+                                                                            : kDefaultGridResolution);
+        EllipsoidGrid grid;
+        if (!rasterize_ellipsoids(ellipsoids, o.info.frame, resolution, grid, error)) {
+            error = "object " + std::to_string(i) + ": " + error;
+            return false;
+        }
+        if (grid.empty()) continue;
+        DecoderTriMesh base = marching_cubes(grid);
+        if (base.n_faces() == 0) continue;
+        start_reconstruction(o.reconstruction, std::move(base), o.info.frame, grid.cell, ReconstructionOptions{});
+        o.surface = true;
+    }
+    started_ = true;
+    return true;
+}
+
+size_t LiveReconstruction::work(const ReceivedStream& stream, std::chrono::microseconds budget) {
+    if (!started_) return 0;
+    const auto deadline = std::chrono::steady_clock::now() + budget;
+    size_t done = 0;
+    const auto& received = stream.objects();
+    for (size_t i = 0; i < objects_.size() && i < received.size(); ++i) {
+        Object& o = objects_[i];
+        if (!o.present || o.points.size() >= received[i].points.size()) continue;
+        for (const auto& [index, quantized] : received[i].points) {
+            if (index >= o.inserted.size() || o.inserted[index]) continue;
+            o.inserted[index] = true;
+            SurfacePoint p = dequantize_point(quantized, stream_info_, o.info);
+            uint32_t slot = static_cast<uint32_t>(o.points.size());
+            o.points.push_back(p);
+            ++done;
+            ++inserted_total_;
+            if (o.surface) {
+                OpenMesh::VertexHandle v;
+                Insertion kind = insert_point(o.reconstruction, slot, p.position, v);
+                if (kind != Insertion::SeamDuplicate && kind != Insertion::NoMesh) {
+                    flip_edges_around(o.reconstruction, v);
+                    collapse_mc_vertices_near(o.reconstruction, v);
+                }
+            }
+            if ((done & 15) == 0 && std::chrono::steady_clock::now() >= deadline) return done;
+        }
+    }
+    return done;
+}
+
+bool LiveReconstruction::caught_up(const ReceivedStream& stream) const {
+    if (!started_) return false;
+    const auto& received = stream.objects();
+    for (size_t i = 0; i < objects_.size() && i < received.size(); ++i)
+        if (objects_[i].present && objects_[i].points.size() < received[i].points.size()) return false;
+    return true;
+}
+
+std::vector<Mesh> LiveReconstruction::meshes() const {
+    std::vector<Mesh> out;
+    for (size_t i = 0; i < objects_.size(); ++i) {
+        const Object& o = objects_[i];
+        if (!o.present) continue;
+        Mesh mesh;
+        if (o.surface) {
+            mesh = extract_mesh(o.reconstruction, o.info, o.points);
+        } else {
+            mesh.is_point_set = true;
+            mesh.colors_have_alpha = o.info.has(kAttrColorAlpha);
+            for (const auto& p : o.points) {
+                mesh.positions.push_back(p.position);
+                if (o.info.has(kAttrNormal)) mesh.normals.push_back(p.normal);
+                if (o.info.has(kAttrTexcoord)) mesh.texcoords.push_back(p.texcoord);
+                if (o.info.has(kAttrColor)) mesh.colors.push_back(p.color);
+            }
+        }
+        if (mesh.positions.empty()) continue;
+        mesh.name = "object" + std::to_string(i);
+        out.push_back(std::move(mesh));
+    }
+    return out;
+}
+
+}  // namespace ellicast::cli
