@@ -1,13 +1,16 @@
 // The robustness comparison: Draco baselines, the erasure code, the experiment and its report.
 #include "support.h"
 
+#include "ellicast/compare/channel_trace.h"
 #include "ellicast/compare/erasure_code.h"
 #include "ellicast/compare/experiment.h"
+#include "ellicast/compare/metric.h"
 #include "ellicast/compare/report.h"
 #include "ellicast/compare/schemes.h"
 #include "ellicast/converters/mesh_input.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
@@ -154,17 +157,6 @@ MeasureFn triangle_share_metric(size_t original_triangles) {
     };
 }
 
-// Independent loss for the experiment's own tests (the real runs use the channel simulator).
-TraceFn bernoulli_trace(size_t) {
-    return [](double loss, double, uint64_t seed, uint64_t slots) {
-        std::mt19937_64 rng(seed);
-        std::bernoulli_distribution lose(loss);
-        std::vector<bool> lost(slots);
-        for (uint64_t k = 0; k < slots; ++k) lost[k] = lose(rng);
-        return lost;
-    };
-}
-
 std::string read_text(const std::filesystem::path& p) {
     std::ifstream in(p, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -183,20 +175,26 @@ TEST_CASE("the experiment gives the same CSV for the same seed, whatever the thr
     options.time_loss_rates = {0.3};
     options.times = {0.5, 1, 2};
     options.trials = 3;
-    options.cycle_slots = 2 * clusters.packets().size();
+    options.cycle_bytes = 2 * clusters.period_bytes();
+    options.slot_bytes = 600;
     options.seed = 11;
     auto dir = test::scratch_dir("compare_determinism");
-    auto a = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), bernoulli_trace(600), options);
+    auto a = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(600), options);
     options.threads = 2;
-    auto b = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), bernoulli_trace(600), options);
+    auto b = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(600), options);
     write_trials_csv(a, (dir / "a.csv").string());
     write_trials_csv(b, (dir / "b.csv").string());
     CHECK(read_text(dir / "a.csv") == read_text(dir / "b.csv"));
     options.seed = 12;
-    auto c = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), bernoulli_trace(600), options);
+    auto c = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(600), options);
     write_trials_csv(c, (dir / "c.csv").string());
     CHECK(read_text(dir / "a.csv") != read_text(dir / "c.csv"));
 
+    // Every scheme sends the same bytes per cycle (up to the packet that straddles the cycle's end).
+    for (const auto& s : a.schemes) {
+        CHECK(s.cycle_bytes >= options.cycle_bytes);
+        CHECK(s.cycle_bytes < options.cycle_bytes + 600);
+    }
     // Every scheme of a trial loses the very same slots; without loss every scheme shows everything.
     for (const auto& r : a.trials) {
         for (const auto& s : a.trials)
@@ -227,8 +225,8 @@ TEST_CASE("the report writes the CSVs, SVG and PNG plots and a Markdown report t
     options.time_loss_rates = {0.1};
     options.times = {1, 2};
     options.trials = 2;
-    options.cycle_slots = fec.packets().size() + 2;
-    auto result = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), bernoulli_trace(1200), options);
+    options.cycle_bytes = fec.period_bytes() + 2400;
+    auto result = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(1200), options);
     auto dir = test::scratch_dir("compare_report");
     write_trials_csv(result, (dir / "trials.csv").string());
     write_summary_csv(result, (dir / "summary.csv").string());
@@ -248,4 +246,47 @@ TEST_CASE("the report writes the CSVs, SVG and PNG plots and a Markdown report t
     // 1 header + 2 schemes x (2 losses at one cycle + 1 extra time at 10%) lines... counted exactly:
     const std::string csv = read_text(dir / "trials.csv");
     CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 2 * 2 * (1 + 2));
+}
+
+TEST_CASE("the experiment's metric counts the surface of lost clusters as holes") {
+    if (!test::have_sample("meshes/spot.obj")) return;
+    Mesh spot = load_sample("meshes/spot.obj");
+    DracoClusters clusters(spot, DracoSettings{}, 1200);
+    SurfaceDistanceOptions options;
+    options.samples = 20000;
+    options.threads = 1;
+    MeasureFn measure = surface_metric(spot, options);
+    std::vector<uint32_t> every(clusters.cluster_count());
+    std::iota(every.begin(), every.end(), 0u);
+    Mesh whole;
+    REQUIRE(clusters.reconstruct(every, whole));
+    Distance full = measure(whole);
+    CHECK(full.holes == doctest::Approx(0));
+    CHECK(full.rms < 0.01);  // 14-bit quantization only
+
+    // Every other cluster lost: the holes are the lost clusters' share of the area.
+    auto area = [&](uint32_t t) {
+        const auto& a = spot.positions[spot.triangles[t][0]];
+        const auto& b = spot.positions[spot.triangles[t][1]];
+        const auto& c = spot.positions[spot.triangles[t][2]];
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
+        return 0.5 * std::sqrt(x * x + y * y + z * z);
+    };
+    double total = 0, lost = 0;
+    std::vector<uint32_t> held;
+    for (uint32_t i = 0; i < clusters.cluster_count(); ++i) {
+        double a = 0;
+        for (uint32_t t : clusters.cluster_triangles()[i]) a += area(t);
+        total += a;
+        if (i % 2) lost += a;
+        else held.push_back(i);
+    }
+    Mesh half;
+    REQUIRE(clusters.reconstruct(held, half));
+    Distance d = measure(half);
+    // Near a hole's rim the surface is within the threshold of the kept clusters: a bit less than all.
+    CHECK(d.holes < 100 * lost / total);
+    CHECK(d.holes > 0.6 * 100 * lost / total);
+    CHECK(d.rms > full.rms);
 }

@@ -6,13 +6,9 @@
 
 namespace ellicast::compare {
 
-uint64_t Scheme::bytes_in_slots(uint64_t first, uint64_t count) const {
-    if (packets_.empty()) return 0;
-    const uint64_t p = period();
-    uint64_t per_period = 0;
-    for (uint64_t s = 0; s < p; ++s) per_period += packets_[packet_at(s)].size();
-    uint64_t total = (count / p) * per_period;
-    for (uint64_t s = first + (count / p) * p; s < first + count; ++s) total += packets_[packet_at(s)].size();
+uint64_t Scheme::period_bytes() const {
+    uint64_t total = 0;
+    for (uint64_t n = 0; n < period(); ++n) total += packets_[packet_at(n)].size();
     return total;
 }
 

@@ -22,9 +22,22 @@ uint64_t splitmix64(uint64_t x) {
 
 uint64_t mix(uint64_t a, uint64_t b) { return splitmix64(a ^ splitmix64(b)); }
 
-// Tune-in slots are drawn from [0, kTuneInRange): a range so much longer than any scheme's period
-// that the tune-in phase is uniform in every scheme's cycle at once.
-constexpr uint64_t kTuneInRange = uint64_t(1) << 40;
+// Tune-in moments (bytes since the senders started) are drawn from [0, kTuneInRange): a range so
+// much longer than any scheme's period that the tune-in phase is uniform in every scheme's cycle.
+constexpr uint64_t kTuneInRange = uint64_t(1) << 48;
+
+// A scheme's schedule in time: where each transmission of one period starts, in bytes.
+struct Timeline {
+    std::vector<uint64_t> start;  // period + 1 entries; start[period] = bytes of one period
+    uint64_t period_bytes() const { return start.back(); }
+};
+
+Timeline timeline(const Scheme& s) {
+    Timeline t;
+    t.start.push_back(0);
+    for (uint64_t n = 0; n < s.period(); ++n) t.start.push_back(t.start.back() + s.packets()[s.packet_at(n)].size());
+    return t;
+}
 
 struct Outcome {
     bool shown = false;
@@ -92,7 +105,8 @@ ExperimentResult run_experiment(const std::vector<const Scheme*>& schemes, const
         if (!(b >= 0 && b <= 1e6)) throw CompareError("burst length " + std::to_string(b) + " is outside [0, 1e6]");
     if (options.trials == 0 || options.trials > 100000)
         throw CompareError("trial count " + std::to_string(options.trials) + " is outside [1, 100000]");
-    if (options.cycle_slots == 0) throw CompareError("the channel cycle has no slot");
+    if (options.cycle_bytes == 0) throw CompareError("the channel cycle has no byte");
+    if (options.slot_bytes == 0) throw CompareError("the loss trace's slots have no length");
     if (options.times.empty()) throw CompareError("no time after tune-in to measure at");
     for (double t : options.times)
         if (!(t > 0 && t <= 1000)) throw CompareError("time " + std::to_string(t) + " cycles is outside (0, 1000]");
@@ -101,7 +115,10 @@ ExperimentResult run_experiment(const std::vector<const Scheme*>& schemes, const
     options.times.erase(std::unique(options.times.begin(), options.times.end()), options.times.end());
     for (const Scheme* s : schemes)
         if (s == nullptr || s->packets().empty()) throw CompareError("a scheme sends no packet");
-    const uint64_t cycle = options.cycle_slots;
+    const uint64_t cycle = options.cycle_bytes;
+    const uint64_t slot_bytes = options.slot_bytes;
+    std::vector<Timeline> timelines;
+    for (const Scheme* s : schemes) timelines.push_back(timeline(*s));
 
     ExperimentResult result;
     result.options = options;
@@ -111,8 +128,13 @@ ExperimentResult run_experiment(const std::vector<const Scheme*>& schemes, const
         summary.description = s->describe();
         summary.packets = s->packets().size();
         summary.period = s->period();
+        summary.period_bytes = s->period_bytes();
         for (const auto& p : s->packets()) summary.packet_bytes += p.size();
-        summary.cycle_bytes = s->bytes_in_slots(0, cycle);
+        for (uint64_t n = 0, at = 0; at < cycle; ++n) {
+            const uint64_t size = s->packets()[s->packet_at(n)].size();
+            summary.cycle_bytes += size;
+            at += size;
+        }
         std::vector<uint32_t> all(s->packets().size());
         for (size_t i = 0; i < all.size(); ++i) all[i] = uint32_t(i);
         Mesh mesh;
@@ -142,28 +164,48 @@ ExperimentResult run_experiment(const std::vector<const Scheme*>& schemes, const
             std::vector<double> times;
             for (double t : options.times)
                 if (t == 1.0 || contains(options.time_loss_rates, loss)) times.push_back(t);
-            const uint64_t horizon = static_cast<uint64_t>(std::llround(times.back() * double(cycle)));
+            // Each time is counted from the end of the packet on the air at tune-in (lost to the
+            // receiver, whatever the scheme): t cycles after tune-in = t * cycle + one slot.
+            const uint64_t horizon_bytes = static_cast<uint64_t>(std::llround(times.back() * double(cycle))) + slot_bytes;
+            const uint64_t horizon = horizon_bytes / slot_bytes + 1;
             const std::vector<bool> lost = trace(loss, burst, trial_seed, horizon);
             if (lost.size() < horizon) throw CompareError("the loss trace is shorter than asked");
+            std::vector<uint64_t> lost_before(horizon + 1, 0);  // lost slots among the first k
+            for (uint64_t k = 0; k < horizon; ++k) lost_before[k + 1] = lost_before[k] + (lost[k] ? 1 : 0);
 
             for (size_t s = 0; s < schemes.size(); ++s) {
                 const Scheme& scheme = *schemes[s];
+                const Timeline& line = timelines[s];
+                const uint64_t period = scheme.period(), pbytes = line.period_bytes();
+                // The first transmission that starts at or after the tune-in moment.
+                uint64_t q = tune_in / pbytes, n = 0;
+                const uint64_t r = tune_in % pbytes;
+                n = static_cast<uint64_t>(std::lower_bound(line.start.begin(), line.start.end() - 1, r) - line.start.begin());
+                if (n == period) {
+                    n = 0;
+                    ++q;
+                }
                 std::vector<bool> have(scheme.packets().size(), false);
                 size_t distinct = 0;
-                uint64_t received = 0, bytes = 0, lost_slots = 0, slot = 0;
+                uint64_t received = 0, bytes = 0;
                 for (double t : times) {
-                    const uint64_t until = static_cast<uint64_t>(std::llround(t * double(cycle)));
-                    for (; slot < until; ++slot) {
-                        if (lost[slot]) {
-                            ++lost_slots;
-                            continue;
+                    const uint64_t until = static_cast<uint64_t>(std::llround(t * double(cycle))) + slot_bytes;
+                    for (;;) {
+                        const uint64_t begin = q * pbytes + line.start[n] - tune_in;  // relative to tune-in
+                        const uint64_t size = line.start[n + 1] - line.start[n];
+                        if (begin + size > until) break;  // not whole yet at this time
+                        const uint32_t p = scheme.packet_at(q * period + n);
+                        if (!lost[begin / slot_bytes]) {
+                            ++received;
+                            bytes += size;
+                            if (!have[p]) {
+                                have[p] = true;
+                                ++distinct;
+                            }
                         }
-                        const uint32_t p = scheme.packet_at(tune_in + slot);
-                        ++received;
-                        bytes += scheme.packets()[p].size();
-                        if (!have[p]) {
-                            have[p] = true;
-                            ++distinct;
+                        if (++n == period) {
+                            n = 0;
+                            ++q;
                         }
                     }
                     std::vector<uint32_t> held;
@@ -171,6 +213,7 @@ ExperimentResult run_experiment(const std::vector<const Scheme*>& schemes, const
                     for (size_t i = 0; i < have.size(); ++i)
                         if (have[i]) held.push_back(uint32_t(i));
                     Outcome o = caches[s].get(scheme, held, measure);
+                    const uint64_t slots = std::min<uint64_t>(horizon, (until + slot_bytes - 1) / slot_bytes);
                     TrialResult r;
                     r.scheme = s;
                     r.loss = loss;
@@ -179,8 +222,8 @@ ExperimentResult run_experiment(const std::vector<const Scheme*>& schemes, const
                     r.tune_in = tune_in;
                     r.tune_in_phase = double(tune_in % cycle) / double(cycle);
                     r.time = t;
-                    r.slots = until;
-                    r.trace_loss = until ? double(lost_slots) / double(until) : 0;
+                    r.air_bytes = until;
+                    r.trace_loss = slots ? double(lost_before[slots]) / double(slots) : 0;
                     r.packets_received = received;
                     r.bytes_received = bytes;
                     r.distinct_packets = distinct;

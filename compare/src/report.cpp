@@ -105,12 +105,12 @@ std::string rms_panel(const std::string& name, const Series& s, const Experiment
 
 void write_trials_csv(const ExperimentResult& result, const std::string& path) {
     auto out = open_out(path);
-    out << "scheme,burst,loss,trial,tune_in_slot,tune_in_phase,time_cycles,slots,trace_loss,packets_received,"
+    out << "scheme,burst,loss,trial,tune_in_byte,tune_in_phase,time_cycles,air_bytes,trace_loss,packets_received,"
            "bytes_received,distinct_packets,distinct_fraction,data_fraction,shown,triangles,rms_pct,rms_back_pct,"
            "hausdorff_pct,holes_pct\n";
     for (const auto& t : result.trials) {
         out << result.schemes[t.scheme].name << "," << num(t.burst, "%g") << "," << num(t.loss, "%g") << "," << t.trial
-            << "," << t.tune_in << "," << num(t.tune_in_phase, "%.6f") << "," << num(t.time, "%g") << "," << t.slots
+            << "," << t.tune_in << "," << num(t.tune_in_phase, "%.6f") << "," << num(t.time, "%g") << "," << t.air_bytes
             << "," << num(t.trace_loss, "%.6f") << "," << t.packets_received << "," << t.bytes_received << ","
             << t.distinct_packets << "," << num(t.distinct_fraction, "%.6f") << "," << num(t.data_fraction, "%.6f")
             << "," << (t.shown ? 1 : 0) << "," << t.triangles << ",";
@@ -254,24 +254,27 @@ void write_report(const ExperimentResult& result, const ReportSetup& setup, cons
     md << "## Setup\n\n";
     md << "- Model: `" << model << "`, " << setup.vertices << " vertices, " << setup.triangles
        << " triangles, attributes: " << setup.attributes << "; bounding-box diagonal " << num(setup.diagonal) << ".\n";
-    md << "- Channel: one packet of at most " << setup.packet_size << " bytes per slot; one cycle = " << o.cycle_slots
-       << " slots (ellicast's carousel cycle), the same for every scheme, each scheme repeating its own packets "
-          "round robin to fill every slot. " << setup.channel << "\n";
+    md << "- Channel: every scheme sends at the same byte rate, its packets (at most " << setup.packet_size
+       << " bytes each, with the same 24-byte header and CRC-32C) back to back, repeating its own schedule; one cycle = "
+       << o.cycle_bytes << " bytes of air time (ellicast's carousel cycle) for every scheme. " << setup.channel << "\n";
     md << "- Trials: " << o.trials << " per setting (seed " << o.seed
-       << "). Each trial draws one loss trace and one tune-in slot (uniform phase in every scheme's cycle) and "
-          "applies them to every scheme by slot position, so all schemes lose the very same slots. A receiver keeps "
-          "every distinct packet it gets, across cycles.\n";
+       << "). Each trial draws one loss trace (slots of " << o.slot_bytes
+       << " bytes of air time) and one tune-in moment (uniform phase in every scheme's cycle) and applies them to every "
+          "scheme by packet position in time: a packet is lost when the slot in which it starts is lost, so all schemes "
+          "lose the very same stretches of time. A receiver keeps every distinct packet it gets, across cycles. "
+          "Times are counted from the end of the packet on the air at tune-in (which the receiver misses): "
+          "t cycles = t x cycle + " << o.slot_bytes << " bytes of air time.\n";
     md << "- Metric: " << setup.metric << "\n";
     md << "- Shown: the receiver has a surface (at least one triangle) to show. RMS and Hausdorff are medians over "
           "the trials that show something; holes (original surface missing) count a trial that shows nothing as "
           "100%.\n";
     for (const auto& n : setup.notes) md << "- " << n << "\n";
     md << "\n### What each scheme sends\n\n";
-    md << "| scheme | distinct packets | bytes, once each | period (slots) | bytes per cycle | RMS / holes with every packet | how |\n";
+    md << "| scheme | distinct packets | bytes, once each | schedule period (packets / bytes) | bytes per cycle | RMS / holes with every packet | how |\n";
     md << "|---|---:|---:|---:|---:|---|---|\n";
     for (const auto& s : result.schemes)
-        md << "| " << s.name << " | " << s.packets << " | " << s.packet_bytes << " | " << s.period << " | "
-           << s.cycle_bytes << " | " << num(s.complete.rms, "%.4f") << "% / " << num(s.complete.holes, "%.2f")
+        md << "| " << s.name << " | " << s.packets << " | " << s.packet_bytes << " | " << s.period << " / "
+           << s.period_bytes << " | " << s.cycle_bytes << " | " << num(s.complete.rms, "%.4f") << "% / " << num(s.complete.holes, "%.2f")
            << "% | " << s.description << " |\n";
     md << "\n";
 

@@ -34,8 +34,7 @@ public:
     // Share of the surface points that the held packets carry.
     double data_fraction(const std::vector<uint32_t>& held) const override;
 
-    // Slots of one carousel cycle: the channel cycle of the comparison.
-    uint64_t cycle_slots() const { return period(); }
+    // period_bytes(): the bytes of one carousel cycle, the channel cycle of the comparison.
     // Extra bytes the carousel spends repeating the base, relative to the stream sent once
     // ((n - 1) B / (B + D)): the redundancy the erasure-coded baseline gets.
     double repetition_overhead() const;

@@ -1,7 +1,9 @@
-// The robustness experiment: every scheme sends one model through the same slotted channel (one
-// packet of at most the packet size per slot, the same number of slots per cycle). Each trial draws
-// one loss trace and one tune-in slot and applies them to every scheme by slot position, so all
-// schemes lose the very same slots. At chosen times after tune-in each receiver rebuilds what it can
+// The robustness experiment: every scheme sends one model through the same channel at the same
+// byte rate, its packets back to back, repeating its own schedule; a cycle is the same number of
+// bytes for every scheme (ellicast's carousel cycle). Each trial draws one loss trace (in slots of
+// one packet size of air time) and one tune-in moment, and applies them to every scheme by packet
+// position in time: a packet is lost when the slot in which it starts is lost, so all schemes lose
+// the very same stretches of time. At chosen times after tune-in each receiver rebuilds what it can
 // from the distinct packets it holds, and the result is measured against the original.
 #pragma once
 
@@ -29,7 +31,7 @@ struct Distance {
 using MeasureFn = std::function<Distance(const Mesh& reconstruction)>;
 
 // Which slots a channel loses: lost[k] is true when slot k after tune-in is lost (a packet
-// corrupted by bit errors counts as lost: its checksum rejects it).
+// corrupted by bit errors counts as lost: its checksum rejects it). A slot is slot_bytes of air time.
 using TraceFn = std::function<std::vector<bool>(double loss, double burst, uint64_t seed, uint64_t slots)>;
 
 struct ExperimentOptions {
@@ -38,9 +40,13 @@ struct ExperimentOptions {
     std::vector<double> bursts{0};
     size_t trials = 20;
     uint64_t seed = 1;
-    // Slots per cycle of the channel (ellicast's carousel cycle); every scheme gets this many per cycle.
-    uint64_t cycle_slots = 0;
-    // Times after tune-in, in cycles, at which every loss rate of time_loss_rates is measured.
+    // Bytes per cycle of the channel (ellicast's carousel cycle); every scheme sends this many per cycle.
+    uint64_t cycle_bytes = 0;
+    // Air time of one slot of the loss trace, in bytes (the packet size).
+    uint64_t slot_bytes = 1200;
+    // Times after tune-in, in cycles, at which every loss rate of time_loss_rates is measured. Time t
+    // is t * cycle_bytes + slot_bytes of air time after tune-in: the packet on the air when the
+    // receiver tunes in is lost to it, so time 1 is one whole cycle after that packet.
     std::vector<double> times{0.25, 0.5, 0.75, 1, 1.5, 2, 3};
     // Loss rates at which every time is measured; at the others only one cycle is.
     std::vector<double> time_loss_rates{0.1, 0.3, 0.5};
@@ -55,11 +61,11 @@ struct TrialResult {
     double loss = 0;              // loss rate asked for
     double burst = 0;             // mean burst length (0: independent)
     size_t trial = 0;
-    uint64_t tune_in = 0;         // slot at which the receiver tuned in
+    uint64_t tune_in = 0;         // moment the receiver tuned in, in bytes since the senders started
     double tune_in_phase = 0;     // tune_in modulo the channel cycle, in cycles
     double time = 0;              // cycles after tune-in
-    uint64_t slots = 0;           // slots after tune-in
-    double trace_loss = 0;        // share of those slots the trace lost
+    uint64_t air_bytes = 0;       // bytes of air time after tune-in
+    double trace_loss = 0;        // share of the trace's slots in that time that were lost
     uint64_t packets_received = 0;
     uint64_t bytes_received = 0;
     size_t distinct_packets = 0;  // distinct packets held
@@ -74,9 +80,10 @@ struct SchemeSummary {
     std::string name;
     std::string description;
     size_t packets = 0;           // distinct packets
-    uint64_t period = 0;          // slots after which its schedule repeats
+    uint64_t period = 0;          // packets after which its schedule repeats
+    uint64_t period_bytes = 0;    // bytes of one period of its schedule
     uint64_t packet_bytes = 0;    // bytes of its distinct packets, once each
-    uint64_t cycle_bytes = 0;     // bytes it sends in one channel cycle
+    uint64_t cycle_bytes = 0;     // bytes of the packets it starts sending within one channel cycle
     Distance complete;            // with every packet held
 };
 
@@ -88,7 +95,7 @@ struct ExperimentResult {
 
 // Runs every trial. Deterministic: the same schemes, options and seed give the same results,
 // whatever the thread count. Throws CompareError on absurd options (no loss rate, a rate outside
-// [0, 1), no trial, cycle_slots 0, a time <= 0).
+// [0, 1), no trial, cycle_bytes or slot_bytes 0, a time <= 0).
 ExperimentResult run_experiment(const std::vector<const Scheme*>& schemes, const MeasureFn& measure,
                                 const TraceFn& trace, ExperimentOptions options);
 

@@ -39,10 +39,10 @@ public:
 
     // The distinct packets the scheme sends.
     const std::vector<std::vector<uint8_t>>& packets() const { return packets_; }
-    // Slots after which the schedule repeats (the scheme's own period).
+    // Transmissions after which the schedule repeats (the scheme's own period).
     virtual uint64_t period() const { return packets_.size(); }
-    // Index into packets() of the packet sent in slot `slot` (slots count from the sender's start).
-    virtual uint32_t packet_at(uint64_t slot) const { return static_cast<uint32_t>(slot % packets_.size()); }
+    // Index into packets() of the packet of transmission `n` (counted from the sender's start).
+    virtual uint32_t packet_at(uint64_t n) const { return static_cast<uint32_t>(n % packets_.size()); }
 
     // What a receiver holding the packets `held` (distinct indices into packets(), ascending) can
     // show: true with the mesh when it has a surface to show, false (out empty) when it has none.
@@ -55,8 +55,8 @@ public:
         return packets_.empty() ? 0 : double(held.size()) / double(packets_.size());
     }
 
-    // Bytes the scheme sends in slots [first, first + count).
-    uint64_t bytes_in_slots(uint64_t first, uint64_t count) const;
+    // Bytes of one period of the schedule.
+    uint64_t period_bytes() const;
 
 protected:
     std::vector<std::vector<uint8_t>> packets_;
