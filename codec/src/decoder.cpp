@@ -255,7 +255,8 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
     report.has_surface = true;
 
     Reconstruction r;
-    start_reconstruction(r, std::move(base), info.frame, grid.cell, options.reconstruction);
+    start_reconstruction(r, std::move(base), info.frame, grid.cell, std::max<size_t>(points.size(), info.point_count),
+                         options.reconstruction);
     if (options.snapshot) options.snapshot(object_index, 0, extract_mesh(r, info, points));
 
     auto t2 = std::chrono::steady_clock::now();

@@ -41,7 +41,7 @@ bool unit(Vec3& n) {
 // Returns true when edge e was flipped.
 static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat, double cos_fold) {
     DecoderTriMesh& mesh = r.mesh;
-    if (mesh.status(e).deleted() || mesh.is_boundary(e) || !mesh.is_flip_ok(e)) return false;
+    if (mesh.status(e).deleted() || mesh.is_boundary(e)) return false;
     auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
     const Vec3& a = mesh.point(mesh.from_vertex_handle(h0));
     const Vec3& b = mesh.point(mesh.to_vertex_handle(h0));
@@ -56,7 +56,14 @@ static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat,
     bool old_ok = unit(n1) && unit(n2);
     const double old_worst = std::max(worst_cos(a, b, c), worst_cos(b, a, d));
     const double new_worst = std::max(worst_cos(a, d, c), worst_cos(d, b, c));
-    if (!old_ok) return new_worst < old_worst;  // a degenerate old face: any legal flip that helps
+    if (!old_ok) {  // a degenerate old face: any legal flip that helps
+        if (!(new_worst < old_worst) || !mesh.is_flip_ok(e)) return false;
+        mesh.flip(e);
+        r.faces.update(mesh, mesh.face_handle(h0));
+        r.faces.update(mesh, mesh.face_handle(h1));
+        ++r.flips;
+        return true;
+    }
     Vec3 mean = n1 + n2;
     if (!unit(mean)) mean = n1;
     const double new_dot = OpenMesh::dot(m1, m2), old_dot = OpenMesh::dot(n1, n2);
@@ -68,7 +75,7 @@ static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat,
     if (folded) flip = new_dot > old_dot + 1e-9;
     else if (old_dot > cos_flat && new_dot > cos_flat) flip = new_worst < old_worst - 1e-12;
     else flip = new_worst < old_worst - 1e-12 && new_dot > old_dot + 1e-9;
-    if (!flip) return false;
+    if (!flip || !mesh.is_flip_ok(e)) return false;  // topology last: it walks a one-ring
     mesh.flip(e);
     r.faces.update(mesh, mesh.face_handle(h0));
     r.faces.update(mesh, mesh.face_handle(h1));

@@ -74,8 +74,7 @@ void FaceGrid::reset(const Vec3& lo, const Vec3& hi, double cell) {
     version_.clear();
     seen_.clear();
     stamp_ = 0;
-    live_ = entries_ = 0;
-    sweep_at_ = size_t(1) << 16;
+    live_ = 0;
 }
 
 void FaceGrid::cell_range(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f, std::array<int, 3>& lo,
@@ -95,38 +94,66 @@ void FaceGrid::add_entries(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f) {
     std::array<int, 3> lo, hi;
     cell_range(mesh, f, lo, hi);
     const uint32_t ver = version_[f.idx()];
+    const size_t span = size_t(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+    // A large face (long and thin ones appear while points far from the base arrive) goes only into
+    // the cells its triangle can touch: those whose centre is within half a cell diagonal of it.
+    const bool exact = span > 8;
+    Vec3 a, b, c;
+    if (exact) {
+        auto it = mesh.cfv_iter(f);
+        a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
+    }
+    const double reach2 = 0.75 * cell_ * cell_ * 1.0001;  // (sqrt(3)/2 cell)^2
+    Vec3 normal(0, 0, 0);
+    if (exact) {
+        normal = OpenMesh::cross(b - a, c - a);
+        double l = normal.norm();
+        if (l > 0) normal /= l;
+    }
     for (int k = lo[2]; k <= hi[2]; ++k)
         for (int j = lo[1]; j <= hi[1]; ++j)
             for (int i = lo[0]; i <= hi[0]; ++i) {
-                cells_[cell_of(i, j, k)].push_back({uint32_t(f.idx()), ver});
-                ++entries_;
+                if (exact) {
+                    Vec3 centre = lo_ + Vec3((i + 0.5) * cell_, (j + 0.5) * cell_, (k + 0.5) * cell_);
+                    double plane = OpenMesh::dot(centre - a, normal);
+                    if (plane * plane > reach2) continue;  // far from the triangle's plane
+                    std::array<double, 3> bary;
+                    if ((closest_point_barycentric(centre, a, b, c, bary) - centre).sqrnorm() > reach2) continue;
+                }
+                auto& list = cells_[cell_of(i, j, k)];
+                // Drop stale entries of this cell before it grows: keeps every cell within about twice
+                // its live entries, at a cost proportional to the growth.
+                if (list.size() == list.capacity() && list.size() >= 8) {
+                    list.erase(std::remove_if(list.begin(), list.end(),
+                                              [&](const Entry& e) { return e.version != version_[e.face]; }),
+                               list.end());
+                }
+                list.push_back({uint32_t(f.idx()), ver});
             }
 }
 
 void FaceGrid::build(const DecoderTriMesh& mesh) {
     for (auto& c : cells_) c.clear();
     version_.assign(mesh.n_faces(), 0);
-    live_ = entries_ = 0;
+    live_ = 0;
     for (auto f : mesh.faces()) {
         version_[f.idx()] = 1;
         ++live_;
         add_entries(mesh, f);
     }
-    sweep_at_ = 2 * entries_ + (size_t(1) << 16);
 }
 
 void FaceGrid::update(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f) {
     if (size_t(f.idx()) >= version_.size()) version_.resize(mesh.n_faces(), 0);
     uint32_t& ver = version_[f.idx()];
     if (ver & 1) {
-        // Its old entries go stale; sweep() drops them later.
+        // Its old entries go stale; add_entries drops them when their cell grows.
         ver += 2;
     } else {
         ver += 1;
         ++live_;
     }
     add_entries(mesh, f);
-    if (entries_ > sweep_at_) sweep(mesh);
 }
 
 void FaceGrid::remove(OpenMesh::FaceHandle f) {
@@ -136,18 +163,6 @@ void FaceGrid::remove(OpenMesh::FaceHandle f) {
         ver += 1;
         --live_;
     }
-}
-
-void FaceGrid::sweep(const DecoderTriMesh& mesh) {
-    (void)mesh;
-    entries_ = 0;
-    for (auto& c : cells_) {
-        c.erase(std::remove_if(c.begin(), c.end(),
-                               [&](const Entry& e) { return e.version != version_[e.face]; }),
-                c.end());
-        entries_ += c.size();
-    }
-    sweep_at_ = 2 * entries_ + (size_t(1) << 16);
 }
 
 OpenMesh::FaceHandle FaceGrid::nearest(const DecoderTriMesh& mesh, const Vec3& p, Vec3& closest,
@@ -178,21 +193,44 @@ OpenMesh::FaceHandle FaceGrid::nearest(const DecoderTriMesh& mesh, const Vec3& p
             if (d2 < best_d2) best_d2 = d2, best = f, closest = q, bary = bc;
         }
     };
+    // Distance from p to the faces of its cell's box, to bound what lies beyond each ring.
+    double to_low[3], to_high[3];
+    for (int k = 0; k < 3; ++k) {
+        to_low[k] = p[k] - (lo_[k] + c[k] * cell_);
+        to_high[k] = lo_[k] + (c[k] + 1) * cell_ - p[k];
+    }
+    auto cell_gap2 = [&](int i, int j, int k) {
+        // Squared distance from p to cell (i, j, k), from the offsets to p's own cell.
+        int idx[3] = {i, j, k};
+        double d2 = 0;
+        for (int a = 0; a < 3; ++a) {
+            int off = idx[a] - c[a];
+            double g = off > 0 ? to_high[a] + (off - 1) * cell_ : (off < 0 ? to_low[a] + (-off - 1) * cell_ : 0.0);
+            if (g > 0) d2 += g * g;
+        }
+        return d2;
+    };
     for (int r = 0; r <= max_ring; ++r) {
         int i0 = c[0] - r, i1 = c[0] + r, j0 = c[1] - r, j1 = c[1] + r, k0 = c[2] - r, k1 = c[2] + r;
         for (int k = std::max(k0, 0); k <= std::min(k1, dims_[2] - 1); ++k)
             for (int j = std::max(j0, 0); j <= std::min(j1, dims_[1] - 1); ++j) {
                 bool shell = (k == k0 || k == k1 || j == j0 || j == j1);
                 if (shell) {
-                    for (int i = std::max(i0, 0); i <= std::min(i1, dims_[0] - 1); ++i) visit(i, j, k);
+                    for (int i = std::max(i0, 0); i <= std::min(i1, dims_[0] - 1); ++i)
+                        if (cell_gap2(i, j, k) < best_d2) visit(i, j, k);
                 } else {
-                    if (i0 >= 0) visit(i0, j, k);
-                    if (i1 < dims_[0]) visit(i1, j, k);
+                    if (i0 >= 0 && cell_gap2(i0, j, k) < best_d2) visit(i0, j, k);
+                    if (i1 < dims_[0] && cell_gap2(i1, j, k) < best_d2) visit(i1, j, k);
                 }
             }
-        // Cells beyond ring r are at least r cells from p's (clamped) cell.
-        double reach = r * cell_;
+        // Everything beyond ring r is at least this far from p.
+        double reach = std::numeric_limits<double>::max();
+        for (int a = 0; a < 3; ++a) {
+            if (c[a] - r > 0) reach = std::min(reach, std::max(0.0, to_low[a]) + r * cell_);
+            if (c[a] + r < dims_[a] - 1) reach = std::min(reach, std::max(0.0, to_high[a]) + r * cell_);
+        }
         if (best.is_valid() && best_d2 <= reach * reach) break;
+        if (reach == std::numeric_limits<double>::max()) break;  // the whole grid was visited
     }
     return best;
 }

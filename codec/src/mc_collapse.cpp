@@ -117,19 +117,40 @@ size_t collapse_mc_vertices_near(Reconstruction& r, OpenMesh::VertexHandle v) {
 size_t collapse_all_mc_vertices(Reconstruction& r, bool force) {
     size_t total = 0;
     if (r.mc_vertices == 0) return 0;
-    // Ordinary passes first, then (when forcing) collapses into any original neighbour, then
-    // marching-cubes neighbours, until nothing changes.
-    for (int stage = 0; stage < (force ? 3 : 1); ++stage) {
-        for (int pass = 0; pass < 64 && r.mc_vertices > 0; ++pass) {
-            size_t done = 0;
-            const size_t nv = r.mesh.n_vertices();
-            for (size_t i = 0; i < nv && r.mc_vertices > 0; ++i) {
-                OpenMesh::VertexHandle m{int(i)};
-                if (r.mesh.status(m).deleted() || r.is_original(m)) continue;
-                done += try_collapse(r, m, stage >= 1, stage >= 2) ? 1 : 0;
+    // Stage 0: the ordinary rule; when forcing, stage 1: any original neighbour is enough; stage 2:
+    // marching-cubes neighbours too. Each stage works through a queue: a vertex is tried again only
+    // when a collapse next to it changed its neighbourhood.
+    DecoderTriMesh& mesh = r.mesh;
+    std::vector<char> queued(mesh.n_vertices(), 0);
+    std::vector<OpenMesh::VertexHandle> queue;
+    for (int stage = 0; stage < (force ? 3 : 1) && r.mc_vertices > 0; ++stage) {
+        queue.clear();
+        std::fill(queued.begin(), queued.end(), 0);
+        for (auto v : mesh.vertices())
+            if (!r.is_original(v)) queue.push_back(v), queued[v.idx()] = 1;
+        std::reverse(queue.begin(), queue.end());  // pop_back takes them in index order
+        while (!queue.empty() && r.mc_vertices > 0) {
+            auto m = queue.back();
+            queue.pop_back();
+            queued[m.idx()] = 0;
+            if (mesh.status(m).deleted() || r.is_original(m)) continue;
+            // Remember the neighbourhood: after a collapse its marching-cubes vertices are retried.
+            std::array<OpenMesh::VertexHandle, 64> ring;
+            int n = 0;
+            for (auto w : mesh.vv_range(m))
+                if (n < int(ring.size())) ring[n++] = w;
+            if (!try_collapse(r, m, stage >= 1, stage >= 2)) continue;
+            ++total;
+            for (int i = 0; i < n; ++i) {
+                auto w = ring[i];
+                if (mesh.status(w).deleted()) continue;
+                for (auto x : mesh.vv_range(w)) {
+                    if (r.is_original(x) || queued[x.idx()]) continue;
+                    queued[x.idx()] = 1;
+                    queue.push_back(x);
+                }
+                if (!r.is_original(w) && !queued[w.idx()]) queued[w.idx()] = 1, queue.push_back(w);
             }
-            total += done;
-            if (done == 0) break;
         }
     }
     return total;

@@ -49,7 +49,7 @@ void reindex_faces_around(Reconstruction& r, OpenMesh::VertexHandle v) {
 }
 
 void start_reconstruction(Reconstruction& r, DecoderTriMesh&& base, const Frame& frame, double cell,
-                          const ReconstructionOptions& options) {
+                          size_t expected_points, const ReconstructionOptions& options) {
     r.mesh = std::move(base);
     r.mesh.request_vertex_status();
     r.mesh.request_edge_status();
@@ -65,8 +65,18 @@ void start_reconstruction(Reconstruction& r, DecoderTriMesh&& base, const Frame&
         lo.minimize(r.mesh.point(v));
         hi.maximize(r.mesh.point(v));
     }
-    // Cells of about two grid cells: a marching-cubes face overlaps one or two of them.
-    r.faces.reset(lo, hi, 2 * cell);
+    // Cells of about the size of the final triangles: the base's area shared by as many faces as
+    // the base or the stream's points (2 faces per vertex) will make, whichever is more.
+    double area = 0;
+    for (auto f : r.mesh.faces()) {
+        auto it = r.mesh.cfv_iter(f);
+        Vec3 a = r.mesh.point(*it), b = r.mesh.point(*++it), c = r.mesh.point(*++it);
+        area += 0.5 * OpenMesh::cross(b - a, c - a).norm();
+    }
+    double faces = std::max<double>({1.0, double(r.mesh.n_faces()), 2.0 * double(expected_points)});
+    double size = std::clamp(2.0 * std::sqrt(area / faces), 0.25 * cell, 4 * cell);
+    if (!(size > 0)) size = cell;
+    r.faces.reset(lo, hi, size);
     r.faces.build(r.mesh);
 }
 

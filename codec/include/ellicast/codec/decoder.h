@@ -78,8 +78,8 @@ DecoderTriMesh marching_cubes(const EllipsoidGrid& grid);
 // Nearest triangle while the mesh changes (face_grid.cpp)
 
 // A uniform grid of cells, each listing the faces whose bounding box overlaps it. Faces are
-// (re)registered after every change; stale entries are skipped by a per-face version and swept
-// out when they outnumber the live ones, so queries stay fast as the mesh is refined.
+// (re)registered after every change; stale entries are skipped by a per-face version and dropped
+// from a cell whenever it would grow, so cells stay small and queries fast as the mesh is refined.
 class FaceGrid {
 public:
     // Covers [lo, hi] (points outside are clamped to the border cells) with cells of edge `cell`.
@@ -105,7 +105,6 @@ private:
     void cell_range(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f, std::array<int, 3>& lo,
                     std::array<int, 3>& hi) const;
     void add_entries(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f);
-    void sweep(const DecoderTriMesh& mesh);
 
     OpenMesh::Vec3d lo_{0, 0, 0};
     double cell_ = 1;
@@ -115,8 +114,6 @@ private:
     mutable std::vector<uint32_t> seen_;  // per face: query stamp
     mutable uint32_t stamp_ = 0;
     size_t live_ = 0;
-    size_t entries_ = 0;               // entries in cells, stale ones included
-    size_t sweep_at_ = size_t(1) << 16;  // sweep stale entries when entries_ passes this
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -146,10 +143,11 @@ struct Reconstruction {
     bool is_original(OpenMesh::VertexHandle v) const { return !vertex_points[v.idx()].empty(); }
 };
 
-// Takes ownership of a base mesh (from marching_cubes): builds the face index over `frame`
-// (grown to cover the mesh) and marks every vertex as a marching-cubes vertex.
+// Takes ownership of a base mesh (from marching_cubes with node spacing `cell`): builds the face
+// index over `frame` (grown to cover the mesh), its cells sized for the triangles that
+// `expected_points` insertions will leave, and marks every vertex as a marching-cubes vertex.
 void start_reconstruction(Reconstruction& r, DecoderTriMesh&& base, const Frame& frame, double cell,
-                          const ReconstructionOptions& options);
+                          size_t expected_points, const ReconstructionOptions& options);
 
 // Re-registers every face around v in r.faces (after v moved or its faces changed).
 void reindex_faces_around(Reconstruction& r, OpenMesh::VertexHandle v);
