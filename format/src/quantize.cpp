@@ -48,6 +48,23 @@ void octahedral_square(const std::array<float, 3>& n, double& u, double& v) {
     u = x, v = y;
 }
 
+// The decoded unit vector of an octahedral grid point, in double precision (decode_octahedral
+// rounds it to float; the encoder compares candidates before that rounding, which at 12 bits and
+// more is as large as the differences it compares).
+void octahedral_unit(const std::array<uint32_t, 2>& q, int bits, double out[3]) {
+    const double max = max_value(bits);
+    double x = std::min<double>(q[0], max) / max * 2 - 1;
+    double y = std::min<double>(q[1], max) / max * 2 - 1;
+    double z = 1 - std::fabs(x) - std::fabs(y);
+    if (z < 0) {
+        double ox = x;
+        x = (1 - std::fabs(y)) * octahedral_sign(ox);
+        y = (1 - std::fabs(ox)) * octahedral_sign(y);
+    }
+    double len = std::sqrt(x * x + y * y + z * z);
+    out[0] = x / len, out[1] = y / len, out[2] = z / len;
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------------------------------
@@ -144,31 +161,25 @@ std::array<uint32_t, 2> encode_octahedral(const std::array<float, 3>& n, int bit
     std::array<uint32_t, 2> best{quantize_unit((u + 1) * 0.5, max), quantize_unit((v + 1) * 0.5, max)};
     double len = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
     if (!(len > 0) || !std::isfinite(len)) return best;
-    double best_dot = -2;
+    const double nx = n[0] / len, ny = n[1] / len, nz = n[2] / len;
+    double best_distance = 5;
     for (int du = 0; du < 2; ++du)
         for (int dv = 0; dv < 2; ++dv) {
             double cu = std::clamp(std::floor(fu) + du, 0.0, double(max));
             double cv = std::clamp(std::floor(fv) + dv, 0.0, double(max));
             std::array<uint32_t, 2> cand{static_cast<uint32_t>(cu), static_cast<uint32_t>(cv)};
-            auto d = decode_octahedral(cand, bits);
-            double dot = (d[0] * n[0] + d[1] * n[1] + d[2] * n[2]) / len;
-            if (dot > best_dot) best_dot = dot, best = cand;
+            double d[3];
+            octahedral_unit(cand, bits, d);
+            double distance = (d[0] - nx) * (d[0] - nx) + (d[1] - ny) * (d[1] - ny) + (d[2] - nz) * (d[2] - nz);
+            if (distance < best_distance) best_distance = distance, best = cand;
         }
     return best;
 }
 
 std::array<float, 3> decode_octahedral(const std::array<uint32_t, 2>& q, int bits) {
-    const double max = max_value(bits);
-    double x = std::min<double>(q[0], max) / max * 2 - 1;
-    double y = std::min<double>(q[1], max) / max * 2 - 1;
-    double z = 1 - std::fabs(x) - std::fabs(y);
-    if (z < 0) {
-        double ox = x;
-        x = (1 - std::fabs(y)) * octahedral_sign(ox);
-        y = (1 - std::fabs(ox)) * octahedral_sign(y);
-    }
-    double len = std::sqrt(x * x + y * y + z * z);
-    return {static_cast<float>(x / len), static_cast<float>(y / len), static_cast<float>(z / len)};
+    double d[3];
+    octahedral_unit(q, bits, d);
+    return {static_cast<float>(d[0]), static_cast<float>(d[1]), static_cast<float>(d[2])};
 }
 
 QuantizedPoint quantize_point(const SurfacePoint& p, const StreamInfo& info, const ObjectInfo& object) {
