@@ -32,7 +32,8 @@ bool LiveReconstruction::start(const ReceivedStream& stream, std::string& error)
         if (grid.empty()) continue;
         DecoderTriMesh base = marching_cubes(grid);
         if (base.n_faces() == 0) continue;
-        start_reconstruction(o.reconstruction, std::move(base), o.info.frame, grid.cell, ReconstructionOptions{});
+        start_reconstruction(o.reconstruction, std::move(base), o.info.frame, grid.cell, o.info.point_count,
+                             ReconstructionOptions{});
         o.surface = true;
     }
     started_ = true;
