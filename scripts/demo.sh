@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# The main job on the bundled sample: sets everything up (scripts/setup.sh), then sends
+# samples/trefoil.obj through ellicast as a broadcast receiver would see it:
+#   encode -> inspect -> validate -> decode everything -> lose 60% of the packets -> decode what is left
+#   -> measure both reconstructions against the original.
+# Everything it writes goes to out/demo/ (override with ELLICAST_DEMO_OUT).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${ELLICAST_BUILD_DIR:-$root/build}
+out=${ELLICAST_DEMO_OUT:-$root/out/demo}
+bash "$root/scripts/setup.sh"
+# out/demo is the demo's own folder and is started afresh; a folder given by the user must be new or empty.
+if [ -z "${ELLICAST_DEMO_OUT:-}" ]; then
+  rm -rf "$out"
+elif [ -n "$(ls -A "$out" 2>/dev/null)" ]; then
+  echo "demo: $out is not empty; choose a new folder for ELLICAST_DEMO_OUT" >&2
+  exit 2
+fi
+mkdir -p "$out"
+ellicast="$build/ellicast"
+model="$root/samples/trefoil.obj"
+
+step() { printf '\n== %s\n' "$*" >&2; }
+
+step "encode $model"
+"$ellicast" encode "$model" -o "$out/trefoil.ellc"
+step "inspect the stream"
+"$ellicast" inspect "$out/trefoil.ellc"
+step "validate the stream"
+"$ellicast" validate "$out/trefoil.ellc"
+step "decode every packet (snapshots as points arrive)"
+"$ellicast" decode "$out/trefoil.ellc" -o "$out/trefoil.glb" --snapshots 800
+step "a lossy channel: 60% of the packets lost at random"
+"$ellicast" simulate "$out/trefoil.ellc" -o "$out/trefoil-received.ellc" --loss 0.6 --seed 7
+"$ellicast" decode "$out/trefoil-received.ellc" -o "$out/trefoil-lossy.glb"
+step "distance to the original (percent of the bounding-box diagonal)"
+"$ellicast" diff "$model" "$out/trefoil.glb"
+"$ellicast" diff "$model" "$out/trefoil-lossy.glb"
+printf '\nwrote %s\n' "$out" >&2
+ls -l "$out" >&2
