@@ -306,3 +306,41 @@ TEST_CASE("ellicast encode writes a stream, refuses to overwrite its input and r
     CHECK(run("encode -q " + (dir / "missing.obj").string() + " -o " + out) == 3);
     CHECK(text("err.txt").find("missing.obj") != std::string::npos);
 }
+
+TEST_CASE("any fifth of the point packets is spread over the whole surface") {
+    if (!have_sample("meshes/bunny.ply")) return;
+    LoadResult loaded = load_meshes(sample("meshes/bunny.ply"));
+    const Mesh& m = loaded.meshes[0];
+    EncodeOptions o = fast_options();
+    o.max_ellipsoids = 4;
+    o.candidates = 16;
+    o.grid = 16;
+    EncodeResult r = encode_meshes(loaded.meshes, o);
+    StreamPackets packets;
+    REQUIRE(packetize_stream(r.info, r.contents, 1, packets) == Error::Ok);
+    REQUIRE(packets.points.size() >= 50);
+    // Keep every fifth POINTS packet (a loss of 80%), starting at several offsets.
+    const Frame& f = r.info.objects[0].frame;
+    for (size_t offset = 0; offset < 5; offset += 2) {
+        ReceivedStream rx;
+        for (auto& p : packets.stream_info) rx.add_packet(p, 0);
+        for (size_t i = offset; i < packets.points.size(); i += 5) rx.add_packet(packets.points[i], i);
+        auto pts = rx.points(0);
+        REQUIRE(pts.size() > m.positions.size() / 6);
+        // Bucket the received points on a grid of cells 1/16 of the model's size: nearly every
+        // vertex of the model lies in a cell that received points (only cells holding a handful of
+        // vertices may miss out, as with any order).
+        const int n = 16;
+        auto cell = [&](const std::array<float, 3>& p) {
+            std::array<int, 3> c;
+            for (int k = 0; k < 3; ++k) c[k] = std::clamp(int((p[k] - f.origin[k]) / f.scale * n), 0, n - 1);
+            return c;
+        };
+        std::set<std::array<int, 3>> have;
+        for (const auto& p : pts) have.insert(cell(p.position));
+        size_t missing = 0;
+        for (const auto& p : m.positions) missing += !have.count(cell(p));
+        CAPTURE(offset);
+        CHECK(missing * 100 <= m.positions.size());  // at most 1% of the vertices in an empty cell
+    }
+}

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 #include <tuple>
@@ -127,7 +128,22 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     WindingNumber winding(tree);
     const TriangleTree::Box box = tree.bounds();
     int cells = int(options.grid);
-    if (cells == 0) cells = mesh.triangles.size() < 2000 ? 64 : 96;
+    if (cells == 0) {
+        // 64 or 96 cells along the longest side, finer for a flat model so that its thinnest side
+        // still spans 12 cells, at most 256 cells.
+        cells = mesh.triangles.size() < 2000 ? 64 : 96;
+        double lo = INFINITY, hi = 0;
+        for (int k = 0; k < 3; ++k) {
+            double e = box.max[k] - box.min[k];
+            hi = std::max(hi, e);
+            if (e > 0) lo = std::min(lo, e);
+        }
+        if (hi > 0 && lo < hi) {
+            const double ratio = hi / lo;
+            int wanted = int(std::ceil(12 * ratio));
+            if (wanted > cells && ratio < 1e3) cells = std::min(wanted, 256);
+        }
+    }
     progress("inside test", 0.0);
     VoxelGrid grid = build_winding_grid(tree, winding, box, cells, options.threads,
                                         [&](double f) { progress("inside test", 0.2 * f); });
@@ -170,7 +186,6 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     const double eps = 0.05 * grid.h;
     std::vector<Candidate> grown(seeds);
     std::vector<char> ok(seeds, 0);
-    std::vector<char> sheet(seeds, 0);
     // Grow in chunks so that progress can be reported from this thread.
     const size_t chunk = 64;
     for (size_t start = 0; start < seeds; start += chunk) {
@@ -183,10 +198,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
             Vec3 inward;
             if (w_back > 0.5 && w_back >= w_front) inward = -s.n;
             else if (w_front > 0.5) inward = s.n;
-            else {
-                sheet[i] = 1;
-                return;
-            }
+            else return;  // no inside on either side: a sheet, handled below
             ok[i] = grow_ellipsoid(ctx, s.p, inward, grown[i]) ? 1 : 0;
         });
         progress("candidates", 0.2 + 0.5 * double(end) / double(seeds));
@@ -232,8 +244,46 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         report.closed ? options.max_ellipsoids : std::max<uint32_t>(1, uint32_t(0.8 * options.max_ellipsoids));
     const uint32_t max_inside =
         report.closed ? options.max_ellipsoids : std::max<uint32_t>(1, uint32_t(0.9 * options.max_ellipsoids));
-    SelectionResult chosen = select_ellipsoids(grid, candidates, samples, near, options.coverage, max_volume,
-                                               max_inside, [&](double f) { progress("selection", 0.7 + 0.2 * f); });
+    // Aim a little higher: quantization may shrink a few ellipsoids by a step.
+    const double aim = std::min(1.0, options.coverage + 0.005);
+    SelectionResult chosen = select_ellipsoids(grid, candidates, samples, near, aim, max_volume,
+                                               max_inside, [&](double f) { progress("selection", 0.7 + 0.1 * f); });
+
+    // Second round where the first left interior uncovered (corners, crevices, sharp edges): seeds
+    // at the surface points nearest to uncovered voxels, growing toward them; then choose again.
+    if (chosen.coverage < aim && chosen.volume.size() < max_volume && interior > 0) {
+        VoxelBits covered(grid, false);
+        for (uint32_t i : chosen.volume) covered.fill(rasterize(grid, candidates[i], 0));
+        std::vector<size_t> uncovered;
+        for (size_t row = 0; row < size_t(grid.n[1]) * grid.n[2]; ++row)
+            for (int x = 0; x < grid.n[0]; ++x)
+                if (grid.inside(row * grid.n[0] + x) && !covered.get(x, row)) uncovered.push_back(row * grid.n[0] + x);
+        const size_t extra = std::min<size_t>(uncovered.size(), seeds / 2);
+        Random pick(object_seed ^ 0xA511E9B3u);
+        for (size_t i = 0; i < extra; ++i)
+            std::swap(uncovered[i], uncovered[i + pick.below(uint32_t(uncovered.size() - i))]);
+        std::vector<Candidate> more(extra);
+        std::vector<char> more_ok(extra, 0);
+        for (size_t start = 0; start < extra; start += chunk) {
+            size_t end = std::min(extra, start + chunk);
+            parallel_for(end - start, options.threads, [&](size_t k) {
+                size_t v = uncovered[start + k];
+                size_t x = v % grid.n[0], y = (v / grid.n[0]) % grid.n[1], z = v / (size_t(grid.n[0]) * grid.n[1]);
+                Vec3 c(grid.origin[0] + x * grid.h, grid.origin[1] + y * grid.h, grid.origin[2] + z * grid.h);
+                ClosestPoint cp = tree.closest_point(to_arr(c));
+                if (!cp.found) return;
+                Vec3 q = to_vec(cp.point), d = c - q;
+                if (d.norm() < 1e-12) return;
+                more_ok[start + k] = grow_ellipsoid(ctx, q, d.normalized(), more[start + k]) ? 1 : 0;
+            });
+            progress("candidates", 0.8 + 0.1 * double(end) / double(extra));
+        }
+        for (size_t i = 0; i < extra; ++i)
+            if (more_ok[i]) candidates.push_back(more[i]);
+        report.candidates = uint32_t(candidates.size());
+        chosen = select_ellipsoids(grid, candidates, samples, near, aim, max_volume, max_inside,
+                                   [&](double f) { progress("selection", 0.9 + 0.05 * f); });
+    }
 
     // Quantize each chosen ellipsoid; dequantized it must still be clear of the surface.
     const double radius_step = frame.scale / 8191.0;
@@ -366,10 +416,15 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     report.coverage = interior ? double(in_cov) / double(interior) : 0;
     report.outside = interior ? double(out_cov) / double(interior) : 0;
     report.ellipsoids = uint32_t(out.size());
-    if (interior > 0 && report.coverage + 1e-9 < options.coverage)
-        warnings.push_back(mesh.name + ": the ellipsoids cover " + std::to_string(int(report.coverage * 1000) / 10.0) +
-                           "% of the interior, below the target " + std::to_string(int(options.coverage * 1000) / 10.0) +
-                           "% (" + std::to_string(out.size()) + " ellipsoids; raise --ellipsoids)");
+    if (interior > 0 && report.coverage + 1e-9 < options.coverage) {
+        char text[256];
+        std::snprintf(text, sizeof text, "%s: the ellipsoids cover %.1f%% of the interior, below the target %.1f%% (%zu "
+                      "ellipsoids; %s)", mesh.name.c_str(), 100 * report.coverage, 100 * options.coverage, out.size(),
+                      out.size() >= options.max_ellipsoids
+                          ? "raise --ellipsoids"
+                          : "no candidate adds volume: sharp edges and corners cannot be filled by inscribed ellipsoids");
+        warnings.push_back(text);
+    }
     progress("selection", 0.95);
     return out;
 }
