@@ -1,0 +1,167 @@
+// `ellicast inspect` and `ellicast validate` through the real binary: what they print for conforming,
+// damaged and incomplete recordings, their exit codes, and their usage errors.
+#include "support.h"
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+    int code = -1;
+    std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+Result run_ellicast(const std::string& args) {
+    static int counter = 0;
+    auto dir = ellicast::test::binary_dir() / "test-scratch" / "inspect_validate_runs";
+    fs::create_directories(dir);
+    const auto out = dir / ("out" + std::to_string(counter) + ".txt");
+    const auto err = dir / ("err" + std::to_string(counter++) + ".txt");
+    const std::string cmd = "'" + ellicast::test::ellicast_exe().string() + "' " + args + " > '" + out.string() + "' 2> '" +
+                            err.string() + "'";
+    int status = std::system(cmd.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    return r;
+}
+
+std::string vector_path(const std::string& name) {
+    std::string quoted = "'";
+    quoted += (ellicast::test::source_dir() / "spec" / "vectors" / (name + ".ellc")).string();
+    quoted += "'";
+    return quoted;
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("validate exits 0 for a conforming recording and says what it holds") {
+    Result r = run_ellicast("validate " + vector_path("valid/two_objects"));
+    CHECK(r.code == 0);
+    CHECK(contains(r.out, "conforms to ellicast format 1.0"));
+    CHECK(contains(r.out, "2 objects, 16 ellipsoids, 100 points"));
+    Result quiet = run_ellicast("validate -q " + vector_path("valid/two_objects"));
+    CHECK(quiet.code == 0);
+    CHECK(quiet.out.empty());
+}
+
+TEST_CASE("validate lists every violation with its byte offset and exits 1") {
+    Result r = run_ellicast("validate " + vector_path("faulty/bad_crc"));
+    CHECK(r.code == 1);
+    CHECK(contains(r.out, "offset 368: 195 damaged bytes hold no valid packet (bad CRC-32C)"));
+    CHECK(contains(r.out, "object 0: 19 of 40 points received; missing 0..20"));
+    CHECK(contains(r.out, "does not conform: 2 violations"));
+
+    r = run_ellicast("validate " + vector_path("faulty/incomplete"));
+    CHECK(r.code == 1);
+    CHECK(contains(r.out, "2 of 12 ellipsoids received; missing 0..9"));
+    CHECK(contains(r.out, "21 of 40 points received; missing 21..39"));
+
+    r = run_ellicast("validate " + vector_path("faulty/packet_over_declared_size"));
+    CHECK(r.code == 1);
+    CHECK(contains(r.out, "offset 112: ELLIPSOIDS packet of 192 bytes is larger than the declared packet size 128"));
+
+    r = run_ellicast("validate " + vector_path("faulty/mixed_stream_ids"));
+    CHECK(r.code == 1);
+    CHECK(contains(r.out, "packets of 2 stream ids"));
+    CHECK(contains(r.out, "offset 368: STREAM_INFO packet rejected"));
+
+    r = run_ellicast("validate " + vector_path("faulty/no_stream_info"));
+    CHECK(r.code == 1);
+    CHECK(contains(r.out, "no valid STREAM_INFO"));
+    CHECK(contains(r.out, "offset 12: ELLIPSOIDS packet of object 0 never got its STREAM_INFO entry"));
+
+    r = run_ellicast("validate " + vector_path("faulty/bad_signature"));
+    CHECK(r.code == 1);
+    CHECK(contains(r.out, "offset 0: not a readable ellicast container"));
+}
+
+TEST_CASE("validate of several files fails if any one does") {
+    Result r = run_ellicast("validate " + vector_path("valid/minimal") + " " + vector_path("faulty/truncated_packet"));
+    CHECK(r.code == 1);
+    CHECK(contains(r.out, "minimal.ellc: conforms"));
+    CHECK(contains(r.out, "truncated_packet.ellc: offset 563: 90 damaged bytes"));
+}
+
+TEST_CASE("inspect summarizes stream info, packet types, objects and damage") {
+    Result r = run_ellicast("inspect " + vector_path("faulty/bad_crc"));
+    CHECK(r.code == 0);
+    CHECK(contains(r.out, "container: version 1, 12-byte header, 4 intact packets, 1 damaged region"));
+    CHECK(contains(r.out, "stream id: 0x0E11CA57"));
+    CHECK(contains(r.out, "versions: 1.0 (4)"));
+    CHECK(contains(r.out, "packet size 200"));
+    CHECK(contains(r.out, "bits: position 14, normal 10, texcoord 12, colour 8"));
+    CHECK(contains(r.out, "coverage target 0.95, seed 7, grid hint 64"));
+    CHECK(contains(r.out, "ELLIPSOIDS"));
+    CHECK(contains(r.out, "ellipsoids 12/12, points 19/40"));
+    CHECK(contains(r.out, "missing points 0..20"));
+    CHECK(contains(r.out, "offset 368, 195 bytes: bad CRC-32C"));
+    CHECK(contains(r.out, "conforms: no"));
+
+    r = run_ellicast("inspect --packets " + vector_path("unusual/minor_1_1"));
+    CHECK(r.code == 0);
+    CHECK(contains(r.out, "UNKNOWN(0xF0)"));
+    CHECK(contains(r.out, "skipped"));
+    CHECK(contains(r.out, "versions: 1.1 (4)"));
+    CHECK(contains(r.out, "conforms: yes"));
+}
+
+TEST_CASE("inspect --json gives the same summary as machine-readable JSON") {
+    Result r = run_ellicast("inspect --json " + vector_path("unusual/split_stream_info"));
+    REQUIRE(r.code == 0);
+    auto j = nlohmann::json::parse(r.out);
+    CHECK(j["stream_info"]["parts"] == 3);
+    CHECK(j["stream_info"]["object_count"] == 60);
+    CHECK(j["objects"].size() == 60);
+    CHECK(j["objects"][59]["complete"] == true);
+    CHECK(j["conforms"] == true);
+    CHECK(j["damaged"].empty());
+    CHECK(j["stream_id"] == 0x0E11CA57);
+
+    r = run_ellicast("inspect --json " + vector_path("faulty/index_out_of_range"));
+    REQUIRE(r.code == 0);
+    j = nlohmann::json::parse(r.out);
+    REQUIRE(j["rejected"].size() == 1);
+    CHECK(j["rejected"][0]["offset"] == 368);
+    CHECK(j["rejected"][0]["reason"] == "index beyond the declared count");
+    CHECK(j["objects"][0]["missing_points"] == "0..20");
+    CHECK(j["conforms"] == false);
+}
+
+TEST_CASE("inspect and validate refuse bad usage and unreadable files with a clear message") {
+    Result r = run_ellicast("inspect");
+    CHECK(r.code == 2);
+    CHECK(contains(r.err, "file"));
+    r = run_ellicast("validate");
+    CHECK(r.code == 2);
+    r = run_ellicast("inspect --frobnicate " + vector_path("valid/minimal"));
+    CHECK(r.code == 2);
+    r = run_ellicast("inspect /nonexistent/stream.ellc");
+    CHECK(r.code == 3);
+    CHECK(contains(r.err, "ellicast: error: /nonexistent/stream.ellc: cannot open"));
+    r = run_ellicast("validate /nonexistent/stream.ellc");
+    CHECK(r.code == 3);
+    CHECK(contains(r.err, "/nonexistent/stream.ellc"));
+    r = run_ellicast("inspect " + vector_path("faulty/truncated_container"));
+    CHECK(r.code == 1);
+    CHECK(contains(r.out, "container: unreadable"));
+}
