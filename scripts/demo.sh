@@ -2,7 +2,7 @@
 # The main job on the bundled sample: sets everything up (scripts/setup.sh), then sends
 # samples/trefoil.obj through ellicast as a broadcast receiver would see it:
 #   encode -> inspect -> validate -> decode everything -> lose 60% of the packets -> decode what is left
-#   -> measure both reconstructions against the original.
+#   -> measure both reconstructions against the original -> draw them side by side.
 # Everything it writes goes to out/demo/ (override with ELLICAST_DEMO_OUT).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -36,5 +36,8 @@ step "a lossy channel: 60% of the packets lost at random"
 step "distance to the original (percent of the bounding-box diagonal)"
 "$ellicast" diff "$model" "$out/trefoil.glb"
 "$ellicast" diff "$model" "$out/trefoil-lossy.glb"
+step "pictures: base only, after 1,600 points, every point, after 60% loss -> $out/trefoil-progress.png"
+"$ellicast" render "$out/trefoil.snap-o0-p0000000.glb" "$out/trefoil.snap-o0-p0001600.glb" "$out/trefoil.glb" \
+  "$out/trefoil-lossy.glb" -o "$out/trefoil-progress.png" --width 320 --height 320
 printf '\nwrote %s\n' "$out" >&2
 ls -l "$out" >&2
