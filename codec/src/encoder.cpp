@@ -245,13 +245,14 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     const uint32_t max_inside =
         report.closed ? options.max_ellipsoids : std::max<uint32_t>(1, uint32_t(0.9 * options.max_ellipsoids));
     // Aim a little higher: quantization may shrink a few ellipsoids by a step.
-    const double aim = std::min(1.0, options.coverage + 0.005);
+    const double aim = std::min(1.0, options.coverage + 0.01);
     SelectionResult chosen = select_ellipsoids(grid, candidates, samples, near, aim, max_volume,
                                                max_inside, [&](double f) { progress("selection", 0.7 + 0.1 * f); });
 
     // Second round where the first left interior uncovered (corners, crevices, sharp edges): seeds
-    // at the surface points nearest to uncovered voxels, growing toward them; then choose again.
-    if (chosen.coverage < aim && chosen.volume.size() < max_volume && interior > 0) {
+    // at the surface points nearest to uncovered voxels, growing toward them; then choose again
+    // among all candidates (a better set may reach more coverage with the same count).
+    if (chosen.coverage < aim && interior > 0) {
         VoxelBits covered(grid, false);
         for (uint32_t i : chosen.volume) covered.fill(rasterize(grid, candidates[i], 0));
         std::vector<size_t> uncovered;
