@@ -269,6 +269,22 @@ TEST_CASE("encoder options out of range are refused with a message naming the op
     CHECK_THROWS_AS(encode_meshes({}, EncodeOptions{}), std::invalid_argument);
 }
 
+TEST_CASE("the encoder refuses a mesh with a non-finite coordinate, a bad index or a short attribute array") {
+    Mesh good = convex_shape(6);
+    Mesh nan = good;
+    nan.positions[3][1] = NAN;
+    Mesh index = good;
+    index.triangles[2][1] = 100000;
+    Mesh normals = good;
+    normals.normals.resize(3);
+    for (const Mesh* m : {&nan, &index, &normals}) CHECK_THROWS_AS(encode_meshes({*m}, fast_options()), std::invalid_argument);
+    try {
+        encode_meshes({nan}, fast_options());
+    } catch (const std::invalid_argument& e) {
+        CHECK(std::string(e.what()).find("vertex 3") != std::string::npos);
+    }
+}
+
 TEST_CASE("ellicast encode writes a stream, refuses to overwrite its input and rejects absurd options") {
     if (!have_sample("meshes/woody.obj")) return;
     auto dir = ellicast::test::scratch_dir("encode_cli");

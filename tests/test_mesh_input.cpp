@@ -209,3 +209,65 @@ TEST_CASE("degenerate and duplicate faces are dropped with a warning") {
     REQUIRE(r.meshes.size() == 1);
     CHECK(r.meshes[0].triangles.size() == 4);
 }
+
+namespace {
+
+std::string base64(const std::vector<uint8_t>& in) {
+    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (size_t i = 0; i < in.size(); i += 3) {
+        uint32_t v = uint32_t(in[i]) << 16 | (i + 1 < in.size() ? uint32_t(in[i + 1]) << 8 : 0) |
+                     (i + 2 < in.size() ? in[i + 2] : 0);
+        out += table[v >> 18 & 63];
+        out += table[v >> 12 & 63];
+        out += i + 1 < in.size() ? table[v >> 6 & 63] : '=';
+        out += i + 2 < in.size() ? table[v & 63] : '=';
+    }
+    return out;
+}
+
+template <class T>
+void append(std::vector<uint8_t>& bytes, T value) {
+    const uint8_t* p = reinterpret_cast<const uint8_t*>(&value);
+    bytes.insert(bytes.end(), p, p + sizeof(T));
+}
+
+}  // namespace
+
+TEST_CASE("KHR_mesh_quantization: integer positions and normalized normals, dequantized by the node transform") {
+    // One triangle with SHORT positions (not normalized) scaled by the node by 0.5, BYTE normalized
+    // normals; and a LINES primitive, which is skipped with a warning.
+    std::vector<uint8_t> bin;
+    const int16_t pos[3][3] = {{0, 0, 0}, {100, 0, 0}, {0, 200, 0}};
+    for (auto& p : pos) {
+        for (int16_t c : p) append(bin, c);
+        append(bin, int16_t(0));  // vertex stride 8: positions padded to 4-byte alignment
+    }
+    for (int v = 0; v < 3; ++v) {  // normals (0, 0, 127) padded to 4 bytes
+        append(bin, int8_t(0)), append(bin, int8_t(0)), append(bin, int8_t(127)), append(bin, int8_t(0));
+    }
+    std::string json = R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_mesh_quantization"],
+        "extensionsRequired":["KHR_mesh_quantization"],"scene":0,"scenes":[{"nodes":[0]}],
+        "nodes":[{"mesh":0,"scale":[0.5,0.5,0.5],"translation":[1,0,0]}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1}},
+                                 {"attributes":{"POSITION":0},"mode":1}]}],
+        "accessors":[{"bufferView":0,"componentType":5122,"count":3,"type":"VEC3","min":[0,0,0],"max":[100,200,0]},
+                     {"bufferView":1,"componentType":5120,"normalized":true,"count":3,"type":"VEC3"}],
+        "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":24,"byteStride":8},
+                       {"buffer":0,"byteOffset":24,"byteLength":12,"byteStride":4}],
+        "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
+                       base64(bin) + R"("}]})";
+    auto dir = ellicast::test::scratch_dir("mesh_input_quantized");
+    spit(dir / "q.gltf", json);
+    LoadResult r = load_meshes((dir / "q.gltf").string());
+    REQUIRE(r.meshes.size() == 1);
+    const Mesh& m = r.meshes[0];
+    REQUIRE(m.positions.size() == 3);
+    CHECK(m.positions[1][0] == doctest::Approx(51.0));  // 100 * 0.5 + 1
+    CHECK(m.positions[2][1] == doctest::Approx(100.0));
+    REQUIRE(m.has_normals());
+    CHECK(m.normals[0][2] == doctest::Approx(1.0));
+    bool warned = std::any_of(r.warnings.begin(), r.warnings.end(),
+                              [](const std::string& w) { return w.find("LINES") != std::string::npos; });
+    CHECK(warned);
+}

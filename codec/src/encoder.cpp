@@ -466,6 +466,31 @@ std::vector<QuantizedPoint> encode_points(const Mesh& mesh, const StreamInfo& in
     return out;
 }
 
+// The encoder trusts nothing of a Mesh it is handed: sizes, indices and coordinates are checked.
+void check_mesh(const Mesh& mesh, size_t m) {
+    const std::string name = "mesh " + std::to_string(m) + (mesh.name.empty() ? "" : " (" + mesh.name + ")");
+    const size_t n = mesh.positions.size();
+    if (n == 0) throw std::invalid_argument(name + " has no vertices");
+    if (n > (size_t(1) << 31)) throw std::invalid_argument(name + " has too many vertices");
+    for (size_t i = 0; i < n; ++i)
+        for (float c : mesh.positions[i])
+            if (!std::isfinite(c))
+                throw std::invalid_argument(name + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
+    for (size_t t = 0; t < mesh.triangles.size(); ++t)
+        for (uint32_t v : mesh.triangles[t])
+            if (v >= n)
+                throw std::invalid_argument(name + ": triangle " + std::to_string(t) + " refers to vertex " +
+                                            std::to_string(v) + " of " + std::to_string(n));
+    auto sized = [&](size_t size, const char* what) {
+        if (size != 0 && size != n)
+            throw std::invalid_argument(name + ": " + what + " has " + std::to_string(size) + " values for " +
+                                        std::to_string(n) + " vertices");
+    };
+    sized(mesh.normals.size(), "the normal array");
+    sized(mesh.texcoords.size(), "the texture coordinate array");
+    sized(mesh.colors.size(), "the colour array");
+}
+
 }  // namespace
 
 EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions& options) {
@@ -488,7 +513,7 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
     for (size_t m = 0; m < meshes.size(); ++m) {
         const Mesh& mesh = meshes[m];
         progress.object = m;
-        if (mesh.positions.empty()) throw std::invalid_argument("mesh " + std::to_string(m) + " has no vertices");
+        check_mesh(mesh, m);
         ObjectInfo object;
         object.frame = frame_of(mesh);
         object.kind = mesh.is_point_set ? ObjectKind::PointSet : ObjectKind::Surface;

@@ -71,7 +71,9 @@ struct EncodeResult {
 };
 
 // Encodes meshes as the objects of one stream (one object per mesh, in order). Throws
-// std::invalid_argument for invalid options, no meshes or more than kMaxObjects meshes.
+// std::invalid_argument for invalid options, no meshes, more than kMaxObjects meshes, or a mesh
+// with no vertices, a non-finite coordinate, an index out of range or an attribute array of the
+// wrong size (the message names the mesh and the vertex or triangle).
 EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions& options);
 
 }  // namespace ellicast
