@@ -1,5 +1,7 @@
 // A scene as ellicast carries it: the objects of a stream plus the scene description (nodes,
-// meshes, materials, textures) of format 1.1, read from glTF with the scene graph intact.
+// meshes, materials, textures) of format 1.1. Read from glTF with the scene graph intact
+// (load_asset), rebuilt from what a receiver has (received_asset), written back to glTF/GLB with
+// the scene graph restored, optionally Draco-compressed or quantized (write_asset).
 //
 // Objects are in the local frame of their mesh: a mesh instanced by several nodes is one set of
 // objects, sent once. Object i of an Asset is object i of the stream.
@@ -35,5 +37,39 @@ struct Asset {
 // bind/rest pose. OBJ / PLY / OFF / STL: one node with one mesh, no material. Throws InputError
 // when the file cannot be read or holds nothing to send.
 Asset load_asset(const std::string& path);
+
+// The asset a receiver can write from what has arrived: `objects[i]` is the decoded object i
+// (empty positions: not arrived), the scene from the stream's SCENE / MATERIAL / TEXTURE_FRAGMENT
+// packets. Nodes whose ancestors did not all arrive are left out; materials and textures that did
+// not (completely) arrive are left out and their references cleared (a primitive without a
+// material gets glTF's default material); objects that no arrived node shows get a root node of
+// their own. Without any scene (a format 1.0 stream, or every SCENE packet lost) each object gets
+// its own node and mesh. Every such gap is named in `warnings` of the result.
+Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects);
+
+struct AssetWriteOptions {
+    // KHR_draco_mesh_compression for triangle primitives (point primitives stay plain: the
+    // extension covers triangles only). Quantization bits for Draco's attribute quantization.
+    bool draco = false;
+    int draco_position_bits = 14, draco_normal_bits = 10, draco_texcoord_bits = 12, draco_color_bits = 8;
+    int draco_speed = 5;  // Draco encoder/decoder speed 0 (smallest) .. 10 (fastest)
+    // KHR_mesh_quantization: positions as normalized int16 in a per-mesh cube (the dequantizing
+    // transform goes into a wrapper node under each node showing the mesh), normals as normalized
+    // int8, texture coordinates in [0,1] as normalized uint16, colours as normalized uint16.
+    bool quantize = false;
+};
+
+// Checks options: empty when valid, else a message naming the bad option.
+std::string check_asset_write_options(const AssetWriteOptions& options);
+
+// Writes `asset` as glTF 2.0: binary (.glb) or .gltf with a .bin next to it (same stem), chosen
+// by the extension of `path`. The scene graph, meshes (each object one primitive of its mesh),
+// materials and textures (images embedded in the buffer, bytes as given) are written; anything
+// that does not hold together (an absent object, an out-of-range reference, an empty texture
+// image, a texture set the primitive lacks) is left out with a warning appended to `warnings`,
+// so the file is always valid glTF. Writes through a temporary name. Returns false with `error`
+// naming the file and the problem when it cannot write.
+bool write_asset(const std::string& path, const Asset& asset, const AssetWriteOptions& options,
+                 std::vector<std::string>& warnings, std::string& error);
 
 }  // namespace ellicast

@@ -1,0 +1,725 @@
+// Writing an Asset as glTF 2.0 with its scene graph: nodes, meshes (one primitive per object),
+// materials, textures (image bytes embedded as given), optionally with KHR_draco_mesh_compression
+// or KHR_mesh_quantization. Whatever does not hold together is left out with a warning, so that the
+// file is always valid glTF: a receiver writes whatever has arrived.
+#include "ellicast/converters/asset.h"
+
+#include "gltf_write.h"
+
+#include <draco/compression/decode.h>
+#include <draco/compression/encode.h>
+#include <draco/mesh/mesh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <set>
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wrestrict"  // false positive in string concatenation (GCC bug 105651)
+#endif
+
+namespace ellicast {
+
+namespace {
+
+using namespace gltf_write;
+
+const char* const kDracoExtension = "KHR_draco_mesh_compression";
+const char* const kQuantizationExtension = "KHR_mesh_quantization";
+
+const char* image_mime(const std::vector<uint8_t>& b) {
+    static const uint8_t png[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+    if (b.size() >= 8 && std::memcmp(b.data(), png, 8) == 0) return "image/png";
+    if (b.size() >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) return "image/jpeg";
+    return nullptr;
+}
+
+bool valid_filter(uint16_t f, bool min) {
+    return f == 9728 || f == 9729 || (min && f >= 9984 && f <= 9987);
+}
+bool valid_wrap(uint16_t w) { return w == 33071 || w == 33648 || w == 10497; }
+
+float clamp01(float v) { return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f; }
+
+// The uniform scale and offset that map a mesh's positions into [-1, 1]^3 (KHR_mesh_quantization).
+struct Dequantization {
+    std::array<double, 3> center{};
+    double scale = 1;
+};
+
+// A copy of an object with what glTF cannot hold repaired, or nullopt when it cannot be written.
+std::optional<Mesh> writable_object(const Mesh& in, const std::string& what, std::vector<std::string>& warnings) {
+    for (const auto& p : in.positions)
+        for (float c : p)
+            if (!std::isfinite(c)) {
+                warnings.push_back(what + " has a non-finite position; left out");
+                return std::nullopt;
+            }
+    if (!valid_indices(in)) {
+        warnings.push_back(what + " has a triangle index beyond its vertices; left out");
+        return std::nullopt;
+    }
+    Mesh m = in;
+    auto drop = [&](auto& attr, const char* name) {
+        if (!attr.empty() && attr.size() != m.positions.size()) {
+            warnings.push_back(what + ": its " + name + " count differs from its vertex count; " + name + " left out");
+            attr.clear();
+        }
+    };
+    drop(m.normals, "NORMAL");
+    drop(m.texcoords, "TEXCOORD_0");
+    drop(m.colors, "COLOR_0");
+    for (auto& uv : m.texcoords)
+        for (float& c : uv)
+            if (!std::isfinite(c)) c = 0;
+    m.normals = unit_normals(m.normals);
+    return m;
+}
+
+class AssetWriter {
+public:
+    AssetWriter(const std::string& path, const Asset& asset, const AssetWriteOptions& options,
+                std::vector<std::string>& warnings)
+        : path_(path), asset_(asset), options_(options), warnings_(warnings) {}
+
+    tinygltf::Model build() {
+        model_.asset.version = "2.0";
+        model_.asset.generator = "ellicast";
+        write_textures();
+        write_materials();
+        if (asset_.scene.nodes.empty()) write_flat();
+        else write_scene_graph();
+        if (used_draco_) {
+            model_.extensionsUsed.push_back(kDracoExtension);
+            model_.extensionsRequired.push_back(kDracoExtension);
+        }
+        if (used_quantization_) {
+            model_.extensionsUsed.push_back(kQuantizationExtension);
+            model_.extensionsRequired.push_back(kQuantizationExtension);
+        }
+        return std::move(model_);
+    }
+
+private:
+    bool object_present(size_t o) const { return o < asset_.objects.size() && !asset_.objects[o].positions.empty(); }
+
+    // ---- textures: one glTF image per distinct image file, one sampler per distinct setting
+    void write_textures() {
+        const auto& textures = asset_.scene.textures;
+        texture_out_.assign(textures.size(), -1);
+        std::multimap<uint32_t, int> images_by_crc;          // CRC-32C of the file -> glTF image
+        std::vector<const std::vector<uint8_t>*> image_bytes;  // per glTF image
+        std::map<std::array<int, 4>, int> samplers;
+        for (size_t t = 0; t < textures.size(); ++t) {
+            const auto& tex = textures[t];
+            const std::string what = path_ + ": texture " + std::to_string(t);
+            if (tex.image.empty()) {
+                warnings_.push_back(what + " has no image; left out");
+                continue;
+            }
+            const char* mime = image_mime(tex.image);
+            if (!mime) {
+                warnings_.push_back(what + " is neither PNG nor JPEG; left out");
+                continue;
+            }
+            const uint32_t crc = crc32c(tex.image.data(), tex.image.size());
+            int source = -1;
+            for (auto [it, end] = images_by_crc.equal_range(crc); it != end; ++it)
+                if (*image_bytes[size_t(it->second)] == tex.image) source = it->second;
+            if (source < 0) {
+                source = int(model_.images.size());
+                tinygltf::Image image;
+                image.mimeType = mime;
+                image.bufferView = add_buffer_view(model_, tex.image.data(), tex.image.size(), 0);
+                model_.images.push_back(std::move(image));
+                image_bytes.push_back(&tex.image);
+                images_by_crc.emplace(crc, source);
+            }
+            std::array<int, 4> s = {valid_filter(tex.info.mag_filter, false) ? tex.info.mag_filter : -1,
+                                    valid_filter(tex.info.min_filter, true) ? tex.info.min_filter : -1,
+                                    valid_wrap(tex.info.wrap_s) ? tex.info.wrap_s : 10497,
+                                    valid_wrap(tex.info.wrap_t) ? tex.info.wrap_t : 10497};
+            if ((tex.info.mag_filter && s[0] < 0) || (tex.info.min_filter && s[1] < 0) || s[2] != tex.info.wrap_s ||
+                s[3] != tex.info.wrap_t)
+                warnings_.push_back(what + ": sampler values that are not glTF's replaced by the defaults");
+            auto [sit, new_sampler] = samplers.try_emplace(s, int(model_.samplers.size()));
+            if (new_sampler) {
+                tinygltf::Sampler sampler;
+                sampler.magFilter = s[0];
+                sampler.minFilter = s[1];
+                sampler.wrapS = s[2];
+                sampler.wrapT = s[3];
+                model_.samplers.push_back(sampler);
+            }
+            tinygltf::Texture texture;
+            texture.source = source;
+            texture.sampler = sit->second;
+            texture_out_[t] = int(model_.textures.size());
+            model_.textures.push_back(texture);
+        }
+    }
+
+    // ---- materials: material i is glTF material i; variants without textures are appended
+    void write_materials() {
+        const auto& materials = asset_.scene.materials;
+        for (size_t i = 0; i < materials.size(); ++i)
+            model_.materials.push_back(gltf_material(materials[i], i, false));
+    }
+
+    // The glTF texture info of a reference, or index -1 when it cannot be shown (with a warning).
+    int texture_index(const TextureRef& ref, const std::string& what) {
+        if (ref.texture == kNone) return -1;
+        if (ref.texture >= texture_out_.size() || texture_out_[ref.texture] < 0) {
+            warnings_.push_back(what + ": texture " + std::to_string(ref.texture) +
+                                " is not available; the material is written without it");
+            return -1;
+        }
+        if (ref.texcoord != 0) {
+            warnings_.push_back(what + " uses TEXCOORD_" + std::to_string(ref.texcoord) +
+                                ", which ellicast does not carry; the material is written without that texture");
+            return -1;
+        }
+        return texture_out_[ref.texture];
+    }
+
+    tinygltf::Material gltf_material(const Material& m, size_t index, bool untextured) {
+        const std::string what = path_ + ": material " + std::to_string(index) + (m.name.empty() ? "" : " (" + m.name + ")");
+        tinygltf::Material g;
+        g.name = untextured ? m.name + " (untextured)" : m.name;
+        auto& pbr = g.pbrMetallicRoughness;
+        pbr.baseColorFactor = {clamp01(m.base_color[0]), clamp01(m.base_color[1]), clamp01(m.base_color[2]),
+                               clamp01(m.base_color[3])};
+        pbr.metallicFactor = clamp01(m.metallic);
+        pbr.roughnessFactor = clamp01(m.roughness);
+        g.emissiveFactor = {clamp01(m.emissive[0]), clamp01(m.emissive[1]), clamp01(m.emissive[2])};
+        switch (m.alpha_mode) {
+            case AlphaMode::Mask: g.alphaMode = "MASK"; break;
+            case AlphaMode::Blend: g.alphaMode = "BLEND"; break;
+            default: g.alphaMode = "OPAQUE"; break;
+        }
+        // alphaCutoff only means something with MASK (the validator warns about it otherwise).
+        g.alphaCutoff = m.alpha_mode == AlphaMode::Mask && std::isfinite(m.alpha_cutoff) && m.alpha_cutoff >= 0
+                            ? m.alpha_cutoff : 0.5;
+        g.doubleSided = m.double_sided;
+        if (untextured) return g;
+        pbr.baseColorTexture.index = texture_index(m.base_color_texture, what + " baseColorTexture");
+        pbr.metallicRoughnessTexture.index = texture_index(m.metallic_roughness_texture, what + " metallicRoughnessTexture");
+        g.normalTexture.index = texture_index(m.normal_texture, what + " normalTexture");
+        g.normalTexture.scale = std::isfinite(m.normal_texture.scale) ? m.normal_texture.scale : 1.0;
+        g.occlusionTexture.index = texture_index(m.occlusion_texture, what + " occlusionTexture");
+        g.occlusionTexture.strength = clamp01(m.occlusion_texture.scale);
+        g.emissiveTexture.index = texture_index(m.emissive_texture, what + " emissiveTexture");
+        return g;
+    }
+
+    bool has_texture(int material) const {
+        const auto& g = model_.materials[size_t(material)];
+        return g.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
+               g.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || g.normalTexture.index >= 0 ||
+               g.occlusionTexture.index >= 0 || g.emissiveTexture.index >= 0;
+    }
+
+    // The glTF material for a primitive of object `object` drawn with asset material `material`:
+    // -1 (glTF's default material) when there is none; an untextured copy when the object has no
+    // texture coordinates but the material has textures.
+    int primitive_material(uint16_t material, const Mesh& object, const std::string& what) {
+        if (material == kNone) return -1;
+        if (material >= asset_.scene.materials.size()) {
+            warnings_.push_back(what + ": material " + std::to_string(material) +
+                                " is not available; drawn with the default material");
+            return -1;
+        }
+        if (object.has_texcoords() || !has_texture(material)) return material;
+        auto it = untextured_.find(material);
+        if (it == untextured_.end()) {
+            warnings_.push_back(what + " has no TEXCOORD_0 but material " + std::to_string(material) +
+                                " has textures: drawn with an untextured copy of the material");
+            model_.materials.push_back(gltf_material(asset_.scene.materials[material], material, true));
+            it = untextured_.emplace(material, int(model_.materials.size()) - 1).first;
+        }
+        return it->second;
+    }
+
+    // ---- geometry
+
+    // The primitive (without material) of object `o`, written once per dequantization.
+    std::optional<tinygltf::Primitive> object_primitive(size_t o, const std::optional<Dequantization>& dq,
+                                                        int dq_key, const std::string& what) {
+        auto key = std::make_pair(o, dq_key);
+        if (auto it = primitives_.find(key); it != primitives_.end()) return it->second;
+        std::optional<tinygltf::Primitive> result;
+        if (std::optional<Mesh> mesh = writable_object(asset_.objects[o], what, warnings_)) {
+            if (options_.draco && !mesh->is_point_set && !mesh->triangles.empty())
+                result = draco_primitive(*mesh, what);
+            else if (dq)
+                result = quantized_primitive(*mesh, *dq);
+            else
+                result = add_primitive(model_, *mesh);
+        }
+        primitives_[key] = result;
+        return result;
+    }
+
+    // KHR_mesh_quantization: positions as normalized int16 in the mesh's cube, normals as normalized
+    // int8, texture coordinates in [0,1] as normalized uint16, colours as normalized uint16.
+    tinygltf::Primitive quantized_primitive(const Mesh& mesh, const Dequantization& dq) {
+        used_quantization_ = true;
+        tinygltf::Primitive prim;
+        const size_t n = mesh.positions.size();
+        {
+            std::vector<int16_t> q(n * 4, 0);  // padded to 8 bytes: vertex elements are 4-byte aligned
+            std::vector<double> mn(3, 32767), mx(3, -32767);
+            for (size_t i = 0; i < n; ++i)
+                for (int k = 0; k < 3; ++k) {
+                    double v = std::round((mesh.positions[i][k] - dq.center[k]) / dq.scale * 32767.0);
+                    auto s = int16_t(std::clamp(v, -32767.0, 32767.0));
+                    q[i * 4 + k] = s;
+                    mn[k] = std::min(mn[k], double(s));
+                    mx[k] = std::max(mx[k], double(s));
+                }
+            int view = add_buffer_view(model_, q.data(), q.size() * 2, TINYGLTF_TARGET_ARRAY_BUFFER);
+            model_.bufferViews[size_t(view)].byteStride = 8;
+            prim.attributes["POSITION"] =
+                add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, n, mn, mx, true);
+        }
+        if (mesh.has_normals()) {
+            std::vector<int8_t> q(n * 4, 0);
+            for (size_t i = 0; i < n; ++i) {
+                auto best = quantize_unit_int8(mesh.normals[i]);
+                for (int k = 0; k < 3; ++k) q[i * 4 + k] = best[k];
+            }
+            int view = add_buffer_view(model_, q.data(), q.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
+            model_.bufferViews[size_t(view)].byteStride = 4;
+            prim.attributes["NORMAL"] = add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, n,
+                                                     {}, {}, true);
+        }
+        if (mesh.has_texcoords()) {
+            bool unit = true;
+            for (const auto& uv : mesh.texcoords) unit = unit && uv[0] >= 0 && uv[0] <= 1 && uv[1] >= 0 && uv[1] <= 1;
+            if (unit) {
+                std::vector<uint16_t> q(n * 2);
+                for (size_t i = 0; i < n; ++i)
+                    for (int k = 0; k < 2; ++k) q[i * 2 + k] = uint16_t(std::lround(mesh.texcoords[i][k] * 65535.0));
+                int view = add_buffer_view(model_, q.data(), q.size() * 2, TINYGLTF_TARGET_ARRAY_BUFFER);
+                prim.attributes["TEXCOORD_0"] = add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                                             TINYGLTF_TYPE_VEC2, n, {}, {}, true);
+            } else {  // outside [0,1] (repeating textures): kept as floats, which the extension allows
+                prim.attributes["TEXCOORD_0"] = add_float_attribute(model_, mesh.texcoords, TINYGLTF_TYPE_VEC2, false);
+            }
+        }
+        if (mesh.has_colors()) {
+            const int channels = mesh.colors_have_alpha ? 4 : 3;
+            std::vector<float> c = clamped_colors(mesh);
+            std::vector<uint16_t> q(n * 4, 0);
+            for (size_t i = 0; i < n; ++i)
+                for (int k = 0; k < channels; ++k) q[i * 4 + k] = uint16_t(std::lround(c[i * channels + k] * 65535.0));
+            int view = add_buffer_view(model_, q.data(), q.size() * 2, TINYGLTF_TARGET_ARRAY_BUFFER);
+            model_.bufferViews[size_t(view)].byteStride = 8;
+            prim.attributes["COLOR_0"] =
+                add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                             channels == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, n, {}, {}, true);
+        }
+        if (mesh.is_point_set || mesh.triangles.empty()) {
+            prim.mode = TINYGLTF_MODE_POINTS;
+        } else {
+            prim.mode = TINYGLTF_MODE_TRIANGLES;
+            prim.indices = add_indices(model_, mesh);
+        }
+        return prim;
+    }
+
+    // The int8 vector nearest in direction to the unit vector `n` whose length is closest to 1
+    // (a normalized int8 normal must still be unit length within the validator's tolerance).
+    static std::array<int8_t, 3> quantize_unit_int8(const std::array<float, 3>& n) {
+        std::array<int8_t, 3> best{0, 0, 127};
+        double best_error = 1e9;
+        int base[3];
+        for (int k = 0; k < 3; ++k) base[k] = int(std::floor(double(n[k]) * 127.0));
+        for (int dx = 0; dx <= 1; ++dx)
+            for (int dy = 0; dy <= 1; ++dy)
+                for (int dz = 0; dz <= 1; ++dz) {
+                    int c[3] = {std::clamp(base[0] + dx, -127, 127), std::clamp(base[1] + dy, -127, 127),
+                                std::clamp(base[2] + dz, -127, 127)};
+                    double len = std::sqrt(double(c[0]) * c[0] + double(c[1]) * c[1] + double(c[2]) * c[2]) / 127.0;
+                    if (len == 0) continue;
+                    double dot = (c[0] * n[0] + c[1] * n[1] + c[2] * n[2]) / (127.0 * len);
+                    double error = std::abs(len - 1) * 4 + (1 - dot);
+                    if (error < best_error) {
+                        best_error = error;
+                        best = {int8_t(c[0]), int8_t(c[1]), int8_t(c[2])};
+                    }
+                }
+        return best;
+    }
+
+    // KHR_draco_mesh_compression: the triangles and attributes go through Draco's encoder; the
+    // accessors take count and bounds from a decode of the encoded data (Edgebreaker reorders).
+    std::optional<tinygltf::Primitive> draco_primitive(const Mesh& mesh, const std::string& what) {
+        draco::Mesh dm;
+        const size_t n = mesh.positions.size();
+        dm.set_num_points(uint32_t(n));
+        auto add = [&](draco::GeometryAttribute::Type type, int components, const float* data) {
+            draco::GeometryAttribute ga;
+            ga.Init(type, nullptr, int8_t(components), draco::DT_FLOAT32, false, sizeof(float) * components, 0);
+            int id = dm.AddAttribute(ga, true, uint32_t(n));
+            draco::PointAttribute* att = dm.attribute(id);
+            for (size_t i = 0; i < n; ++i)
+                att->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), data + i * components);
+            return att->unique_id();
+        };
+        std::map<std::string, uint32_t> ids;
+        ids["POSITION"] = add(draco::GeometryAttribute::POSITION, 3, mesh.positions[0].data());
+        if (mesh.has_normals()) ids["NORMAL"] = add(draco::GeometryAttribute::NORMAL, 3, mesh.normals[0].data());
+        if (mesh.has_texcoords())
+            ids["TEXCOORD_0"] = add(draco::GeometryAttribute::TEX_COORD, 2, mesh.texcoords[0].data());
+        const int channels = mesh.colors_have_alpha ? 4 : 3;
+        std::vector<float> colors;
+        if (mesh.has_colors()) {
+            colors = clamped_colors(mesh);
+            ids["COLOR_0"] = add(draco::GeometryAttribute::COLOR, channels, colors.data());
+        }
+        for (const auto& t : mesh.triangles)
+            dm.AddFace({draco::PointIndex(t[0]), draco::PointIndex(t[1]), draco::PointIndex(t[2])});
+
+        draco::Encoder encoder;
+        encoder.SetSpeedOptions(options_.draco_speed, options_.draco_speed);
+        encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options_.draco_position_bits);
+        encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, options_.draco_normal_bits);
+        encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, options_.draco_texcoord_bits);
+        encoder.SetAttributeQuantization(draco::GeometryAttribute::COLOR, options_.draco_color_bits);
+        draco::EncoderBuffer encoded;
+        draco::Status status = encoder.EncodeMeshToBuffer(dm, &encoded);
+        if (!status.ok()) {
+            warnings_.push_back(what + ": Draco could not encode it (" + status.error_msg_string() +
+                                "); written uncompressed");
+            return add_primitive(model_, mesh);
+        }
+        // Decode our own output: its point count, order and bounds are what a reader gets.
+        draco::DecoderBuffer in;
+        in.Init(encoded.data(), encoded.size());
+        draco::Decoder decoder;
+        auto decoded = decoder.DecodeMeshFromBuffer(&in);
+        if (!decoded.ok()) {
+            warnings_.push_back(what + ": Draco cannot decode its own output (" + decoded.status().error_msg_string() +
+                                "); written uncompressed");
+            return add_primitive(model_, mesh);
+        }
+        const draco::Mesh& out = *decoded.value();
+        const size_t points = out.num_points();
+
+        tinygltf::Primitive prim;
+        prim.mode = TINYGLTF_MODE_TRIANGLES;
+        tinygltf::Value::Object attributes;
+        for (const auto& [name, id] : ids) {
+            const draco::PointAttribute* att = out.GetAttributeByUniqueId(id);
+            if (!att) {
+                warnings_.push_back(what + ": Draco dropped its " + name + "; written uncompressed");
+                return add_primitive(model_, mesh);
+            }
+            const int components = att->num_components();
+            std::vector<double> mn, mx;
+            if (name == "POSITION") {
+                mn.assign(3, std::numeric_limits<double>::max());
+                mx.assign(3, -std::numeric_limits<double>::max());
+                float v[3];
+                for (size_t i = 0; i < points; ++i) {
+                    att->ConvertValue<float>(att->mapped_index(draco::PointIndex(uint32_t(i))), 3, v);
+                    for (int k = 0; k < 3; ++k) mn[k] = std::min(mn[k], double(v[k])), mx[k] = std::max(mx[k], double(v[k]));
+                }
+            }
+            int type = components == 2 ? TINYGLTF_TYPE_VEC2 : components == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
+            prim.attributes[name] = add_accessor(model_, -1, TINYGLTF_COMPONENT_TYPE_FLOAT, type, points, mn, mx);
+            attributes[name] = tinygltf::Value(int(id));
+        }
+        prim.indices = add_accessor(model_, -1,
+                                    points <= 0xFFFF ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
+                                                     : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                                    TINYGLTF_TYPE_SCALAR, size_t(out.num_faces()) * 3);
+        tinygltf::Value::Object extension;
+        extension["bufferView"] = tinygltf::Value(add_buffer_view(model_, encoded.data(), encoded.size(), 0));
+        extension["attributes"] = tinygltf::Value(attributes);
+        prim.extensions[kDracoExtension] = tinygltf::Value(extension);
+        used_draco_ = true;
+        return prim;
+    }
+
+    // The dequantization of asset mesh `m`: a cube around every present object of it.
+    std::optional<Dequantization> mesh_dequantization(const SceneMesh& m) const {
+        if (!options_.quantize) return std::nullopt;
+        std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+        bool any = false;
+        for (const auto& p : m.primitives) {
+            if (!object_present(p.object)) continue;
+            const Mesh& o = asset_.objects[p.object];
+            if (options_.draco && !o.is_point_set && !o.triangles.empty()) continue;  // Draco quantizes itself
+            for (const auto& v : o.positions)
+                for (int k = 0; k < 3; ++k)
+                    if (std::isfinite(v[k])) lo[k] = std::min(lo[k], double(v[k])), hi[k] = std::max(hi[k], double(v[k]));
+            any = true;
+        }
+        if (!any) return std::nullopt;
+        Dequantization dq;
+        double half = 0;
+        for (int k = 0; k < 3; ++k) {
+            dq.center[k] = (lo[k] + hi[k]) / 2;
+            half = std::max(half, (hi[k] - lo[k]) / 2);
+        }
+        dq.scale = half > 0 ? half : 1;
+        return dq;
+    }
+
+    // The glTF mesh of asset mesh `mi` (-1 when none of its objects can be written).
+    int gltf_mesh(size_t mi) {
+        if (auto it = mesh_out_.find(mi); it != mesh_out_.end()) return it->second;
+        const SceneMesh& m = asset_.scene.meshes[mi];
+        const std::string label = path_ + ": mesh " + std::to_string(mi) + (m.name.empty() ? "" : " (" + m.name + ")");
+        std::optional<Dequantization> dq = mesh_dequantization(m);
+        tinygltf::Mesh g;
+        g.name = m.name;
+        for (size_t p = 0; p < m.primitives.size(); ++p) {
+            const ScenePrimitive& sp = m.primitives[p];
+            const std::string what = label + " primitive " + std::to_string(p) + " (object " + std::to_string(sp.object) + ")";
+            if (!object_present(sp.object)) {
+                warnings_.push_back(what + (sp.object < asset_.objects.size() ? " has not arrived" : " does not exist") +
+                                    "; left out");
+                continue;
+            }
+            auto prim = object_primitive(sp.object, dq, dq ? int(mi) : -1, what);
+            if (!prim) continue;
+            prim->material = primitive_material(sp.material, asset_.objects[sp.object], what);
+            g.primitives.push_back(std::move(*prim));
+        }
+        int index = -1;
+        if (g.primitives.empty()) {
+            warnings_.push_back(label + " has no object to show; nodes showing it are written without it");
+        } else {
+            index = int(model_.meshes.size());
+            model_.meshes.push_back(std::move(g));
+            if (dq) dequantization_[index] = *dq;
+        }
+        mesh_out_[mi] = index;
+        return index;
+    }
+
+    // ---- nodes
+
+    void set_transform(tinygltf::Node& g, const SceneNode& n, const std::string& what) {
+        bool finite = true;
+        for (float v : n.matrix) finite = finite && std::isfinite(v);
+        for (float v : n.translation) finite = finite && std::isfinite(v);
+        for (float v : n.rotation) finite = finite && std::isfinite(v);
+        for (float v : n.scale) finite = finite && std::isfinite(v);
+        if (!finite) {
+            warnings_.push_back(what + " has a non-finite transform; written without it");
+            return;
+        }
+        if (n.has_matrix) {
+            static const std::array<float, 16> identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+            if (n.matrix != identity) g.matrix.assign(n.matrix.begin(), n.matrix.end());
+            return;
+        }
+        if (n.translation != std::array<float, 3>{0, 0, 0}) g.translation.assign(n.translation.begin(), n.translation.end());
+        if (n.rotation != std::array<float, 4>{0, 0, 0, 1}) {
+            double len = 0;
+            for (float v : n.rotation) len += double(v) * v;
+            len = std::sqrt(len);
+            if (len > 0) {
+                for (float v : n.rotation) g.rotation.push_back(v / len);
+            } else {
+                warnings_.push_back(what + " has a zero rotation quaternion; written without rotation");
+            }
+        }
+        if (n.scale != std::array<float, 3>{1, 1, 1}) g.scale.assign(n.scale.begin(), n.scale.end());
+    }
+
+    // Which nodes can be written: those whose parent chain ends at a root. A parent outside the
+    // table makes a node a root; a cycle leaves its nodes out.
+    std::vector<bool> writable_nodes() {
+        const auto& nodes = asset_.scene.nodes;
+        const size_t n = nodes.size();
+        parent_.assign(n, -1);
+        for (size_t i = 0; i < n; ++i) {
+            uint16_t p = nodes[i].parent;
+            if (p == kNone) continue;
+            if (p >= n || p == i) {
+                warnings_.push_back(path_ + ": node " + std::to_string(i) + " names parent " + std::to_string(p) +
+                                    ", which is not in the scene; written as a root");
+                continue;
+            }
+            parent_[i] = p;
+        }
+        std::vector<int> state(n, 0);  // 0 unknown, 1 reaches a root, 2 in or under a cycle
+        std::vector<bool> ok(n, false);
+        for (size_t i = 0; i < n; ++i) {
+            std::vector<size_t> chain;
+            size_t at = i;
+            int result = 1;
+            std::set<size_t> seen;
+            while (true) {
+                if (state[at] != 0) {
+                    result = state[at];
+                    break;
+                }
+                if (!seen.insert(at).second) {
+                    result = 2;
+                    break;
+                }
+                chain.push_back(at);
+                if (parent_[at] < 0) {
+                    result = 1;
+                    break;
+                }
+                at = size_t(parent_[at]);
+            }
+            for (size_t c : chain) state[c] = result;
+        }
+        size_t cyclic = 0;
+        for (size_t i = 0; i < n; ++i) {
+            ok[i] = state[i] == 1;
+            if (!ok[i]) ++cyclic;
+        }
+        if (cyclic)
+            warnings_.push_back(path_ + ": " + std::to_string(cyclic) +
+                                " node(s) in or under a parent cycle are left out");
+        return ok;
+    }
+
+    void write_scene_graph() {
+        const auto& nodes = asset_.scene.nodes;
+        std::vector<bool> ok = writable_nodes();
+        std::vector<int> out(nodes.size(), -1);
+        for (size_t i = 0; i < nodes.size(); ++i)
+            if (ok[i]) {
+                out[i] = int(model_.nodes.size());
+                model_.nodes.emplace_back();
+            }
+        for (size_t i = 0; i < nodes.size(); ++i) {
+            if (!ok[i]) continue;
+            const SceneNode& n = nodes[i];
+            const std::string what = path_ + ": node " + std::to_string(i) + (n.name.empty() ? "" : " (" + n.name + ")");
+            tinygltf::Node g;
+            g.name = n.name;
+            set_transform(g, n, what);
+            if (n.mesh != kNone) {
+                if (n.mesh >= asset_.scene.meshes.size()) {
+                    warnings_.push_back(what + " names mesh " + std::to_string(n.mesh) +
+                                        ", which is not in the scene; written without it");
+                } else if (int mesh = gltf_mesh(n.mesh); mesh >= 0) {
+                    attach_mesh(g, mesh);
+                }
+            }
+            model_.nodes[size_t(out[i])] = std::move(g);
+        }
+        // Children in index order, as the format defines them.
+        tinygltf::Scene scene;
+        for (size_t i = 0; i < nodes.size(); ++i) {
+            if (!ok[i]) continue;
+            if (parent_[i] < 0) scene.nodes.push_back(out[i]);
+            else model_.nodes[size_t(out[size_t(parent_[i])])].children.push_back(out[i]);
+        }
+        model_.scenes.push_back(std::move(scene));
+        model_.defaultScene = 0;
+    }
+
+    // Shows glTF mesh `mesh` at node `g` (index `at`): directly, or through a child node holding
+    // the dequantizing transform of a quantized mesh.
+    void attach_mesh(tinygltf::Node& g, int mesh) {
+        auto it = dequantization_.find(mesh);
+        if (it == dequantization_.end()) {
+            g.mesh = mesh;
+            return;
+        }
+        tinygltf::Node wrapper;
+        wrapper.name = (g.name.empty() ? "node" : g.name) + " (dequantization)";
+        wrapper.mesh = mesh;
+        wrapper.translation = {it->second.center[0], it->second.center[1], it->second.center[2]};
+        wrapper.scale = {it->second.scale, it->second.scale, it->second.scale};
+        g.children.push_back(int(model_.nodes.size()));
+        model_.nodes.push_back(std::move(wrapper));
+    }
+
+    // No scene graph (a format 1.0 stream): one root node and one mesh per object.
+    void write_flat() {
+        tinygltf::Scene scene;
+        for (size_t o = 0; o < asset_.objects.size(); ++o) {
+            if (!object_present(o)) continue;
+            SceneMesh m;
+            m.name = asset_.objects[o].name.empty() ? "object" + std::to_string(o) : asset_.objects[o].name;
+            m.primitives.push_back({uint16_t(o), kNone});
+            flat_meshes_.push_back(m);
+        }
+        for (size_t i = 0; i < flat_meshes_.size(); ++i) {
+            const SceneMesh& m = flat_meshes_[i];
+            std::optional<Dequantization> dq = mesh_dequantization(m);
+            const uint16_t o = m.primitives[0].object;
+            auto prim = object_primitive(o, dq, dq ? int(o) : -1, path_ + ": object " + std::to_string(o));
+            if (!prim) continue;
+            tinygltf::Mesh g;
+            g.name = m.name;
+            g.primitives.push_back(std::move(*prim));
+            int mesh = int(model_.meshes.size());
+            model_.meshes.push_back(std::move(g));
+            if (dq) dequantization_[mesh] = *dq;
+            tinygltf::Node node;
+            node.name = m.name;
+            int at = int(model_.nodes.size());
+            model_.nodes.emplace_back();
+            attach_mesh(node, mesh);
+            model_.nodes[size_t(at)] = std::move(node);
+            scene.nodes.push_back(at);
+        }
+        model_.scenes.push_back(std::move(scene));
+        model_.defaultScene = 0;
+    }
+
+    const std::string& path_;
+    const Asset& asset_;
+    const AssetWriteOptions& options_;
+    std::vector<std::string>& warnings_;
+    tinygltf::Model model_;
+    std::vector<int> texture_out_;
+    std::map<uint16_t, int> untextured_;
+    std::map<std::pair<size_t, int>, std::optional<tinygltf::Primitive>> primitives_;
+    std::map<size_t, int> mesh_out_;
+    std::map<int, Dequantization> dequantization_;
+    std::vector<int> parent_;
+    std::vector<SceneMesh> flat_meshes_;
+    bool used_draco_ = false;
+    bool used_quantization_ = false;
+};
+
+}  // namespace
+
+std::string check_asset_write_options(const AssetWriteOptions& o) {
+    if (o.draco && o.quantize)
+        return "--draco and --quantize cannot be combined (Draco quantizes the attributes itself)";
+    auto bits = [](int b, int lo, int hi) { return b >= lo && b <= hi; };
+    if (!bits(o.draco_position_bits, 1, 30)) return "Draco position bits must be 1..30";
+    if (!bits(o.draco_normal_bits, 1, 30)) return "Draco normal bits must be 1..30";
+    if (!bits(o.draco_texcoord_bits, 1, 30)) return "Draco texture coordinate bits must be 1..30";
+    if (!bits(o.draco_color_bits, 1, 30)) return "Draco colour bits must be 1..30";
+    if (!bits(o.draco_speed, 0, 10)) return "Draco speed must be 0..10";
+    return "";
+}
+
+bool write_asset(const std::string& path, const Asset& asset, const AssetWriteOptions& options,
+                 std::vector<std::string>& warnings, std::string& error) {
+    if (std::string bad = check_asset_write_options(options); !bad.empty()) {
+        error = path + ": " + bad;
+        return false;
+    }
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext != ".glb" && ext != ".gltf") {
+        error = path + ": a scene is written as .glb or .gltf, not '" + ext + "'";
+        return false;
+    }
+    tinygltf::Model model = AssetWriter(path, asset, options, warnings).build();
+    return save_model(path, model, ext == ".glb", error);
+}
+
+}  // namespace ellicast

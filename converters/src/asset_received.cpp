@@ -1,0 +1,185 @@
+// The Asset a receiver can write from what has arrived: the scene tables of a ReceivedStream, cut
+// down to what holds together, with the decoded objects.
+#include "ellicast/converters/asset.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+namespace ellicast {
+
+namespace {
+
+std::string texture_gap(const ReceivedStream::ReceivedTexture& t) {
+    if (t.received_bytes >= t.info.image_size) return "all bytes arrived but the image checksum does not match";
+    return std::to_string(t.received_bytes) + " of " + std::to_string(t.info.image_size) + " bytes arrived";
+}
+
+// Texture reference `ref` renumbered to the complete textures, or cleared (with a warning).
+void renumber_texture(TextureRef& ref, const std::map<uint16_t, uint16_t>& texture_map,
+                      const ReceivedStream& stream, const std::string& what, std::vector<std::string>& warnings) {
+    if (ref.texture == kNone) return;
+    if (auto it = texture_map.find(ref.texture); it != texture_map.end()) {
+        ref.texture = it->second;
+        return;
+    }
+    auto t = stream.textures().find(ref.texture);
+    warnings.push_back(what + ": texture " + std::to_string(ref.texture) + " is incomplete (" +
+                       (t == stream.textures().end() ? std::string("none of it arrived") : texture_gap(t->second)) +
+                       "); the material is shown without it");
+    ref.texture = kNone;
+}
+
+}  // namespace
+
+Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
+    Asset asset;
+    asset.objects = std::move(objects);
+    auto& warnings = asset.warnings;
+    if (!stream.has_scene()) {
+        if (!stream.materials().empty() || !stream.textures().empty())
+            warnings.push_back("no SCENE packet arrived: materials and textures cannot be placed; each object is "
+                               "written as its own node");
+        return asset;  // write_asset gives each object its own node and mesh
+    }
+
+    // Textures: only complete ones (every byte arrived, checksum matches), renumbered.
+    std::map<uint16_t, uint16_t> texture_map;
+    for (const auto& [index, t] : stream.textures()) {
+        if (!t.complete) continue;
+        texture_map[index] = uint16_t(asset.scene.textures.size());
+        SceneDescription::Texture out;
+        out.info = t.info;
+        out.info.index = uint16_t(asset.scene.textures.size());
+        out.image = t.image;
+        asset.scene.textures.push_back(std::move(out));
+    }
+
+    // Materials that arrived, renumbered; their references to incomplete textures cleared.
+    std::map<uint16_t, uint16_t> material_map;
+    uint16_t material_count = 0;
+    for (const auto& [index, m] : stream.materials()) {
+        material_count = std::max(material_count, m.material_count);
+        material_map[index] = uint16_t(asset.scene.materials.size());
+        Material out = m;
+        out.index = uint16_t(asset.scene.materials.size());
+        const std::string what = "material " + std::to_string(index) + (m.name.empty() ? "" : " (" + m.name + ")");
+        renumber_texture(out.base_color_texture, texture_map, stream, what + " baseColorTexture", warnings);
+        renumber_texture(out.metallic_roughness_texture, texture_map, stream, what + " metallicRoughnessTexture",
+                         warnings);
+        renumber_texture(out.normal_texture, texture_map, stream, what + " normalTexture", warnings);
+        renumber_texture(out.occlusion_texture, texture_map, stream, what + " occlusionTexture", warnings);
+        renumber_texture(out.emissive_texture, texture_map, stream, what + " emissiveTexture", warnings);
+        asset.scene.materials.push_back(std::move(out));
+    }
+    if (stream.materials().size() < material_count)
+        warnings.push_back(std::to_string(material_count - stream.materials().size()) + " of " +
+                           std::to_string(material_count) +
+                           " materials did not arrive; their primitives get the default material");
+
+    // Meshes that arrived, renumbered; references to materials that did not arrive cleared.
+    std::map<uint16_t, uint16_t> mesh_map;
+    std::set<uint16_t> missing_materials;
+    for (const auto& [index, m] : stream.scene_meshes()) {
+        mesh_map[index] = uint16_t(asset.scene.meshes.size());
+        SceneMesh out = m;
+        out.index = uint16_t(asset.scene.meshes.size());
+        for (auto& p : out.primitives) {
+            if (p.material == kNone) continue;
+            if (auto it = material_map.find(p.material); it != material_map.end()) {
+                p.material = it->second;
+            } else {
+                missing_materials.insert(p.material);
+                p.material = kNone;
+            }
+        }
+        asset.scene.meshes.push_back(std::move(out));
+    }
+
+    // Nodes whose whole parent chain arrived, renumbered in index order.
+    const auto& nodes = stream.scene_nodes();
+    std::map<uint16_t, bool> reaches_root;
+    size_t cut_off = 0;
+    for (const auto& [index, n] : nodes) {
+        std::vector<uint16_t> chain;
+        std::set<uint16_t> seen;
+        uint16_t at = index;
+        bool ok = false;
+        while (true) {
+            if (auto known = reaches_root.find(at); known != reaches_root.end()) {
+                ok = known->second;
+                break;
+            }
+            auto it = nodes.find(at);
+            if (it == nodes.end() || !seen.insert(at).second) break;  // missing ancestor, or a cycle
+            chain.push_back(at);
+            if (it->second.parent == kNone) {
+                ok = true;
+                break;
+            }
+            at = it->second.parent;
+        }
+        for (uint16_t c : chain) reaches_root[c] = ok;
+        if (!ok) ++cut_off;
+    }
+    std::map<uint16_t, uint16_t> node_map;
+    for (const auto& [index, n] : nodes)
+        if (reaches_root[index]) node_map[index] = uint16_t(node_map.size());
+    std::set<uint16_t> missing_meshes;
+    for (const auto& [index, n] : nodes) {
+        if (!reaches_root[index]) continue;
+        SceneNode out = n;
+        out.index = node_map[index];
+        out.parent = n.parent == kNone ? kNone : node_map.at(n.parent);
+        if (n.mesh != kNone) {
+            if (auto it = mesh_map.find(n.mesh); it != mesh_map.end()) {
+                out.mesh = it->second;
+            } else {
+                missing_meshes.insert(n.mesh);
+                out.mesh = kNone;
+            }
+        }
+        asset.scene.nodes.push_back(std::move(out));
+    }
+    const size_t node_count = stream.scene_node_count();
+    if (nodes.size() < node_count || cut_off)
+        warnings.push_back(std::to_string(node_count - nodes.size()) + " of " + std::to_string(node_count) +
+                           " scene nodes did not arrive" +
+                           (cut_off ? "; " + std::to_string(cut_off) + " node(s) below them are left out" : ""));
+    if (!missing_meshes.empty())
+        warnings.push_back(std::to_string(missing_meshes.size()) + " mesh record(s) did not arrive; their nodes are "
+                           "written without a mesh");
+    if (!missing_materials.empty())
+        warnings.push_back(std::to_string(missing_materials.size()) +
+                           " material(s) used by primitives did not arrive; those primitives get the default material");
+
+    // Objects that no written node shows get a root node of their own, in their mesh's frame.
+    std::set<size_t> shown;
+    for (const auto& n : asset.scene.nodes)
+        if (n.mesh != kNone)
+            for (const auto& p : asset.scene.meshes[n.mesh].primitives) shown.insert(p.object);
+    for (size_t o = 0; o < asset.objects.size(); ++o) {
+        if (asset.objects[o].positions.empty() || shown.count(o)) continue;
+        if (asset.scene.nodes.size() >= 0xFFFE || asset.scene.meshes.size() >= 0xFFFE) break;
+        // Keep the material a received mesh gives the object, if any.
+        uint16_t material = kNone;
+        for (const auto& m : asset.scene.meshes)
+            for (const auto& p : m.primitives)
+                if (p.object == o && material == kNone) material = p.material;
+        SceneMesh mesh;
+        mesh.index = uint16_t(asset.scene.meshes.size());
+        mesh.name = asset.objects[o].name.empty() ? "object" + std::to_string(o) : asset.objects[o].name;
+        mesh.primitives.push_back({uint16_t(o), material});
+        SceneNode node;
+        node.index = uint16_t(asset.scene.nodes.size());
+        node.mesh = mesh.index;
+        node.name = mesh.name;
+        warnings.push_back("object " + std::to_string(o) +
+                           ": no node that shows it arrived; written as a root node in its own frame");
+        asset.scene.meshes.push_back(std::move(mesh));
+        asset.scene.nodes.push_back(std::move(node));
+    }
+    return asset;
+}
+
+}  // namespace ellicast

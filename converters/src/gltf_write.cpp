@@ -1,0 +1,152 @@
+// glTF writing pieces shared by the mesh and scene writers: buffer views, accessors, primitives,
+// saving as .glb or .gltf + .bin.
+#include "gltf_write.h"
+
+#include "ellicast/format.h"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+namespace ellicast::gltf_write {
+
+int add_buffer_view(tinygltf::Model& model, const void* data, size_t bytes, int target) {
+    if (model.buffers.empty()) model.buffers.emplace_back();
+    auto& buffer = model.buffers[0].data;
+    while (buffer.size() % 4 != 0) buffer.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = buffer.size();
+    view.byteLength = bytes;
+    view.target = target;
+    const auto* p = static_cast<const unsigned char*>(data);
+    buffer.insert(buffer.end(), p, p + bytes);
+    model.bufferViews.push_back(view);
+    return int(model.bufferViews.size()) - 1;
+}
+
+int add_accessor(tinygltf::Model& model, int view, int component_type, int type, size_t count,
+                 const std::vector<double>& min, const std::vector<double>& max, bool normalized) {
+    tinygltf::Accessor accessor;
+    accessor.bufferView = view;
+    accessor.byteOffset = 0;
+    accessor.componentType = component_type;
+    accessor.type = type;
+    accessor.count = count;
+    accessor.minValues = min;
+    accessor.maxValues = max;
+    accessor.normalized = normalized;
+    model.accessors.push_back(accessor);
+    return int(model.accessors.size()) - 1;
+}
+
+std::vector<std::array<float, 3>> unit_normals(const std::vector<std::array<float, 3>>& normals) {
+    std::vector<std::array<float, 3>> out(normals.size());
+    for (size_t i = 0; i < normals.size(); ++i) {
+        const auto& n = normals[i];
+        double l = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+        if (!(l > 1e-12) || !std::isfinite(l)) out[i] = {0, 0, 1};
+        else out[i] = {float(n[0] / l), float(n[1] / l), float(n[2] / l)};
+    }
+    return out;
+}
+
+std::vector<float> clamped_colors(const Mesh& mesh) {
+    const int channels = mesh.colors_have_alpha ? 4 : 3;
+    std::vector<float> out;
+    out.reserve(mesh.colors.size() * channels);
+    for (const auto& c : mesh.colors)
+        for (int k = 0; k < channels; ++k) out.push_back(std::isfinite(c[k]) ? std::clamp(c[k], 0.0f, 1.0f) : 0.0f);
+    return out;
+}
+
+int add_indices(tinygltf::Model& model, const Mesh& mesh) {
+    const size_t count = mesh.triangles.size() * 3;
+    int view;
+    int component;
+    if (mesh.positions.size() <= 0xFFFF) {
+        std::vector<uint16_t> idx;
+        idx.reserve(count);
+        for (const auto& t : mesh.triangles)
+            for (uint32_t i : t) idx.push_back(uint16_t(i));
+        view = add_buffer_view(model, idx.data(), idx.size() * 2, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+        component = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    } else {
+        view = add_buffer_view(model, mesh.triangles.data(), count * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+        component = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    }
+    return add_accessor(model, view, component, TINYGLTF_TYPE_SCALAR, count);
+}
+
+tinygltf::Primitive add_primitive(tinygltf::Model& model, const Mesh& mesh) {
+    tinygltf::Primitive primitive;
+    primitive.attributes["POSITION"] = add_float_attribute(model, mesh.positions, TINYGLTF_TYPE_VEC3, true);
+    if (mesh.has_normals())
+        primitive.attributes["NORMAL"] = add_float_attribute(model, unit_normals(mesh.normals), TINYGLTF_TYPE_VEC3, false);
+    if (mesh.has_texcoords())
+        primitive.attributes["TEXCOORD_0"] = add_float_attribute(model, mesh.texcoords, TINYGLTF_TYPE_VEC2, false);
+    if (mesh.has_colors()) {
+        std::vector<float> c = clamped_colors(mesh);
+        int view = add_buffer_view(model, c.data(), c.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+        primitive.attributes["COLOR_0"] =
+            add_accessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                         mesh.colors_have_alpha ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, mesh.colors.size());
+    }
+    if (mesh.is_point_set || mesh.triangles.empty()) {
+        primitive.mode = TINYGLTF_MODE_POINTS;
+        return primitive;
+    }
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    primitive.indices = add_indices(model, mesh);
+    return primitive;
+}
+
+bool valid_indices(const Mesh& mesh) {
+    for (const auto& t : mesh.triangles)
+        for (uint32_t i : t)
+            if (i >= mesh.positions.size()) return false;
+    return true;
+}
+
+bool save_model(const std::string& path, tinygltf::Model& model, bool binary, std::string& error) {
+    if (!model.buffers.empty()) {
+        if (binary) {
+            model.buffers[0].uri.clear();  // buffer 0 with no uri goes to the GLB BIN chunk
+        } else {
+            model.buffers[0].uri = std::filesystem::path(path).stem().string() + ".bin";
+        }
+    }
+    tinygltf::TinyGLTF writer;
+    if (binary) {
+        std::ostringstream stream;
+        if (!writer.WriteGltfSceneToStream(&model, stream, false, true)) {
+            error = path + ": tinygltf could not serialize the model";
+            return false;
+        }
+        const std::string bytes = stream.str();
+        std::string message;
+        if (write_file(path, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()),
+                       message) != Error::Ok) {
+            error = "cannot write " + path + ": " + message;
+            return false;
+        }
+        return true;
+    }
+    // .gltf: the buffer goes to <stem>.bin beside it (tinygltf writes it), the JSON via a temporary.
+    std::string tmp = path + ".tmp";
+    if (!writer.WriteGltfSceneToFile(&model, tmp, false, false, true, false)) {
+        std::filesystem::remove(tmp);
+        error = "cannot write " + path + " (or its .bin)";
+        return false;
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::filesystem::remove(tmp);
+        error = "cannot write " + path + ": " + ec.message();
+        return false;
+    }
+    return true;
+}
+
+}  // namespace ellicast::gltf_write
