@@ -2,7 +2,11 @@
 #pragma once
 
 #include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
 
+#include <cstdio>
+#include <cstdlib>
+#include <sys/wait.h>
 #include <filesystem>
 #include <string>
 
@@ -28,6 +32,51 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
+}
+
+// The npm packages the glTF checks use (scripts/setup.sh installs them into .cache/node).
+inline std::filesystem::path node_modules() { return source_dir() / ".cache" / "node" / "node_modules"; }
+
+// True when node and the npm package `package` are installed; otherwise prints why the test is skipped.
+inline bool have_node_package(const std::string& package) {
+    if (!std::filesystem::exists(node_modules() / package)) {
+        MESSAGE("skipped: " << (node_modules() / package).string() << " is absent (run scripts/setup.sh)");
+        return false;
+    }
+    if (std::system("command -v node > /dev/null 2>&1") != 0) {
+        MESSAGE("skipped: node is not installed (run scripts/setup.sh)");
+        return false;
+    }
+    return true;
+}
+
+// Runs a shell command and returns its standard output and error; `status` receives its exit status.
+inline std::string run_command(const std::string& command, int& status) {
+    std::string out;
+    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+    if (!pipe) {
+        status = -1;
+        return out;
+    }
+    char buffer[4096];
+    while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+    int rc = pclose(pipe);
+    status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+    return out;
+}
+
+// Runs the Khronos glTF-Validator (tests/gltf_validate.js) on `file`; false (with a message) when
+// it is not installed. `errors` receives the number of errors, `report` the validator's summary.
+inline bool validate_gltf(const std::filesystem::path& file, int& errors, std::string& report) {
+    if (!have_node_package("gltf-validator")) return false;
+    int status = 0;
+    report = run_command("NODE_PATH='" + node_modules().string() + "' node '" +
+                             (source_dir() / "tests" / "gltf_validate.js").string() + "' '" + file.string() + "'",
+                         status);
+    auto json = nlohmann::json::parse(report, nullptr, false);
+    REQUIRE_MESSAGE(!json.is_discarded(), report);
+    errors = json.value("numErrors", -1);
+    return true;
 }
 
 }  // namespace ellicast::test

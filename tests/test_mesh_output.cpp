@@ -61,30 +61,6 @@ Mesh point_cloud() {
     return m;
 }
 
-// Runs the Khronos glTF-Validator through node; false (with a message) when it is not installed.
-bool validate_gltf(const fs::path& file, int& errors, std::string& report) {
-    fs::path modules = source_dir() / ".cache" / "node" / "node_modules";
-    if (!fs::exists(modules / "gltf-validator")) {
-        MESSAGE("skipped: " << (modules / "gltf-validator").string() << " is absent (run scripts/setup.sh)");
-        return false;
-    }
-    if (std::system("command -v node > /dev/null 2>&1") != 0) {
-        MESSAGE("skipped: node is not installed (run scripts/setup.sh)");
-        return false;
-    }
-    std::string cmd = "NODE_PATH='" + modules.string() + "' node '" + (source_dir() / "tests" / "gltf_validate.js").string() +
-                      "' '" + file.string() + "' 2>&1";
-    FILE* pipe = popen(cmd.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    char buffer[4096];
-    while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) report.append(buffer, n);
-    pclose(pipe);
-    auto json = nlohmann::json::parse(report, nullptr, false);
-    REQUIRE_MESSAGE(!json.is_discarded(), report);
-    errors = json.value("numErrors", -1);
-    return true;
-}
-
 }  // namespace
 
 TEST_CASE("written GLB and glTF files pass the Khronos glTF-Validator with no error") {

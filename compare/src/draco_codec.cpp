@@ -16,12 +16,13 @@ namespace {
 
 // Adds a per-vertex float attribute with one value per point (identity mapping).
 template <size_t N>
-void add_attribute(draco::Mesh& dm, draco::GeometryAttribute::Type type, const std::vector<std::array<float, N>>& values) {
+int add_attribute(draco::Mesh& dm, draco::GeometryAttribute::Type type, const std::vector<std::array<float, N>>& values) {
     draco::GeometryAttribute ga;
     ga.Init(type, nullptr, static_cast<uint8_t>(N), draco::DT_FLOAT32, false, sizeof(float) * N, 0);
     int id = dm.AddAttribute(ga, true, static_cast<uint32_t>(values.size()));
     draco::PointAttribute* pa = dm.attribute(id);
     for (size_t i = 0; i < values.size(); ++i) pa->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), values[i].data());
+    return int(pa->unique_id());
 }
 
 // Reads attribute `type` of a decoded mesh, per point, as N floats (false when absent).
@@ -58,21 +59,22 @@ std::pair<std::array<float, 3>, float> position_cube(const Mesh& mesh) {
     return {lo, range};
 }
 
-std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& settings) {
+std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& settings, DracoAttributeIds* ids) {
     if (mesh.triangles.empty() || mesh.positions.empty())
         throw CompareError("Draco: mesh '" + mesh.name + "' has no triangles to compress");
     draco::Mesh dm;
     dm.set_num_points(static_cast<uint32_t>(mesh.positions.size()));
-    add_attribute(dm, draco::GeometryAttribute::POSITION, mesh.positions);
-    if (mesh.has_normals()) add_attribute(dm, draco::GeometryAttribute::NORMAL, mesh.normals);
-    if (mesh.has_texcoords()) add_attribute(dm, draco::GeometryAttribute::TEX_COORD, mesh.texcoords);
+    DracoAttributeIds found;
+    found.position = add_attribute(dm, draco::GeometryAttribute::POSITION, mesh.positions);
+    if (mesh.has_normals()) found.normal = add_attribute(dm, draco::GeometryAttribute::NORMAL, mesh.normals);
+    if (mesh.has_texcoords()) found.texcoord = add_attribute(dm, draco::GeometryAttribute::TEX_COORD, mesh.texcoords);
     if (mesh.has_colors()) {
         if (mesh.colors_have_alpha) {
-            add_attribute(dm, draco::GeometryAttribute::COLOR, mesh.colors);
+            found.color = add_attribute(dm, draco::GeometryAttribute::COLOR, mesh.colors);
         } else {
             std::vector<std::array<float, 3>> rgb(mesh.colors.size());
             for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = {mesh.colors[i][0], mesh.colors[i][1], mesh.colors[i][2]};
-            add_attribute(dm, draco::GeometryAttribute::COLOR, rgb);
+            found.color = add_attribute(dm, draco::GeometryAttribute::COLOR, rgb);
         }
     }
     dm.SetNumFaces(mesh.triangles.size());
@@ -101,6 +103,7 @@ std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& setting
     draco::EncoderBuffer buffer;
     draco::Status status = encoder.EncodeMeshToBuffer(dm, &buffer);
     if (!status.ok()) throw CompareError("Draco could not compress '" + mesh.name + "': " + status.error_msg_string());
+    if (ids) *ids = found;
     return std::vector<uint8_t>(buffer.data(), buffer.data() + buffer.size());
 }
 

@@ -6,9 +6,7 @@
 
 #include "gltf_write.h"
 
-#include <draco/compression/decode.h>
-#include <draco/compression/encode.h>
-#include <draco/mesh/mesh.h>
+#include "ellicast/compare/draco_codec.h"
 
 #include <algorithm>
 #include <cmath>
@@ -356,89 +354,65 @@ private:
         return best;
     }
 
-    // KHR_draco_mesh_compression: the triangles and attributes go through Draco's encoder; the
-    // accessors take count and bounds from a decode of the encoded data (Edgebreaker reorders).
-    std::optional<tinygltf::Primitive> draco_primitive(const Mesh& mesh, const std::string& what) {
-        draco::Mesh dm;
-        const size_t n = mesh.positions.size();
-        dm.set_num_points(uint32_t(n));
-        auto add = [&](draco::GeometryAttribute::Type type, int components, const float* data) {
-            draco::GeometryAttribute ga;
-            ga.Init(type, nullptr, int8_t(components), draco::DT_FLOAT32, false, sizeof(float) * components, 0);
-            int id = dm.AddAttribute(ga, true, uint32_t(n));
-            draco::PointAttribute* att = dm.attribute(id);
-            for (size_t i = 0; i < n; ++i)
-                att->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), data + i * components);
-            return att->unique_id();
-        };
-        std::map<std::string, uint32_t> ids;
-        ids["POSITION"] = add(draco::GeometryAttribute::POSITION, 3, mesh.positions[0].data());
-        if (mesh.has_normals()) ids["NORMAL"] = add(draco::GeometryAttribute::NORMAL, 3, mesh.normals[0].data());
-        if (mesh.has_texcoords())
-            ids["TEXCOORD_0"] = add(draco::GeometryAttribute::TEX_COORD, 2, mesh.texcoords[0].data());
-        const int channels = mesh.colors_have_alpha ? 4 : 3;
-        std::vector<float> colors;
+    // KHR_draco_mesh_compression: the triangles and attributes go through Draco's encoder (the
+    // baselines' codec); the accessors take count and bounds from a decode of the encoded data
+    // (Edgebreaker reorders and may split vertices).
+    std::optional<tinygltf::Primitive> draco_primitive(const Mesh& input, const std::string& what) {
+        Mesh mesh = input;
         if (mesh.has_colors()) {
-            colors = clamped_colors(mesh);
-            ids["COLOR_0"] = add(draco::GeometryAttribute::COLOR, channels, colors.data());
+            std::vector<float> c = clamped_colors(mesh);
+            const int channels = mesh.colors_have_alpha ? 4 : 3;
+            for (size_t i = 0; i < mesh.colors.size(); ++i)
+                for (int k = 0; k < channels; ++k) mesh.colors[i][k] = c[i * channels + k];
         }
-        for (const auto& t : mesh.triangles)
-            dm.AddFace({draco::PointIndex(t[0]), draco::PointIndex(t[1]), draco::PointIndex(t[2])});
-
-        draco::Encoder encoder;
-        encoder.SetSpeedOptions(options_.draco_speed, options_.draco_speed);
-        encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options_.draco_position_bits);
-        encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, options_.draco_normal_bits);
-        encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, options_.draco_texcoord_bits);
-        encoder.SetAttributeQuantization(draco::GeometryAttribute::COLOR, options_.draco_color_bits);
-        draco::EncoderBuffer encoded;
-        draco::Status status = encoder.EncodeMeshToBuffer(dm, &encoded);
-        if (!status.ok()) {
-            warnings_.push_back(what + ": Draco could not encode it (" + status.error_msg_string() +
-                                "); written uncompressed");
-            return add_primitive(model_, mesh);
+        compare::DracoSettings settings;
+        settings.position_bits = options_.draco_position_bits;
+        settings.normal_bits = options_.draco_normal_bits;
+        settings.texcoord_bits = options_.draco_texcoord_bits;
+        settings.color_bits = options_.draco_color_bits;
+        settings.encoding_speed = settings.decoding_speed = options_.draco_speed;
+        compare::DracoAttributeIds ids;
+        std::vector<uint8_t> encoded;
+        Mesh decoded;
+        std::string problem;
+        try {
+            encoded = compare::draco_encode(mesh, settings, &ids);
+            if (!compare::draco_decode(encoded, decoded, problem)) problem = "it cannot decode its own output: " + problem;
+        } catch (const compare::CompareError& e) {
+            problem = e.what();
         }
-        // Decode our own output: its point count, order and bounds are what a reader gets.
-        draco::DecoderBuffer in;
-        in.Init(encoded.data(), encoded.size());
-        draco::Decoder decoder;
-        auto decoded = decoder.DecodeMeshFromBuffer(&in);
-        if (!decoded.ok()) {
-            warnings_.push_back(what + ": Draco cannot decode its own output (" + decoded.status().error_msg_string() +
-                                "); written uncompressed");
-            return add_primitive(model_, mesh);
+        if (problem.empty() && (decoded.has_normals() != mesh.has_normals() ||
+                                decoded.has_texcoords() != mesh.has_texcoords() ||
+                                decoded.has_colors() != mesh.has_colors()))
+            problem = "an attribute was lost";
+        if (!problem.empty()) {
+            warnings_.push_back(what + ": Draco: " + problem + "; written uncompressed");
+            return add_primitive(model_, input);
         }
-        const draco::Mesh& out = *decoded.value();
-        const size_t points = out.num_points();
-
+        const size_t points = decoded.positions.size();
         tinygltf::Primitive prim;
         prim.mode = TINYGLTF_MODE_TRIANGLES;
         tinygltf::Value::Object attributes;
-        for (const auto& [name, id] : ids) {
-            const draco::PointAttribute* att = out.GetAttributeByUniqueId(id);
-            if (!att) {
-                warnings_.push_back(what + ": Draco dropped its " + name + "; written uncompressed");
-                return add_primitive(model_, mesh);
-            }
-            const int components = att->num_components();
+        auto declare = [&](const char* name, int id, int type, bool bounds) {
             std::vector<double> mn, mx;
-            if (name == "POSITION") {
+            if (bounds) {
                 mn.assign(3, std::numeric_limits<double>::max());
                 mx.assign(3, -std::numeric_limits<double>::max());
-                float v[3];
-                for (size_t i = 0; i < points; ++i) {
-                    att->ConvertValue<float>(att->mapped_index(draco::PointIndex(uint32_t(i))), 3, v);
+                for (const auto& v : decoded.positions)
                     for (int k = 0; k < 3; ++k) mn[k] = std::min(mn[k], double(v[k])), mx[k] = std::max(mx[k], double(v[k]));
-                }
             }
-            int type = components == 2 ? TINYGLTF_TYPE_VEC2 : components == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
             prim.attributes[name] = add_accessor(model_, -1, TINYGLTF_COMPONENT_TYPE_FLOAT, type, points, mn, mx);
-            attributes[name] = tinygltf::Value(int(id));
-        }
+            attributes[name] = tinygltf::Value(id);
+        };
+        declare("POSITION", ids.position, TINYGLTF_TYPE_VEC3, true);
+        if (ids.normal >= 0) declare("NORMAL", ids.normal, TINYGLTF_TYPE_VEC3, false);
+        if (ids.texcoord >= 0) declare("TEXCOORD_0", ids.texcoord, TINYGLTF_TYPE_VEC2, false);
+        if (ids.color >= 0)
+            declare("COLOR_0", ids.color, mesh.colors_have_alpha ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, false);
         prim.indices = add_accessor(model_, -1,
                                     points <= 0xFFFF ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
                                                      : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                                    TINYGLTF_TYPE_SCALAR, size_t(out.num_faces()) * 3);
+                                    TINYGLTF_TYPE_SCALAR, decoded.triangles.size() * 3);
         tinygltf::Value::Object extension;
         extension["bufferView"] = tinygltf::Value(add_buffer_view(model_, encoded.data(), encoded.size(), 0));
         extension["attributes"] = tinygltf::Value(attributes);
@@ -621,8 +595,10 @@ private:
             if (parent_[i] < 0) scene.nodes.push_back(out[i]);
             else model_.nodes[size_t(out[size_t(parent_[i])])].children.push_back(out[i]);
         }
-        model_.scenes.push_back(std::move(scene));
-        model_.defaultScene = 0;
+        if (!scene.nodes.empty()) {  // tinygltf writes an empty scene as null
+            model_.scenes.push_back(std::move(scene));
+            model_.defaultScene = 0;
+        }
     }
 
     // Shows glTF mesh `mesh` at node `g` (index `at`): directly, or through a child node holding
@@ -672,8 +648,10 @@ private:
             model_.nodes[size_t(at)] = std::move(node);
             scene.nodes.push_back(at);
         }
-        model_.scenes.push_back(std::move(scene));
-        model_.defaultScene = 0;
+        if (!scene.nodes.empty()) {  // tinygltf writes an empty scene as null
+            model_.scenes.push_back(std::move(scene));
+            model_.defaultScene = 0;
+        }
     }
 
     const std::string& path_;

@@ -36,9 +36,16 @@ struct DracoSettings {
     float position_range = 0;
 };
 
+// The unique ids of the attributes in a Draco bitstream (-1: absent), as KHR_draco_mesh_compression
+// names them.
+struct DracoAttributeIds {
+    int position = -1, normal = -1, texcoord = -1, color = -1;
+};
+
 // The Draco bitstream of `mesh` (Edgebreaker) with every attribute it has (normals, TEXCOORD_0,
-// COLOR_0). Throws CompareError when the mesh has no triangles or Draco refuses it.
-std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& settings);
+// COLOR_0); `ids`, when given, receives their unique ids. Throws CompareError when the mesh has no
+// triangles or Draco refuses it.
+std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& settings, DracoAttributeIds* ids = nullptr);
 
 // Decodes a Draco bitstream into a mesh (positions, triangles, and the attributes it carries).
 // Returns false with `error` set when the bytes are not a decodable Draco mesh.

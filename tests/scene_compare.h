@@ -1,0 +1,79 @@
+// Comparing two scenes the way a user would: the same nodes (names, hierarchy, transforms), the same
+// materials (factors, modes, textures byte for byte). Shared by the scene writer and round-trip tests.
+#pragma once
+
+#include "ellicast/converters/asset.h"
+#include "support.h"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <string>
+
+namespace ellicast::test {
+
+// A node's local transform as a 4x4 matrix.
+inline Eigen::Matrix4d node_matrix(const SceneNode& n) {
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    if (n.has_matrix) {
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) m(r, c) = n.matrix[size_t(c * 4 + r)];
+        return m;
+    }
+    Eigen::Quaterniond q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+    if (q.norm() > 0) m.topLeftCorner<3, 3>() = q.normalized().toRotationMatrix();
+    m.topLeftCorner<3, 3>() *= Eigen::Vector3d(n.scale[0], n.scale[1], n.scale[2]).asDiagonal();
+    m.topRightCorner<3, 1>() = Eigen::Vector3d(n.translation[0], n.translation[1], n.translation[2]);
+    return m;
+}
+
+// The image bytes a texture reference of `a` shows (empty when none).
+inline std::vector<uint8_t> referenced_image(const Asset& a, const TextureRef& ref) {
+    if (ref.texture == kNone || ref.texture >= a.scene.textures.size()) return {};
+    return a.scene.textures[ref.texture].image;
+}
+
+// Checks that `out` has the scene of `in`: node count, names, parents, which nodes show a mesh and
+// how many primitives it has, transforms (to float precision), materials with their factors, modes
+// and texture images byte for byte.
+inline void check_same_scene(const Asset& in, const Asset& out) {
+    REQUIRE(out.scene.nodes.size() == in.scene.nodes.size());
+    for (size_t i = 0; i < in.scene.nodes.size(); ++i) {
+        const SceneNode& a = in.scene.nodes[i];
+        const SceneNode& b = out.scene.nodes[i];
+        CAPTURE(i);
+        CHECK(a.name == b.name);
+        CHECK(a.parent == b.parent);
+        REQUIRE((a.mesh == kNone) == (b.mesh == kNone));
+        if (a.mesh != kNone)
+            CHECK(in.scene.meshes[a.mesh].primitives.size() == out.scene.meshes[b.mesh].primitives.size());
+        Eigen::Matrix4d ma = node_matrix(a), mb = node_matrix(b);
+        CHECK_MESSAGE((ma - mb).cwiseAbs().maxCoeff() <= 1e-5 * std::max(1.0, ma.cwiseAbs().maxCoeff()),
+                      "transform of node " << i << " differs");
+    }
+    REQUIRE(out.scene.materials.size() == in.scene.materials.size());
+    for (size_t i = 0; i < in.scene.materials.size(); ++i) {
+        const Material& a = in.scene.materials[i];
+        const Material& b = out.scene.materials[i];
+        CAPTURE(i);
+        CHECK(a.name == b.name);
+        for (int k = 0; k < 4; ++k) CHECK(a.base_color[k] == doctest::Approx(b.base_color[k]));
+        for (int k = 0; k < 3; ++k) CHECK(a.emissive[k] == doctest::Approx(b.emissive[k]));
+        CHECK(a.metallic == doctest::Approx(b.metallic));
+        CHECK(a.roughness == doctest::Approx(b.roughness));
+        CHECK(a.alpha_mode == b.alpha_mode);
+        if (a.alpha_mode == AlphaMode::Mask) CHECK(a.alpha_cutoff == doctest::Approx(b.alpha_cutoff));
+        CHECK(a.double_sided == b.double_sided);
+        const TextureRef* ra[] = {&a.base_color_texture, &a.metallic_roughness_texture, &a.normal_texture,
+                                  &a.occlusion_texture, &a.emissive_texture};
+        const TextureRef* rb[] = {&b.base_color_texture, &b.metallic_roughness_texture, &b.normal_texture,
+                                  &b.occlusion_texture, &b.emissive_texture};
+        for (int s = 0; s < 5; ++s) {
+            CAPTURE(s);
+            CHECK(referenced_image(in, *ra[s]) == referenced_image(out, *rb[s]));
+            if (ra[s]->texture != kNone) CHECK(ra[s]->scale == doctest::Approx(rb[s]->scale));
+        }
+    }
+}
+
+}  // namespace ellicast::test

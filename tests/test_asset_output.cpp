@@ -1,0 +1,428 @@
+// Writing scenes (write_asset) and rebuilding them from what a receiver has (received_asset): the
+// real samples come back with their scene graph, materials and texture files; Draco and quantized
+// output is read by the Khronos validator, glTF-Transform and Draco's own decoder; whatever is
+// missing or inconsistent is left out with a warning and the file stays valid.
+#include "scene_compare.h"
+#include "support.h"
+
+#include "ellicast/converters/asset.h"
+#include "ellicast/converters/mesh_input.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <regex>
+
+using namespace ellicast;
+using namespace ellicast::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kGltfSamples[] = {"gltf/Box-glb/Box.glb",
+                              "gltf/Box-glb/Box_Draco.glb",
+                              "gltf/Duck/Duck.gltf",
+                              "gltf/Duck-glb/Duck.glb",
+                              "gltf/CesiumMilkTruck/CesiumMilkTruck.gltf",
+                              "gltf/Fox/Fox.gltf",
+                              "gltf/VertexColorTest/VertexColorTest.gltf",
+                              "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf"};
+
+std::string sample(const std::string& rel) { return (shared_samples() / rel).string(); }
+
+bool any_of(const std::vector<std::string>& warnings, const std::string& needle) {
+    return std::any_of(warnings.begin(), warnings.end(),
+                       [&](const std::string& w) { return w.find(needle) != std::string::npos; });
+}
+
+void write_ok(const fs::path& path, const Asset& asset, const AssetWriteOptions& options,
+              std::vector<std::string>* warnings_out = nullptr) {
+    std::vector<std::string> warnings;
+    std::string error;
+    REQUIRE_MESSAGE(write_asset(path.string(), asset, options, warnings, error), error);
+    if (warnings_out) *warnings_out = warnings;
+}
+
+void check_valid(const fs::path& path) {
+    int errors = -1;
+    std::string report;
+    if (validate_gltf(path, errors, report)) CHECK_MESSAGE(errors == 0, path.string() << ": " << report);
+}
+
+// The JSON and BIN chunks of a GLB.
+struct Glb {
+    nlohmann::json json;
+    std::vector<uint8_t> bin;
+};
+
+Glb read_glb(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::vector<uint8_t> b{std::istreambuf_iterator<char>(in), {}};
+    REQUIRE(b.size() >= 20);
+    uint32_t json_length;
+    std::memcpy(&json_length, b.data() + 12, 4);
+    REQUIRE(20 + json_length <= b.size());
+    Glb glb;
+    glb.json = nlohmann::json::parse(b.begin() + 20, b.begin() + 20 + json_length);
+    size_t bin_at = 20 + json_length;
+    if (bin_at + 8 <= b.size()) {
+        uint32_t bin_length;
+        std::memcpy(&bin_length, b.data() + bin_at, 4);
+        REQUIRE(bin_at + 8 + bin_length <= b.size());
+        glb.bin.assign(b.begin() + long(bin_at + 8), b.begin() + long(bin_at + 8 + bin_length));
+    }
+    return glb;
+}
+
+// For each mesh primitive of `in`, the object of `out` at the same place has the same geometry.
+void check_same_objects(const Asset& in, const Asset& out) {
+    for (size_t n = 0; n < in.scene.nodes.size(); ++n) {
+        if (in.scene.nodes[n].mesh == kNone) continue;
+        const auto& pa = in.scene.meshes[in.scene.nodes[n].mesh].primitives;
+        const auto& pb = out.scene.meshes[out.scene.nodes[n].mesh].primitives;
+        REQUIRE(pa.size() == pb.size());
+        for (size_t p = 0; p < pa.size(); ++p) {
+            const Mesh& a = in.objects[pa[p].object];
+            const Mesh& b = out.objects[pb[p].object];
+            CAPTURE(a.name);
+            REQUIRE(a.positions.size() == b.positions.size());
+            CHECK(a.triangles == b.triangles);
+            CHECK(a.positions == b.positions);
+            CHECK(a.is_point_set == b.is_point_set);
+            CHECK(a.has_texcoords() == b.has_texcoords());
+            CHECK(a.has_colors() == b.has_colors());
+        }
+    }
+}
+
+double diagonal(const std::vector<Mesh>& meshes) {
+    std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (const auto& m : meshes)
+        for (const auto& p : m.positions)
+            for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], double(p[k])), hi[k] = std::max(hi[k], double(p[k]));
+    return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                     (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+}  // namespace
+
+TEST_CASE("every glTF sample written back keeps its scene, its texture files and its geometry, and is valid") {
+    auto dir = scratch_dir("asset_output_plain");
+    for (const char* f : kGltfSamples) {
+        if (!have_sample(f)) continue;
+        CAPTURE(f);
+        Asset in = load_asset(sample(f));
+        for (const char* ext : {".glb", ".gltf"}) {
+            fs::path out = dir / (fs::path(f).stem().string() + ext);
+            write_ok(out, in, {});
+            check_valid(out);
+            Asset back = load_asset(out.string());
+            check_same_scene(in, back);
+            check_same_objects(in, back);
+        }
+    }
+}
+
+TEST_CASE("--quantize writes KHR_mesh_quantization: valid, same world-space geometry within 16-bit steps") {
+    auto dir = scratch_dir("asset_output_quantize");
+    AssetWriteOptions options;
+    options.quantize = true;
+    for (const char* f : kGltfSamples) {
+        if (!have_sample(f)) continue;
+        CAPTURE(f);
+        Asset in = load_asset(sample(f));
+        fs::path out = dir / (fs::path(f).stem().string() + ".glb");
+        write_ok(out, in, options);
+        check_valid(out);
+        Glb glb = read_glb(out);
+        CHECK(glb.json["extensionsRequired"].dump().find("KHR_mesh_quantization") != std::string::npos);
+        // Every POSITION is a normalized SHORT accessor.
+        for (const auto& mesh : glb.json["meshes"])
+            for (const auto& prim : mesh["primitives"]) {
+                const auto& acc = glb.json["accessors"][prim["attributes"]["POSITION"].get<int>()];
+                CHECK(acc["componentType"] == 5122);
+                CHECK(acc["normalized"] == true);
+            }
+        // The flattened world-space meshes agree with the input's, vertex for vertex.
+        LoadResult a = load_gltf(sample(f));
+        LoadResult b = load_gltf(out.string());
+        REQUIRE(a.meshes.size() == b.meshes.size());
+        const double tolerance = diagonal(a.meshes) * 2.0 / 32767.0;
+        std::vector<bool> used(b.meshes.size(), false);
+        for (const Mesh& ma : a.meshes) {
+            double best = 1e300;
+            size_t best_j = 0;
+            for (size_t j = 0; j < b.meshes.size(); ++j) {
+                const Mesh& mb = b.meshes[j];
+                if (used[j] || mb.positions.size() != ma.positions.size() || mb.triangles != ma.triangles) continue;
+                double worst = 0;
+                for (size_t v = 0; v < ma.positions.size(); ++v)
+                    for (int k = 0; k < 3; ++k)
+                        worst = std::max(worst, std::abs(double(ma.positions[v][k]) - mb.positions[v][k]));
+                if (worst < best) best = worst, best_j = j;
+            }
+            CAPTURE(ma.name);
+            CHECK(best <= tolerance);
+            used[best_j] = true;
+        }
+    }
+}
+
+TEST_CASE("--draco output is read by the validator, glTF-Transform and draco_decoder with the counts it declares") {
+    const char* f = "gltf/CesiumMilkTruck/CesiumMilkTruck.gltf";
+    const char* points = "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf";
+    if (!have_sample(f) || !have_sample(points)) return;
+    auto dir = scratch_dir("asset_output_draco");
+    AssetWriteOptions options;
+    options.draco = true;
+    for (const char* file : {f, points}) {
+        CAPTURE(file);
+        Asset in = load_asset(sample(file));
+        fs::path out = dir / (fs::path(file).stem().string() + ".glb");
+        write_ok(out, in, options);
+        check_valid(out);
+        Glb glb = read_glb(out);
+        CHECK(glb.json["extensionsUsed"].dump().find("KHR_draco_mesh_compression") != std::string::npos);
+        CHECK(glb.json["extensionsRequired"].dump().find("KHR_draco_mesh_compression") != std::string::npos);
+        // Our own reader decodes it (tinygltf + Draco): same scene, same number of triangles.
+        Asset back = load_asset(out.string());
+        check_same_scene(in, back);
+        size_t tri_in = 0, tri_out = 0;
+        for (const auto& m : in.objects) tri_in += m.triangles.size();
+        for (const auto& m : back.objects) tri_out += m.triangles.size();
+        CHECK(tri_in == tri_out);
+
+        // Every compressed primitive, cut out of the GLB, decodes with draco_decoder to the point and
+        // face counts of its accessors; point primitives stay uncompressed (the extension is for triangles).
+        int compressed = 0;
+        for (const auto& mesh : glb.json["meshes"])
+            for (const auto& prim : mesh["primitives"]) {
+                if (!prim.contains("extensions")) {
+                    CHECK(prim["mode"] == 0);
+                    continue;
+                }
+                const auto& ext = prim["extensions"]["KHR_draco_mesh_compression"];
+                const auto& view = glb.json["bufferViews"][ext["bufferView"].get<int>()];
+                size_t offset = view.value("byteOffset", 0), length = view["byteLength"];
+                REQUIRE(offset + length <= glb.bin.size());
+                fs::path drc = dir / ("prim" + std::to_string(compressed++) + ".drc");
+                fs::path ply = drc;
+                ply.replace_extension(".ply");
+                {
+                    std::ofstream o(drc, std::ios::binary);
+                    o.write(reinterpret_cast<const char*>(glb.bin.data() + offset), long(length));
+                }
+                if (std::system("command -v draco_decoder > /dev/null 2>&1") != 0) {
+                    MESSAGE("skipped: draco_decoder is not installed (Debian package draco)");
+                    continue;
+                }
+                int status = 0;
+                std::string log = run_command("draco_decoder -i '" + drc.string() + "' -o '" + ply.string() + "'", status);
+                REQUIRE_MESSAGE(status == 0, log);
+                std::ifstream header(ply, std::ios::binary);
+                size_t vertices = 0, faces = 0;
+                for (std::string line; std::getline(header, line) && line != "end_header";) {
+                    std::sscanf(line.c_str(), "element vertex %zu", &vertices);
+                    std::sscanf(line.c_str(), "element face %zu", &faces);
+                }
+                const auto& pos = glb.json["accessors"][prim["attributes"]["POSITION"].get<int>()];
+                const auto& idx = glb.json["accessors"][prim["indices"].get<int>()];
+                CHECK(vertices == pos["count"].get<size_t>());
+                CHECK(faces * 3 == idx["count"].get<size_t>());
+            }
+        CHECK(compressed > 0);
+
+        if (have_node_package("@gltf-transform/cli")) {
+            int status = 0;
+            std::string report = run_command(
+                "'" + (node_modules() / ".bin" / "gltf-transform").string() + "' inspect --format csv '" + out.string() + "'",
+                status);
+            REQUIRE_MESSAGE(status == 0, report);
+            CHECK(report.find("KHR_draco_mesh_compression") != std::string::npos);
+            // glTF-Transform decodes the Draco data: its vertex counts are those of our accessors.
+            for (const auto& mesh : glb.json["meshes"]) {
+                size_t count = 0;
+                for (const auto& prim : mesh["primitives"])
+                    count += glb.json["accessors"][prim["attributes"]["POSITION"].get<int>()]["count"].get<size_t>();
+                std::string name = mesh.value("name", "");
+                std::regex row("(^|\\n)[0-9]+," + std::regex_replace(name, std::regex("[.^$|()\\[\\]{}*+?\\\\]"), "\\$&") +
+                               ",(\"[^\"]*\"|[A-Z_]+),[0-9]+,[0-9]+," + std::to_string(count) + ",");
+                CHECK_MESSAGE(std::regex_search(report, row), name << " with " << count << " vertices not in\n" << report);
+            }
+        }
+    }
+}
+
+TEST_CASE("a receiver writes what arrived: lost textures, materials, objects and scene packets give a valid glTF") {
+    const char* f = "gltf/CesiumMilkTruck/CesiumMilkTruck.gltf";
+    if (!have_sample(f)) return;
+    auto dir = scratch_dir("asset_output_loss");
+    Asset in = load_asset(sample(f));
+    ScenePackets packets;
+    REQUIRE(packetize_scene(in.scene, 1200, 7, 0, packets) == Error::Ok);
+    REQUIRE(packets.textures.size() > 2);
+
+    auto receive = [&](bool scene, bool materials, size_t texture_fragments_lost, size_t lost_material) {
+        ReceivedStream stream;
+        if (scene)
+            for (const auto& p : packets.scene) REQUIRE(stream.add_packet(p, 0) == Error::Ok);
+        if (materials)
+            for (size_t i = 0; i < packets.materials.size(); ++i)
+                if (i != lost_material) REQUIRE(stream.add_packet(packets.materials[i], 0) == Error::Ok);
+        for (size_t i = texture_fragments_lost; i < packets.textures.size(); ++i)
+            REQUIRE(stream.add_packet(packets.textures[i], 0) == Error::Ok);
+        return stream;
+    };
+
+    SUBCASE("everything arrived: the same scene") {
+        Asset got = received_asset(receive(true, true, 0, 99), in.objects);
+        CHECK(got.warnings.empty());
+        fs::path out = dir / "all.glb";
+        write_ok(out, got, {});
+        check_valid(out);
+        check_same_scene(in, load_asset(out.string()));
+    }
+    SUBCASE("a texture fragment lost: the texture is left out, its materials keep their factors") {
+        Asset got = received_asset(receive(true, true, 1, 99), in.objects);
+        CHECK(any_of(got.warnings, "incomplete"));
+        CHECK(got.scene.textures.empty());
+        fs::path out = dir / "no_texture.glb";
+        write_ok(out, got, {});
+        check_valid(out);
+        Asset back = load_asset(out.string());
+        REQUIRE(back.scene.materials.size() == 4);
+        CHECK(back.scene.materials[0].base_color_texture.texture == kNone);
+        CHECK(back.scene.materials[1].base_color[1] == doctest::Approx(in.scene.materials[1].base_color[1]));
+        CHECK(back.scene.textures.empty());
+    }
+    SUBCASE("a material lost: its primitives get the default material") {
+        Asset got = received_asset(receive(true, true, 0, 1), in.objects);
+        CHECK(any_of(got.warnings, "did not arrive"));
+        CHECK(got.scene.materials.size() == 3);
+        fs::path out = dir / "no_material.glb";
+        write_ok(out, got, {});
+        check_valid(out);
+        Glb glb = read_glb(out);
+        CHECK(!glb.json["meshes"][0]["primitives"][1].contains("material"));
+    }
+    SUBCASE("an object lost: it is left out; a mesh left without objects leaves its nodes") {
+        std::vector<Mesh> objects = in.objects;
+        objects[3] = Mesh{};  // the wheels: the only object of mesh 1, shown by two nodes
+        objects[1] = Mesh{};  // one of the truck's three primitives
+        Asset got = received_asset(receive(true, true, 0, 99), objects);
+        fs::path out = dir / "no_object.glb";
+        std::vector<std::string> warnings;
+        write_ok(out, got, {}, &warnings);
+        CHECK(any_of(warnings, "object 3) has not arrived"));
+        CHECK(any_of(warnings, "nodes showing it are written without it"));
+        check_valid(out);
+        Glb glb = read_glb(out);
+        CHECK(glb.json["nodes"].size() == 5);
+        CHECK(glb.json["meshes"].size() == 1);
+        CHECK(glb.json["meshes"][0]["primitives"].size() == 2);
+        CHECK(!glb.json["nodes"][2].contains("mesh"));
+        CHECK(!glb.json["nodes"][4].contains("mesh"));
+    }
+    SUBCASE("no SCENE packet: each object gets a node of its own, the file is still valid") {
+        Asset got = received_asset(receive(false, true, 0, 99), in.objects);
+        CHECK(any_of(got.warnings, "no SCENE packet"));
+        fs::path out = dir / "no_scene.glb";
+        write_ok(out, got, {});
+        check_valid(out);
+        Glb glb = read_glb(out);
+        CHECK(glb.json["nodes"].size() == in.objects.size());
+    }
+}
+
+TEST_CASE("write_asset leaves out what does not hold together and still writes a valid file") {
+    auto dir = scratch_dir("asset_output_broken");
+    Asset a;
+    Mesh tri;
+    tri.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    tri.triangles = {{0, 1, 2}};
+    Mesh bad = tri;
+    bad.triangles = {{0, 1, 7}};  // index beyond the vertices
+    Mesh wrong_normals = tri;
+    wrong_normals.normals = {{0, 0, 1}};  // one normal for three vertices
+    a.objects = {tri, bad, wrong_normals, Mesh{}};
+    SceneMesh m0{0, "ok", {{0, 0}, {1, kNone}, {2, 5}, {3, kNone}, {9, kNone}}};
+    SceneMesh m1{1, "empty", {{3, kNone}}};
+    a.scene.meshes = {m0, m1};
+    SceneNode root;
+    root.index = 0;
+    root.mesh = 0;
+    root.name = "root";
+    SceneNode bad_mesh = root;
+    bad_mesh.index = 1;
+    bad_mesh.parent = 0;
+    bad_mesh.mesh = 42;
+    SceneNode loop_a = root, loop_b = root;
+    loop_a.index = 2, loop_a.parent = 3, loop_a.mesh = 1;
+    loop_b.index = 3, loop_b.parent = 2, loop_b.mesh = kNone;
+    SceneNode bad_parent = root;
+    bad_parent.index = 4;
+    bad_parent.parent = 77;
+    bad_parent.mesh = 1;
+    SceneNode bad_rotation = root;
+    bad_rotation.index = 5;
+    bad_rotation.parent = 0;
+    bad_rotation.rotation = {0, 0, 0, 0};
+    a.scene.nodes = {root, bad_mesh, loop_a, loop_b, bad_parent, bad_rotation};
+    Material mat;
+    mat.base_color = {2, -1, 0.5f, 1};  // out of range: clamped
+    mat.base_color_texture.texture = 0;
+    mat.normal_texture.texture = 2;
+    mat.normal_texture.texcoord = 1;  // ellicast carries TEXCOORD_0 only
+    mat.emissive_texture.texture = 1;
+    a.scene.materials = {mat};
+    SceneDescription::Texture garbage;
+    garbage.image = {'n', 'o', 't', ' ', 'a', 'n', ' ', 'i', 'm', 'a', 'g', 'e'};
+    SceneDescription::Texture empty;
+    SceneDescription::Texture png;  // a valid 1x1 PNG
+    png.image = {0x89, 0x50, 0x4E, 0x47, 0x0D, 0x0A, 0x1A, 0x0A, 0x00, 0x00, 0x00, 0x0D, 0x49, 0x48, 0x44, 0x52, 0x00,
+                 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x02, 0x00, 0x00, 0x00, 0x90, 0x77, 0x53, 0xDE, 0x00,
+                 0x00, 0x00, 0x0C, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9C, 0x63, 0xF8, 0xCF, 0xC0, 0x00, 0x00, 0x03, 0x01,
+                 0x01, 0x00, 0xC9, 0xFE, 0x92, 0xEF, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4E, 0x44, 0xAE, 0x42, 0x60,
+                 0x82};
+    a.scene.textures = {garbage, empty, png};
+
+    for (AssetWriteOptions options : {AssetWriteOptions{}, AssetWriteOptions{.draco = true},
+                                      AssetWriteOptions{.quantize = true}}) {
+        fs::path out = dir / (options.draco ? "draco.glb" : options.quantize ? "quantize.glb" : "plain.glb");
+        std::vector<std::string> warnings;
+        write_ok(out, a, options, &warnings);
+        check_valid(out);
+        CHECK(any_of(warnings, "triangle index beyond its vertices"));
+        CHECK(any_of(warnings, "NORMAL count differs"));
+        CHECK(any_of(warnings, "material 5 is not available"));
+        CHECK(any_of(warnings, "object 3) has not arrived"));
+        CHECK(any_of(warnings, "object 9) does not exist"));
+        CHECK(any_of(warnings, "names mesh 42"));
+        CHECK(any_of(warnings, "parent cycle"));
+        CHECK(any_of(warnings, "written as a root"));
+        CHECK(any_of(warnings, "zero rotation"));
+        CHECK(any_of(warnings, "neither PNG nor JPEG"));
+        CHECK(any_of(warnings, "has no image"));
+        CHECK(any_of(warnings, "TEXCOORD_1"));
+    }
+}
+
+TEST_CASE("write_asset refuses bad options, unknown file types and unwritable places with a clear error") {
+    Asset a;
+    a.objects.resize(1);
+    a.objects[0].positions = {{0, 0, 0}};
+    a.objects[0].is_point_set = true;
+    std::vector<std::string> warnings;
+    std::string error;
+    auto dir = scratch_dir("asset_output_errors");
+    CHECK(!write_asset((dir / "x.glb").string(), a, AssetWriteOptions{.draco = true, .quantize = true}, warnings, error));
+    CHECK(error.find("cannot be combined") != std::string::npos);
+    CHECK(!write_asset((dir / "x.ply").string(), a, {}, warnings, error));
+    CHECK(error.find(".glb or .gltf") != std::string::npos);
+    CHECK(!write_asset((dir / "missing" / "x.glb").string(), a, {}, warnings, error));
+    CHECK(error.find("x.glb") != std::string::npos);
+    CHECK(!fs::exists(dir / "missing" / "x.glb"));
+}
