@@ -5,6 +5,7 @@
 #include "ellicast/converters/mesh_input.h"
 #include "ellicast/format.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -104,24 +105,23 @@ int main(int argc, char** argv) {
         Mesh torus = bumpy_torus(400, 125);  // 50,000 vertices, closed
         report("bumpy torus 50k (400 ell.)", encode({torus}, options));
     }
-    const char* files[] = {"meshes/bunny.ply", "meshes/spot.obj", "meshes/fandisk.obj", "meshes/teapot.obj",
-                           "meshes/suzanne.obj", "meshes/woody.obj", "gltf/Box-glb/Box.glb",
-                           "gltf/Box-glb/Box_Draco.glb", "gltf/Duck/Duck.gltf", "gltf/Duck-glb/Duck.glb",
-                           "gltf/CesiumMilkTruck/CesiumMilkTruck.gltf", "gltf/Fox/Fox.gltf",
-                           "gltf/VertexColorTest/VertexColorTest.gltf",
-                           "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf"};
-    for (const char* f : files) {
-        if (!only.empty() && std::string(f).find(only) == std::string::npos) continue;
-        std::string path = samples + "/" + f;
-        if (!std::filesystem::exists(path)) {
-            std::printf("%-28s skipped: %s is absent\n", f, path.c_str());
-            continue;
+    std::vector<std::string> files;  // every model under the samples, in a fixed order
+    if (std::filesystem::is_directory(samples))
+        for (const auto& entry : std::filesystem::recursive_directory_iterator(samples)) {
+            std::string ext = entry.path().extension().string();
+            if (ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl" || ext == ".gltf" || ext == ".glb")
+                files.push_back(std::filesystem::relative(entry.path(), samples).string());
         }
+    std::sort(files.begin(), files.end());
+    if (files.empty()) std::printf("no sample models under %s\n", samples.c_str());
+    for (const std::string& f : files) {
+        if (!only.empty() && f.find(only) == std::string::npos) continue;
+        std::string path = samples + "/" + f;
         try {
             LoadResult loaded = load_meshes(path);
             report(f, encode(loaded.meshes, options));
         } catch (const std::exception& e) {
-            std::printf("%-28s error: %s\n", f, e.what());
+            std::printf("%-28s error: %s\n", f.c_str(), e.what());
         }
     }
     struct rusage usage {};

@@ -80,14 +80,17 @@ std::string sample(const std::string& rel) { return (shared_samples() / rel).str
 }  // namespace
 
 TEST_CASE("every sample model encodes into a stream the receiver accepts whole") {
-    const char* files[] = {"meshes/bunny.ply", "meshes/spot.obj", "meshes/fandisk.obj", "meshes/teapot.obj",
-                           "meshes/suzanne.obj", "meshes/woody.obj", "gltf/Box-glb/Box.glb",
-                           "gltf/Box-glb/Box_Draco.glb", "gltf/Duck/Duck.gltf", "gltf/Duck-glb/Duck.glb",
-                           "gltf/CesiumMilkTruck/CesiumMilkTruck.gltf", "gltf/Fox/Fox.gltf",
-                           "gltf/VertexColorTest/VertexColorTest.gltf",
-                           "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf"};
-    for (const char* f : files) {
-        if (!have_sample(f)) continue;
+    if (!have_sample("meshes") || !have_sample("gltf")) return;
+    // Every model file under the samples, in a fixed order.
+    std::vector<std::string> files;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(shared_samples())) {
+        std::string ext = entry.path().extension().string();
+        if (ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl" || ext == ".gltf" || ext == ".glb")
+            files.push_back(std::filesystem::relative(entry.path(), shared_samples()).string());
+    }
+    std::sort(files.begin(), files.end());
+    CHECK(files.size() >= 14);
+    for (const std::string& f : files) {
         std::string name = f;
         CAPTURE(name);
         LoadResult loaded = load_meshes(sample(f));
