@@ -167,26 +167,28 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const std::vector<Candi
     const size_t m = surface_samples.size();
     if (m == 0 || result.volume.size() >= max_count) return result;
     std::vector<bool> done(m, false);
-    // Bucket the samples by voxel so that each candidate looks only at samples under its runs.
-    std::vector<std::vector<uint32_t>> bucket(grid.size());
-    auto voxel_of = [&](const Vec3& p) -> int64_t {
+    // The samples sorted by voxel, so that each candidate looks only at the samples under its runs.
+    std::vector<std::pair<uint64_t, uint32_t>> by_voxel;  // (voxel index, sample)
+    by_voxel.reserve(m);
+    for (size_t s = 0; s < m; ++s) {
+        bool in_grid = true;
         int idx[3];
         for (int k = 0; k < 3; ++k) {
-            idx[k] = int(std::lround((p[k] - grid.origin[k]) / grid.h));
-            if (idx[k] < 0 || idx[k] >= grid.n[k]) return -1;
+            idx[k] = int(std::lround((surface_samples[s][k] - grid.origin[k]) / grid.h));
+            in_grid = in_grid && idx[k] >= 0 && idx[k] < grid.n[k];
         }
-        return int64_t(grid.index(idx[0], idx[1], idx[2]));
-    };
-    for (size_t s = 0; s < m; ++s) {
-        int64_t v = voxel_of(surface_samples[s]);
-        if (v >= 0) bucket[size_t(v)].push_back(uint32_t(s));
+        if (in_grid) by_voxel.push_back({grid.index(idx[0], idx[1], idx[2]), uint32_t(s)});
     }
+    std::sort(by_voxel.begin(), by_voxel.end());
     std::vector<std::vector<uint32_t>> near_samples(n);
     parallel_for(n, 2, [&](size_t i) {
-        for (const Span& sp : rasterize(grid, candidates[i], near + grid.h))
-            for (uint32_t x = sp.x0; x < sp.x1; ++x)
-                for (uint32_t s : bucket[size_t(sp.row) * grid.n[0] + x])
-                    if (inside_inflated(candidates[i], surface_samples[s], near)) near_samples[i].push_back(s);
+        for (const Span& sp : rasterize(grid, candidates[i], near + grid.h)) {
+            const uint64_t first = uint64_t(sp.row) * grid.n[0] + sp.x0, last = uint64_t(sp.row) * grid.n[0] + sp.x1;
+            auto it = std::lower_bound(by_voxel.begin(), by_voxel.end(), std::make_pair(first, uint32_t(0)));
+            for (; it != by_voxel.end() && it->first < last; ++it)
+                if (inside_inflated(candidates[i], surface_samples[it->second], near))
+                    near_samples[i].push_back(it->second);
+        }
         std::sort(near_samples[i].begin(), near_samples[i].end());
     });
     for (size_t i = 0; i < n; ++i)
