@@ -186,7 +186,7 @@ CarouselStats carousel_stats(const Carousel& c) {
     return s;
 }
 
-double expected_wait_bytes(const Carousel& c, WaitFor what, double loss, size_t tune_in_samples) {
+double expected_wait_bytes(const Carousel& c, WaitFor what, double loss, size_t tune_in_samples, bool at_slot_start) {
     const size_t n = c.cycle.size();
     if (n == 0) return 0;
     if (!(loss >= 0) || loss >= 1) return std::numeric_limits<double>::infinity();
@@ -204,14 +204,16 @@ double expected_wait_bytes(const Carousel& c, WaitFor what, double loss, size_t 
     double total = 0, weight_total = 0;
     for (size_t s = 0; s < samples; ++s) {
         size_t j = samples == n ? s : (s * n) / samples;
-        // Tune in during slot j: slot j is missed, reception starts at slot j + 1.
+        // Tune in during slot j: slot j is missed, reception starts at slot j + 1 (or at j itself
+        // when tuning in as it starts).
         double size_j = c.sizes[c.cycle[j].packet];
+        const uint64_t first = at_slot_start ? j : j + 1;
         std::fill(seen.begin(), seen.end(), 0);
         size_t missing = needed_count;
         double log_done = 0;  // sum over needed p of log(1 - loss^seen[p]) over seen packets
         double expected = 0;
         for (uint64_t k = 0; k < max_slots; ++k) {
-            uint64_t slot = j + 1 + k;
+            uint64_t slot = first + k;
             uint32_t p = c.cycle[slot % n].packet;
             double size = c.sizes[p];
             double p_done_before = missing == 0 ? std::exp(log_done) : 0.0;
@@ -227,8 +229,13 @@ double expected_wait_bytes(const Carousel& c, WaitFor what, double loss, size_t 
             }
             if (missing == 0 && 1.0 - std::exp(log_done) < epsilon) break;
         }
-        total += size_j * (expected + size_j / 2.0);
-        weight_total += size_j;
+        if (at_slot_start) {
+            total += expected;
+            weight_total += 1;
+        } else {
+            total += size_j * (expected + size_j / 2.0);
+            weight_total += size_j;
+        }
     }
     return total / weight_total;
 }

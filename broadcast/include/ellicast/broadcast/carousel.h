@@ -108,8 +108,12 @@ enum class WaitFor { Base, Everything };
 // Expected bytes that go by from a uniformly random tune-in moment until every packet of `what`
 // has been received at least once, when each transmitted packet is lost independently with
 // probability `loss` (0 <= loss < 1). Exact for the schedule (not an approximation of it), averaged
-// over `tune_in_samples` tune-in moments spread evenly over the cycle (0: every slot).
-double expected_wait_bytes(const Carousel& carousel, WaitFor what, double loss, size_t tune_in_samples = 0);
+// over `tune_in_samples` tune-in moments spread evenly over the cycle (0: every slot). With
+// `at_slot_start`, the receiver tunes in exactly as a slot starts (it gets that slot; each slot is
+// equally likely), as when a sender starts at a random slot; otherwise at a uniformly random moment
+// in time (the slot being sent is lost to it).
+double expected_wait_bytes(const Carousel& carousel, WaitFor what, double loss, size_t tune_in_samples = 0,
+                           bool at_slot_start = false);
 
 // Slot (counted from `first_slot`, the slot at which the receiver tuned in) after which the packets
 // of `what` have all been received, given `received[k]` = whether slot first_slot + k arrived
