@@ -3,6 +3,7 @@
 #include "support.h"
 
 #include <ellicast/broadcast/carousel.h>
+#include <ellicast/broadcast/channel.h>
 
 #include <algorithm>
 #include <set>
@@ -194,4 +195,37 @@ TEST_CASE("ellicast schedule writes the carousel cycles in the order the sender 
     CHECK(test::run_ellicast({"schedule", (dir / "log.txt").string(), "-o", (dir / "x.ellc").string()},
                              dir / "log3.txt") == 3);
     CHECK(test::read_text(dir / "log3.txt").find("not an ellicast") != std::string::npos);
+}
+
+TEST_CASE("the expected wait under loss matches the mean over simulated loss traces") {
+    auto packets = test::synthetic_stream(100, 2000);
+    CarouselOptions options;
+    options.chunk_packets = 3;
+    Carousel c;
+    std::string error;
+    REQUIRE(build_carousel(packets, options, c, error));
+    const size_t n = c.cycle.size();
+    for (double loss : {0.2, 0.5}) {
+        double sum_base = 0, sum_full = 0;
+        const int trials = 1500;
+        for (int t = 0; t < trials; ++t) {
+            ChannelModel m;
+            m.loss = loss;
+            m.seed = 1000 + t;
+            LossTrace trace;
+            REQUIRE(generate_trace(m, 40 * n, 1200, trace, error));
+            std::vector<bool> delivered(trace.slots());
+            for (uint64_t k = 0; k < trace.slots(); ++k) delivered[k] = !trace.lost(k);
+            const uint64_t start = uint64_t(t) % n;  // every slot start equally often
+            int64_t base = completion_slot(c, WaitFor::Base, start, delivered);
+            int64_t full = completion_slot(c, WaitFor::Everything, start, delivered);
+            REQUIRE(base >= 0);
+            REQUIRE(full >= 0);
+            sum_base += double(c.bytes_before(start + base + 1) - c.bytes_before(start));
+            sum_full += double(c.bytes_before(start + full + 1) - c.bytes_before(start));
+        }
+        CHECK(sum_base / trials == doctest::Approx(expected_wait_bytes(c, WaitFor::Base, loss, 0, true)).epsilon(0.05));
+        CHECK(sum_full / trials ==
+              doctest::Approx(expected_wait_bytes(c, WaitFor::Everything, loss, 0, true)).epsilon(0.03));
+    }
 }
