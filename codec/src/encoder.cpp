@@ -348,61 +348,10 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         for (size_t k = 0; k < lonely.size(); ++k)
             if (is_sheet[k]) sheet_samples.push_back(lonely[k]);
     }
-    if (!sheet_samples.empty() && out.size() < options.max_ellipsoids) {
-        const double rho = 4 * grid.h;
-        std::map<std::array<int, 3>, std::vector<uint32_t>> cells_of;
-        auto cell = [&](const Vec3& p) {
-            return std::array<int, 3>{int(std::floor(p.x() / rho)), int(std::floor(p.y() / rho)),
-                                      int(std::floor(p.z() / rho))};
-        };
-        for (uint32_t s : sheet_samples) cells_of[cell(samples[s])].push_back(s);
-        std::vector<char> assigned(samples.size(), 0);
-        for (uint32_t s : sheet_samples) {
-            if (assigned[s] || out.size() >= options.max_ellipsoids) continue;
-            std::vector<uint32_t> group;
-            auto c0 = cell(samples[s]);
-            for (int dz = -1; dz <= 1; ++dz)
-                for (int dy = -1; dy <= 1; ++dy)
-                    for (int dx = -1; dx <= 1; ++dx) {
-                        auto it = cells_of.find({c0[0] + dx, c0[1] + dy, c0[2] + dz});
-                        if (it == cells_of.end()) continue;
-                        for (uint32_t t : it->second)
-                            if (!assigned[t] && (samples[t] - samples[s]).norm() <= rho) group.push_back(t);
-                    }
-            std::sort(group.begin(), group.end());
-            Vec3 mean = Vec3::Zero();
-            for (uint32_t t : group) mean += samples[t];
-            mean /= double(group.size());
-            Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-            Vec3 navg = Vec3::Zero();
-            for (uint32_t t : group) {
-                Vec3 d = samples[t] - mean;
-                cov += d * d.transpose();
-                navg += sample_normals[t];
-            }
-            Candidate flat;
-            flat.center = mean;
-            if (group.size() >= 3) {
-                Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-                flat.axes.col(0) = eig.eigenvectors().col(2);
-                flat.axes.col(1) = eig.eigenvectors().col(1);
-                flat.axes.col(2) = flat.axes.col(0).cross(flat.axes.col(1)).normalized();
-            } else {
-                Vec3 n = navg.norm() > 0 ? Vec3(navg.normalized()) : Vec3::UnitZ();
-                Vec3 t = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-                flat.axes.col(0) = n.cross(t).normalized();
-                flat.axes.col(1) = n.cross(flat.axes.col(0)).normalized();
-                flat.axes.col(2) = n;
-            }
-            Vec3 extent = Vec3::Zero();
-            for (uint32_t t : group) extent = extent.cwiseMax((flat.axes.transpose() * (samples[t] - mean)).cwiseAbs());
-            flat.radii = Vec3(std::max(extent.x() * 1.15 + 0.5 * grid.h, grid.h),
-                              std::max(extent.y() * 1.15 + 0.5 * grid.h, grid.h),
-                              std::max(extent.z() + 0.5 * grid.h, 0.75 * grid.h));
-            for (uint32_t t : group) assigned[t] = 1;
+    if (!sheet_samples.empty() && out.size() < options.max_ellipsoids)
+        for (const Candidate& flat :
+             sheet_ellipsoids(samples, sample_normals, sheet_samples, grid.h, options.max_ellipsoids - out.size()))
             if (place(flat, false)) ++report.flat_ellipsoids;
-        }
-    }
     report.surface_covered = samples.empty() ? 0 : double(covered_samples) / double(samples.size());
     if (interior == 0 && report.flat_ellipsoids == 0 && out.empty())
         warnings.push_back(mesh.name + ": no interior volume and no sheet found; no ellipsoids");

@@ -151,6 +151,15 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const std::vector<Candi
                                   uint32_t max_volume, uint32_t max_count, const std::function<void(double)>& progress);
 
 // ---------------------------------------------------------------------------------------------
+// sheet_ellipsoids.cpp
+
+// Flat ellipsoids straddling sheet-like surface: the samples listed in `sheet` (indices into
+// `samples`, with unit `normals`), clustered within 4h, one disc about h thick per cluster, at most
+// `max_count`, in the order of `sheet`.
+std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const std::vector<Vec3>& normals,
+                                        const std::vector<uint32_t>& sheet, double h, size_t max_count);
+
+// ---------------------------------------------------------------------------------------------
 // point_order.cpp
 
 // An order of `positions` (distinct points) in which every prefix, and every run of consecutive

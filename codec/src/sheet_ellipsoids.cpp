@@ -1,0 +1,70 @@
+// Flat ellipsoids for sheets: surface with no inside on either side (a leaf, a flag, a single-sided
+// panel) has no volume to fill, yet the decoder needs a base there. Samples of such surface are
+// clustered greedily (within four voxels of a first unassigned sample, in sample order) and each
+// cluster becomes a disc-like ellipsoid fitted by PCA, about one voxel thick, straddling the sheet.
+#include "encoder_internal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace ellicast::detail {
+
+std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const std::vector<Vec3>& normals,
+                                        const std::vector<uint32_t>& sheet, double h, size_t max_count) {
+    std::vector<Candidate> out;
+    const double rho = 4 * h;
+    auto cell = [&](const Vec3& p) {
+        return std::array<int, 3>{int(std::floor(p.x() / rho)), int(std::floor(p.y() / rho)), int(std::floor(p.z() / rho))};
+    };
+    std::map<std::array<int, 3>, std::vector<uint32_t>> cells;
+    for (uint32_t s : sheet) cells[cell(samples[s])].push_back(s);
+    std::vector<char> assigned(samples.size(), 0);
+    for (uint32_t s : sheet) {
+        if (assigned[s] || out.size() >= max_count) continue;
+        std::vector<uint32_t> group;
+        auto c0 = cell(samples[s]);
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    auto it = cells.find({c0[0] + dx, c0[1] + dy, c0[2] + dz});
+                    if (it == cells.end()) continue;
+                    for (uint32_t t : it->second)
+                        if (!assigned[t] && (samples[t] - samples[s]).norm() <= rho) group.push_back(t);
+                }
+        std::sort(group.begin(), group.end());
+        Vec3 mean = Vec3::Zero();
+        for (uint32_t t : group) mean += samples[t];
+        mean /= double(group.size());
+        Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+        Vec3 navg = Vec3::Zero();
+        for (uint32_t t : group) {
+            Vec3 d = samples[t] - mean;
+            cov += d * d.transpose();
+            navg += normals[t];
+        }
+        Candidate flat;
+        flat.center = mean;
+        if (group.size() >= 3) {
+            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+            flat.axes.col(0) = eig.eigenvectors().col(2);
+            flat.axes.col(1) = eig.eigenvectors().col(1);
+            flat.axes.col(2) = flat.axes.col(0).cross(flat.axes.col(1)).normalized();
+        } else {  // too few samples for a plane: a disc across the normal
+            Vec3 n = navg.norm() > 0 ? Vec3(navg.normalized()) : Vec3::UnitZ();
+            Vec3 t = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+            flat.axes.col(0) = n.cross(t).normalized();
+            flat.axes.col(1) = n.cross(flat.axes.col(0)).normalized();
+            flat.axes.col(2) = n;
+        }
+        Vec3 extent = Vec3::Zero();
+        for (uint32_t t : group) extent = extent.cwiseMax((flat.axes.transpose() * (samples[t] - mean)).cwiseAbs());
+        flat.radii = Vec3(std::max(extent.x() * 1.15 + 0.5 * h, h), std::max(extent.y() * 1.15 + 0.5 * h, h),
+                          std::max(extent.z() + 0.5 * h, 0.75 * h));
+        for (uint32_t t : group) assigned[t] = 1;
+        out.push_back(flat);
+    }
+    return out;
+}
+
+}  // namespace ellicast::detail
