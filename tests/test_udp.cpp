@@ -196,14 +196,24 @@ TEST_CASE("one sender, two receivers on a loopback multicast group, one joining 
     int64_t predicted = completion_slot(carousel, WaitFor::Base, tune_in, delivered);
     REQUIRE(predicted >= 0);
     const int64_t observed = late_result.base_sequence - static_cast<int64_t>(tune_in);
-    CHECK(observed == predicted);
+    // Loopback itself may drop a datagram when the machine is very busy (a full socket buffer):
+    // then the base can only come later than predicted, never earlier.
+    bool network_dropped = false;
+    for (int64_t k = 0; k <= observed && k < int64_t(delivered.size()); ++k)
+        if (delivered[k] && (size_t(k) >= late_result.seen.size() || !late_result.seen[k])) network_dropped = true;
+    if (network_dropped) {
+        MESSAGE("loopback dropped datagrams under load: only checking that the base did not come early");
+        CHECK(observed >= predicted);
+    } else {
+        CHECK(observed == predicted);
+    }
     // Within one chunk interval plus the base's own transmission, unless the channel lost a base
     // packet in that window (then the next repetition of that packet is needed).
     const size_t bound = carousel.base.size() + carousel.chunk_packets;
     bool base_loss_in_window = false;
     for (uint64_t k = 0; k < bound && k < delivered.size(); ++k)
         if (!delivered[k] && carousel.cycle[(tune_in + k) % carousel.cycle.size()].base) base_loss_in_window = true;
-    if (!base_loss_in_window) CHECK(size_t(observed) + 1 <= bound);
+    if (!base_loss_in_window && !network_dropped) CHECK(size_t(observed) + 1 <= bound);
     MESSAGE("late receiver tuned in at slot " << tune_in << ", base complete after " << observed + 1
                                               << " slots (bound without base loss: " << bound << ")");
 }

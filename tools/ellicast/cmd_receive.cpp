@@ -9,6 +9,7 @@
 #include "progress.h"
 
 #include "ellicast/codec/decoder.h"
+#include "ellicast/converters/asset.h"
 #include "ellicast/converters/mesh_output.h"
 
 #include <ellicast/broadcast/reception.h>
@@ -102,6 +103,25 @@ bool write_received(const std::string& path, const std::vector<std::vector<uint8
     return true;
 }
 
+// Writes the objects (index = object id, empty = not arrived): glTF with the stream's scene,
+// materials and textures (format 1.1) when the output is glTF, plain meshes otherwise.
+bool write_model(const std::string& path, const ReceivedStream& stream, std::vector<Mesh> objects, bool gltf,
+                 std::vector<std::string>& warnings, std::string& error) {
+    if (gltf) {
+        Asset asset = received_asset(stream, std::move(objects));
+        warnings.insert(warnings.end(), asset.warnings.begin(), asset.warnings.end());
+        return write_asset(path, asset, AssetWriteOptions{}, warnings, error);
+    }
+    std::vector<Mesh> meshes;
+    for (auto& m : objects)
+        if (!m.positions.empty()) meshes.push_back(std::move(m));
+    if (meshes.empty()) {
+        error = "nothing to write to " + path + " yet";
+        return false;
+    }
+    return write_meshes(path, meshes, error);
+}
+
 int run_receive(const ReceiveArgs& a) {
     double deadline_seconds = -1;
     if (a.until != "complete") {
@@ -120,6 +140,7 @@ int run_receive(const ReceiveArgs& a) {
     MeshFileType mesh_type;
     if (!stream_output && !mesh_file_type_from_path(a.output, mesh_type))
         return fail(kExitUsage, "-o: \"" + a.output + "\": expected a model (.glb, .gltf, .ply, .obj) or a stream file (.ellc)");
+    const bool gltf_output = !stream_output && (mesh_type == MeshFileType::Glb || mesh_type == MeshFileType::Gltf);
     broadcast::Endpoint from;
     if (!broadcast::parse_endpoint(a.from, from, error)) return fail(kExitUsage, "--from: " + error);
     broadcast::ReceiverOptions receiver_options;
@@ -165,7 +186,9 @@ int run_receive(const ReceiveArgs& a) {
         s.done = true;
         std::string path = snapshot_path(a.output, s.label);
         std::string e;
-        bool ok = stream_output ? write_received(path, kept, e) : write_meshes(path, live.meshes(), e);
+        std::vector<std::string> warnings;
+        bool ok = stream_output ? write_received(path, kept, e)
+                                : write_model(path, stream, live.objects(), gltf_output, warnings, e);
         if (ok)
             std::fprintf(stderr, "%swrote snapshot %s (%s points %s)\n", tty && !a.quiet ? "\n" : "", path.c_str(),
                          with_commas(stream_output ? reception.points_received() : live.inserted()).c_str(),
@@ -206,6 +229,9 @@ int run_receive(const ReceiveArgs& a) {
                     std::fprintf(stderr, "%sbase mesh ready after %s (base complete after %s)\n", tty ? "\n" : "",
                                  seconds_text(shown_at).c_str(), seconds_text(base_at).c_str());
             }
+            // The base snapshot shows the base alone, before any point is inserted.
+            for (auto& s : snapshots)
+                if (!s.done && s.kind == Snapshot::Base) take_snapshot(s);
         }
         if (reception.complete()) {
             complete_at = seconds_since(std::chrono::steady_clock::now());
@@ -244,33 +270,48 @@ int run_receive(const ReceiveArgs& a) {
         std::fprintf(stderr, "wrote %s: %s packets\n", a.output.c_str(), with_commas(kept.size()).c_str());
         return kExitOk;
     }
-    // The final model: everything received, decoded in stream order (deterministic).
+    // The final model: everything received, decoded in stream order (deterministic: the same as
+    // `ellicast decode` of the same packets), object by object.
     auto t0 = std::chrono::steady_clock::now();
     ProgressBar bar(!a.quiet);
     DecodeOptions options;
     options.grid_resolution = a.grid;
     options.progress = [&](const std::string& stage, double fraction) { bar.update(stage, fraction); };
-    std::vector<Mesh> meshes;
-    StreamDecodeReport report;
-    bool ok = decode_stream(stream, options, meshes, report, error);
-    bar.finish();
-    if (!ok) return fail(kExitInvalid, "decoding what was received: " + error);
-    if (meshes.empty()) return fail(kExitInvalid, "nothing can be built: no object received any ellipsoid or point");
-    for (size_t i = 0; i < report.objects.size(); ++i)
-        for (const auto& note : report.objects[i].notes)
+    if (!stream.info()) return fail(kExitInvalid, "no STREAM_INFO packet arrived: nothing can be decoded");
+    std::vector<Mesh> objects(stream.objects().size());
+    size_t vertices = 0, faces = 0, built = 0;
+    for (size_t i = 0; i < objects.size(); ++i) {
+        const auto& object = stream.objects()[i];
+        if (!object.info) {
+            std::fprintf(stderr, "ellicast: warning: object %zu: its stream info entry never arrived\n", i);
+            continue;
+        }
+        ObjectDecodeReport report;
+        if (!decode_object(*object.info, stream.ellipsoids(i), stream.points(i), stream.info()->grid_hint, options, i,
+                           objects[i], report, error))
+            return fail(kExitInvalid, "decoding object " + std::to_string(i) + ": " + error);
+        for (const auto& note : report.notes)
             std::fprintf(stderr, "ellicast: warning: object %zu: %s\n", i, note.c_str());
-    if (!write_meshes(a.output, meshes, error)) return fail(kExitFailure, error);
-    size_t vertices = 0, faces = 0;
-    for (const auto& m : meshes) vertices += m.positions.size(), faces += m.triangles.size();
+        objects[i].name = "object" + std::to_string(i);
+        vertices += objects[i].positions.size();
+        faces += objects[i].triangles.size();
+        if (!objects[i].positions.empty()) ++built;
+    }
+    bar.finish();
+    if (built == 0) return fail(kExitInvalid, "nothing can be built: no object received any ellipsoid or point");
+    std::vector<std::string> warnings;
+    for (auto& s : snapshots) {
+        if (s.done || base_at < 0) continue;
+        std::string path = snapshot_path(a.output, s.label), e;
+        if (write_model(path, stream, objects, gltf_output, warnings, e))
+            std::fprintf(stderr, "wrote snapshot %s (final model)\n", path.c_str());
+    }
+    if (!write_model(a.output, stream, std::move(objects), gltf_output, warnings, error))
+        return fail(kExitFailure, error);
+    for (const auto& w : warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
     std::fprintf(stderr, "decoded in %s; wrote %s: %zu object(s), %s vertices, %s triangles\n",
                  seconds_text(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()).c_str(),
-                 a.output.c_str(), meshes.size(), with_commas(vertices).c_str(), with_commas(faces).c_str());
-    for (auto& s : snapshots)
-        if (!s.done && base_at >= 0) {
-            std::string e;
-            std::string path = snapshot_path(a.output, s.label);
-            if (write_meshes(path, meshes, e)) std::fprintf(stderr, "wrote snapshot %s (final model)\n", path.c_str());
-        }
+                 a.output.c_str(), built, with_commas(vertices).c_str(), with_commas(faces).c_str());
     return kExitOk;
 }
 

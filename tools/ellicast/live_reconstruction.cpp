@@ -78,12 +78,12 @@ bool LiveReconstruction::caught_up(const ReceivedStream& stream) const {
     return true;
 }
 
-std::vector<Mesh> LiveReconstruction::meshes() const {
-    std::vector<Mesh> out;
+std::vector<Mesh> LiveReconstruction::objects() const {
+    std::vector<Mesh> out(objects_.size());
     for (size_t i = 0; i < objects_.size(); ++i) {
         const Object& o = objects_[i];
         if (!o.present) continue;
-        Mesh mesh;
+        Mesh& mesh = out[i];
         if (o.surface) {
             mesh = extract_mesh(o.reconstruction, o.info, o.points);
         } else {
@@ -96,9 +96,7 @@ std::vector<Mesh> LiveReconstruction::meshes() const {
                 if (o.info.has(kAttrColor)) mesh.colors.push_back(p.color);
             }
         }
-        if (mesh.positions.empty()) continue;
         mesh.name = "object" + std::to_string(i);
-        out.push_back(std::move(mesh));
     }
     return out;
 }

@@ -29,8 +29,9 @@ public:
     bool caught_up(const ReceivedStream& stream) const;
 
     size_t inserted() const { return inserted_total_; }
-    // The current meshes (one per object that has geometry), as they would be shown.
-    std::vector<Mesh> meshes() const;
+    // The current mesh of every object of the stream, as it would be shown (index = object id;
+    // empty for an object that has nothing yet).
+    std::vector<Mesh> objects() const;
 
 private:
     struct Object {
