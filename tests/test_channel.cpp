@@ -251,3 +251,48 @@ TEST_CASE("ellicast simulate gives the same losses for the same seed and for the
                               "900000"},
                              dir / "y.log") == 2);
 }
+
+TEST_CASE("mutated and random datagrams never crash a receiver, are all counted, and the stream still completes") {
+    auto packets = test::synthetic_stream(60, 1500, 0x9999);
+    std::mt19937_64 rng(17);
+    Reception reception;
+    uint64_t sent = 0;
+    // First the stream info, so the receiver locks on this stream; then hostile traffic.
+    REQUIRE(reception.take(packets[0]) == Error::Ok);
+    ++sent;
+    for (int i = 0; i < 20000; ++i) {
+        std::vector<uint8_t> bytes;
+        switch (i % 4) {
+            case 0: {  // a valid packet with a few flipped bits
+                bytes = packets[rng() % packets.size()];
+                for (int k = 0, n = 1 + int(rng() % 4); k < n; ++k) bytes[rng() % bytes.size()] ^= uint8_t(1u << (rng() % 8));
+                break;
+            }
+            case 1: {  // a valid packet cut short or extended
+                bytes = packets[rng() % packets.size()];
+                bytes.resize(rng() % (bytes.size() + 40));
+                break;
+            }
+            case 2: {  // random bytes behind a valid magic
+                bytes.resize(rng() % 1400);
+                for (auto& b : bytes) b = uint8_t(rng());
+                if (bytes.size() >= 4) std::copy(kPacketMagic.begin(), kPacketMagic.end(), bytes.begin());
+                break;
+            }
+            default: {  // random bytes
+                bytes.resize(rng() % 2000);
+                for (auto& b : bytes) b = uint8_t(rng());
+                break;
+            }
+        }
+        reception.take(bytes);
+        ++sent;
+    }
+    for (const auto& p : packets) reception.take(p), ++sent;
+    const auto& c = reception.counters();
+    CHECK(c.datagrams == sent);
+    CHECK(c.accepted + c.duplicates + c.rejected() == sent);
+    CHECK(c.rejected() > 15000);
+    CHECK(reception.complete());
+    CHECK(reception.points_received() == 1500);
+}

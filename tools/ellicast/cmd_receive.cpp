@@ -38,6 +38,8 @@ struct ReceiveArgs {
     std::string interface;
     int64_t stream_id = -1;
     int grid = 0;
+    uint64_t max_elements = ReceivedStream::Limits{}.max_elements;
+    size_t max_pending_mb = ReceivedStream::Limits{}.max_pending_bytes >> 20;
     bool quiet = false;
 };
 
@@ -149,6 +151,8 @@ int run_receive(const ReceiveArgs& a) {
     if (!receiver.open(from, receiver_options, error)) return fail(kExitFailure, error);
 
     broadcast::Reception::Options reception_options;
+    reception_options.limits.max_elements = a.max_elements;
+    reception_options.limits.max_pending_bytes = a.max_pending_mb << 20;
     if (a.stream_id >= 0) reception_options.stream_id = static_cast<uint32_t>(a.stream_id);
     broadcast::Reception reception(reception_options);
     const ReceivedStream& stream = reception.stream();
@@ -332,6 +336,12 @@ const RegisterCommand registered{{63, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--interface", args->interface, "network interface to join a multicast group on, e.g. lo");
     cmd->add_option("--stream-id", args->stream_id, "keep only this stream id (default: the first stream heard)")
         ->check(CLI::Range(int64_t(0), int64_t(0xFFFFFFFF)));
+    cmd->add_option("--max-elements", args->max_elements,
+                    "refuse a stream that declares more ellipsoids + points than this (memory cap)")
+        ->check(CLI::Range(uint64_t(1), uint64_t(1'000'000'000)));
+    cmd->add_option("--max-pending-mb", args->max_pending_mb,
+                    "megabytes of packets held while waiting for the stream info (memory cap, default 64)")
+        ->check(CLI::Range(size_t(1), size_t(4096)));
     cmd->add_flag("-q,--quiet", args->quiet, "no progress on stderr");
     cmd->callback([args, &exit_code] { exit_code = run_receive(*args); });
 }}};
