@@ -313,10 +313,6 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     // Sheets: surface samples far from every ellipsoid, with no inside on either side (or anywhere
     // on an open surface), get flat ellipsoids that straddle the surface, while the budget lasts.
     // A closed surface never gets them: its ellipsoids must stay inside.
-    std::vector<Candidate> placed;
-    for (const auto& q : out) placed.push_back(to_candidate(dequantize_ellipsoid(q, frame)));
-    VoxelBits near_base(grid, false);
-    for (const auto& c : placed) near_base.fill(rasterize(grid, c, near + grid.h));
     auto voxel_row = [&](const Vec3& p, size_t& x, size_t& row) {
         int idx[3];
         for (int k = 0; k < 3; ++k) {
@@ -327,14 +323,20 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         row = size_t(idx[1]) + size_t(idx[2]) * grid.n[1];
         return true;
     };
+    auto near_count = [&](std::vector<uint32_t>* far) {
+        VoxelBits near_base(grid, false);
+        for (const auto& q : out) near_base.fill(rasterize(grid, to_candidate(dequantize_ellipsoid(q, frame)), near + grid.h));
+        size_t count = 0;
+        for (size_t s = 0; s < samples.size(); ++s) {
+            size_t x, row;
+            bool is_near = voxel_row(samples[s], x, row) && near_base.get(x, row);
+            count += is_near;
+            if (!is_near && far) far->push_back(uint32_t(s));
+        }
+        return count;
+    };
     std::vector<uint32_t> lonely;
-    size_t covered_samples = 0;
-    for (size_t s = 0; s < samples.size(); ++s) {
-        size_t x, row;
-        bool is_near = voxel_row(samples[s], x, row) && near_base.get(x, row);
-        covered_samples += is_near;
-        if (!is_near) lonely.push_back(uint32_t(s));
-    }
+    near_count(&lonely);
     std::vector<uint32_t> sheet_samples;
     {
         std::vector<char> is_sheet(lonely.size(), 0);
@@ -352,7 +354,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         for (const Candidate& flat :
              sheet_ellipsoids(samples, sample_normals, sheet_samples, grid.h, options.max_ellipsoids - out.size()))
             if (place(flat, false)) ++report.flat_ellipsoids;
-    report.surface_covered = samples.empty() ? 0 : double(covered_samples) / double(samples.size());
+    report.surface_covered = samples.empty() ? 0 : double(near_count(nullptr)) / double(samples.size());
     if (interior == 0 && report.flat_ellipsoids == 0 && out.empty())
         warnings.push_back(mesh.name + ": no interior volume and no sheet found; no ellipsoids");
 
@@ -366,7 +368,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     report.coverage = interior ? double(in_cov) / double(interior) : 0;
     report.outside = interior ? double(out_cov) / double(interior) : 0;
     report.ellipsoids = uint32_t(out.size());
-    if (interior > 0 && report.coverage + 1e-9 < options.coverage) {
+    if (report.closed && interior > 0 && report.coverage + 1e-9 < options.coverage) {  // the target is for closed models
         char text[256];
         std::snprintf(text, sizeof text, "%s: the ellipsoids cover %.1f%% of the interior, below the target %.1f%% (%zu "
                       "ellipsoids; %s)", mesh.name.c_str(), 100 * report.coverage, 100 * options.coverage, out.size(),
