@@ -42,6 +42,30 @@ Mesh bumpy_torus(int u, int v) {
     return m;
 }
 
+// A small closed sphere of `n` rings around `c`.
+Mesh small_sphere(int n, std::array<float, 3> c, float r) {
+    Mesh m;
+    m.name = "sphere";
+    m.positions.push_back({c[0], c[1], c[2] + r});
+    for (int i = 1; i < n; ++i)
+        for (int j = 0; j < 2 * n; ++j) {
+            double th = M_PI * i / n, ph = M_PI * j / n;
+            m.positions.push_back({float(c[0] + r * std::sin(th) * std::cos(ph)),
+                                   float(c[1] + r * std::sin(th) * std::sin(ph)), float(c[2] + r * std::cos(th))});
+        }
+    m.positions.push_back({c[0], c[1], c[2] - r});
+    auto ring = [&](int i, int j) { return uint32_t(1 + (i - 1) * 2 * n + (j % (2 * n))); };
+    for (int j = 0; j < 2 * n; ++j) m.triangles.push_back({0, ring(1, j), ring(1, j + 1)});
+    for (int i = 1; i < n - 1; ++i)
+        for (int j = 0; j < 2 * n; ++j) {
+            m.triangles.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
+            m.triangles.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
+        }
+    uint32_t south = uint32_t(m.positions.size() - 1);
+    for (int j = 0; j < 2 * n; ++j) m.triangles.push_back({ring(n - 1, j + 1), ring(n - 1, j), south});
+    return m;
+}
+
 struct Run {
     double seconds = 0;
     std::map<std::string, double> stages;
@@ -104,6 +128,12 @@ int main(int argc, char** argv) {
     if (only.empty() || only == "torus") {
         Mesh torus = bumpy_torus(400, 125);  // 50,000 vertices, closed
         report("bumpy torus 50k (400 ell.)", encode({torus}, options));
+    }
+    if (only.empty() || only == "spheres") {
+        std::vector<Mesh> scene;  // a scene of many small objects: the per-object work is shared out
+        for (int i = 0; i < 64; ++i) scene.push_back(small_sphere(8, {float(i % 8), float(i / 8), 0}, 0.4f));
+        Run run = encode(scene, options);
+        std::printf("%-28s %7.2f s  objects %zu\n", "64 small spheres", run.seconds, scene.size());
     }
     std::vector<std::string> files;  // every model under the samples, in a fixed order
     if (std::filesystem::is_directory(samples))

@@ -117,7 +117,7 @@ bool is_closed(const Mesh& mesh, const std::vector<uint32_t>& weld) {
 // Ellipsoids of one triangle mesh
 
 std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame& frame, const EncodeOptions& options,
-                                                  uint32_t object_seed, ObjectReport& report,
+                                                  uint32_t object_seed, double seed_share, ObjectReport& report,
                                                   std::vector<std::string>& warnings, const Progress& progress) {
     std::vector<QuantizedEllipsoid> out;
     TriangleTree tree(mesh.positions, mesh.triangles);
@@ -161,7 +161,12 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         total_area += 0.5 * (to_vec(t.v[1]) - to_vec(t.v[0])).cross(to_vec(t.v[2]) - to_vec(t.v[0])).norm();
         cumulative[i] = total_area;
     }
-    uint32_t seeds = options.candidates ? options.candidates : std::min<uint32_t>(4 * options.max_ellipsoids + 200, 4000);
+    // Automatic: four seeds per ellipsoid wanted (the greedy choice needs a choice), fewer per object
+    // when a stream has many objects (seed_share < 1), never under 200.
+    uint32_t seeds = options.candidates;
+    if (seeds == 0)
+        seeds = std::max<uint32_t>(
+            200, uint32_t(seed_share * std::min<uint32_t>(4 * options.max_ellipsoids + 200, 4000)));
     Random rng(object_seed);
     struct Seed {
         Vec3 p, n;
@@ -461,6 +466,10 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
     info.seed = options.seed;
     Progress progress{options, 0, meshes.size()};
     uint16_t grid_hint = 0;
+    // Many objects share the work: past 8 surfaces, each gets a smaller share of the seeds.
+    size_t surfaces = 0;
+    for (const Mesh& mesh : meshes) surfaces += !mesh.is_point_set && !mesh.triangles.empty();
+    const double seed_share = surfaces > 8 ? 8.0 / double(surfaces) : 1.0;
     for (size_t m = 0; m < meshes.size(); ++m) {
         const Mesh& mesh = meshes[m];
         progress.object = m;
@@ -490,7 +499,8 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         ObjectContent content;
         const uint32_t object_seed = options.seed * 2654435761u + uint32_t(m) * 40503u + 1u;
         if (!mesh.is_point_set && !mesh.triangles.empty()) {
-            content.ellipsoids = encode_ellipsoids(mesh, object.frame, options, object_seed, report, result.warnings,
+            content.ellipsoids = encode_ellipsoids(mesh, object.frame, options, object_seed, seed_share, report,
+                                                   result.warnings,
                                                    progress);
             grid_hint = std::max<uint16_t>(grid_hint, uint16_t(std::max({report.grid[0], report.grid[1], report.grid[2]})));
         }
