@@ -2,7 +2,8 @@
 // decode by inverting the k x k submatrix of the rows that arrived.
 #include "ellicast/compare/erasure_code.h"
 
-#include "ellicast/compare/draco_codec.h"
+#include "ellicast/compare/compare_error.h"
+#include "ellicast/converters/draco_mesh.h"
 
 #include <isa-l/erasure_code.h>
 

@@ -6,7 +6,7 @@
 
 #include "gltf_write.h"
 
-#include "ellicast/compare/draco_codec.h"
+#include "ellicast/converters/draco_mesh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -365,20 +365,20 @@ private:
             for (size_t i = 0; i < mesh.colors.size(); ++i)
                 for (int k = 0; k < channels; ++k) mesh.colors[i][k] = c[i * channels + k];
         }
-        compare::DracoSettings settings;
+        DracoSettings settings;
         settings.position_bits = options_.draco_position_bits;
         settings.normal_bits = options_.draco_normal_bits;
         settings.texcoord_bits = options_.draco_texcoord_bits;
         settings.color_bits = options_.draco_color_bits;
         settings.encoding_speed = settings.decoding_speed = options_.draco_speed;
-        compare::DracoAttributeIds ids;
+        DracoAttributeIds ids;
         std::vector<uint8_t> encoded;
         Mesh decoded;
         std::string problem;
         try {
-            encoded = compare::draco_encode(mesh, settings, &ids);
-            if (!compare::draco_decode(encoded, decoded, problem)) problem = "it cannot decode its own output: " + problem;
-        } catch (const compare::CompareError& e) {
+            encoded = draco_encode(mesh, settings, &ids);
+            if (!draco_decode(encoded, decoded, problem)) problem = "it cannot decode its own output: " + problem;
+        } catch (const DracoError& e) {
             problem = e.what();
         }
         if (problem.empty() && (decoded.has_normals() != mesh.has_normals() ||

@@ -11,7 +11,8 @@
 #pragma once
 
 #include "ellicast/codec/mesh.h"
-#include "ellicast/compare/draco_codec.h"
+#include "ellicast/compare/compare_error.h"
+#include "ellicast/converters/draco_mesh.h"
 
 #include <cstdint>
 #include <memory>

@@ -1,7 +1,7 @@
 // Draco compression of an ellicast::Mesh at the settings glTF-Transform uses by default
 // (`gltf-transform draco`): Edgebreaker, 14-bit positions, 10-bit normals, 12-bit texture
-// coordinates, 8-bit colours, encoding and decoding speed 5. The baselines of `ellicast compare`
-// are built on it.
+// coordinates, 8-bit colours, encoding and decoding speed 5. Used for KHR_draco_mesh_compression
+// output and by the Draco baselines of `ellicast compare`.
 #pragma once
 
 #include "ellicast/codec/mesh.h"
@@ -14,11 +14,10 @@
 #include <string>
 #include <vector>
 
-namespace ellicast::compare {
+namespace ellicast {
 
-// Something the comparison cannot do (Draco refused a mesh, an absurd option, ...): the message
-// says what and why.
-class CompareError : public std::runtime_error {
+// Draco refused a mesh or the settings: the message says what and why.
+class DracoError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
 };
@@ -43,7 +42,7 @@ struct DracoAttributeIds {
 };
 
 // The Draco bitstream of `mesh` (Edgebreaker) with every attribute it has (normals, TEXCOORD_0,
-// COLOR_0); `ids`, when given, receives their unique ids. Throws CompareError when the mesh has no
+// COLOR_0); `ids`, when given, receives their unique ids. Throws DracoError when the mesh has no
 // triangles or Draco refuses it.
 std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& settings, DracoAttributeIds* ids = nullptr);
 
@@ -55,4 +54,4 @@ bool draco_decode(std::span<const uint8_t> bytes, Mesh& out, std::string& error)
 // would use: the bounding box's minimum corner and its largest extent.
 std::pair<std::array<float, 3>, float> position_cube(const Mesh& mesh);
 
-}  // namespace ellicast::compare
+}  // namespace ellicast

@@ -1,5 +1,5 @@
 // ellicast::Mesh <-> Draco, at glTF-Transform's default Draco settings.
-#include "ellicast/compare/draco_codec.h"
+#include "ellicast/converters/draco_mesh.h"
 
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
@@ -10,7 +10,7 @@
 #include <limits>
 #include <memory>
 
-namespace ellicast::compare {
+namespace ellicast {
 
 namespace {
 
@@ -61,7 +61,7 @@ std::pair<std::array<float, 3>, float> position_cube(const Mesh& mesh) {
 
 std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& settings, DracoAttributeIds* ids) {
     if (mesh.triangles.empty() || mesh.positions.empty())
-        throw CompareError("Draco: mesh '" + mesh.name + "' has no triangles to compress");
+        throw DracoError("Draco: mesh '" + mesh.name + "' has no triangles to compress");
     draco::Mesh dm;
     dm.set_num_points(static_cast<uint32_t>(mesh.positions.size()));
     DracoAttributeIds found;
@@ -82,7 +82,7 @@ std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& setting
         const auto& t = mesh.triangles[f];
         for (uint32_t v : t)
             if (v >= mesh.positions.size())
-                throw CompareError("Draco: triangle " + std::to_string(f) + " of '" + mesh.name +
+                throw DracoError("Draco: triangle " + std::to_string(f) + " of '" + mesh.name +
                                    "' refers to vertex " + std::to_string(v) + " beyond the vertex count");
         dm.SetFace(draco::FaceIndex(uint32_t(f)),
                    {draco::PointIndex(t[0]), draco::PointIndex(t[1]), draco::PointIndex(t[2])});
@@ -102,7 +102,7 @@ std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& setting
     encoder.SetAttributeQuantization(draco::GeometryAttribute::COLOR, settings.color_bits);
     draco::EncoderBuffer buffer;
     draco::Status status = encoder.EncodeMeshToBuffer(dm, &buffer);
-    if (!status.ok()) throw CompareError("Draco could not compress '" + mesh.name + "': " + status.error_msg_string());
+    if (!status.ok()) throw DracoError("Draco could not compress '" + mesh.name + "': " + status.error_msg_string());
     if (ids) *ids = found;
     return std::vector<uint8_t>(buffer.data(), buffer.data() + buffer.size());
 }
@@ -143,4 +143,4 @@ bool draco_decode(std::span<const uint8_t> bytes, Mesh& out, std::string& error)
     return true;
 }
 
-}  // namespace ellicast::compare
+}  // namespace ellicast
