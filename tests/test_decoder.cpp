@@ -3,10 +3,17 @@
 #include "support.h"
 
 #include "ellicast/codec/decoder.h"
+#include "ellicast/codec/encoder.h"
 #include "ellicast/codec/surface_distance.h"
+#include "ellicast/converters/mesh_input.h"
 #include "ellicast/format.h"
 
+#include <sys/wait.h>
+
 #include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <cstring>
 #include <set>
@@ -323,4 +330,152 @@ TEST_CASE("a stream with lost, duplicated, reordered and damaged packets decodes
     CHECK(ra.objects[0].points < points.size());
     auto [rms, mx] = sphere_error(ma[0], 1.0);
     CHECK(rms < 0.01);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The command line and real models end to end
+
+namespace {
+
+struct Run {
+    int status = -1;
+    std::string output;
+};
+
+Run run(const std::string& args) {
+    Run r;
+    std::string cmd = ellicast_exe().string() + " " + args + " 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    char buffer[4096];
+    while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) r.output.append(buffer, n);
+    int status = pclose(pipe);
+    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+void write_stream(const std::filesystem::path& path, const std::vector<std::vector<uint8_t>>& packets) {
+    auto bytes = write_container(packets);
+    std::string message;
+    REQUIRE(write_file(path.string(), bytes, message) == Error::Ok);
+}
+
+std::vector<std::vector<uint8_t>> all_packets(const StreamPackets& p) {
+    std::vector<std::vector<uint8_t>> out = p.stream_info;
+    out.insert(out.end(), p.ellipsoids.begin(), p.ellipsoids.end());
+    out.insert(out.end(), p.points.begin(), p.points.end());
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("ellicast decode writes the model, snapshots and a summary of what it used") {
+    auto dir = scratch_dir("decode_cli");
+    StreamInfo info;
+    auto object = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, 0, kAttrNormal);
+    auto packets = make_stream(object, {sphere_ellipsoid({0, 0, 0}, 1)}, fibonacci_sphere(1200, 1.0), info);
+    auto list = all_packets(packets);
+    list.push_back(list.back());  // a duplicate
+    write_stream(dir / "sphere.ellc", list);
+    Run r = run("decode '" + (dir / "sphere.ellc").string() + "' -o '" + (dir / "sphere.glb").string() +
+                "' --snapshots 500 --grid 40 -q");
+    CHECK_MESSAGE(r.status == 0, r.output);
+    CHECK(std::filesystem::file_size(dir / "sphere.glb") > 1000);
+    CHECK(r.output.find("1 duplicate") != std::string::npos);
+    CHECK(r.output.find("1/1 ellipsoids, 1200/1200 points -> 1200 vertices") != std::string::npos);
+    CHECK(r.output.find("marching cubes") != std::string::npos);
+    for (const char* snap : {"sphere.snap-o0-p0000000.glb", "sphere.snap-o0-p0000500.glb", "sphere.snap-o0-p0001000.glb",
+                             "sphere.snap-o0-p0001200.glb"})
+        CHECK_MESSAGE(std::filesystem::exists(dir / snap), snap);
+    for (const char* ext : {".ply", ".obj", ".gltf"}) {
+        Run o = run("decode '" + (dir / "sphere.ellc").string() + "' -o '" + (dir / (std::string("sphere") + ext)).string() + "' -q");
+        CHECK_MESSAGE(o.status == 0, o.output);
+    }
+    CHECK(std::filesystem::exists(dir / "sphere.bin"));
+}
+
+TEST_CASE("ellicast decode refuses a stream without STREAM_INFO, a non-container and overwriting its input") {
+    auto dir = scratch_dir("decode_cli_errors");
+    StreamInfo info;
+    auto object = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, 0, kAttrNormal);
+    auto packets = make_stream(object, {sphere_ellipsoid({0, 0, 0}, 1)}, fibonacci_sphere(300, 1.0), info);
+    std::vector<std::vector<uint8_t>> no_info = packets.ellipsoids;
+    no_info.insert(no_info.end(), packets.points.begin(), packets.points.end());
+    write_stream(dir / "noinfo.ellc", no_info);
+    Run r = run("decode '" + (dir / "noinfo.ellc").string() + "' -o '" + (dir / "out.glb").string() + "' -q");
+    CHECK(r.status == 1);
+    CHECK(r.output.find("STREAM_INFO") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(dir / "out.glb"));
+
+    std::ofstream(dir / "text.ellc") << "not a stream at all";
+    r = run("decode '" + (dir / "text.ellc").string() + "' -o '" + (dir / "out.glb").string() + "' -q");
+    CHECK(r.status == 1);
+    CHECK(r.output.find("not an ellicast container") != std::string::npos);
+
+    write_stream(dir / "stream.ply", all_packets(packets));
+    auto before = std::filesystem::file_size(dir / "stream.ply");
+    r = run("decode '" + (dir / "stream.ply").string() + "' -o '" + (dir / "stream.ply").string() + "' -q");
+    CHECK(r.status == 2);
+    CHECK(r.output.find("refusing to overwrite") != std::string::npos);
+    CHECK(std::filesystem::file_size(dir / "stream.ply") == before);
+
+    r = run("decode '" + (dir / "stream.ply").string() + "' -o '" + (dir / "out.stl").string() + "' -q");
+    CHECK(r.status == 2);
+    CHECK(r.output.find("out.stl") != std::string::npos);
+    r = run("decode '" + (dir / "stream.ply").string() + "' -o '" + (dir / "out.glb").string() + "' --grid 100000 -q");
+    CHECK(r.status == 2);
+}
+
+TEST_CASE("ellicast decode of points without ellipsoids writes a point set and says there is no base") {
+    auto dir = scratch_dir("decode_cli_points_only");
+    StreamInfo info;
+    auto object = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, 0, kAttrNormal);
+    auto packets = make_stream(object, {sphere_ellipsoid({0, 0, 0}, 1)}, fibonacci_sphere(300, 1.0), info);
+    std::vector<std::vector<uint8_t>> list = packets.stream_info;
+    list.insert(list.end(), packets.points.begin(), packets.points.end());
+    write_stream(dir / "points.ellc", list);
+    Run r = run("decode '" + (dir / "points.ellc").string() + "' -o '" + (dir / "points.glb").string() + "' -q");
+    CHECK_MESSAGE(r.status == 0, r.output);
+    CHECK(r.output.find("no ellipsoid received") != std::string::npos);
+    CHECK(r.output.find("point set") != std::string::npos);
+    CHECK(std::filesystem::exists(dir / "points.glb"));
+}
+
+TEST_CASE("spot encoded and decoded: every packet within 0.1% RMS both ways, half the points within 0.3%") {
+    if (!have_sample("meshes/spot.obj")) return;
+    auto original = load_meshes((shared_samples() / "meshes/spot.obj").string()).meshes;
+    EncodeResult encoded = encode_meshes(original, EncodeOptions{});
+    StreamPackets packets;
+    REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, packets) == Error::Ok);
+    auto decode = [&](const std::vector<std::vector<uint8_t>>& list, Mesh& mesh) {
+        ReceivedStream stream;
+        for (size_t i = 0; i < list.size(); ++i) stream.add_packet(list[i], i);
+        std::vector<Mesh> meshes;
+        StreamDecodeReport report;
+        std::string error;
+        REQUIRE(decode_stream(stream, DecodeOptions{}, meshes, report, error));
+        REQUIRE(meshes.size() == 1);
+        mesh = meshes[0];
+    };
+    Mesh full;
+    decode(all_packets(packets), full);
+    SurfaceDistance d;
+    std::string error;
+    REQUIRE(surface_distance(original, {full}, {}, d, error));
+    CHECK(d.percent(d.a_to_b.rms) <= 0.1);
+    CHECK(d.percent(d.b_to_a.rms) <= 0.1);
+    CHECK(d.a_to_b.far_fraction < 0.005);  // no holes
+    CHECK(open_or_nonmanifold_edges(full) == 0);
+    REQUIRE(full.texcoords.size() == full.positions.size());
+
+    std::vector<std::vector<uint8_t>> half = packets.stream_info;
+    half.insert(half.end(), packets.ellipsoids.begin(), packets.ellipsoids.end());
+    std::mt19937 rng(100);
+    for (const auto& p : packets.points)
+        if (rng() & 1) half.push_back(p);
+    Mesh partial;
+    decode(half, partial);
+    REQUIRE(surface_distance(original, {partial}, {}, d, error));
+    CHECK(d.percent(d.a_to_b.rms) <= 0.3);
+    CHECK(d.percent(d.b_to_a.rms) <= 0.3);
 }

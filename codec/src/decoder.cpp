@@ -281,6 +281,10 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
     report.timings.insertion = seconds_since(t2) - snapshot_time;
 
     auto t3 = std::chrono::steady_clock::now();
+    // The stream is over: an incomplete one keeps its points' real (wider) spacing, so marching-cubes
+    // vertices that close to an original go too.
+    if (!report.complete && r.original_vertices > 0)
+        r.spacing_scale = std::min(4.0, std::sqrt(double(info.point_count) / double(r.original_vertices)));
     collapse_all_mc_vertices(r, report.complete && !points.empty());
     if (report.complete && r.original_vertices > 0) {
         size_t removed = remove_components_without_originals(r);

@@ -43,17 +43,25 @@ double collapse_worst_dot(const DecoderTriMesh& mesh, OpenMesh::HalfedgeHandle h
 // Collapses marching-cubes vertex m. Without `force` it needs enough original neighbours and a
 // collapse that turns no face beyond the fold-over bound; with `force` it takes the best legal
 // collapse into an original neighbour, or into any neighbour when `any_target` is set.
-bool try_collapse(Reconstruction& r, OpenMesh::VertexHandle m, bool force, bool any_target) {
+bool try_collapse(Reconstruction& r, OpenMesh::VertexHandle m, bool force, bool any_target,
+                  OpenMesh::VertexHandle* into = nullptr) {
     DecoderTriMesh& mesh = r.mesh;
     if (mesh.status(m).deleted() || r.is_original(m)) return false;
     int total = 0, originals = 0;
+    double nearest2 = std::numeric_limits<double>::max();
     for (auto v : mesh.vv_range(m)) {
         ++total;
-        originals += r.is_original(v) ? 1 : 0;
+        if (r.is_original(v)) {
+            ++originals;
+            nearest2 = std::min(nearest2, (mesh.point(v) - mesh.point(m)).sqrnorm());
+        }
     }
     if (!force) {
-        if (originals < r.options.collapse_min_originals) return false;
-        if (originals < r.options.collapse_min_fraction * total) return false;
+        const double reach = r.options.collapse_spacing_factor * r.point_spacing * r.spacing_scale;
+        const bool close = originals > 0 && nearest2 <= reach * reach;
+        const bool surrounded = originals >= r.options.collapse_min_originals &&
+                                originals >= r.options.collapse_min_fraction * total;
+        if (!close && !surrounded) return false;
     } else if (originals == 0 && !any_target) {
         return false;
     }
@@ -86,6 +94,7 @@ bool try_collapse(Reconstruction& r, OpenMesh::VertexHandle m, bool force, bool 
         return false;
     }
     const auto target = mesh.to_vertex_handle(chosen);
+    if (into) *into = target;
     std::array<OpenMesh::FaceHandle, 64> around;
     int na = 0;
     for (auto f : mesh.vf_range(m))
@@ -105,12 +114,21 @@ bool try_collapse(Reconstruction& r, OpenMesh::VertexHandle m, bool force, bool 
 
 size_t collapse_mc_vertices_near(Reconstruction& r, OpenMesh::VertexHandle v) {
     if (r.mc_vertices == 0) return 0;
-    std::array<OpenMesh::VertexHandle, 64> ring;
+    // A small worklist: the marching-cubes neighbours of v, then those of each vertex collapsed into.
+    std::array<OpenMesh::VertexHandle, 256> work;
     int n = 0;
-    for (auto w : r.mesh.vv_range(v))
-        if (!r.is_original(w) && n < int(ring.size())) ring[n++] = w;
+    auto add_ring = [&](OpenMesh::VertexHandle c) {
+        for (auto w : r.mesh.vv_range(c))
+            if (!r.is_original(w) && n < int(work.size())) work[n++] = w;
+    };
+    add_ring(v);
     size_t done = 0;
-    for (int i = 0; i < n; ++i) done += try_collapse(r, ring[i], false, false) ? 1 : 0;
+    for (int i = 0; i < n && done < 32; ++i) {
+        OpenMesh::VertexHandle into;
+        if (!try_collapse(r, work[i], false, false, &into)) continue;
+        ++done;
+        add_ring(into);
+    }
     return done;
 }
 

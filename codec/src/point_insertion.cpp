@@ -73,6 +73,8 @@ void start_reconstruction(Reconstruction& r, DecoderTriMesh&& base, const Frame&
         Vec3 a = r.mesh.point(*it), b = r.mesh.point(*++it), c = r.mesh.point(*++it);
         area += 0.5 * OpenMesh::cross(b - a, c - a).norm();
     }
+    // Edge length of an equilateral triangulation of that area with the stream's points.
+    r.point_spacing = expected_points > 0 ? std::sqrt(2.0 * area / (std::sqrt(3.0) * double(expected_points))) : 0.0;
     double faces = std::max<double>({1.0, double(r.mesh.n_faces()), 2.0 * double(expected_points)});
     double size = std::clamp(2.0 * std::sqrt(area / faces), 0.25 * cell, 4 * cell);
     if (!(size > 0)) size = cell;

@@ -122,8 +122,12 @@ private:
 struct ReconstructionOptions {
     double flat_angle_degrees = 20;    // dihedral angle under which a region counts as flat
     double foldover_degrees = 80;      // a flip/collapse may not turn a face normal further than this
-    int collapse_min_originals = 3;    // original neighbours a marching-cubes vertex needs to go
-    double collapse_min_fraction = 0.5;  // ... and this fraction of its neighbours must be original
+    // A marching-cubes vertex goes once an original neighbour is closer than this many times the
+    // spacing the complete stream's points will have (or once it has collapse_min_originals
+    // original neighbours making up collapse_min_fraction of its neighbours).
+    double collapse_spacing_factor = 1.0;
+    int collapse_min_originals = 3;
+    double collapse_min_fraction = 0.5;
     int max_flips_per_insertion = 64;
 };
 
@@ -133,6 +137,8 @@ struct Reconstruction {
     std::vector<std::vector<uint32_t>> vertex_points;  // per vertex: indices of the points at it ({} = MC vertex)
     std::unordered_map<uint64_t, std::vector<OpenMesh::VertexHandle>> by_position;  // seam detection
     size_t mc_vertices = 0;                       // marching-cubes vertices still in the mesh
+    double point_spacing = 0;                     // expected edge length once every point arrived (0: unknown)
+    double spacing_scale = 1;                     // > 1 at the end of an incomplete stream: its real spacing
     size_t original_vertices = 0;
     ReconstructionOptions options;
 
@@ -181,9 +187,11 @@ size_t flip_edges_around(Reconstruction& r, OpenMesh::VertexHandle v);
 // Collapse of marching-cubes vertices (mc_collapse.cpp)
 
 // Looks at the marching-cubes vertices next to v and collapses each into its nearest original
-// neighbour once it has enough original neighbours (options.collapse_min_*), when the collapse
-// is topologically legal and turns no face by more than options.foldover_degrees. Returns the
-// number of collapses.
+// neighbour once enough originals arrived around it (an original neighbour within
+// options.collapse_spacing_factor * point_spacing, or options.collapse_min_* original neighbours),
+// when the collapse is topologically legal and turns no face by more than options.foldover_degrees;
+// then the marching-cubes neighbours of the vertex collapsed into, in turn. Returns the number of
+// collapses.
 size_t collapse_mc_vertices_near(Reconstruction& r, OpenMesh::VertexHandle v);
 
 // Tries every remaining marching-cubes vertex. With `force`, any original neighbour is enough and
