@@ -65,8 +65,8 @@ void start_reconstruction(Reconstruction& r, DecoderTriMesh&& base, const Frame&
         lo.minimize(r.mesh.point(v));
         hi.maximize(r.mesh.point(v));
     }
-    // Cells of about the size of the final triangles: the base's area shared by as many faces as
-    // the base or the stream's points (2 faces per vertex) will make, whichever is more.
+    // Cells of about twice the final edge length (measured best in bench_decode): the base's area
+    // shared by as many faces as the base or the stream's points (2 faces per vertex) will make.
     double area = 0;
     for (auto f : r.mesh.faces()) {
         auto it = r.mesh.cfv_iter(f);
@@ -76,7 +76,7 @@ void start_reconstruction(Reconstruction& r, DecoderTriMesh&& base, const Frame&
     // Edge length of an equilateral triangulation of that area with the stream's points.
     r.point_spacing = expected_points > 0 ? std::sqrt(2.0 * area / (std::sqrt(3.0) * double(expected_points))) : 0.0;
     double faces = std::max<double>({1.0, double(r.mesh.n_faces()), 2.0 * double(expected_points)});
-    double size = std::clamp(2.0 * std::sqrt(area / faces), 0.25 * cell, 4 * cell);
+    double size = std::clamp(3.0 * std::sqrt(area / faces), 0.25 * cell, 4 * cell);
     if (!(size > 0)) size = cell;
     r.faces.reset(lo, hi, size);
     r.faces.build(r.mesh);
