@@ -79,7 +79,13 @@ int run_decode(const DecodeArgs& args) {
     std::string error;
     bool ok = decode_stream(stream, options, meshes, report, error);
     bar.finish();
-    if (!ok) return fail(kExitInvalid, args.input + ": " + error);
+    if (!ok) {
+        std::string damage;
+        if (!contents.damaged.empty())
+            damage = " (" + std::to_string(contents.damaged.size()) + " damaged region(s) of the file were skipped, the first at byte " +
+                     std::to_string(contents.damaged[0].offset) + ": " + error_name(contents.damaged[0].first_error) + ")";
+        return fail(kExitInvalid, args.input + ": " + error + damage);
+    }
     if (!snapshot_error.empty()) return fail(kExitFailure, snapshot_error);
     if (meshes.empty())
         return fail(kExitInvalid, args.input + ": nothing can be built: no object received any ellipsoid or point");
