@@ -164,6 +164,8 @@ TEST_CASE("a trace written to a file reads back identical and applies to another
     REQUIRE(read_trace((dir / "t.trace").string(), back, error));
     CHECK(same_trace(t, back));
     CHECK(back.packet_bytes() == 1200);
+    CHECK(back.description() == t.description());
+    CHECK(back.description().find("seed=1234") != std::string::npos);
     // Applied to two different packet sequences of the same length, the same slots go missing.
     std::vector<std::vector<uint8_t>> a, b;
     for (uint32_t k = 0; k < 5000; ++k) {

@@ -86,28 +86,32 @@ bool read_trace(const std::string& path, LossTrace& out, std::string& error) {
     size_t packet_bytes = 0;
     std::string model;
     bool have_slots = false, have_size = false;
-    while (!(have_slots && have_size)) {
-        if (!next_line()) return fail("the header ends before \"slots\" and \"packet_bytes\"");
-        if (line.rfind("slots ", 0) == 0) {
-            if (!parse_number(line.substr(6), slots)) return fail("bad slot count");
-            if (slots > kMaxTraceSlots) return fail("a trace of " + line.substr(6) + " slots exceeds the cap");
-            have_slots = true;
-        } else if (line.rfind("packet_bytes ", 0) == 0) {
-            if (!parse_number(line.substr(13), packet_bytes) || packet_bytes == 0 || packet_bytes > 1'000'000)
-                return fail("bad packet size");
-            have_size = true;
-        } else if (line.rfind("model ", 0) == 0) {
-            model = line.substr(6);
-        } else if (!line.empty() && line[0] != '#') {
-            return fail("unexpected header line \"" + line.substr(0, 80) + "\"");
-        }
-    }
-    LossTrace trace(slots, packet_bytes, model);
+    LossTrace trace;
     int64_t previous = -1;
     while (next_line()) {
         if (line.size() > kMaxLineLength) return fail("line too long");
         if (line.empty() || line[0] == '#') continue;
-        if (line.rfind("model ", 0) == 0) continue;
+        const bool slot_line = line[0] >= '0' && line[0] <= '9';
+        if (!slot_line) {
+            // Header lines, before the first slot.
+            if (previous >= 0) return fail("header line \"" + line.substr(0, 40) + "\" after the slots");
+            if (line.rfind("slots ", 0) == 0) {
+                if (!parse_number(line.substr(6), slots)) return fail("bad slot count");
+                if (slots > kMaxTraceSlots) return fail("a trace of " + line.substr(6) + " slots exceeds the cap");
+                have_slots = true;
+            } else if (line.rfind("packet_bytes ", 0) == 0) {
+                if (!parse_number(line.substr(13), packet_bytes) || packet_bytes == 0 || packet_bytes > 1'000'000)
+                    return fail("bad packet size");
+                have_size = true;
+            } else if (line.rfind("model ", 0) == 0) {
+                model = line.substr(6);
+            } else {
+                return fail("unexpected header line \"" + line.substr(0, 80) + "\"");
+            }
+            continue;
+        }
+        if (!(have_slots && have_size)) return fail("a slot before the \"slots\" and \"packet_bytes\" lines");
+        if (previous < 0) trace = LossTrace(slots, packet_bytes, model);  // the first slot line
         std::istringstream words(line);
         std::string word;
         words >> word;
@@ -150,6 +154,8 @@ bool read_trace(const std::string& path, LossTrace& out, std::string& error) {
             return fail("a lost slot cannot also be delayed, duplicated or corrupted");
         trace.set_fate(slot, f);
     }
+    if (!(have_slots && have_size)) return fail("the header ends before \"slots\" and \"packet_bytes\"");
+    if (previous < 0) trace = LossTrace(slots, packet_bytes, model);  // no slot line: every slot delivered intact
     out = std::move(trace);
     return true;
 }
