@@ -219,7 +219,9 @@ int main(int argc, char** argv) {
     }
     CarouselStats stats = carousel_stats(carousel);
     const double bytes_to_s = 8.0 / rate;
-    std::printf("input: %s (%zu packets)\n", input.c_str(), packets.size());
+    std::printf("command:");
+    for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);
+    std::printf("\ninput: %s (%zu packets)\n", input.c_str(), packets.size());
     std::printf("rate: %.0f bit/s; cycle %zu packets, %llu bytes = %.3f s; %zu chunks\n", rate, carousel.cycle.size(),
                 (unsigned long long)stats.cycle_bytes, stats.cycle_bytes * bytes_to_s, carousel.chunk_count);
     std::printf("base %llu bytes, points %llu bytes; base share %.1f%%, repetition overhead %.1f%%\n",

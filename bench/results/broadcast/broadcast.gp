@@ -4,7 +4,7 @@ set key top left
 set grid
 set xlabel 'packet loss rate'
 set ylabel 'seconds after tune-in'
-set title 'ellicast on loopback at 2 Mbit/s: bunny.ellc'
+set title 'ellicast on loopback at 2 Mbit/s: bunny.ply'
 set logscale y
 plot 'broadcast_summary.csv' every ::1 using 1:3:10:4 with yerrorbars lc rgb '#1f77b4' pt 7 title 'base complete (measured: mean, min..max)',\
      '' every ::1 using 1:8 with lines lc rgb '#1f77b4' dt 2 title 'base (schedule, expected)',\
