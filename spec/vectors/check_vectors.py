@@ -1,0 +1,420 @@
+#!/usr/bin/env python3
+"""An independent format 1.0 decoder, written from spec/format.md alone (Python standard library only),
+checked against the expected decodes of the conformance vectors.
+
+    python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
+    python3 spec/vectors/check_vectors.py --dump valid/minimal   # annotated fields of one vector
+
+It re-derives everything the JSON states (container errors, damaged regions, packet results,
+rejections, counters, stream info, every element's integers and dequantized values, digests) so that a
+disagreement between the spec text and the reference library shows up as a failing vector.
+"""
+import json
+import math
+import os
+import struct
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+MAGIC = b"\xE1LCS"
+SIGNATURE = b"\x89ELC\r\n\x1a\n"
+KNOWN_10 = {1: "STREAM_INFO", 2: "ELLIPSOIDS", 3: "POINTS"}
+# Format 1.1 types (spec section 4): known to the reference library, never present in the 1.0 vectors.
+KNOWN_11 = {0x10: "SCENE", 0x11: "MATERIAL", 0x12: "TEXTURE_FRAGMENT"}
+
+
+def crc32c(data, crc=0):
+    c = crc ^ 0xFFFFFFFF
+    for b in data:
+        c ^= b
+        for _ in range(8):
+            c = (c >> 1) ^ (0x82F63B78 & -(c & 1))
+    return c ^ 0xFFFFFFFF
+
+
+def f32(x):
+    """Round a real number to the nearest binary32, as the spec's 'rounded to f32'."""
+    return struct.unpack("<f", struct.pack("<f", x))[0]
+
+
+class Bits:
+    """LSB-first bit reader (spec 1.1)."""
+
+    def __init__(self, data):
+        self.value = int.from_bytes(data, "little")
+        self.pos = 0
+
+    def get(self, n):
+        v = (self.value >> self.pos) & ((1 << n) - 1)
+        self.pos += n
+        return v
+
+
+def parse_packet(buf, pos, end, datagram=False):
+    """Spec 11.1 steps 1..8. Returns (reason, header, size)."""
+    n = end - pos
+    if n < 24:
+        return "too short", None, 0
+    if buf[pos:pos + 4] != MAGIC:
+        return "bad magic", None, 0
+    major, minor, ptype, flags = buf[pos + 4], buf[pos + 5], buf[pos + 6], buf[pos + 7]
+    if major != 1:
+        return "unsupported major version", None, 0
+    stream_id, sequence, object_id, length = struct.unpack_from("<IIHH", buf, pos + 8)
+    size = 24 + length
+    if size > 65000:
+        return "oversized", None, 0
+    if size > n:
+        return "truncated", None, 0
+    if crc32c(buf[pos:pos + 20 + length]) != struct.unpack_from("<I", buf, pos + 20 + length)[0]:
+        return "bad checksum", None, 0
+    if ptype == 0:
+        return "invalid type", None, 0
+    if datagram and size != n:
+        return "length mismatch", None, 0
+    h = dict(major=major, minor=minor, type=ptype, flags=flags, stream_id=stream_id, sequence=sequence,
+             object_id=object_id, payload_length=length, payload=bytes(buf[pos + 20:pos + 20 + length]))
+    return None, h, size
+
+
+def read_container(buf):
+    if len(buf) < 8 or buf[:8] != SIGNATURE:
+        return "bad container signature", [], []
+    if len(buf) < 12:
+        return "too short", [], []
+    if buf[8] != 1:
+        return "unsupported container version", [], []
+    packets, damaged = [], []
+    pos = 12
+    while pos < len(buf):
+        reason, h, size = parse_packet(buf, pos, len(buf))
+        if reason is None:
+            packets.append((pos, size, h))
+            pos += size
+            continue
+        nxt = pos + 1
+        while nxt < len(buf):
+            if buf[nxt] == 0xE1 and parse_packet(buf, nxt, len(buf))[0] is None:
+                break
+            nxt += 1
+        damaged.append(dict(offset=pos, length=nxt - pos, reason=reason))
+        pos = nxt
+    return None, packets, damaged
+
+
+def decode_stream_info(p):
+    """Spec 5.1..5.3. Returns (fields, object_count, first_object, entries) or None if malformed."""
+    if len(p) < 32:
+        return None
+    info_size, entry_size, packet_size = struct.unpack_from("<HHH", p, 0)
+    pb, nb, tb, cb, enc = p[6], p[7], p[8], p[9], p[10]
+    content_id, object_count, first_object, entry_count, grid_hint = struct.unpack_from("<IHHHH", p, 12)
+    coverage, seed = struct.unpack_from("<fI", p, 24)
+    if info_size < 32 or entry_size < 44 or len(p) != info_size + entry_count * entry_size:
+        return None
+    if not (128 <= packet_size <= 65000 and 8 <= pb <= 16 and 4 <= nb <= 16 and 4 <= tb <= 16 and 2 <= cb <= 16):
+        return None
+    if enc != 0 or not math.isfinite(coverage) or first_object + entry_count > object_count:
+        return None
+    entries = []
+    for i in range(entry_count):
+        e = info_size + i * entry_size
+        ox, oy, oz, scale, ne, npts = struct.unpack_from("<ffffII", p, e)
+        kind, attrs = p[e + 24], p[e + 25]
+        to = struct.unpack_from("<ff", p, e + 28)
+        ts = struct.unpack_from("<ff", p, e + 36)
+        floats = (ox, oy, oz, scale) + to + ts
+        if not all(math.isfinite(v) for v in floats) or not scale > 0 or min(ts) < 0:
+            return None
+        if kind not in (0, 1) or attrs & 0xF0 or (attrs & 8 and not attrs & 4) or (kind == 1 and ne != 0):
+            return None
+        entries.append(dict(frame_origin=[ox, oy, oz], frame_scale=scale, ellipsoid_count=ne, point_count=npts,
+                            kind="surface" if kind == 0 else "point set", attributes=attrs,
+                            texcoord_origin=list(to), texcoord_scale=list(ts)))
+    fields = dict(packet_size=packet_size, position_bits=pb, normal_bits=nb, texcoord_bits=tb, color_bits=cb,
+                  ellipsoid_encoding=enc, content_id=content_id, grid_hint=grid_hint, coverage_target=coverage,
+                  seed=seed)
+    return fields, object_count, first_object, entries
+
+
+def record_bits(info, obj):
+    a = obj["attributes"]
+    b = 3 * info["position_bits"]
+    if a & 1:
+        b += 2 * info["normal_bits"]
+    if a & 2:
+        b += 2 * info["texcoord_bits"]
+    if a & 4:
+        b += (4 if a & 8 else 3) * info["color_bits"]
+    return b
+
+
+def decode_batch(p, record, count_bits=None):
+    """ELLIPSOIDS (record = 128 bits) or POINTS batch (spec 6, 7): (first, [raw records]) or None."""
+    if len(p) < 8:
+        return None
+    first, count = struct.unpack_from("<IH", p, 0)
+    if len(p) != 8 + (count * record + 7) // 8 or first + count > 0xFFFFFFFF:
+        return None
+    bits = Bits(p[8:])
+    return first, [bits for _ in range(count)]
+
+
+def unpack_ellipsoid(bits):
+    return [bits.get(15), bits.get(15), bits.get(15), bits.get(13), bits.get(13), bits.get(13), bits.get(2),
+            bits.get(14), bits.get(14), bits.get(14)]
+
+
+def unpack_point(bits, info, obj):
+    a = obj["attributes"]
+    q = [bits.get(info["position_bits"]) for _ in range(3)]
+    if a & 1:
+        q += [bits.get(info["normal_bits"]) for _ in range(2)]
+    if a & 2:
+        q += [bits.get(info["texcoord_bits"]) for _ in range(2)]
+    if a & 4:
+        q += [bits.get(info["color_bits"]) for _ in range(4 if a & 8 else 3)]
+    return q
+
+
+def dequantize_ellipsoid(q, obj):
+    s, o = obj["frame_scale"], obj["frame_origin"]
+    center = [f32(o[i] + q[i] * s / 32767) for i in range(3)]
+    radii = [f32(q[3 + i] * s / 8191) for i in range(3)]
+    three = [(v / 16383 * 2 - 1) / math.sqrt(2) for v in q[7:10]]
+    d = math.sqrt(max(0.0, 1 - sum(v * v for v in three)))
+    quat = list(three)
+    quat.insert(q[6], d)
+    n = math.sqrt(sum(v * v for v in quat))
+    return dict(center=center, radii=radii, rotation=[f32(v / n) for v in quat])
+
+
+def sgn(v):
+    return -1.0 if v < 0 else 1.0
+
+
+def dequantize_point(q, info, obj):
+    a = obj["attributes"]
+    s, o = obj["frame_scale"], obj["frame_origin"]
+    pm = (1 << info["position_bits"]) - 1
+    out = dict(position=[f32(o[i] + q[i] / pm * s) for i in range(3)])
+    k = 3
+    if a & 1:
+        nm = (1 << info["normal_bits"]) - 1
+        u, v = q[k] / nm * 2 - 1, q[k + 1] / nm * 2 - 1
+        z = 1 - abs(u) - abs(v)
+        x, y = ((1 - abs(v)) * sgn(u), (1 - abs(u)) * sgn(v)) if z < 0 else (u, v)
+        n = math.sqrt(x * x + y * y + z * z)
+        out["normal"] = [f32(x / n), f32(y / n), f32(z / n)]
+        k += 2
+    if a & 2:
+        tm = (1 << info["texcoord_bits"]) - 1
+        out["texcoord"] = [f32(obj["texcoord_origin"][i] + q[k + i] / tm * obj["texcoord_scale"][i]) for i in range(2)]
+        k += 2
+    if a & 4:
+        cm = (1 << info["color_bits"]) - 1
+        out["color"] = [f32(v / cm) for v in q[k:]]
+    return out
+
+
+def fnv(words):
+    h = 0xCBF29CE484222325
+    for w in words:
+        for i in range(4):
+            h ^= (w >> (8 * i)) & 0xFF
+            h = (h * 0x100000001B3) & 0xFFFFFFFFFFFFFFFF
+    return "%016x" % h
+
+
+class Receiver:
+    """Spec 11.1 steps 9..14 and 11.2."""
+
+    def __init__(self):
+        self.stream_id = None
+        self.info = None
+        self.object_count = 0
+        self.objects = []
+        self.held = []
+        self.counters = dict(accepted=0, duplicates=0, skipped=0, rejected=0, held=0)
+        self.rejections = []
+        self.newest_minor = 0
+
+    def reject(self, offset, reason):
+        self.counters["rejected"] += 1
+        self.rejections.append(dict(offset=offset, reason=reason))
+        return reason
+
+    def add(self, h, offset):
+        if self.stream_id is not None and h["stream_id"] != self.stream_id:
+            return self.reject(offset, "stream mismatch")
+        t = h["type"]
+        if t not in KNOWN_10 and t not in KNOWN_11:
+            if not h["flags"] & 1:
+                return self.reject(offset, "unknown critical type")
+            self.stream_id = h["stream_id"]
+            self.counters["skipped"] += 1
+            self.newest_minor = max(self.newest_minor, h["minor"])
+            return "skipped"
+        if t in KNOWN_11:
+            raise SystemExit("format 1.1 packets are outside what this 1.0 checker decodes")
+        result = self.stream_info(h, offset) if t == 1 else self.object_packet(h, offset)
+        if result in ("accepted", "duplicate", "held"):
+            self.stream_id = h["stream_id"]
+            self.newest_minor = max(self.newest_minor, h["minor"])
+        return result
+
+    def stream_info(self, h, offset):
+        if h["object_id"] != 0xFFFF:
+            return self.reject(offset, "malformed payload")
+        d = decode_stream_info(h["payload"])
+        if d is None:
+            return self.reject(offset, "malformed payload")
+        fields, count, first, entries = d
+        if self.info is not None:
+            if fields != self.info or count != self.object_count:
+                return self.reject(offset, "stream mismatch")
+        else:
+            self.info, self.object_count = fields, count
+            self.objects = [dict(info=None, ellipsoids={}, points={}) for _ in range(count)]
+        for i, e in enumerate(entries):
+            known = self.objects[first + i]["info"]
+            if known is not None and known != e:
+                return self.reject(offset, "stream mismatch")
+        news = False
+        for i, e in enumerate(entries):
+            obj = self.objects[first + i]
+            if obj["info"] is None:
+                obj["info"] = e
+                news = True
+                self.release(first + i)
+        if news or not entries:
+            self.counters["accepted"] += 1
+            return "accepted"
+        self.counters["duplicates"] += 1
+        return "duplicate"
+
+    def release(self, object_id):
+        mine = [x for x in self.held if x[0]["object_id"] == object_id]
+        self.held = [x for x in self.held if x[0]["object_id"] != object_id]
+        for h, offset in mine:
+            self.counters["held"] -= 1
+            self.object_packet(h, offset)
+
+    def object_packet(self, h, offset):
+        oid = h["object_id"]
+        if self.info is not None and oid >= self.object_count:
+            return self.reject(offset, "unknown object")
+        if self.info is None or self.objects[oid]["info"] is None:
+            self.held.append((h, offset))
+            self.counters["held"] += 1
+            return "held"
+        obj = self.objects[oid]
+        ellipsoids = h["type"] == 2
+        record = 128 if ellipsoids else record_bits(self.info, obj["info"])
+        batch = decode_batch(h["payload"], record)
+        if batch is None:
+            return self.reject(offset, "malformed payload")
+        first, readers = batch
+        declared = obj["info"]["ellipsoid_count" if ellipsoids else "point_count"]
+        if first + len(readers) > declared:
+            return self.reject(offset, "index out of range")
+        store = obj["ellipsoids" if ellipsoids else "points"]
+        news = False
+        for i, bits in enumerate(readers):
+            q = unpack_ellipsoid(bits) if ellipsoids else unpack_point(bits, self.info, obj["info"])
+            if first + i not in store:
+                store[first + i] = q
+                news = True
+        self.counters["accepted" if news else "duplicates"] += 1
+        return "accepted" if news else "duplicate"
+
+
+def decode(buf):
+    err, packets, damaged = read_container(buf)
+    out = dict(file_size=len(buf), container_error=err, damaged=damaged)
+    r = Receiver()
+    plist = []
+    for offset, size, h in packets:
+        result = r.add(h, offset)
+        name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or "UNKNOWN(0x%02X)" % h["type"]
+        plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
+                          flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
+                          object_id=h["object_id"], payload_length=h["payload_length"], result=result))
+    out.update(packets=plist, rejections=r.rejections, counters=r.counters, stream_id=r.stream_id,
+               newest_minor=r.newest_minor)
+    out["stream_info"] = dict(r.info, object_count=r.object_count) if r.info is not None else None
+    objects = []
+    for i, obj in enumerate(r.objects):
+        o = dict(id=i, info=obj["info"], ellipsoids_received=len(obj["ellipsoids"]),
+                 points_received=len(obj["points"]))
+        if obj["info"] is not None:
+            words = lambda store: [w for k in sorted(store) for w in [k] + store[k]]
+            o["ellipsoid_digest"] = fnv(words(obj["ellipsoids"]))
+            o["point_digest"] = fnv(words(obj["points"]))
+            o["ellipsoids_listed"] = len(obj["ellipsoids"]) <= 300
+            o["points_listed"] = len(obj["points"]) <= 300
+            o["ellipsoids"] = [dict(index=k, q=q, **dequantize_ellipsoid(q, obj["info"]))
+                               for k, q in sorted(obj["ellipsoids"].items())] if o["ellipsoids_listed"] else []
+            o["points"] = [dict(index=k, q=q, **dequantize_point(q, r.info, obj["info"]))
+                           for k, q in sorted(obj["points"].items())] if o["points_listed"] else []
+        objects.append(o)
+    out["objects"] = objects
+    return out
+
+
+def compare(expected, actual, path, diffs):
+    if len(diffs) > 20:
+        return
+    if isinstance(expected, bool) or isinstance(actual, bool) or expected is None or actual is None:
+        if expected != actual:
+            diffs.append("%s: expected %r, got %r" % (path, expected, actual))
+    elif isinstance(expected, (int, float)) and isinstance(actual, (int, float)):
+        if isinstance(expected, float) or isinstance(actual, float):
+            if not abs(expected - actual) <= 1e-6 * max(1.0, abs(expected), abs(actual)):
+                diffs.append("%s: expected %r, got %r" % (path, expected, actual))
+        elif expected != actual:
+            diffs.append("%s: expected %r, got %r" % (path, expected, actual))
+    elif isinstance(expected, dict) and isinstance(actual, dict):
+        keys = (set(expected) | set(actual)) - {"detail", "description", "vector"}
+        for k in sorted(keys):
+            if k not in actual or k not in expected:
+                diffs.append("%s.%s: only in %s" % (path, k, "expected" if k in expected else "actual"))
+            else:
+                compare(expected[k], actual[k], path + "." + k, diffs)
+    elif isinstance(expected, list) and isinstance(actual, list):
+        if len(expected) != len(actual):
+            diffs.append("%s: expected %d entries, got %d" % (path, len(expected), len(actual)))
+        else:
+            for i, (a, b) in enumerate(zip(expected, actual)):
+                compare(a, b, "%s[%d]" % (path, i), diffs)
+    elif expected != actual:
+        diffs.append("%s: expected %r, got %r" % (path, expected, actual))
+
+
+def main(argv):
+    if len(argv) == 3 and argv[1] == "--dump":
+        print(json.dumps(decode(open(os.path.join(HERE, argv[2] + ".ellc"), "rb").read()), indent=1))
+        return 0
+    failures = 0
+    count = 0
+    for subset in ("valid", "unusual", "faulty"):
+        for name in sorted(os.listdir(os.path.join(HERE, subset))):
+            if not name.endswith(".ellc"):
+                continue
+            base = os.path.join(HERE, subset, name[:-5])
+            expected = json.load(open(base + ".json"))
+            actual = decode(open(base + ".ellc", "rb").read())
+            diffs = []
+            compare(expected, actual, subset + "/" + name[:-5], diffs)
+            count += 1
+            if diffs:
+                failures += 1
+                print("FAIL " + subset + "/" + name)
+                for d in diffs:
+                    print("  " + d)
+    print("%d vectors, %d failed" % (count, failures))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
