@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -31,8 +32,10 @@ Result run_ellicast(const std::string& args) {
     static int counter = 0;
     auto dir = ellicast::test::binary_dir() / "test-scratch" / "inspect_validate_runs";
     fs::create_directories(dir);
-    const auto out = dir / ("out" + std::to_string(counter) + ".txt");
-    const auto err = dir / ("err" + std::to_string(counter++) + ".txt");
+    // CTest runs test cases as parallel processes: name the files after the process and the call.
+    const std::string tag = std::to_string(getpid()) + "-" + std::to_string(counter++);
+    const auto out = dir / ("out-" + tag + ".txt");
+    const auto err = dir / ("err-" + tag + ".txt");
     const std::string cmd = "'" + ellicast::test::ellicast_exe().string() + "' " + args + " > '" + out.string() + "' 2> '" +
                             err.string() + "'";
     int status = std::system(cmd.c_str());
