@@ -109,6 +109,10 @@ TEST_CASE("every sample model encodes into a stream the receiver accepts whole")
             CHECK((o.kind == ObjectKind::PointSet) == m.is_point_set);
             CAPTURE(i);
             if (!m.is_point_set) CHECK(o.ellipsoid_count >= 1);  // every surface gets a base
+            if (r.reports[i].closed && r.reports[i].interior_fraction > 0) {
+                CHECK(r.reports[i].flat_ellipsoids == 0);  // a closed model's ellipsoids stay inside
+                CHECK(r.reports[i].outside < 0.01);
+            }
             CHECK(o.has(kAttrNormal) == m.has_normals());
             CHECK(o.has(kAttrTexcoord) == m.has_texcoords());
             CHECK(o.has(kAttrColor) == m.has_colors());
@@ -154,41 +158,56 @@ TEST_CASE("the same input, options and seed give a byte-identical stream, whatev
     CHECK(fa != fc);  // the seed matters
 }
 
+// A closed convex polyhedron with sharp corners: a box with a tetrahedral cap on one side.
+Mesh sharp_convex_shape() {
+    Mesh m;
+    m.name = "sharp";
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 0.7f, 0}, {0, 0.7f, 0}, {0, 0, 0.4f}, {1, 0, 0.4f}, {1, 0.7f, 0.4f},
+                   {0, 0.7f, 0.4f}, {1.6f, 0.35f, 0.2f}};
+    m.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4}, {3, 7, 6}, {3, 6, 2},
+                   {0, 4, 7}, {0, 7, 3}, {1, 2, 8}, {2, 6, 8}, {6, 5, 8}, {5, 1, 8}};
+    return m;
+}
+
 TEST_CASE("ellipsoids never poke out of a convex shape by more than one quantization step") {
-    Mesh shape = convex_shape(24);
-    EncodeOptions o = fast_options();
-    o.max_ellipsoids = 60;
-    o.coverage = 1.0;  // keep adding ellipsoids: the small ones near the surface are the risky ones
-    EncodeResult r = encode_meshes({shape}, o);
-    const ObjectInfo& obj = r.info.objects[0];
-    REQUIRE(obj.ellipsoid_count >= 5);
-    const double step = obj.frame.scale / 8191.0;
-    // Face planes of the convex polyhedron.
-    std::vector<std::pair<Eigen::Vector3d, double>> planes;
-    for (const auto& t : shape.triangles) {
-        Eigen::Vector3d a(shape.positions[t[0]][0], shape.positions[t[0]][1], shape.positions[t[0]][2]);
-        Eigen::Vector3d b(shape.positions[t[1]][0], shape.positions[t[1]][1], shape.positions[t[1]][2]);
-        Eigen::Vector3d c(shape.positions[t[2]][0], shape.positions[t[2]][1], shape.positions[t[2]][2]);
-        Eigen::Vector3d n = (b - a).cross(c - a).normalized();
-        planes.push_back({n, n.dot(a)});
-    }
-    double worst = -1e9;
-    for (const auto& q : r.contents[0].ellipsoids) {
-        Ellipsoid e = dequantize_ellipsoid(q, obj.frame);
-        Eigen::Matrix3d R =
-            Eigen::Quaterniond(e.rotation[0], e.rotation[1], e.rotation[2], e.rotation[3]).normalized().toRotationMatrix();
-        Eigen::Vector3d c(e.center[0], e.center[1], e.center[2]);
-        Eigen::Vector3d radii(e.radii[0], e.radii[1], e.radii[2]);
-        // Support function of the ellipsoid along each plane normal: its farthest point.
-        for (const auto& [n, d] : planes) {
-            Eigen::Vector3d local = R.transpose() * n;
-            double support = n.dot(c) + std::sqrt((radii.cwiseProduct(local)).squaredNorm());
-            worst = std::max(worst, support - d);
+    for (const Mesh& shape : {convex_shape(24), sharp_convex_shape()}) {
+        CAPTURE(shape.name);
+        EncodeOptions o = fast_options();
+        o.max_ellipsoids = 60;
+        o.coverage = 1.0;  // keep adding ellipsoids: the small ones near the surface are the risky ones
+        EncodeResult r = encode_meshes({shape}, o);
+        const ObjectInfo& obj = r.info.objects[0];
+        REQUIRE(obj.ellipsoid_count >= 5);
+        const double step = obj.frame.scale / 8191.0;
+        // Face planes of the convex polyhedron.
+        std::vector<std::pair<Eigen::Vector3d, double>> planes;
+        for (const auto& t : shape.triangles) {
+            Eigen::Vector3d a(shape.positions[t[0]][0], shape.positions[t[0]][1], shape.positions[t[0]][2]);
+            Eigen::Vector3d b(shape.positions[t[1]][0], shape.positions[t[1]][1], shape.positions[t[1]][2]);
+            Eigen::Vector3d c(shape.positions[t[2]][0], shape.positions[t[2]][1], shape.positions[t[2]][2]);
+            Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+            planes.push_back({n, n.dot(a)});
         }
+        double worst = -1e9;
+        for (const auto& q : r.contents[0].ellipsoids) {
+            Ellipsoid e = dequantize_ellipsoid(q, obj.frame);
+            Eigen::Matrix3d R = Eigen::Quaterniond(e.rotation[0], e.rotation[1], e.rotation[2], e.rotation[3])
+                                    .normalized()
+                                    .toRotationMatrix();
+            Eigen::Vector3d c(e.center[0], e.center[1], e.center[2]);
+            Eigen::Vector3d radii(e.radii[0], e.radii[1], e.radii[2]);
+            // Support function of the ellipsoid along each plane normal: its farthest point.
+            for (const auto& [n, d] : planes) {
+                Eigen::Vector3d local = R.transpose() * n;
+                double support = n.dot(c) + std::sqrt((radii.cwiseProduct(local)).squaredNorm());
+                worst = std::max(worst, support - d);
+            }
+        }
+        CHECK(worst <= step);
+        CHECK(r.reports[0].closed);
+        CHECK(r.reports[0].flat_ellipsoids == 0);
+        CHECK(r.reports[0].outside < 0.01);
     }
-    CHECK(worst <= step);
-    CHECK(r.reports[0].closed);
-    CHECK(r.reports[0].outside < 0.01);
 }
 
 TEST_CASE("Draco-compressed Box gives the same points as the plain Box within quantization") {

@@ -181,6 +181,40 @@ TEST_CASE("bad input files are refused with a message naming the file and the pr
         CHECK(e.find("cut.glb") != std::string::npos);
         CHECK(!e.empty());
     }
+    SUBCASE("OBJ face corner referring to a vertex that does not exist") {
+        spit(dir / "face.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 )3\n");
+        std::string e = error_of((dir / "face.obj").string());
+        CHECK(e.find("line 4") != std::string::npos);
+        spit(dir / "face2.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+        CHECK(error_of((dir / "face2.obj").string()).find("does not refer to a defined vertex") != std::string::npos);
+    }
+    SUBCASE("PLY cut short, with a bad face index, or with a header OpenMesh would spin on") {
+        const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                   "property float z\nelement face 1\nproperty list uchar int vertex_indices\n";
+        spit(dir / "cut.ply", header.substr(0, 38));
+        CHECK(error_of((dir / "cut.ply").string()).find("end_header") != std::string::npos);
+        spit(dir / "short.ply", header + "end_header\n0 0 0\n1 0 0\n");
+        CHECK(error_of((dir / "short.ply").string()).find("cut short") != std::string::npos);
+        spit(dir / "index.ply", header + "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+        CHECK(error_of((dir / "index.ply").string()).find("not one of the 3 vertices") != std::string::npos);
+        spit(dir / "orphan.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n");
+        CHECK(error_of((dir / "orphan.ply").string()).find("before any element") != std::string::npos);
+    }
+    SUBCASE("STL of the wrong size") {
+        spit(dir / "bad.stl", std::string(84, '\0') + "xyz");
+        CHECK(error_of((dir / "bad.stl").string()).find("neither a binary STL") != std::string::npos);
+    }
+    SUBCASE("Draco glb whose buffer view names a missing buffer") {
+        if (!have_sample("gltf/Box-glb/Box_Draco.glb")) return;
+        auto bytes = slurp(sample("gltf/Box-glb/Box_Draco.glb"));
+        std::string text(bytes.begin(), bytes.end());
+        size_t at = text.find("\"buffer\": 0");
+        REQUIRE(at != std::string::npos);
+        bytes[at + 10] = '9';  // same length: the chunk stays valid
+        std::ofstream(dir / "draco.glb", std::ios::binary)
+            .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        CHECK(error_of((dir / "draco.glb").string()).find("does not exist") != std::string::npos);
+    }
     SUBCASE("unsupported required extension") {
         spit(dir / "ext.gltf",
              R"({"asset":{"version":"2.0"},"extensionsUsed":["EXT_meshopt_compression"],

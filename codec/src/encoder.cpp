@@ -56,7 +56,8 @@ Frame frame_of(const Mesh& mesh) {
     double extent = 0, magnitude = 0;
     for (int k = 0; k < 3; ++k) extent = std::max(extent, hi[k] - lo[k]);
     for (int k = 0; k < 3; ++k) magnitude = std::max({magnitude, std::abs(lo[k]), std::abs(hi[k])});
-    extent = std::max(extent, 1e-6 * std::max(magnitude, 1.0));
+    extent = std::max(extent, 1e-6 * magnitude);  // a flat or single-point model still gets a cube
+    if (!(extent > 1e-30)) extent = magnitude > 0 ? magnitude : 1.0;
     // A small margin so that the extreme vertices do not sit on the frame's edge.
     const double pad = extent * 1e-3;
     Frame f;
@@ -315,9 +316,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     for (uint32_t i : chosen.surface) place(candidates[i], true);
     report.surface_ellipsoids = uint32_t(out.size() - before_surface);
 
-    // Sheets: surface samples far from every ellipsoid, with no inside on either side (or anywhere
-    // on an open surface), get flat ellipsoids that straddle the surface, while the budget lasts.
-    // A closed surface never gets them: its ellipsoids must stay inside.
+    // Surface samples far from every chosen ellipsoid (after quantization).
     auto voxel_row = [&](const Vec3& p, size_t& x, size_t& row) {
         int idx[3];
         for (int k = 0; k < 3; ++k) {
@@ -342,19 +341,11 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     };
     std::vector<uint32_t> lonely;
     near_count(&lonely);
+    // Flat ellipsoids go where the surface stays far from the base: on an open surface (a sheet, a
+    // single-sided panel), or on a closed one with no inside voxel at all (thinner than the grid).
+    // A closed surface with an inside never gets them: its ellipsoids must stay inside it.
     std::vector<uint32_t> sheet_samples;
-    {
-        std::vector<char> is_sheet(lonely.size(), 0);
-        parallel_for(lonely.size(), options.threads, [&](size_t k) {
-            const Vec3& p = samples[lonely[k]];
-            const Vec3& n = sample_normals[lonely[k]];
-            if (n.isZero()) return;
-            double a = winding(to_arr(p + eps * n)), b = winding(to_arr(p - eps * n));
-            is_sheet[k] = !report.closed || (a <= 0.5 && b <= 0.5);
-        });
-        for (size_t k = 0; k < lonely.size(); ++k)
-            if (is_sheet[k]) sheet_samples.push_back(lonely[k]);
-    }
+    if (!report.closed || interior == 0) sheet_samples = lonely;
     if (!sheet_samples.empty() && out.size() < options.max_ellipsoids)
         for (const Candidate& flat :
              sheet_ellipsoids(samples, sample_normals, sheet_samples, grid.h, options.max_ellipsoids - out.size()))

@@ -8,7 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <set>
+
+#include <nlohmann/json.hpp>
 
 // GCC 12 warns falsely (-Wrestrict) inside std::string concatenation of error messages (GCC bug 105651).
 #if defined(__GNUC__) && !defined(__clang__)
@@ -322,6 +325,74 @@ bool primitive_to_mesh(const tinygltf::Model& model, const tinygltf::Primitive& 
     return true;
 }
 
+namespace {
+
+// tinygltf's Draco path indexes buffers and buffer views without checking them (a wrong "buffer"
+// number crashed inside Draco). Check them here, on the JSON, before tinygltf sees the file.
+void check_buffer_views(const std::string& path, bool binary) {
+    std::ifstream in(path, std::ios::binary);
+    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
+    std::string text;
+    uint64_t bin_length = 0;
+    bool has_bin = false;
+    if (binary) {
+        // 12-byte header, then chunks: length, type, data. tinygltf reports header errors itself.
+        if (bytes.size() < 20) return;
+        uint32_t json_length;
+        std::memcpy(&json_length, bytes.data() + 12, 4);
+        if (uint64_t(json_length) + 20 > bytes.size()) return;
+        text.assign(reinterpret_cast<const char*>(bytes.data()) + 20, json_length);
+        uint64_t next = 20 + uint64_t(json_length);
+        if (next + 8 <= bytes.size()) {
+            uint32_t length, type;
+            std::memcpy(&length, bytes.data() + next, 4);
+            std::memcpy(&type, bytes.data() + next + 4, 4);
+            if (type == 0x004E4942u) has_bin = true, bin_length = std::min<uint64_t>(length, bytes.size() - next - 8);
+        }
+    } else {
+        text.assign(bytes.begin(), bytes.end());
+    }
+    if (text.find("KHR_draco_mesh_compression") == std::string::npos) return;  // tinygltf checks the rest
+    nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+    if (doc.is_discarded() || !doc.is_object()) return;  // tinygltf names the JSON error
+    auto count = [&](const char* key) { return doc.contains(key) && doc[key].is_array() ? doc[key].size() : 0; };
+    auto number = [](const nlohmann::json& o, const char* key, double fallback) {
+        return o.is_object() && o.contains(key) && o[key].is_number() ? o[key].get<double>() : fallback;
+    };
+    const size_t buffers = count("buffers"), views = count("bufferViews");
+    for (size_t v = 0; v < views; ++v) {
+        const auto& view = doc["bufferViews"][v];
+        double b = number(view, "buffer", -1);
+        if (!(b >= 0 && b < double(buffers)) || b != std::floor(b))
+            throw InputError(path + ": bufferViews[" + std::to_string(v) + "] refers to a buffer that does not exist");
+        const auto& buffer = doc["buffers"][size_t(b)];
+        double length = number(buffer, "byteLength", -1);
+        if (size_t(b) == 0 && binary && !(buffer.is_object() && buffer.contains("uri")))
+            length = has_bin ? std::min(length, double(bin_length)) : -1;
+        double end = number(view, "byteOffset", 0) + number(view, "byteLength", -1);
+        if (!(number(view, "byteOffset", 0) >= 0) || !(number(view, "byteLength", -1) >= 0) || !(end <= length))
+            throw InputError(path + ": bufferViews[" + std::to_string(v) + "] runs past the end of buffer " +
+                             std::to_string(size_t(b)));
+    }
+    if (!doc.contains("meshes") || !doc["meshes"].is_array()) return;
+    for (size_t m = 0; m < doc["meshes"].size(); ++m) {
+        const auto& mesh = doc["meshes"][m];
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+        for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
+            const auto& prim = mesh["primitives"][p];
+            if (!prim.is_object() || !prim.contains("extensions") || !prim["extensions"].is_object() ||
+                !prim["extensions"].contains("KHR_draco_mesh_compression"))
+                continue;
+            double v = number(prim["extensions"]["KHR_draco_mesh_compression"], "bufferView", -1);
+            if (!(v >= 0 && v < double(views)))
+                throw InputError(path + ": meshes[" + std::to_string(m) + "] primitive " + std::to_string(p) +
+                                 ": its KHR_draco_mesh_compression bufferView does not exist");
+        }
+    }
+}
+
+}  // namespace
+
 void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadImageDataFunction image_loader,
                 void* image_user_data, std::vector<std::string>& warnings) {
     tinygltf::TinyGLTF loader;
@@ -335,6 +406,7 @@ void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadI
         binary = std::fread(magic, 1, 4, f) == 4 && std::memcmp(magic, "glTF", 4) == 0;
         std::fclose(f);
     }
+    check_buffer_views(path, binary);
     bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
                      : loader.LoadASCIIFromFile(&model, &err, &warn, path);
     if (!ok) {

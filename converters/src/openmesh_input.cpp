@@ -6,8 +6,10 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -60,23 +62,240 @@ private:
     std::ostringstream captured_;
 };
 
-// OpenMesh's OBJ reader silently skips a "v" line it cannot parse (nan, inf, garbage), which would
-// shift every later index. Check the vertex lines first and name the first bad one.
-void check_obj_vertex_lines(const std::string& path) {
+// OpenMesh's readers trust their input: an OBJ face index out of range corrupts the heap, a PLY
+// header cut short makes the reader spin, an unparsable "v" line is skipped and shifts every later
+// index. Every file is checked here first, and the first problem is named with its line or size.
+
+[[noreturn]] void bad(const std::string& path, size_t line, const std::string& what) {
+    throw InputError(path + ": line " + std::to_string(line) + ": " + what);
+}
+
+uint64_t file_size(const std::string& path) {
+    std::error_code ec;
+    auto size = std::filesystem::file_size(path, ec);
+    return ec ? 0 : uint64_t(size);
+}
+
+// OBJ: finite vertex coordinates; face corners "v", "v/t", "v//n", "v/t/n" whose indices refer to
+// elements already defined (negative: relative to the last one).
+void check_obj(const std::string& path) {
     std::ifstream in(path);
     std::string line;
+    long long counts[3] = {0, 0, 0};  // v, vt, vn
     for (size_t number = 1; std::getline(in, line); ++number) {
-        if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
-        const char* p = line.c_str() + 2;
-        for (int k = 0; k < 3; ++k) {
-            char* end = nullptr;
-            double value = std::strtod(p, &end);
-            if (end == p || !std::isfinite(value))
-                throw InputError(path + ": line " + std::to_string(number) + ": vertex coordinate " +
-                                 std::to_string(k + 1) + " is not a finite number (\"" + line + "\")");
-            p = end;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line.size() < 2 || (line[1] != ' ' && line[1] != '\t' && line[1] != 't' && line[1] != 'n')) continue;
+        if (line[0] == 'v') {
+            int kind = line[1] == 't' ? 1 : line[1] == 'n' ? 2 : 0;
+            if (kind != 0 && (line.size() < 3 || (line[2] != ' ' && line[2] != '\t'))) continue;
+            ++counts[kind];
+            if (kind != 0) continue;
+            const char* p = line.c_str() + 2;
+            for (int k = 0; k < 3; ++k) {
+                char* end = nullptr;
+                double value = std::strtod(p, &end);
+                if (end == p || !std::isfinite(value))
+                    bad(path, number, "vertex coordinate " + std::to_string(k + 1) + " is not a finite number (\"" +
+                                          line + "\")");
+                p = end;
+            }
+        } else if (line[0] == 'f' && (line[1] == ' ' || line[1] == '\t')) {
+            std::istringstream tokens(line.substr(2));
+            std::string corner;
+            while (tokens >> corner) {
+                size_t start = 0;
+                for (int part = 0; part < 3 && start <= corner.size(); ++part) {
+                    size_t slash = corner.find('/', start);
+                    std::string text = corner.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+                    start = slash == std::string::npos ? corner.size() + 1 : slash + 1;
+                    if (text.empty() && part > 0) continue;  // "v//n"
+                    char* end = nullptr;
+                    long long index = std::strtoll(text.c_str(), &end, 10);
+                    if (text.empty() || *end != '\0' || index == 0 || index > counts[part] || -index > counts[part])
+                        bad(path, number, "face corner \"" + corner + "\" does not refer to a defined " +
+                                              (part == 0 ? "vertex" : part == 1 ? "texture coordinate" : "normal") +
+                                              " (" + std::to_string(counts[part]) + " so far)");
+                }
+            }
         }
     }
+}
+
+// PLY: a complete header of known types, then a body holding every declared element whole, with
+// face indices that refer to declared vertices (ASCII and binary bodies are walked value by value).
+void check_ply(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    struct Property {
+        bool list = false;
+        std::string count_type, type, name;
+    };
+    struct Element {
+        std::string name;
+        uint64_t count = 0;
+        std::vector<Property> properties;
+    };
+    std::vector<Element> elements;
+    auto type_size = [](const std::string& t) -> int {
+        if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+        if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+        if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32") return 4;
+        if (t == "double" || t == "float64") return 8;
+        return 0;
+    };
+    std::string line, format;
+    size_t number = 0;
+    bool ended = false;
+    uint64_t header_bytes = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        header_bytes += line.size() + 1;
+        if (header_bytes > (1u << 20)) bad(path, number, "the PLY header does not end within 1 MB");
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream words(line);
+        std::string word;
+        words >> word;
+        if (number == 1) {
+            if (word != "ply") bad(path, 1, "not a PLY file (it must start with \"ply\")");
+        } else if (word == "format") {
+            words >> format;
+            if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
+                bad(path, number, "unknown PLY format \"" + format + "\"");
+        } else if (word == "element") {
+            Element e;
+            long long count = -1;
+            words >> e.name >> count;
+            if (!words || count < 0 || count > (1ll << 31)) bad(path, number, "bad element line \"" + line + "\"");
+            e.count = uint64_t(count);
+            elements.push_back(e);
+        } else if (word == "property") {
+            if (elements.empty()) bad(path, number, "a property before any element");
+            Property p;
+            std::string type;
+            words >> type;
+            if (type == "list") {
+                p.list = true;
+                words >> p.count_type >> p.type >> p.name;
+                if (!type_size(p.count_type) || !type_size(p.type))
+                    bad(path, number, "unknown property type in \"" + line + "\"");
+            } else {
+                p.type = type;
+                words >> p.name;
+                if (!type_size(p.type)) bad(path, number, "unknown property type \"" + type + "\"");
+            }
+            elements.back().properties.push_back(p);
+        } else if (word == "end_header") {
+            ended = true;
+            break;
+        } else if (word != "comment" && word != "obj_info" && !word.empty()) {
+            bad(path, number, "unexpected PLY header line \"" + line + "\"");
+        }
+    }
+    if (!ended) bad(path, number, "the PLY header has no end_header line (the file is cut short?)");
+    if (format.empty()) bad(path, number, "the PLY header has no format line");
+
+    uint64_t vertices = 0;
+    for (const auto& e : elements)
+        if (e.name == "vertex") vertices = e.count;
+    const bool ascii = format == "ascii";
+    const bool swap = format == "binary_big_endian";
+    std::string token;
+    // The next value of the body as a double; false at the end of the file or on a non-number.
+    auto next = [&](const std::string& type, double& value) -> bool {
+        if (ascii) {
+            if (!(in >> token)) return false;
+            char* end = nullptr;
+            value = std::strtod(token.c_str(), &end);
+            return *end == '\0' && std::isfinite(value);
+        }
+        unsigned char b[8];
+        int n = type_size(type);
+        if (!in.read(reinterpret_cast<char*>(b), n)) return false;
+        if (swap) std::reverse(b, b + n);
+        if (type == "char" || type == "int8") value = double(int8_t(b[0]));
+        else if (type == "uchar" || type == "uint8") value = b[0];
+        else if (type == "short" || type == "int16") { int16_t v; std::memcpy(&v, b, 2); value = v; }
+        else if (type == "ushort" || type == "uint16") { uint16_t v; std::memcpy(&v, b, 2); value = v; }
+        else if (type == "int" || type == "int32") { int32_t v; std::memcpy(&v, b, 4); value = v; }
+        else if (type == "uint" || type == "uint32") { uint32_t v; std::memcpy(&v, b, 4); value = v; }
+        else if (type == "float" || type == "float32") { float v; std::memcpy(&v, b, 4); value = v; }
+        else { double v; std::memcpy(&v, b, 8); value = v; }
+        return true;
+    };
+    for (const auto& e : elements) {
+        const bool faces = e.name == "face";
+        for (uint64_t i = 0; i < e.count; ++i)
+            for (const auto& p : e.properties) {
+                const std::string where = "PLY " + e.name + " " + std::to_string(i) + ", property " + p.name;
+                double value = 0;
+                if (!p.list) {
+                    if (!next(p.type, value))
+                        throw InputError(path + ": " + where + ": missing or not a finite number (the file is cut "
+                                                "short or damaged)");
+                    continue;
+                }
+                if (!next(p.count_type, value) || value < 0 || value > 1024 || value != std::floor(value))
+                    throw InputError(path + ": " + where + ": bad list length");
+                const int items = int(value);
+                const bool indices = faces && (p.name == "vertex_indices" || p.name == "vertex_index");
+                for (int k = 0; k < items; ++k) {
+                    if (!next(p.type, value))
+                        throw InputError(path + ": " + where + ": missing or not a finite number (the file is cut "
+                                                "short or damaged)");
+                    if (indices && (value < 0 || value >= double(vertices) || value != std::floor(value)))
+                        throw InputError(path + ": " + where + ": index " + std::to_string(value) +
+                                         " is not one of the " + std::to_string(vertices) + " vertices");
+                }
+            }
+    }
+}
+
+// OFF: a header whose counts the file can hold.
+void check_off(const std::string& path) {
+    std::ifstream in(path);
+    std::string line;
+    size_t number = 0;
+    bool keyword = false;
+    while (std::getline(in, line)) {
+        ++number;
+        auto hash = line.find('#');
+        if (hash != std::string::npos) line.resize(hash);
+        std::istringstream words(line);
+        std::string first;
+        if (!(words >> first)) continue;
+        if (!keyword) {
+            keyword = true;
+            if (first.find("OFF") == std::string::npos) bad(path, number, "not an OFF file (no OFF keyword)");
+            if (first.size() >= 3 && first.compare(first.size() - 3, 3, "OFF") == 0 && !(words >> first)) continue;
+            if (first.find("OFF") != std::string::npos) continue;
+        }
+        char* end = nullptr;
+        long long vertices = std::strtoll(first.c_str(), &end, 10);
+        long long faces = -1;
+        words >> faces;
+        if (*end != '\0' || vertices < 0 || faces < 0)
+            bad(path, number, "the OFF counts line must hold vertex and face counts (\"" + line + "\")");
+        if (uint64_t(vertices + faces) * 2 > file_size(path))
+            bad(path, number, "the OFF header declares " + std::to_string(vertices) + " vertices and " +
+                                  std::to_string(faces) + " faces, more than the file can hold");
+        return;
+    }
+    throw InputError(path + ": not an OFF file (no counts line)");
+}
+
+// STL: binary (84 + 50 bytes per triangle, exactly) or ASCII ("solid ...").
+void check_stl(const std::string& path) {
+    uint64_t size = file_size(path);
+    std::ifstream in(path, std::ios::binary);
+    char head[84] = {};
+    in.read(head, 84);
+    if (size >= 84) {
+        uint32_t count;
+        std::memcpy(&count, head + 80, 4);
+        if (84 + 50 * uint64_t(count) == size) return;
+    }
+    if (size >= 5 && std::string(head, 5) == "solid") return;
+    throw InputError(path + ": neither a binary STL (84 + 50 bytes per triangle, here " + std::to_string(size) +
+                     " bytes) nor an ASCII STL (starting with \"solid\")");
 }
 
 }  // namespace
@@ -90,7 +309,10 @@ LoadResult load_openmesh(const std::string& path) {
     opt += OpenMesh::IO::Options::FaceTexCoord;
     std::string ext = std::filesystem::path(path).extension().string();
     for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (ext == ".obj") check_obj_vertex_lines(path);
+    if (ext == ".obj") check_obj(path);
+    else if (ext == ".ply") check_ply(path);
+    else if (ext == ".off") check_off(path);
+    else if (ext == ".stl") check_stl(path);
     std::vector<std::string> reader_messages;
     bool ok;
     {
