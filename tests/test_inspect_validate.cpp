@@ -36,8 +36,13 @@ Result run_ellicast(const std::string& args) {
     const std::string tag = std::to_string(getpid()) + "-" + std::to_string(counter++);
     const auto out = dir / ("out-" + tag + ".txt");
     const auto err = dir / ("err-" + tag + ".txt");
-    const std::string cmd = "'" + ellicast::test::ellicast_exe().string() + "' " + args + " > '" + out.string() + "' 2> '" +
-                            err.string() + "'";
+    std::string cmd = "'";  // built with += : GCC 12 warns falsely (-Wrestrict) on "'" + std::string
+    cmd += ellicast::test::ellicast_exe().string();
+    cmd += "' " + args + " > '";
+    cmd += out.string();
+    cmd += "' 2> '";
+    cmd += err.string();
+    cmd += "'";
     int status = std::system(cmd.c_str());
     Result r;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
