@@ -420,8 +420,10 @@ TEST_CASE("write_asset refuses bad options, unknown file types and unwritable pl
     auto dir = scratch_dir("asset_output_errors");
     CHECK(!write_asset((dir / "x.glb").string(), a, AssetWriteOptions{.draco = true, .quantize = true}, warnings, error));
     CHECK(error.find("cannot be combined") != std::string::npos);
-    CHECK(!write_asset((dir / "x.ply").string(), a, {}, warnings, error));
-    CHECK(error.find(".glb or .gltf") != std::string::npos);
+    CHECK(!write_asset((dir / "x.stl").string(), a, {}, warnings, error));
+    CHECK(error.find("unknown output type") != std::string::npos);
+    CHECK(!write_asset((dir / "x.ply").string(), a, AssetWriteOptions{.quantize = true}, warnings, error));
+    CHECK(error.find("glTF features") != std::string::npos);
     CHECK(!write_asset((dir / "missing" / "x.glb").string(), a, {}, warnings, error));
     CHECK(error.find("x.glb") != std::string::npos);
     CHECK(!fs::exists(dir / "missing" / "x.glb"));

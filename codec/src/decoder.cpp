@@ -314,8 +314,9 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
 }
 
 bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, std::vector<Mesh>& meshes,
-                   StreamDecodeReport& report, std::string& error) {
+                   StreamDecodeReport& report, std::string& error, std::vector<size_t>* mesh_objects) {
     meshes.clear();
+    if (mesh_objects) mesh_objects->clear();
     report = StreamDecodeReport{};
     if (!stream.info()) {
         error = "no STREAM_INFO packet arrived: the object table and quantization frames are unknown, so "
@@ -347,6 +348,7 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
         if (mesh.positions.empty()) continue;
         mesh.name = "object" + std::to_string(i);
         meshes.push_back(std::move(mesh));
+        if (mesh_objects) mesh_objects->push_back(i);
     }
     return true;
 }

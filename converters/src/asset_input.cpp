@@ -414,7 +414,9 @@ private:
     std::map<std::string, bool> not_carried_attributes_;
 };
 
-bool is_gltf_path(const std::string& path) {
+}  // namespace
+
+bool is_gltf_file(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     if (ext == ".gltf" || ext == ".glb") return true;
@@ -426,14 +428,12 @@ bool is_gltf_path(const std::string& path) {
     return glb;
 }
 
-}  // namespace
-
 Asset load_asset(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
     if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a model file");
     Asset asset;
-    if (!is_gltf_path(path)) {
+    if (!is_gltf_file(path)) {
         LoadResult loaded = load_meshes(path);  // OBJ / PLY / OFF / STL, with its checks
         asset.warnings = std::move(loaded.warnings);
         SceneMesh mesh;

@@ -3,6 +3,7 @@
 // or KHR_mesh_quantization. Whatever does not hold together is left out with a warning, so that the
 // file is always valid glTF: a receiver writes whatever has arrived.
 #include "ellicast/converters/asset.h"
+#include "ellicast/converters/mesh_output.h"
 
 #include "gltf_write.h"
 
@@ -692,8 +693,20 @@ bool write_asset(const std::string& path, const Asset& asset, const AssetWriteOp
     }
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".ply" || ext == ".obj") {
+        if (options.draco || options.quantize) {
+            error = path + ": Draco and quantized output are glTF features (write .glb or .gltf)";
+            return false;
+        }
+        std::vector<Mesh> meshes = flatten_asset(asset);
+        if (meshes.empty()) {
+            error = path + ": no object to write";
+            return false;
+        }
+        return write_meshes(path, meshes, error);
+    }
     if (ext != ".glb" && ext != ".gltf") {
-        error = path + ": a scene is written as .glb or .gltf, not '" + ext + "'";
+        error = path + ": unknown output type '" + ext + "' (expected .glb, .gltf, .ply or .obj)";
         return false;
     }
     tinygltf::Model model = AssetWriter(path, asset, options, warnings).build();

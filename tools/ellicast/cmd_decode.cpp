@@ -1,12 +1,14 @@
-// `ellicast decode IN.ellc -o OUT.glb|.gltf|.ply|.obj [--snapshots N] [--grid R]`: rebuild the
-// models from whatever packets a recorded stream holds.
+// `ellicast decode IN.ellc -o OUT.glb|.gltf|.ply|.obj [--snapshots N] [--grid R] [--draco|--quantize]`:
+// rebuild the models from whatever packets a recorded stream holds, in their scene when it has one.
 #include "commands.h"
 #include "progress.h"
 
 #include "ellicast/codec/decoder.h"
+#include "ellicast/converters/asset_stream.h"
 #include "ellicast/converters/mesh_output.h"
 #include "ellicast/format.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -22,6 +24,7 @@ struct DecodeArgs {
     size_t snapshots = 0;
     int grid = 0;
     bool quiet = false;
+    AssetWriteOptions write;  // --draco, --quantize
 };
 
 std::string snapshot_path(const std::string& output, size_t object, size_t points) {
@@ -37,6 +40,9 @@ int run_decode(const DecodeArgs& args) {
     if (!mesh_file_type_from_path(args.output, type))
         return fail(kExitUsage, args.output + ": unknown output type (expected .glb, .gltf, .ply or .obj)");
     if (output_clobbers_input(args.output, {args.input})) return kExitUsage;
+    if (std::string bad = check_asset_write_options(args.write); !bad.empty()) return fail(kExitUsage, bad);
+    if ((args.write.draco || args.write.quantize) && type != MeshFileType::Glb && type != MeshFileType::Gltf)
+        return fail(kExitUsage, "--draco and --quantize need a .glb or .gltf output");
     if (type == MeshFileType::Gltf) {
         auto bin = std::filesystem::path(args.output).replace_extension(".bin").string();
         if (output_clobbers_input(bin, {args.input})) return kExitUsage;
@@ -74,10 +80,10 @@ int run_decode(const DecodeArgs& args) {
             ++snapshots_written;
         };
     }
-    std::vector<Mesh> meshes;
+    Asset asset;
     StreamDecodeReport report;
     std::string error;
-    bool ok = decode_stream(stream, options, meshes, report, error);
+    bool ok = decode_asset(stream, options, asset, report, error);
     bar.finish();
     if (!ok) {
         std::string damage;
@@ -87,11 +93,13 @@ int run_decode(const DecodeArgs& args) {
         return fail(kExitInvalid, args.input + ": " + error + damage);
     }
     if (!snapshot_error.empty()) return fail(kExitFailure, snapshot_error);
-    if (meshes.empty())
+    if (std::none_of(asset.objects.begin(), asset.objects.end(), [](const Mesh& m) { return !m.positions.empty(); }))
         return fail(kExitInvalid, args.input + ": nothing can be built: no object received any ellipsoid or point");
 
     auto tw = std::chrono::steady_clock::now();
-    if (!write_meshes(args.output, meshes, error)) return fail(kExitFailure, error);
+    std::vector<std::string> warnings = asset.warnings;
+    if (!write_asset(args.output, asset, args.write, warnings, error)) return fail(kExitFailure, error);
+    for (const auto& w : warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
     double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tw).count();
 
     const auto& c = stream.counters();
@@ -143,6 +151,8 @@ const RegisterCommand kRegister{{40, [](CLI::App& app, int& exit_code) {
                     "grid resolution for the base (cells along the object's frame; default: the stream's hint, "
                     "else " + std::to_string(kDefaultGridResolution) + ")")
         ->check(CLI::Range(kMinGridResolution, kMaxGridResolution));
+    cmd->add_flag("--draco", args->write.draco, "glTF output: compress triangle meshes with KHR_draco_mesh_compression");
+    cmd->add_flag("--quantize", args->write.quantize, "glTF output: quantize attributes with KHR_mesh_quantization");
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
     cmd->callback([args, &exit_code] { exit_code = run_decode(*args); });
 }}};

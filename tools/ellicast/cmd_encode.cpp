@@ -1,9 +1,10 @@
-// `ellicast encode INPUT -o OUT.ellc`: a model (glTF, OBJ, PLY, OFF, STL) to a recorded stream.
+// `ellicast encode INPUT -o OUT.ellc`: a model (glTF, OBJ, PLY, OFF, STL) to a recorded stream; a
+// glTF's scene (nodes, materials, textures) travels with it.
 #include "commands.h"
 #include "progress.h"
 
 #include "ellicast/codec/encoder.h"
-#include "ellicast/converters/mesh_input.h"
+#include "ellicast/converters/asset_stream.h"
 #include "ellicast/format.h"
 
 #include <chrono>
@@ -53,38 +54,28 @@ int run_encode(const EncodeArgs& a) {
     options.threads = a.threads;
     if (std::string why = check_encode_options(options); !why.empty()) return fail(kExitUsage, why);
 
-    LoadResult loaded;
+    // A glTF keeps its scene: each distinct primitive once in its mesh's frame, plus the SCENE,
+    // MATERIAL and TEXTURE_FRAGMENT packets. Other formats are one object per mesh, no scene.
+    Asset asset;
     try {
-        loaded = load_meshes(a.input);
+        asset = load_asset(a.input);
     } catch (const InputError& e) {
         return fail(kExitFailure, e.what());
     }
-    for (const auto& w : loaded.warnings) std::cerr << "ellicast: warning: " << w << "\n";
-    if (loaded.meshes.size() > kMaxObjects)
-        return fail(kExitFailure, a.input + ": " + std::to_string(loaded.meshes.size()) +
-                                      " objects, more than a stream holds (" + std::to_string(kMaxObjects) + ")");
+    for (const auto& w : asset.warnings) std::cerr << "ellicast: warning: " << w << "\n";
+    const bool with_scene = is_gltf_file(a.input);
 
     auto bar = std::make_shared<ProgressBar>(!a.quiet);
     options.progress = [bar](const std::string& stage, double f) { bar->update(stage, f); };
-    EncodeResult encoded;
-    try {
-        encoded = encode_meshes(loaded.meshes, options);
-    } catch (const std::exception& e) {
-        bar->finish();
-        return fail(kExitFailure, a.input + ": " + e.what());
-    }
+    EncodedAsset out;
+    std::string error;
+    bool ok = encode_asset(asset, options, a.stream_id, with_scene, out, error);
     bar->finish();
+    if (!ok) return fail(kExitFailure, a.input + ": " + error);
+    const EncodeResult& encoded = out.encoded;
     for (const auto& w : encoded.warnings) std::cerr << "ellicast: warning: " << w << "\n";
 
-    StreamPackets packets;
-    if (Error e = packetize_stream(encoded.info, encoded.contents, a.stream_id, packets); e != Error::Ok)
-        return fail(kExitFailure, std::string("could not cut the stream into packets: ") + error_name(e));
-    std::vector<std::vector<uint8_t>> all;
-    size_t info_bytes = 0, base_bytes = 0, detail_bytes = 0;
-    for (auto& p : packets.stream_info) info_bytes += p.size(), all.push_back(p);
-    for (auto& p : packets.ellipsoids) base_bytes += p.size(), all.push_back(p);
-    for (auto& p : packets.points) detail_bytes += p.size(), all.push_back(p);
-    std::vector<uint8_t> file = write_container(all);
+    std::vector<uint8_t> file = write_container(out.packets);
     std::string message;
     if (write_file(a.output, file, message) != Error::Ok) return fail(kExitFailure, message);
 
@@ -104,12 +95,16 @@ int run_encode(const EncodeArgs& a) {
                     r.closed ? "closed" : "open", 100 * r.coverage, 100 * r.outside, 100 * r.surface_covered);
     }
     std::printf("objects %zu, ellipsoids %zu, points %zu\n", encoded.info.objects.size(), ellipsoids, points);
-    std::printf("bytes: stream info %zu (%zu packets), base %zu (%zu packets), detail %zu (%zu packets), file %zu\n",
-                info_bytes, packets.stream_info.size(), base_bytes, packets.ellipsoids.size(), detail_bytes,
-                packets.points.size(), file.size());
+    if (with_scene)
+        std::printf("scene: %zu nodes, %zu meshes, %zu materials, %zu textures\n", asset.scene.nodes.size(),
+                    asset.scene.meshes.size(), asset.scene.materials.size(), asset.scene.textures.size());
+    std::printf("bytes: stream info %zu (%zu packets), base %zu (%zu packets), scene %zu (%zu packets), "
+                "detail %zu (%zu packets), file %zu\n",
+                out.stream_info_bytes, out.stream_info_packets, out.ellipsoid_bytes, out.ellipsoid_packets,
+                out.scene_bytes, out.scene_packets, out.point_bytes, out.point_packets, file.size());
     std::printf("bytes per ellipsoid %.2f, bytes per point %.2f (packet overhead included)\n",
-                ellipsoids ? double(base_bytes) / double(ellipsoids) : 0.0,
-                points ? double(detail_bytes) / double(points) : 0.0);
+                ellipsoids ? double(out.ellipsoid_bytes) / double(ellipsoids) : 0.0,
+                points ? double(out.point_bytes) / double(points) : 0.0);
     std::printf("time %.2f s\n", seconds);
     return kExitOk;
 }

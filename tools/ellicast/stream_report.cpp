@@ -67,8 +67,9 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             r.violations.push_back({p.offset, packet_type_name(h.type) + " packet rejected: " + error_name(e) +
                                                   (detail.empty() ? "" : " (" + detail + ")")});
         }
-        if (is_known_packet_type(h.type) && h.skippable())
-            r.violations.push_back({p.offset, packet_type_name(h.type) + " packet marked skippable (flags bit 0 must be 0 for a known type)"});
+        // The format 1.0 types are critical; the 1.1 scene types are sent skippable (spec section 4).
+        if (h.type <= uint8_t(PacketType::Points) && h.skippable())
+            r.violations.push_back({p.offset, packet_type_name(h.type) + " packet marked skippable (flags bit 0 must be 0 for a format 1.0 type)"});
     }
     for (const DamagedRegion& d : r.damaged)
         r.violations.push_back({d.offset, std::to_string(d.length) + " damaged byte" + (d.length == 1 ? "" : "s") +

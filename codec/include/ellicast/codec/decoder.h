@@ -251,9 +251,10 @@ struct StreamDecodeReport {
 };
 
 // Reconstructs every object of a received stream whose info arrived. Fails with a clear `error`
-// when no STREAM_INFO arrived at all. Objects with no geometry at all are left out of `meshes`.
+// when no STREAM_INFO arrived at all. Objects with no geometry at all are left out of `meshes`;
+// `mesh_objects`, when given, receives the object index of each mesh.
 bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, std::vector<Mesh>& meshes,
-                   StreamDecodeReport& report, std::string& error);
+                   StreamDecodeReport& report, std::string& error, std::vector<size_t>* mesh_objects = nullptr);
 
 // The output mesh of a reconstruction in its current state, with attributes: seams are split by
 // attribute set (each face corner takes the set closest to the face's other corners), and

@@ -38,6 +38,9 @@ struct Asset {
 // when the file cannot be read or holds nothing to send.
 Asset load_asset(const std::string& path);
 
+// True when `path` names a glTF file: a .gltf or .glb extension (any case), or the GLB magic.
+bool is_gltf_file(const std::string& path);
+
 // The asset a receiver can write from what has arrived: `objects[i]` is the decoded object i
 // (empty positions: not arrived), the scene from the stream's SCENE / MATERIAL / TEXTURE_FRAGMENT
 // packets. Nodes whose ancestors did not all arrive are left out; materials and textures that did
@@ -62,14 +65,20 @@ struct AssetWriteOptions {
 // Checks options: empty when valid, else a message naming the bad option.
 std::string check_asset_write_options(const AssetWriteOptions& options);
 
-// Writes `asset` as glTF 2.0: binary (.glb) or .gltf with a .bin next to it (same stem), chosen
-// by the extension of `path`. The scene graph, meshes (each object one primitive of its mesh),
-// materials and textures (images embedded in the buffer, bytes as given) are written; anything
-// that does not hold together (an absent object, an out-of-range reference, an empty texture
-// image, a texture set the primitive lacks) is left out with a warning appended to `warnings`,
-// so the file is always valid glTF. Writes through a temporary name. Returns false with `error`
-// naming the file and the problem when it cannot write.
+// Writes `asset` in the type the extension of `path` names. glTF 2.0, binary (.glb) or .gltf with
+// a .bin next to it (same stem): the scene graph, meshes (each object one primitive of its mesh),
+// materials and textures (images embedded in the buffer, bytes as given); anything that does not
+// hold together (an absent object, an out-of-range reference, an empty texture image, a texture
+// set the primitive lacks) is left out with a warning appended to `warnings`, so the file is
+// always valid glTF. PLY / OBJ (no scene graph): the world-space meshes of flatten_asset. Writes
+// through a temporary name. Returns false with `error` naming the file and the problem when it
+// cannot write (or when Draco / quantization is asked of PLY / OBJ).
 bool write_asset(const std::string& path, const Asset& asset, const AssetWriteOptions& options,
                  std::vector<std::string>& warnings, std::string& error);
+
+// Every present object under every node that shows it, in world space (node transforms applied,
+// normals by the inverse transpose, winding kept outward under a mirroring transform), named after
+// its node. Without nodes: the present objects as they are.
+std::vector<Mesh> flatten_asset(const Asset& asset);
 
 }  // namespace ellicast

@@ -1,0 +1,38 @@
+// An Asset through a stream: its objects encoded (ellipsoids + points) and its scene cut into
+// SCENE / MATERIAL / TEXTURE_FRAGMENT packets on the way out; its objects decoded and its scene
+// rebuilt from whatever packets arrived on the way in.
+#pragma once
+
+#include "ellicast/codec/decoder.h"
+#include "ellicast/codec/encoder.h"
+#include "ellicast/converters/asset.h"
+#include "ellicast/format.h"
+
+#include <string>
+#include <vector>
+
+namespace ellicast {
+
+struct EncodedAsset {
+    EncodeResult encoded;  // stream info, per-object contents, reports, warnings
+    // Every packet in transmission order: STREAM_INFO, ELLIPSOIDS, then the scene (SCENE,
+    // MATERIAL, TEXTURE_FRAGMENT: base data, a receiver wants it before the detail), then POINTS.
+    // Sequence numbers count up in this order from 0.
+    std::vector<std::vector<uint8_t>> packets;
+    size_t stream_info_packets = 0, ellipsoid_packets = 0, scene_packets = 0, point_packets = 0;
+    size_t stream_info_bytes = 0, ellipsoid_bytes = 0, scene_bytes = 0, point_bytes = 0;
+};
+
+// Encodes the objects of `asset` (one stream object each, in their own frames) and, when
+// `with_scene`, packetizes its scene description. Returns false with `error` naming the problem
+// (invalid options, too many objects, a scene table or name the format cannot carry).
+bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t stream_id, bool with_scene,
+                  EncodedAsset& out, std::string& error);
+
+// Reconstructs every object whose stream info arrived (decode_object) and rebuilds the scene
+// around them (received_asset). Fails with `error` only when no STREAM_INFO arrived or an object
+// cannot be built at all; the report says what each object received.
+bool decode_asset(const ReceivedStream& stream, const DecodeOptions& options, Asset& out,
+                  StreamDecodeReport& report, std::string& error);
+
+}  // namespace ellicast

@@ -1,0 +1,65 @@
+// An Asset through a stream: encode_asset puts the objects and the scene into packets in
+// transmission order; decode_asset rebuilds objects and scene from what arrived.
+#include "ellicast/converters/asset_stream.h"
+
+#include <stdexcept>
+
+namespace ellicast {
+
+bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t stream_id, bool with_scene,
+                  EncodedAsset& out, std::string& error) {
+    out = EncodedAsset{};
+    if (asset.objects.size() > kMaxObjects) {
+        error = std::to_string(asset.objects.size()) + " objects, more than a stream holds (" +
+                std::to_string(kMaxObjects) + ")";
+        return false;
+    }
+    try {
+        out.encoded = encode_meshes(asset.objects, options);
+    } catch (const std::exception& e) {
+        error = e.what();
+        return false;
+    }
+    StreamPackets stream;
+    if (Error e = packetize_stream(out.encoded.info, out.encoded.contents, stream_id, stream); e != Error::Ok) {
+        error = std::string("could not cut the stream into packets: ") + error_name(e);
+        return false;
+    }
+    ScenePackets scene;
+    if (with_scene) {
+        if (Error e = packetize_scene(asset.scene, out.encoded.info.packet_size, stream_id, 0, scene); e != Error::Ok) {
+            error = std::string("could not cut the scene into packets (a table over 65534 entries, a record larger "
+                                "than a packet, or a reference outside its table): ") +
+                    error_name(e);
+            return false;
+        }
+    }
+    auto take = [&](std::vector<std::vector<uint8_t>>& packets, size_t& count, size_t& bytes) {
+        for (auto& p : packets) {
+            ++count;
+            bytes += p.size();
+            out.packets.push_back(std::move(p));
+        }
+    };
+    take(stream.stream_info, out.stream_info_packets, out.stream_info_bytes);
+    take(stream.ellipsoids, out.ellipsoid_packets, out.ellipsoid_bytes);
+    take(scene.scene, out.scene_packets, out.scene_bytes);
+    take(scene.materials, out.scene_packets, out.scene_bytes);
+    take(scene.textures, out.scene_packets, out.scene_bytes);
+    take(stream.points, out.point_packets, out.point_bytes);
+    for (size_t i = 0; i < out.packets.size(); ++i) restamp_packet(out.packets[i], uint32_t(i));
+    return true;
+}
+
+bool decode_asset(const ReceivedStream& stream, const DecodeOptions& options, Asset& out,
+                  StreamDecodeReport& report, std::string& error) {
+    std::vector<Mesh> meshes;
+    std::vector<size_t> mesh_objects;
+    if (!decode_stream(stream, options, meshes, report, error, &mesh_objects)) return false;
+    std::vector<Mesh> objects(stream.objects().size());
+    for (size_t i = 0; i < meshes.size(); ++i) objects[mesh_objects[i]] = std::move(meshes[i]);
+    out = received_asset(stream, std::move(objects));
+    return true;
+}
+
+}  // namespace ellicast

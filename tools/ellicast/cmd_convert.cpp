@@ -1,0 +1,134 @@
+// `ellicast convert IN OUT [--draco|--quantize]`: encode and decode in one go with every packet, to
+// check an asset end to end (a glTF comes out with its scene, materials and textures).
+#include "commands.h"
+#include "progress.h"
+
+#include "ellicast/converters/asset_stream.h"
+#include "ellicast/converters/mesh_output.h"
+#include "ellicast/format.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+namespace ellicast::cli {
+
+namespace {
+
+struct ConvertArgs {
+    std::string input, output;
+    uint32_t ellipsoids = 400;
+    double coverage = 0.95;
+    int position_bits = 14;
+    int packet_size = int(kDefaultPacketSize);
+    uint32_t seed = 1;
+    unsigned threads = 2;
+    int grid = 0;
+    bool quiet = false;
+    AssetWriteOptions write;
+};
+
+int run_convert(const ConvertArgs& a) {
+    const auto start = std::chrono::steady_clock::now();
+    MeshFileType type;
+    if (!mesh_file_type_from_path(a.output, type))
+        return fail(kExitUsage, a.output + ": unknown output type (expected .glb, .gltf, .ply or .obj)");
+    if (std::string bad = check_asset_write_options(a.write); !bad.empty()) return fail(kExitUsage, bad);
+    if ((a.write.draco || a.write.quantize) && type != MeshFileType::Glb && type != MeshFileType::Gltf)
+        return fail(kExitUsage, "--draco and --quantize need a .glb or .gltf output");
+    if (output_clobbers_input(a.output, {a.input})) return kExitUsage;
+    if (type == MeshFileType::Gltf &&
+        output_clobbers_input(std::filesystem::path(a.output).replace_extension(".bin").string(), {a.input}))
+        return kExitUsage;
+
+    if (a.grid != 0 && (a.grid < kMinGridResolution || a.grid > kMaxGridResolution))
+        return fail(kExitUsage, "--grid must be 0 or " + std::to_string(kMinGridResolution) + ".." +
+                                    std::to_string(kMaxGridResolution));
+    EncodeOptions encode;
+    encode.max_ellipsoids = a.ellipsoids;
+    encode.coverage = a.coverage;
+    encode.position_bits = uint8_t(std::clamp(a.position_bits, 0, 255));
+    encode.packet_size = uint16_t(std::clamp(a.packet_size, 0, 65535));
+    encode.seed = a.seed;
+    encode.threads = a.threads;
+    if (std::string why = check_encode_options(encode); !why.empty()) return fail(kExitUsage, why);
+
+    Asset asset;
+    try {
+        asset = load_asset(a.input);
+    } catch (const InputError& e) {
+        return fail(kExitFailure, e.what());
+    }
+    for (const auto& w : asset.warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
+
+    auto bar = std::make_shared<ProgressBar>(!a.quiet);
+    encode.progress = [bar](const std::string& stage, double f) { bar->update(stage, f); };
+    EncodedAsset encoded;
+    std::string error;
+    bool ok = encode_asset(asset, encode, 1, is_gltf_file(a.input), encoded, error);
+    bar->finish();
+    if (!ok) return fail(kExitFailure, a.input + ": " + error);
+    for (const auto& w : encoded.encoded.warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
+
+    // Every packet arrives, in transmission order.
+    ReceivedStream stream;
+    for (size_t i = 0; i < encoded.packets.size(); ++i)
+        if (Error e = stream.add_packet(encoded.packets[i], i); e != Error::Ok)
+            return fail(kExitFailure, "packet " + std::to_string(i) + " of our own stream was refused: " + error_name(e));
+
+    DecodeOptions decode;
+    decode.grid_resolution = a.grid;
+    decode.progress = [bar](const std::string& stage, double f) { bar->update(stage, f); };
+    Asset decoded;
+    StreamDecodeReport report;
+    ok = decode_asset(stream, decode, decoded, report, error);
+    bar->finish();
+    if (!ok) return fail(kExitFailure, a.input + ": " + error);
+    std::vector<std::string> warnings = decoded.warnings;
+    if (!write_asset(a.output, decoded, a.write, warnings, error)) return fail(kExitFailure, error);
+    for (const auto& w : warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
+
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("%s -> %s\n", a.input.c_str(), a.output.c_str());
+    std::printf("stream: %zu packets (%zu stream info, %zu ellipsoids, %zu scene, %zu points), %zu bytes\n",
+                encoded.packets.size(), encoded.stream_info_packets, encoded.ellipsoid_packets, encoded.scene_packets,
+                encoded.point_packets,
+                encoded.stream_info_bytes + encoded.ellipsoid_bytes + encoded.scene_bytes + encoded.point_bytes);
+    std::printf("scene: %zu nodes, %zu meshes, %zu objects, %zu materials, %zu textures\n", decoded.scene.nodes.size(),
+                decoded.scene.meshes.size(), decoded.objects.size(), decoded.scene.materials.size(),
+                decoded.scene.textures.size());
+    for (size_t i = 0; i < report.objects.size(); ++i) {
+        const auto& o = report.objects[i];
+        std::printf("  object %zu: %zu ellipsoids, %zu points -> %zu vertices, %zu faces%s\n", i, o.ellipsoids,
+                    o.points, o.vertices_out, o.faces_out, o.has_surface ? "" : " (point set)");
+    }
+    std::printf("time %.2f s\n", seconds);
+    return kExitOk;
+}
+
+const RegisterCommand registered({45, [](CLI::App& app, int& exit_code) {
+    auto args = std::make_shared<ConvertArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "convert", "Encode and decode a model in one go with every packet (checks an asset end to end)");
+    cmd->add_option("input", args->input, "model to convert (glTF, OBJ, PLY, OFF, STL)")->required();
+    cmd->add_option("output", args->output, "model to write: .glb, .gltf (+ .bin), .ply or .obj")->required();
+    cmd->add_option("-e,--ellipsoids", args->ellipsoids, "most ellipsoids per object (1..100000)")->capture_default_str();
+    cmd->add_option("-c,--coverage", args->coverage, "fraction of the interior volume to cover, (0, 1]")
+        ->capture_default_str();
+    cmd->add_option("--position-bits", args->position_bits, "bits per position coordinate (8..16)")->capture_default_str();
+    cmd->add_option("--packet-size", args->packet_size, "largest packet in bytes (128..65000)")->capture_default_str();
+    cmd->add_option("--seed", args->seed, "random seed (same seed, same result)")->capture_default_str();
+    cmd->add_option("--threads", args->threads, "encoder worker threads (the result does not depend on it)")
+        ->capture_default_str();
+    cmd->add_option("--grid", args->grid, "decoder grid resolution (0: the stream's hint)")->capture_default_str();
+    cmd->add_flag("--draco", args->write.draco, "glTF output: compress triangle meshes with KHR_draco_mesh_compression");
+    cmd->add_flag("--quantize", args->write.quantize, "glTF output: quantize attributes with KHR_mesh_quantization");
+    cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
+    cmd->callback([args, &exit_code] { exit_code = run_convert(*args); });
+}});
+
+}  // namespace
+
+}  // namespace ellicast::cli
