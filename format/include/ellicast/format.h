@@ -463,7 +463,9 @@ public:
     // Limits that keep memory bounded whatever arrives.
     struct Limits {
         size_t max_pending_bytes = 64u << 20;     // payloads held while waiting for stream info
-        uint64_t max_elements = 50'000'000;       // ellipsoids + points declared by a stream
+        // Ellipsoids + points a stream may declare. Each received one costs about 100 bytes of map
+        // node, so the default bounds a hostile stream's held geometry near 800 MB.
+        uint64_t max_elements = 8'000'000;
         size_t max_rejections_kept = 10'000;      // detailed rejection records kept
         size_t max_texture_bytes = 256u << 20;    // all texture images together
     };
