@@ -18,13 +18,26 @@ V3 cross3(const V3& a, const V3& b) {
     return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
+// atan2 to about 1e-5 radians (a minimax polynomial after reduction to [0, 1]): the winding
+// number sums hundreds of these and is compared with 1/2, and std::atan2 was a third of the time.
+double fast_atan2(double y, double x) {
+    const double ax = std::abs(x), ay = std::abs(y);
+    const double hi = std::max(ax, ay), lo = std::min(ax, ay);
+    if (hi == 0) return 0;
+    const double t = lo / hi, t2 = t * t;
+    double r = t * (0.99997726 + t2 * (-0.33262347 + t2 * (0.19354346 + t2 * (-0.11643287 + t2 * (0.05265332 + t2 * -0.01172120)))));
+    if (ay > ax) r = 1.57079632679489662 - r;
+    if (x < 0) r = 3.14159265358979324 - r;
+    return y < 0 ? -r : r;
+}
+
 // Solid angle of triangle (a, b, c) seen from q (Van Oosterom & Strackee 1983), signed.
 double solid_angle(const V3& a0, const V3& b0, const V3& c0, const V3& q) {
     V3 a = sub3(a0, q), b = sub3(b0, q), c = sub3(c0, q);
     double la = std::sqrt(dot3(a, a)), lb = std::sqrt(dot3(b, b)), lc = std::sqrt(dot3(c, c));
     double num = dot3(a, cross3(b, c));
     double den = la * lb * lc + dot3(a, b) * lc + dot3(b, c) * la + dot3(c, a) * lb;
-    return 2.0 * std::atan2(num, den);
+    return 2.0 * fast_atan2(num, den);
 }
 
 }  // namespace
