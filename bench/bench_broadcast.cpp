@@ -49,6 +49,7 @@ struct Trial {
     double shown = -1;      // ... to a built base mesh
     double full = -1;       // ... to every packet
     double measured_loss = 0;
+    double rate_ratio = 0;  // achieved sending rate / asked rate (below 1: the sender fell behind)
 };
 
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
@@ -128,10 +129,12 @@ Trial run_trial(const Carousel& carousel, const std::vector<std::vector<uint8_t>
     ServeCounters counters;
     Clock::time_point start;
     std::atomic<bool> started{false};
+    Clock::time_point end;
     std::thread sending([&] {
         start = Clock::now();
         started = true;
         serve_carousel(carousel, packets, sender, serve, counters, error, {}, &stop);
+        end = Clock::now();
     });
     Reception reception;
     std::vector<uint8_t> buffer(kMaxPacketSize + 1);
@@ -154,6 +157,9 @@ Trial run_trial(const Carousel& carousel, const std::vector<std::vector<uint8_t>
     stop = true;
     sending.join();
     t.measured_loss = reception.loss().loss();
+    const double sent_bits =
+        8.0 * double(carousel.bytes_before(t.first_slot + counters.slots) - carousel.bytes_before(t.first_slot));
+    t.rate_ratio = sent_bits / std::max(1e-9, seconds(start, end)) / rate;
     return t;
 }
 
@@ -233,19 +239,21 @@ int main(int argc, char** argv) {
 
     std::filesystem::create_directories(out_dir);
     std::ofstream csv(out_dir + "/broadcast.csv");
-    csv << "loss,trial,first_slot,measured_loss,base_s,shown_s,full_s\n";
+    csv << "loss,trial,first_slot,measured_loss,base_s,shown_s,full_s,rate_ratio\n";
     std::ofstream summary(out_dir + "/broadcast_summary.csv");
     summary << "loss,trials,base_mean_s,base_max_s,shown_mean_s,full_mean_s,full_max_s,theory_base_s,theory_full_s,"
-               "base_min_s,full_min_s\n";
-    std::printf("\n%6s %7s | %9s %9s %9s | %9s %9s | %9s %9s\n", "loss", "trials", "base", "theory", "shown", "full",
-                "theory", "base max", "full max");
+               "base_min_s,full_min_s,rate_ratio_min\n";
+    std::printf("\n%6s %7s | %9s %9s %9s | %9s %9s | %9s %9s | %s\n", "loss", "trials", "base", "theory", "shown", "full",
+                "theory", "base max", "full max", "rate (min)");
     int trial_index = 0;
     for (double loss : losses) {
         std::vector<double> base, shown, full;
+        double rate_min = 1e9;
         for (int k = 0; k < trials; ++k) {
             Trial t = run_trial(carousel, packets, rate, loss, seed * 1000003 + trial_index++, k);
             csv << loss << "," << k << "," << t.first_slot << "," << t.measured_loss << "," << t.base << "," << t.shown
-                << "," << t.full << "\n";
+                << "," << t.full << "," << t.rate_ratio << "\n";
+            rate_min = std::min(rate_min, t.rate_ratio);
             if (t.base >= 0) base.push_back(t.base);
             if (t.shown >= 0) shown.push_back(t.shown);
             if (t.full >= 0) full.push_back(t.full);
@@ -254,8 +262,9 @@ int main(int argc, char** argv) {
         double theory_full = expected_wait_bytes(carousel, WaitFor::Everything, loss, 0, true) * bytes_to_s;
         auto maxof = [](const std::vector<double>& v) { return v.empty() ? -1 : *std::max_element(v.begin(), v.end()); };
         auto minof = [](const std::vector<double>& v) { return v.empty() ? -1 : *std::min_element(v.begin(), v.end()); };
-        std::printf("%6.2f %7d | %8.3fs %8.3fs %8.3fs | %8.3fs %8.3fs | %8.3fs %8.3fs\n", loss, trials, mean(base),
-                    theory_base, mean(shown), mean(full), theory_full, maxof(base), maxof(full));
+        std::printf("%6.2f %7d | %8.3fs %8.3fs %8.3fs | %8.3fs %8.3fs | %8.3fs %8.3fs | %.1f%%\n", loss, trials,
+                    mean(base), theory_base, mean(shown), mean(full), theory_full, maxof(base), maxof(full),
+                    100 * rate_min);
         std::fflush(stdout);
         summary << loss << "," << trials << "," << mean(base) << "," << maxof(base) << "," << mean(shown) << ","
                 << mean(full) << "," << maxof(full) << "," << theory_base << "," << theory_full << "," << minof(base)

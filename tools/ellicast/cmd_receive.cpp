@@ -185,7 +185,6 @@ int run_receive(const ReceiveArgs& a) {
                      with_commas(live.inserted()).c_str(), tty && !final_line ? "  " : "\n");
         std::fflush(stderr);
     };
-    std::string snapshot_error;
     auto take_snapshot = [&](Snapshot& s) {
         s.done = true;
         std::string path = snapshot_path(a.output, s.label);
