@@ -105,10 +105,11 @@ TEST_CASE("every texture fragment is useful alone: its bytes land at their offse
     REQUIRE(rs.add_packet(packets.textures[2], 0) == Error::Ok);
     const auto& t = rs.textures().at(0);
     CHECK_FALSE(t.complete);
-    REQUIRE(t.received.size() == 1);
-    const auto [begin, end] = *t.received.begin();
-    CHECK(t.received_bytes == end - begin);
-    CHECK(std::equal(t.image.begin() + begin, t.image.begin() + end, scene.textures[0].image.begin() + begin));
+    CHECK(t.image.empty());
+    REQUIRE(t.pieces.size() == 1);
+    const auto& [offset, bytes] = *t.pieces.begin();
+    CHECK(t.received_bytes == bytes.size());
+    CHECK(std::equal(bytes.begin(), bytes.end(), scene.textures[0].image.begin() + offset));
     // The remaining fragments, in reverse order, complete it.
     for (size_t i = packets.textures.size(); i-- > 0;) rs.add_packet(packets.textures[i], i);
     CHECK(rs.textures().at(0).complete);
@@ -126,14 +127,42 @@ TEST_CASE("texture fragments that contradict the image they announce are rejecte
     CHECK(rs.add_packet(b.textures[1], 1) == Error::StreamMismatch);
 }
 
-TEST_CASE("a texture announcing more bytes than the receiver's limit is rejected without allocating it") {
+TEST_CASE("texture bytes beyond the receiver's limit are rejected, and an announced size costs nothing") {
     ReceivedStream::Limits limits;
     limits.max_texture_bytes = 1000;
     ReceivedStream rs(limits);
     ScenePackets packets;
     REQUIRE(packetize_scene(sample_scene(5000), 1200, 1, 0, packets) == Error::Ok);
+    // The first fragment (1,148 bytes) is over the 1,000-byte limit; its announced 5,000 bytes
+    // were never reserved.
     CHECK(rs.add_packet(packets.textures[0], 0) == Error::MalformedPayload);
-    CHECK(rs.textures().empty());
+    CHECK(rs.textures().at(0).pieces.empty());
+    CHECK(rs.textures().at(0).received_bytes == 0);
+}
+
+TEST_CASE("overlapping fragments of a texture keep only the bytes that are new") {
+    auto scene = sample_scene(3000);
+    ScenePackets a, b;
+    REQUIRE(packetize_scene(scene, 1200, 1, 0, a) == Error::Ok);  // fragments at 0, 1148, 2296
+    REQUIRE(packetize_scene(scene, 700, 1, 0, b) == Error::Ok);   // fragments at 0, 648, 1296, ...
+    ReceivedStream rs;
+    REQUIRE(rs.add_packet(a.textures[1], 0) == Error::Ok);
+    REQUIRE(rs.add_packet(b.textures[1], 1) == Error::Ok);  // same image, other cut: compatible
+    const auto& t = rs.textures().at(0);
+    uint64_t held = 0;
+    uint32_t last_end = 0;
+    for (const auto& [offset, bytes] : t.pieces) {
+        CHECK(offset >= last_end);  // disjoint
+        last_end = offset + uint32_t(bytes.size());
+        held += bytes.size();
+        CHECK(std::equal(bytes.begin(), bytes.end(), scene.textures[0].image.begin() + offset));
+    }
+    CHECK(held == t.received_bytes);
+    for (const auto* set : {&a.textures, &b.textures})
+        for (const auto& p : *set) rs.add_packet(p, 2);
+    CHECK(rs.textures().at(0).complete);
+    CHECK(rs.textures().at(0).image == scene.textures[0].image);
+    CHECK(rs.textures().at(0).pieces.empty());
 }
 
 TEST_CASE("scene records referring outside their tables are refused at both ends") {

@@ -47,15 +47,17 @@ Error check_stream_info(const StreamInfo& info) {
     if (!finite(info.coverage_target)) return Error::MalformedPayload;
     if (info.objects.size() > kMaxObjects) return Error::MalformedPayload;
     for (const ObjectInfo& o : info.objects) {
-        for (float f : o.frame.origin)
-            if (!finite(f)) return Error::MalformedPayload;
         if (!finite(o.frame.scale) || !(o.frame.scale > 0)) return Error::MalformedPayload;
+        // The whole cube must be finite in f32, or dequantized positions overflow to infinity.
+        for (float f : o.frame.origin)
+            if (!finite(f) || !finite(static_cast<float>(double(f) + o.frame.scale))) return Error::MalformedPayload;
         if (o.kind != ObjectKind::Surface && o.kind != ObjectKind::PointSet) return Error::MalformedPayload;
         if (o.kind == ObjectKind::PointSet && o.ellipsoid_count != 0) return Error::MalformedPayload;
         if (o.attributes & ~kAttrKnownMask) return Error::MalformedPayload;
         if ((o.attributes & kAttrColorAlpha) && !(o.attributes & kAttrColor)) return Error::MalformedPayload;
         for (int i = 0; i < 2; ++i)
-            if (!finite(o.texcoord_origin[i]) || !finite(o.texcoord_scale[i]) || o.texcoord_scale[i] < 0)
+            if (!finite(o.texcoord_origin[i]) || !finite(o.texcoord_scale[i]) || o.texcoord_scale[i] < 0 ||
+                !finite(static_cast<float>(double(o.texcoord_origin[i]) + o.texcoord_scale[i])))
                 return Error::MalformedPayload;
     }
     return Error::Ok;

@@ -80,6 +80,19 @@ Error ReceivedStream::take_stream_info(const PacketView& packet, uint64_t where)
         info_ = std::move(stream);
         object_count_ = part.object_count;
         objects_.assign(object_count_, ReceivedObject{});
+        // Packets held for objects the table turns out not to have will never be released.
+        for (auto it = pending_.begin(); it != pending_.end();) {
+            if (it->header.object_id < object_count_) {
+                ++it;
+                continue;
+            }
+            pending_bytes_ -= it->payload.size();
+            --counters_.pending;
+            reject(it->where, Error::UnknownObject,
+                   packet_type_name(it->header.type) + " of object " + std::to_string(it->header.object_id) +
+                       ", the stream has " + std::to_string(object_count_) + " objects");
+            it = pending_.erase(it);
+        }
     }
     bool news = false;
     uint64_t declared = 0;
@@ -225,65 +238,61 @@ Error ReceivedStream::take_texture_fragment(const PacketView& packet, uint64_t w
         return reject(where, Error::StreamMismatch, "TEXTURE_FRAGMENT table size contradicts earlier fragments");
     auto it = textures_.find(f.info.index);
     if (it == textures_.end()) {
-        if (texture_bytes_ + f.info.image_size > limits_.max_texture_bytes)
-            return reject(where, Error::MalformedPayload,
-                          "texture " + std::to_string(f.info.index) + " of " + std::to_string(f.info.image_size) +
-                              " bytes is over this receiver's texture memory limit");
         ReceivedTexture t;
         t.info = f.info;
-        t.image.assign(f.info.image_size, 0);
-        texture_bytes_ += f.info.image_size;
         it = textures_.emplace(f.info.index, std::move(t)).first;
     } else if (!(it->second.info == f.info)) {
         return reject(where, Error::StreamMismatch,
                       "texture " + std::to_string(f.info.index) + " fragment contradicts earlier fragments");
     }
     ReceivedTexture& t = it->second;
-    // Merge [begin, end) into the disjoint ranges received so far; copy only the bytes that are new.
-    uint32_t begin = f.offset, end = static_cast<uint32_t>(f.offset + f.data.size());
-    uint64_t fresh = 0;
+    if (t.complete) {
+        ++counters_.duplicates;
+        return Error::Ok;
+    }
+    // The parts of [begin, end) that no earlier fragment brought.
+    const uint32_t begin = f.offset, end = static_cast<uint32_t>(f.offset + f.data.size());
+    std::vector<std::pair<uint32_t, uint32_t>> gaps;
     uint32_t cursor = begin;
-    auto next = t.received.upper_bound(begin);
-    if (next != t.received.begin()) {
-        auto prev = std::prev(next);
-        if (prev->second >= begin) {
-            begin = prev->first;
-            cursor = std::max(cursor, prev->second);
-            end = std::max(end, prev->second);
-            next = t.received.erase(prev);
-        }
+    auto piece = t.pieces.upper_bound(begin);
+    if (piece != t.pieces.begin()) --piece;
+    for (; piece != t.pieces.end() && piece->first < end; ++piece) {
+        const uint32_t piece_end = static_cast<uint32_t>(piece->first + piece->second.size());
+        if (piece_end <= cursor) continue;
+        if (piece->first > cursor) gaps.emplace_back(cursor, piece->first);
+        cursor = std::max(cursor, piece_end);
     }
-    while (next != t.received.end() && next->first <= end) {
-        if (next->first > cursor) {
-            std::copy(f.data.begin() + (cursor - f.offset), f.data.begin() + (next->first - f.offset), t.image.begin() + cursor);
-            fresh += next->first - cursor;
-        }
-        cursor = std::max(cursor, next->second);
-        end = std::max(end, next->second);
-        next = t.received.erase(next);
-    }
-    const uint32_t fragment_end = static_cast<uint32_t>(f.offset + f.data.size());
-    if (cursor < fragment_end) {
-        std::copy(f.data.begin() + (cursor - f.offset), f.data.end(), t.image.begin() + cursor);
-        fresh += fragment_end - cursor;
-    }
-    t.received.emplace(begin, end);
-    t.received_bytes += fresh;
+    if (cursor < end) gaps.emplace_back(cursor, end);
+    uint64_t fresh = 0;
+    for (auto [a, b] : gaps) fresh += b - a;
     if (fresh == 0) {
         ++counters_.duplicates;
         return Error::Ok;
     }
+    if (texture_bytes_ + fresh > limits_.max_texture_bytes)
+        return reject(where, Error::MalformedPayload,
+                      "texture " + std::to_string(f.info.index) + ": the stream's textures exceed this receiver's " +
+                          std::to_string(limits_.max_texture_bytes) + "-byte texture limit");
+    for (auto [a, b] : gaps)
+        t.pieces.emplace(a, std::vector<uint8_t>(f.data.begin() + (a - begin), f.data.begin() + (b - begin)));
+    t.received_bytes += fresh;
+    texture_bytes_ += fresh;
     ++counters_.accepted;
     if (t.received_bytes == t.info.image_size) {
-        if (crc32c(t.image.data(), t.image.size()) == t.info.image_crc) {
-            t.complete = true;
-        } else {
+        std::vector<uint8_t> image;
+        image.reserve(t.info.image_size);
+        for (const auto& [offset, bytes] : t.pieces) image.insert(image.end(), bytes.begin(), bytes.end());
+        texture_bytes_ -= t.received_bytes;
+        t.pieces.clear();
+        t.received_bytes = 0;
+        if (crc32c(image.data(), image.size()) != t.info.image_crc) {
             // Fragments that each passed their packet CRC but do not make the announced image: start over.
-            t.received.clear();
-            t.received_bytes = 0;
             return reject(where, Error::StreamMismatch,
                           "texture " + std::to_string(t.info.index) + " is complete but its image CRC does not match");
         }
+        t.image = std::move(image);
+        t.received_bytes = t.info.image_size;
+        t.complete = true;
     }
     return Error::Ok;
 }

@@ -1,6 +1,8 @@
 // ellicast: encode, inspect, validate and decode ellicast streams.
 #include "commands.h"
 
+#include "ellicast/format.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
@@ -32,9 +34,10 @@ bool output_clobbers_input(const std::string& output, const std::vector<std::str
 
 int main(int argc, char** argv) {
     using namespace ellicast::cli;
-    CLI::App app{"ellicast: 3D models over lossy one-way channels (format 1.0)", "ellicast"};
+    const std::string format_version = std::to_string(ellicast::kFormatMajor) + "." + std::to_string(ellicast::kFormatMinor);
+    CLI::App app{"ellicast: 3D models over lossy one-way channels (format " + format_version + ")", "ellicast"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", std::string("ellicast 1.0.0, format 1.0"));
+    app.set_version_flag("--version", "ellicast 1.0.0, format " + format_version);
     int exit_code = kExitOk;
     auto commands = command_registry();
     std::sort(commands.begin(), commands.end(), [](const Command& a, const Command& b) { return a.order < b.order; });

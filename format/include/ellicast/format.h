@@ -467,7 +467,7 @@ public:
         // node, so the default bounds a hostile stream's held geometry near 800 MB.
         uint64_t max_elements = 8'000'000;
         size_t max_rejections_kept = 10'000;      // detailed rejection records kept
-        size_t max_texture_bytes = 256u << 20;    // all texture images together
+        size_t max_texture_bytes = 256u << 20;    // texture bytes received, all textures together
     };
 
     ReceivedStream();
@@ -499,10 +499,12 @@ public:
     // Scene (format 1.1): what has arrived of the node and mesh tables, materials and textures.
     struct ReceivedTexture {
         TextureInfo info;
-        std::vector<uint8_t> image;             // image_size bytes, zero where nothing arrived yet
-        std::map<uint32_t, uint32_t> received;  // disjoint byte ranges that arrived: offset -> end
+        // Disjoint runs of bytes that arrived, offset -> bytes: memory grows with what arrives, not
+        // with the size a fragment announces. Emptied once the image is complete.
+        std::map<uint32_t, std::vector<uint8_t>> pieces;
         uint64_t received_bytes = 0;
-        bool complete = false;                  // every byte arrived and the image CRC matches
+        bool complete = false;       // every byte arrived and the image CRC matches
+        std::vector<uint8_t> image;  // the whole image file, once complete
     };
     bool has_scene() const { return scene_node_count_ > 0 || scene_mesh_count_ > 0; }
     uint16_t scene_node_count() const { return scene_node_count_; }
