@@ -43,6 +43,9 @@ double collapse_worst_dot(const DecoderTriMesh& mesh, OpenMesh::HalfedgeHandle h
 // Collapses marching-cubes vertex m. Without `force` it needs enough original neighbours and a
 // collapse that turns no face beyond the fold-over bound; with `force` it takes the best legal
 // collapse into an original neighbour, or into any neighbour when `any_target` is set.
+// Largest valence a collapse may leave behind (the candidate arrays above hold 64 neighbours).
+constexpr size_t kMaxCollapseValence = 48;
+
 bool try_collapse(Reconstruction& r, OpenMesh::VertexHandle m, bool force, bool any_target,
                   OpenMesh::VertexHandle* into = nullptr) {
     DecoderTriMesh& mesh = r.mesh;
@@ -79,8 +82,13 @@ bool try_collapse(Reconstruction& r, OpenMesh::VertexHandle m, bool force, bool 
               [](const auto& x, const auto& y) { return x.first < y.first || (x.first == y.first && x.second.idx() < y.second.idx()); });
     OpenMesh::HalfedgeHandle chosen;
     double chosen_dot = -3;
+    const size_t valence_m = mesh.valence(m);
     for (int i = 0; i < n; ++i) {
         auto h = cand[i].second;
+        // A fan this large means few originals must absorb many marching-cubes vertices (a cube sent
+        // as 8 corners): every further collapse and flip would cost time in proportion to the fan,
+        // quadratic overall. Leave such vertices in place instead.
+        if (valence_m + mesh.valence(mesh.to_vertex_handle(h)) > kMaxCollapseValence) continue;
         if (!mesh.is_collapse_ok(h)) continue;
         double d = collapse_worst_dot(mesh, h);
         if (d >= cos_fold) {
