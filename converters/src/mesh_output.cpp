@@ -31,11 +31,15 @@ void put(std::string& out, T value) {
     out.append(b, sizeof(T));
 }
 
-uint8_t to_byte(float c) {
+// ellicast::Mesh colours are linear (glTF's COLOR_0); PLY and OBJ colours are sRGB, as the readers
+// in openmesh_input.cpp assume when they convert them to linear.
+float linear_to_srgb(float c) {
     if (!(c > 0)) return 0;
-    if (c >= 1) return 255;
-    return uint8_t(std::lround(c * 255.0f));
+    if (c >= 1) return 1;
+    return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1 / 2.4f) - 0.055f;
 }
+
+uint8_t to_byte(float c) { return uint8_t(std::lround(linear_to_srgb(c) * 255.0f)); }
 
 bool all_have(const std::vector<Mesh>& meshes, bool (Mesh::*has)() const) {
     bool any = false;
@@ -112,7 +116,9 @@ bool write_ply(const std::string& path, const std::vector<Mesh>& meshes, std::st
             if (texcoords)
                 for (float c : m.texcoords[i]) put(out, c);
             if (colors)
-                for (int k = 0; k < (alpha ? 4 : 3); ++k) put(out, to_byte(m.colors[i][k]));
+                for (int k = 0; k < (alpha ? 4 : 3); ++k)
+                    put(out, k == 3 ? uint8_t(std::lround(std::clamp(m.colors[i][3], 0.0f, 1.0f) * 255.0f))
+                                    : to_byte(m.colors[i][k]));
         }
     }
     uint32_t base = 0;
@@ -137,7 +143,7 @@ bool write_obj(const std::string& path, const std::vector<Mesh>& meshes, std::st
             out += "v";
             for (float c : m.positions[i]) out += ' ', append_float(out, c);
             if (m.has_colors())
-                for (int k = 0; k < 3; ++k) out += ' ', append_float(out, std::clamp(m.colors[i][k], 0.0f, 1.0f));
+                for (int k = 0; k < 3; ++k) out += ' ', append_float(out, linear_to_srgb(m.colors[i][k]));
             out += '\n';
         }
         for (const auto& t : m.texcoords) {
