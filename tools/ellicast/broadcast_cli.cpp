@@ -167,9 +167,9 @@ void print_carousel(std::FILE* out, const broadcast::Carousel& c, double bits_pe
         if (bits_per_second <= 0) return std::string();
         return " = " + seconds_text(bytes * 8.0 / bits_per_second);
     };
-    std::fprintf(out, "base: %zu packets, %s bytes (STREAM_INFO, ELLIPSOIDS and every other non-POINTS packet)\n",
+    std::fprintf(out, "base: %zu packets, %s bytes (STREAM_INFO, ELLIPSOIDS, SCENE, MATERIAL)\n",
                  s.base_packets, with_commas(s.base_bytes).c_str());
-    std::fprintf(out, "points: %zu packets, %s bytes, in %zu chunks of at most %zu packets\n", s.data_packets,
+    std::fprintf(out, "detail: %zu packets, %s bytes (POINTS, TEXTURE_FRAGMENT), in %zu chunks of at most %zu packets\n", s.data_packets,
                  with_commas(s.data_bytes).c_str(), c.chunk_count, c.chunk_packets);
     std::fprintf(out, "cycle: b d1 b d2 ... b d%zu = %zu packets, %s bytes%s\n", c.chunk_count, s.cycle_packets,
                  with_commas(s.cycle_bytes).c_str(), at_rate(double(s.cycle_bytes)).c_str());

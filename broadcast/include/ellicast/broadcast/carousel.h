@@ -23,7 +23,8 @@
 
 namespace ellicast::broadcast {
 
-// True for a packet a receiver needs before it can show anything: every type but POINTS.
+// True for a packet a receiver needs before it can show anything: every type but POINTS and
+// TEXTURE_FRAGMENT (detail, sent once per cycle rather than with every repetition of the base).
 bool is_base_packet(const PacketHeader& header);
 
 struct CarouselOptions {
