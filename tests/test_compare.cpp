@@ -2,6 +2,7 @@
 #include "support.h"
 
 #include "ellicast/compare/channel_trace.h"
+#include "ellicast/compare/ellicast_scheme.h"
 #include "ellicast/compare/erasure_code.h"
 #include "ellicast/compare/experiment.h"
 #include "ellicast/compare/metric.h"
@@ -289,4 +290,90 @@ TEST_CASE("the experiment's metric counts the surface of lost clusters as holes"
     CHECK(d.holes < 100 * lost / total);
     CHECK(d.holes > 0.6 * 100 * lost / total);
     CHECK(d.rms > full.rms);
+}
+
+TEST_CASE("ellicast as a scheme: its carousel's cycle, a surface from the base alone, the model from every packet") {
+    if (!test::have_sample("meshes/spot.obj")) return;
+    Mesh spot = load_sample("meshes/spot.obj");
+    EllicastSettings settings;
+    settings.encode.threads = 1;
+    EllicastScheme ellicast(spot, settings);
+    REQUIRE(ellicast.base_packets() >= 2);
+    REQUIRE(ellicast.point_packets() > 0);
+    CHECK(ellicast.period() > ellicast.packets().size());  // the base is repeated within a cycle
+    CHECK(ellicast.repetition_overhead() > 0);
+    Mesh out;
+    CHECK_FALSE(ellicast.reconstruct({}, out));
+    // The base alone (stream info and ellipsoids, no point) already gives a surface.
+    std::vector<uint32_t> base;
+    for (uint32_t i = 0; i < ellicast.base_packets(); ++i) base.push_back(i);
+    REQUIRE(ellicast.reconstruct(base, out));
+    CHECK(out.triangles.size() > 0);
+    CHECK(ellicast.data_fraction(base) == 0);
+    // Points without the stream info give nothing to show.
+    std::vector<uint32_t> points;
+    for (uint32_t i = uint32_t(ellicast.base_packets()); i < ellicast.packets().size(); ++i) points.push_back(i);
+    CHECK_FALSE(ellicast.reconstruct(points, out));
+    std::vector<uint32_t> every(ellicast.packets().size());
+    std::iota(every.begin(), every.end(), 0u);
+    REQUIRE(ellicast.reconstruct(every, out));
+    CHECK(ellicast.data_fraction(every) == doctest::Approx(1));
+}
+
+TEST_CASE("every scheme gets the same bytes per cycle: ellicast's carousel cycle") {
+    if (!test::have_sample("meshes/spot.obj")) return;
+    Mesh spot = load_sample("meshes/spot.obj");
+    EllicastSettings settings;
+    settings.encode.threads = 1;
+    EllicastScheme ellicast(spot, settings);
+    DracoWhole whole(spot, DracoSettings{}, 1200);
+    DracoFec fec(spot, DracoSettings{}, 1200, ellicast.repetition_overhead());
+    DracoClusters clusters(spot, DracoSettings{}, 1200);
+    ExperimentOptions options;
+    options.loss_rates = {0.2};
+    options.times = {1};
+    options.trials = 1;
+    options.cycle_bytes = ellicast.period_bytes();
+    SurfaceDistanceOptions metric;
+    metric.samples = 2000;
+    metric.threads = 1;
+    auto result = run_experiment({&ellicast, &whole, &fec, &clusters}, surface_metric(spot, metric), channel_trace(1200), options);
+    REQUIRE(result.schemes.size() == 4);
+    CHECK(result.schemes[0].cycle_bytes == options.cycle_bytes);
+    for (const auto& s : result.schemes) {
+        CHECK(s.cycle_bytes >= options.cycle_bytes);
+        CHECK(s.cycle_bytes < options.cycle_bytes + 1200);
+    }
+    // The erasure code spends ellicast's repetition overhead on parity.
+    CHECK(double(fec.parity_shards()) >= ellicast.repetition_overhead() * double(fec.data_shards()));
+    CHECK(double(fec.parity_shards()) < ellicast.repetition_overhead() * double(fec.data_shards()) + 1);
+}
+
+TEST_CASE("ellicast compare writes a report, CSVs and plots, and refuses absurd options") {
+    if (!test::have_sample("meshes/spot.obj")) return;
+    auto dir = test::scratch_dir("compare_cli");
+    const std::string model = (test::shared_samples() / "meshes/spot.obj").string();
+    const std::string exe = test::ellicast_exe().string();
+    std::string cmd = exe + " compare " + model + " --trials 1 --loss 0,0.5 --times 1 --time-loss 0.5 --samples 2000 --threads 1 -q -o " +
+                      (dir / "out").string() + " > " + (dir / "stdout.txt").string() + " 2>&1";
+    REQUIRE(std::system(cmd.c_str()) == 0);
+    for (const char* f : {"report.md", "trials.csv", "summary.csv", "loss_one_cycle.svg", "loss_one_cycle.png",
+                          "time_loss50.svg", "time_loss50.png"})
+        CHECK_MESSAGE(std::filesystem::exists(dir / "out" / f), f);
+    const std::string md = read_text(dir / "out" / "report.md");
+    CHECK(md.find("ellicast compare " + model) != std::string::npos);
+    CHECK(md.find("| ellicast |") != std::string::npos);
+    CHECK(md.find("| draco-clusters |") != std::string::npos);
+    CHECK(read_text(dir / "stdout.txt").find("draco-fec") != std::string::npos);
+
+    auto code = [&](const std::string& args) {
+        int rc = std::system((exe + " compare " + args + " > /dev/null 2>&1").c_str());
+        return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+    };
+    CHECK(code(model + " --loss 1.5 -o " + (dir / "bad").string()) == 2);
+    CHECK(code(model + " --trials 0 -o " + (dir / "bad").string()) == 2);
+    CHECK(code(model + " --packet-size 20 -o " + (dir / "bad").string()) == 2);
+    CHECK(code(model + " --fec-redundancy lots -o " + (dir / "bad").string()) == 2);
+    CHECK(code((dir / "missing.obj").string() + " -o " + (dir / "bad").string()) == 3);
+    CHECK_FALSE(std::filesystem::exists(dir / "bad"));
 }

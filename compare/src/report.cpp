@@ -62,26 +62,29 @@ void emit_block(std::ostream& gp, const std::string& name, const Series& s) {
     gp << "EOD\n";
 }
 
-// plot command for a block: one line (with error bars when `bars`) per scheme.
-std::string plot_block(const std::string& name, const ExperimentResult& r, bool bars) {
+// plot command for a block: one line (with error bars when `bars`) per scheme, each scheme shifted
+// sideways by a small step so that schemes with equal values stay visible.
+std::string plot_block(const std::string& name, const ExperimentResult& r, bool bars, double step) {
     std::ostringstream p;
     p << "plot ";
+    const double mid = 0.5 * double(r.schemes.size() - 1);
     for (size_t s = 0; s < r.schemes.size(); ++s) {
         const int c = int(2 + 3 * s);
+        const std::string x = "($1+" + num((double(s) - mid) * step, "%.4g") + ")";
         if (s) p << ", ";
         if (bars)
-            p << "$" << name << " using 1:" << c << ":" << c + 1 << ":" << c + 2 << " with yerrorlines ls " << s + 1
-              << " title '" << r.schemes[s].name << "'";
+            p << "$" << name << " using " << x << ":" << c << ":" << c + 1 << ":" << c + 2 << " with yerrorlines ls "
+              << s + 1 << " title '" << r.schemes[s].name << "'";
         else
-            p << "$" << name << " using 1:" << c << " with linespoints ls " << s + 1 << " title '" << r.schemes[s].name
-              << "'";
+            p << "$" << name << " using " << x << ":" << c << " with linespoints ls " << s + 1 << " title '"
+              << r.schemes[s].name << "'";
     }
     return p.str();
 }
 
 // The RMS panel: log scale when every value is positive; a note instead of a curve when no trial
 // showed anything (gnuplot refuses a plot without any defined point).
-std::string rms_panel(const std::string& name, const Series& s, const ExperimentResult& r) {
+std::string rms_panel(const std::string& name, const Series& s, const ExperimentResult& r, double step) {
     bool any = false, positive = true;
     for (const auto& scheme : s.y)
         for (const auto& v : scheme)
@@ -93,7 +96,7 @@ std::string rms_panel(const std::string& name, const Series& s, const Experiment
     p << "set yrange [*:*]\n" << (any && positive ? "set logscale y\n" : "unset logscale y\n")
       << "set ylabel 'RMS distance (% of bbox diagonal, shown trials)'\n";
     if (any)
-        p << plot_block(name, r, true) << "\n";
+        p << plot_block(name, r, true, step) << "\n";
     else
         p << "set label 1 'no trial shows anything' at graph 0.5,0.5 center\nplot $" << name
           << " using 1:(0) with lines lc rgb 'white' notitle\nunset label 1\n";
@@ -147,13 +150,15 @@ void write_summary_csv(const ExperimentResult& result, const std::string& path) 
 
 std::vector<std::string> write_plots(const ExperimentResult& result, const std::string& dir) {
     const std::string script = (std::filesystem::path(dir) / "plots.gp").string();
+    // Each scheme's points are shifted sideways by a small step so that equal values stay visible.
     std::ostringstream gp;
     std::vector<std::string> names;
     gp << "# Written by `ellicast compare`: run `gnuplot plots.gp` in this folder to redraw the plots.\n";
-    gp << "set datafile missing 'NaN'\nset key below\nset grid\n";
+    gp << "set datafile missing 'NaN'\nset key outside bottom center horizontal maxrows 1\nset bmargin 6\nset grid\n";
     const char* colors[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
     for (size_t s = 0; s < result.schemes.size(); ++s)
-        gp << "set style line " << s + 1 << " lw 2 pt " << (5 + 2 * s) << " ps 0.8 lc rgb '" << colors[s % 6] << "'\n";
+        gp << "set style line " << s + 1 << " lw 2 dt " << (s % 4 + 1) << " pt " << (5 + 2 * s) << " ps 0.8 lc rgb '"
+           << colors[s % 6] << "'\n";
 
     std::vector<std::pair<std::string, std::string>> plots;  // (name, commands)
     for (double burst : result.options.bursts) {
@@ -182,9 +187,9 @@ std::vector<std::string> write_plots(const ExperimentResult& result, const std::
         std::ostringstream cmd;
         cmd << "set multiplot layout 1,3 title 'After one cycle, " << burst_words(burst) << " (median, bars: quartiles)'\n"
             << "set xlabel 'packets lost (%)'\nunset logscale y\nset yrange [0:105]\n"
-            << "set ylabel 'trials showing anything (%)'\n" << plot_block(id + "_shown", result, false) << "\n"
-            << "set ylabel 'original surface missing (%)'\n" << plot_block(id + "_holes", result, true) << "\n"
-            << rms_panel(id + "_rms", rms, result) << "unset multiplot\n";
+            << "set ylabel 'trials showing anything (%)'\n" << plot_block(id + "_shown", result, false, 0.5) << "\n"
+            << "set ylabel 'original surface missing (%)'\n" << plot_block(id + "_holes", result, true, 0.5) << "\n"
+            << rms_panel(id + "_rms", rms, result, 0.5) << "unset multiplot\n";
         names.push_back("loss_one_cycle" + suffix);
         plots.push_back({names.back(), cmd.str()});
 
@@ -209,13 +214,14 @@ std::vector<std::string> write_plots(const ExperimentResult& result, const std::
             emit_block(gp, tid + "_shown", t_shown);
             emit_block(gp, tid + "_holes", t_holes);
             emit_block(gp, tid + "_rms", t_rms);
+            const double tstep = 0.01 * result.options.times.back();
             std::ostringstream tc;
             tc << "set multiplot layout 1,3 title '" << num(100 * loss, "%g") << "% of packets lost, "
                << burst_words(burst) << " (median, bars: quartiles)'\n"
                << "set xlabel 'cycles after tune-in'\nunset logscale y\nset yrange [0:105]\n"
-               << "set ylabel 'trials showing anything (%)'\n" << plot_block(tid + "_shown", result, false) << "\n"
-               << "set ylabel 'original surface missing (%)'\n" << plot_block(tid + "_holes", result, true) << "\n"
-               << rms_panel(tid + "_rms", t_rms, result) << "unset multiplot\n";
+               << "set ylabel 'trials showing anything (%)'\n" << plot_block(tid + "_shown", result, false, tstep) << "\n"
+               << "set ylabel 'original surface missing (%)'\n" << plot_block(tid + "_holes", result, true, tstep) << "\n"
+               << rms_panel(tid + "_rms", t_rms, result, tstep) << "unset multiplot\n";
             names.push_back("time_loss" + num(100 * loss, "%g") + suffix);
             plots.push_back({names.back(), tc.str()});
         }
