@@ -36,8 +36,9 @@ for what in "$@"; do
         tee "$results/broadcast/broadcast.txt" ;;
     compare)
       echo "== ellicast against Draco baselines (bunny and spot, 20 trials per setting)" >&2
-      "$build/ellicast" compare "$samples/meshes/bunny.ply" --trials 20 -o "$results/bunny"
-      "$build/ellicast" compare "$samples/meshes/spot.obj" --trials 20 --burst 0,4 -o "$results/spot" ;;
+      "$build/ellicast" compare "$samples/meshes/bunny.ply" --times 0.25,0.5,1,2 --time-loss 0.1,0.5 --samples 50000 \
+        -o "$results/bunny"
+      "$build/ellicast" compare "$samples/meshes/spot.obj" --burst 0,8 -o "$results/spot" ;;
     *) echo "bench: unknown benchmark '$what' (encode, decode, quality, broadcast, compare)" >&2; exit 2 ;;
   esac
 done
