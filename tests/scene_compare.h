@@ -12,21 +12,6 @@
 
 namespace ellicast::test {
 
-// A node's local transform as a 4x4 matrix.
-inline Eigen::Matrix4d node_matrix(const SceneNode& n) {
-    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
-    if (n.has_matrix) {
-        for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 4; ++r) m(r, c) = n.matrix[size_t(c * 4 + r)];
-        return m;
-    }
-    Eigen::Quaterniond q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
-    if (q.norm() > 0) m.topLeftCorner<3, 3>() = q.normalized().toRotationMatrix();
-    m.topLeftCorner<3, 3>() *= Eigen::Vector3d(n.scale[0], n.scale[1], n.scale[2]).asDiagonal();
-    m.topRightCorner<3, 1>() = Eigen::Vector3d(n.translation[0], n.translation[1], n.translation[2]);
-    return m;
-}
-
 // The image bytes a texture reference of `a` shows (empty when none).
 inline std::vector<uint8_t> referenced_image(const Asset& a, const TextureRef& ref) {
     if (ref.texture == kNone || ref.texture >= a.scene.textures.size()) return {};

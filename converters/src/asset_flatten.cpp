@@ -14,20 +14,6 @@ namespace ellicast {
 
 namespace {
 
-Eigen::Matrix4d local_matrix(const SceneNode& n) {
-    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
-    if (n.has_matrix) {
-        for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 4; ++r) m(r, c) = n.matrix[size_t(c * 4 + r)];
-        return m;
-    }
-    Eigen::Quaterniond q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
-    if (q.norm() > 0) m.topLeftCorner<3, 3>() = q.normalized().toRotationMatrix();
-    m.topLeftCorner<3, 3>() *= Eigen::Vector3d(n.scale[0], n.scale[1], n.scale[2]).asDiagonal();
-    m.topRightCorner<3, 1>() = Eigen::Vector3d(n.translation[0], n.translation[1], n.translation[2]);
-    return m;
-}
-
 Mesh transformed(const Mesh& in, const Eigen::Matrix4d& world) {
     Mesh out = in;
     const Eigen::Matrix3d linear = world.topLeftCorner<3, 3>();
@@ -50,6 +36,21 @@ Mesh transformed(const Mesh& in, const Eigen::Matrix4d& world) {
 
 }  // namespace
 
+Eigen::Matrix4d node_matrix(const SceneNode& n) {
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    if (n.has_matrix) {
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) m(r, c) = n.matrix[size_t(c * 4 + r)];
+        return m;
+    }
+    Eigen::Quaterniond q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+    if (q.norm() > 0) m.topLeftCorner<3, 3>() = q.normalized().toRotationMatrix();
+    m.topLeftCorner<3, 3>() *= Eigen::Vector3d(n.scale[0], n.scale[1], n.scale[2]).asDiagonal();
+    m.topRightCorner<3, 1>() = Eigen::Vector3d(n.translation[0], n.translation[1], n.translation[2]);
+    return m;
+}
+
+
 std::vector<Mesh> flatten_asset(const Asset& asset) {
     std::vector<Mesh> out;
     const auto& nodes = asset.scene.nodes;
@@ -67,7 +68,7 @@ std::vector<Mesh> flatten_asset(const Asset& asset) {
         size_t at = i;
         bool ok = false;
         for (size_t steps = 0; steps <= nodes.size(); ++steps) {
-            m = local_matrix(nodes[at]) * m;
+            m = node_matrix(nodes[at]) * m;
             if (nodes[at].parent == kNone) {
                 ok = true;
                 break;

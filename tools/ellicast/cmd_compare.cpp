@@ -103,14 +103,10 @@ int run_compare(const CompareArgs& a) {
         return fail(kExitUsage, a.output + " exists and is not a directory");
     if (std::filesystem::equivalent(a.output, a.model, ec)) return fail(kExitUsage, "the output is the model itself");
 
-    LoadResult loaded;
-    try {
-        loaded = load_meshes(a.model);
-    } catch (const InputError& e) {
-        return fail(kExitFailure, e.what());
-    }
-    for (const auto& w : loaded.warnings) std::cerr << "ellicast: warning: " << w << "\n";
-    Mesh mesh = merge_meshes(loaded.meshes);
+    std::vector<Mesh> meshes;
+    std::string error;
+    if (!load_model(a.model, meshes, error)) return fail(kExitFailure, error);
+    Mesh mesh = merge_meshes(meshes);
     if (mesh.triangles.empty()) return fail(kExitFailure, a.model + ": no triangle mesh to compare");
 
     auto bar = std::make_shared<ProgressBar>(!a.quiet);

@@ -18,21 +18,6 @@ struct DiffArgs {
     uint64_t seed = 1;
 };
 
-bool load(const std::string& path, std::vector<Mesh>& meshes, std::string& error) {
-    try {
-        LoadResult result = load_meshes(path);
-        for (const auto& w : result.warnings) std::fprintf(stderr, "ellicast: warning: %s: %s\n", path.c_str(), w.c_str());
-        meshes = std::move(result.meshes);
-        return true;
-    } catch (const InputError& e) {
-        error = e.what();
-        return false;
-    } catch (const std::exception& e) {
-        error = path + ": " + e.what();
-        return false;
-    }
-}
-
 void describe(const char* label, const std::string& path, const std::vector<Mesh>& meshes) {
     size_t v = 0, f = 0;
     for (const auto& m : meshes) v += m.positions.size(), f += m.triangles.size();
@@ -48,8 +33,8 @@ void row(const char* label, const DirectedDistance& d, const SurfaceDistance& s)
 int run_diff(const DiffArgs& args) {
     std::vector<Mesh> a, b;
     std::string error;
-    if (!load(args.a, a, error)) return fail(kExitFailure, error);
-    if (!load(args.b, b, error)) return fail(kExitFailure, error);
+    if (!load_model(args.a, a, error)) return fail(kExitFailure, error);
+    if (!load_model(args.b, b, error)) return fail(kExitFailure, error);
     SurfaceDistanceOptions options;
     options.samples = args.samples;
     options.threshold_percent = args.threshold;

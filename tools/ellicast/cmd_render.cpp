@@ -2,7 +2,6 @@
 // reconstructions and snapshots rather than reading numbers.
 #include "commands.h"
 
-#include "ellicast/converters/mesh_input.h"
 #include "ellicast/converters/render.h"
 
 #include <cstdio>
@@ -24,16 +23,10 @@ int run_render(const RenderArgs& args) {
     std::vector<std::string> all_inputs = args.inputs;
     if (!args.frame_from.empty()) all_inputs.push_back(args.frame_from);
     if (output_clobbers_input(args.output, all_inputs)) return kExitUsage;
-    std::vector<std::vector<Mesh>> models;
-    try {
-        for (const auto& path : all_inputs) {
-            LoadResult result = load_meshes(path);
-            for (const auto& w : result.warnings) std::fprintf(stderr, "ellicast: warning: %s: %s\n", path.c_str(), w.c_str());
-            models.push_back(std::move(result.meshes));
-        }
-    } catch (const std::exception& e) {
-        return fail(kExitFailure, e.what());
-    }
+    std::vector<std::vector<Mesh>> models(all_inputs.size());
+    std::string error;
+    for (size_t i = 0; i < all_inputs.size(); ++i)
+        if (!load_model(all_inputs[i], models[i], error)) return fail(kExitFailure, error);
     // Every panel is framed by the same box: the --frame-from model's, else the first model's.
     std::array<double, 3> lo, hi;
     bounding_box(args.frame_from.empty() ? models.front() : models.back(), lo, hi);

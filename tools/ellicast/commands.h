@@ -2,6 +2,8 @@
 // so adding a command touches no other file.
 #pragma once
 
+#include "ellicast/codec/mesh.h"
+
 #include <CLI/CLI.hpp>
 
 #include <functional>
@@ -30,6 +32,10 @@ inline constexpr int kExitFailure = 3;   // the work could not be done (I/O, uns
 
 // Prints "ellicast: error: <message>" on stderr and returns `code`.
 int fail(int code, const std::string& message);
+
+// Reads any model ellicast reads (load_meshes), printing its warnings on stderr as
+// "ellicast: warning: PATH: ...". Returns false with `error` naming the file and the problem.
+bool load_model(const std::string& path, std::vector<Mesh>& meshes, std::string& error);
 
 // Refuses to overwrite an input: true (and an error printed) when `output` is the same file as one
 // of `inputs`.

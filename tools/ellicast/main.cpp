@@ -1,6 +1,7 @@
 // ellicast: encode, inspect, validate and decode ellicast streams.
 #include "commands.h"
 
+#include "ellicast/converters/mesh_input.h"
 #include "ellicast/format.h"
 
 #include <algorithm>
@@ -17,6 +18,20 @@ std::vector<Command>& command_registry() {
 int fail(int code, const std::string& message) {
     std::cerr << "ellicast: error: " << message << "\n";
     return code;
+}
+
+bool load_model(const std::string& path, std::vector<Mesh>& meshes, std::string& error) {
+    try {
+        LoadResult result = load_meshes(path);
+        for (const auto& w : result.warnings) std::cerr << "ellicast: warning: " << path << ": " << w << "\n";
+        meshes = std::move(result.meshes);
+        return true;
+    } catch (const InputError& e) {
+        error = e.what();
+    } catch (const std::exception& e) {
+        error = path + ": " + e.what();
+    }
+    return false;
 }
 
 bool output_clobbers_input(const std::string& output, const std::vector<std::string>& inputs) {

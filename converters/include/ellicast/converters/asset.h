@@ -11,6 +11,8 @@
 #include "ellicast/converters/mesh_input.h"
 #include "ellicast/format.h"
 
+#include <Eigen/Core>
+
 #include <string>
 #include <vector>
 
@@ -80,5 +82,8 @@ bool write_asset(const std::string& path, const Asset& asset, const AssetWriteOp
 // normals by the inverse transpose, winding kept outward under a mirroring transform), named after
 // its node. Without nodes: the present objects as they are.
 std::vector<Mesh> flatten_asset(const Asset& asset);
+
+// A node's local transform: its matrix, or T * R * S.
+Eigen::Matrix4d node_matrix(const SceneNode& node);
 
 }  // namespace ellicast
