@@ -104,7 +104,7 @@ TEST_CASE("every sample model encodes into a stream the receiver accepts whole")
             CHECK(rx.objects()[i].points.size() == o.point_count);
             CHECK(rx.objects()[i].ellipsoids.size() == o.ellipsoid_count);
             CHECK(o.point_count >= 1);
-            CHECK(o.point_count <= m.positions.size());
+            CHECK(o.point_count <= m.positions.size() + r.reports[i].samples);
             CHECK(o.ellipsoid_count <= 40);
             CHECK((o.kind == ObjectKind::PointSet) == m.is_point_set);
             CAPTURE(i);

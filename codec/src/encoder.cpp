@@ -3,6 +3,7 @@
 #include "ellicast/codec/encoder.h"
 
 #include "encoder_internal.h"
+#include "surface_samples.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,6 +36,11 @@ std::string check_encode_options(const EncodeOptions& o) {
     if (o.packet_size < kMinPacketSize || o.packet_size > kMaxPacketSize)
         return "the packet size must be " + std::to_string(kMinPacketSize) + ".." + std::to_string(kMaxPacketSize) +
                " bytes (got " + std::to_string(o.packet_size) + ")";
+    if (!(o.sample_spacing >= 0) || o.sample_spacing > 1)
+        return "the sample spacing must be in [0, 1] (a fraction of the object's diagonal; got " +
+               std::to_string(o.sample_spacing) + ")";
+    if (o.max_samples > 10000000)
+        return "at most 10000000 surface samples per object (got " + std::to_string(o.max_samples) + ")";
     if (o.threads < 1 || o.threads > 256) return "threads must be 1..256 (got " + std::to_string(o.threads) + ")";
     return "";
 }
@@ -413,6 +419,22 @@ std::vector<QuantizedPoint> encode_points(const Mesh& mesh, const StreamInfo& in
     return out;
 }
 
+// Spacings for the surface samples of one object, from its bounding box.
+SurfaceSampleOptions sample_options(const Mesh& mesh, const Frame& frame, const EncodeOptions& options) {
+    std::array<float, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+    for (const auto& p : mesh.positions)
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+    double diagonal = 0;
+    for (int k = 0; k < 3; ++k) diagonal += (double(hi[k]) - lo[k]) * (double(hi[k]) - lo[k]);
+    diagonal = std::sqrt(diagonal);
+    if (!(diagonal > 0)) diagonal = frame.scale;
+    SurfaceSampleOptions s;
+    s.spacing = options.sample_spacing * diagonal;
+    s.crease_spacing = s.spacing / 2;
+    s.max_samples = std::max<size_t>(options.max_samples, mesh.positions.size());
+    return s;
+}
+
 // The encoder trusts nothing of a Mesh it is handed: sizes, indices and coordinates are checked.
 void check_mesh(const Mesh& mesh, size_t m) {
     const std::string name = "mesh " + std::to_string(m) + (mesh.name.empty() ? "" : " (" + mesh.name + ")");
@@ -496,7 +518,14 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
             grid_hint = std::max<uint16_t>(grid_hint, uint16_t(std::max({report.grid[0], report.grid[1], report.grid[2]})));
         }
         progress("points", 0.97);
-        content.points = encode_points(mesh, info, object, object_seed);
+        if (!mesh.is_point_set && !mesh.triangles.empty() && options.sample_spacing > 0) {
+            size_t added = 0;
+            const Mesh sampled = with_surface_samples(mesh, sample_options(mesh, object.frame, options), added);
+            report.samples = uint32_t(added);
+            content.points = encode_points(sampled, info, object, object_seed);
+        } else {
+            content.points = encode_points(mesh, info, object, object_seed);
+        }
         object.ellipsoid_count = uint32_t(content.ellipsoids.size());
         object.point_count = uint32_t(content.points.size());
         report.points = object.point_count;

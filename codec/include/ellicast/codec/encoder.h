@@ -10,8 +10,9 @@
 //     the base (thin parts); flat ellipsoids hugging the surface where there is no inside (sheets);
 //  4. every selected ellipsoid is quantized and checked again: dequantized, it must still be
 //     clear of the surface, else it is shrunk;
-//  5. the points: every original vertex, welded by quantized position and attributes, in an order
-//     in which any subset is spread evenly over the surface.
+//  5. the points: every original vertex, plus surface samples where triangles are large (low-poly
+//     models), welded by quantized position and attributes, in an order in which any subset is
+//     spread evenly over the surface.
 // Deterministic: the same meshes, options and seed give the same output, whatever the threads.
 #pragma once
 
@@ -36,6 +37,13 @@ struct EncodeOptions {
     uint8_t color_bits = 8;          // 2..16
     uint16_t packet_size = kDefaultPacketSize;
     uint32_t seed = 1;
+    // Surface samples added to the original vertices where triangles are large: no edge inside a
+    // face longer than this fraction of the object's bounding-box diagonal, half of it along
+    // creases and boundaries. 0: the original vertices only. [0, 1]
+    double sample_spacing = 0.03;
+    // At most this many samples per object, or as many as it has vertices if that is more (the
+    // spacings grow until they fit). 0..10000000
+    uint32_t max_samples = 20000;
     unsigned threads = 2;            // worker threads (results do not depend on it)
     // Called with a stage name and the fraction done (0..1); may be empty.
     std::function<void(const std::string& stage, double fraction)> progress;
@@ -49,7 +57,8 @@ struct ObjectReport {
     std::string name;
     bool point_set = false;
     uint32_t vertices = 0;            // input vertices
-    uint32_t points = 0;              // points sent (after welding)
+    uint32_t points = 0;              // points sent (after welding), samples included
+    uint32_t samples = 0;             // surface samples added to the vertices (before welding)
     uint32_t candidates = 0;          // candidate ellipsoids grown
     uint32_t ellipsoids = 0;          // ellipsoids sent
     uint32_t surface_ellipsoids = 0;  // of those, chosen for surface (thin parts) rather than volume

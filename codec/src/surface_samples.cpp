@@ -1,0 +1,175 @@
+// Surface samples by longest-edge bisection. Original vertices alone cannot rebuild a model whose
+// triangles are large next to the decoder's base (a box has eight positions); points on its faces,
+// and denser along its creases and boundaries, can. Bisection keeps every sample exactly on the
+// original surface and makes shared edges split at the same points from both sides.
+#include "surface_samples.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+#include <vector>
+
+namespace ellicast::detail {
+
+namespace {
+
+using P3 = std::array<float, 3>;
+
+struct Corner {
+    P3 position{};
+    P3 normal{};
+    std::array<float, 2> texcoord{};
+    std::array<float, 4> color{};
+};
+
+struct Piece {
+    Corner v[3];
+    double limit[3];  // longest length allowed for edge (v[i], v[i+1])
+};
+
+double length2(const P3& a, const P3& b) {
+    double s = 0;
+    for (int k = 0; k < 3; ++k) s += (double(a[k]) - double(b[k])) * (double(a[k]) - double(b[k]));
+    return s;
+}
+
+// Symmetric in a and b, so both triangles along an edge make the same bits.
+Corner midpoint(const Corner& a, const Corner& b) {
+    Corner m;
+    for (int k = 0; k < 3; ++k) m.position[k] = (a.position[k] + b.position[k]) * 0.5f;
+    double n2 = 0;
+    for (int k = 0; k < 3; ++k) {
+        m.normal[k] = a.normal[k] + b.normal[k];
+        n2 += double(m.normal[k]) * m.normal[k];
+    }
+    if (n2 > 1e-20) {
+        for (float& c : m.normal) c = float(c / std::sqrt(n2));
+    } else {
+        m.normal = a.normal;  // opposite normals: keep one side's
+    }
+    for (int k = 0; k < 2; ++k) m.texcoord[k] = (a.texcoord[k] + b.texcoord[k]) * 0.5f;
+    for (int k = 0; k < 4; ++k) m.color[k] = (a.color[k] + b.color[k]) * 0.5f;
+    return m;
+}
+
+std::array<double, 3> face_normal(const Mesh& mesh, const std::array<uint32_t, 3>& t) {
+    const P3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    double u[3], v[3];
+    for (int k = 0; k < 3; ++k) u[k] = double(b[k]) - a[k], v[k] = double(c[k]) - a[k];
+    std::array<double, 3> n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (l > 0)
+        for (double& c : n) c /= l;
+    return n;
+}
+
+// For each triangle edge (t, e) = (v[e], v[e+1]): true on a crease, a boundary or a non-manifold
+// edge. Vertices are welded by exact position first, so a glTF seam is not a boundary.
+std::vector<std::array<bool, 3>> sharp_edges(const Mesh& mesh, double crease_degrees) {
+    std::map<P3, uint32_t> ids;
+    std::vector<uint32_t> weld(mesh.positions.size());
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+        weld[i] = ids.emplace(mesh.positions[i], uint32_t(ids.size())).first->second;
+    std::unordered_map<uint64_t, std::vector<uint32_t>> faces;  // edge key -> faces
+    faces.reserve(mesh.triangles.size() * 2);
+    auto key = [&](uint32_t a, uint32_t b) {
+        a = weld[a], b = weld[b];
+        return a < b ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a);
+    };
+    for (size_t t = 0; t < mesh.triangles.size(); ++t)
+        for (int e = 0; e < 3; ++e) faces[key(mesh.triangles[t][e], mesh.triangles[t][(e + 1) % 3])].push_back(uint32_t(t));
+    std::vector<std::array<double, 3>> normals(mesh.triangles.size());
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) normals[t] = face_normal(mesh, mesh.triangles[t]);
+    const double cos_limit = std::cos(crease_degrees * M_PI / 180.0);
+    std::vector<std::array<bool, 3>> sharp(mesh.triangles.size());
+    for (size_t t = 0; t < mesh.triangles.size(); ++t)
+        for (int e = 0; e < 3; ++e) {
+            const auto& f = faces[key(mesh.triangles[t][e], mesh.triangles[t][(e + 1) % 3])];
+            if (f.size() != 2) {
+                sharp[t][e] = true;
+                continue;
+            }
+            const auto &n0 = normals[f[0]], &n1 = normals[f[1]];
+            sharp[t][e] = n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] < cos_limit;
+        }
+    return sharp;
+}
+
+// Bisects every triangle; false (and `out` incomplete) as soon as more than `budget` points are made.
+bool bisect_all(const Mesh& mesh, const std::vector<std::array<bool, 3>>& sharp, double spacing,
+                double crease_spacing, size_t budget, std::vector<Corner>& out) {
+    out.clear();
+    std::vector<Piece> stack;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        Piece root;
+        for (int i = 0; i < 3; ++i) {
+            const uint32_t v = mesh.triangles[t][i];
+            Corner& c = root.v[i];
+            c.position = mesh.positions[v];
+            if (mesh.has_normals()) c.normal = mesh.normals[v];
+            if (mesh.has_texcoords()) c.texcoord = mesh.texcoords[v];
+            if (mesh.has_colors()) c.color = mesh.colors[v];
+            root.limit[i] = sharp[t][i] ? crease_spacing : spacing;
+        }
+        stack.push_back(root);
+        while (!stack.empty()) {
+            Piece p = stack.back();
+            stack.pop_back();
+            int worst = -1;
+            double worst_ratio = 1.0;
+            for (int i = 0; i < 3; ++i) {
+                const double r = length2(p.v[i].position, p.v[(i + 1) % 3].position) / (p.limit[i] * p.limit[i]);
+                if (r > worst_ratio) worst_ratio = r, worst = i;
+            }
+            if (worst < 0) continue;
+            if (out.size() >= budget) return false;
+            const int a = worst, b = (worst + 1) % 3, c = (worst + 2) % 3;
+            const Corner m = midpoint(p.v[a], p.v[b]);
+            out.push_back(m);
+            Piece left, right;
+            left.v[0] = p.v[a], left.v[1] = m, left.v[2] = p.v[c];
+            left.limit[0] = p.limit[a], left.limit[1] = spacing, left.limit[2] = p.limit[c];
+            right.v[0] = m, right.v[1] = p.v[b], right.v[2] = p.v[c];
+            right.limit[0] = p.limit[a], right.limit[1] = p.limit[b], right.limit[2] = spacing;
+            stack.push_back(left);
+            stack.push_back(right);
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+Mesh with_surface_samples(const Mesh& mesh, const SurfaceSampleOptions& options, size_t& added) {
+    added = 0;
+    Mesh out = mesh;
+    if (options.spacing <= 0 || mesh.triangles.empty() || mesh.is_point_set) return out;
+    const auto sharp = sharp_edges(mesh, options.crease_degrees);
+    double spacing = options.spacing;
+    double crease = options.crease_spacing > 0 ? std::min(options.crease_spacing, spacing) : spacing;
+    std::vector<Corner> samples;
+    // Too many for the budget: coarser spacings until they fit. Each try stops at the budget, so
+    // the work stays bounded by (tries x budget).
+    for (int attempt = 0; !bisect_all(mesh, sharp, spacing, crease, options.max_samples, samples); ++attempt) {
+        spacing *= 1.5;
+        crease *= 1.5;
+        if (attempt > 60) {
+            samples.clear();
+            break;
+        }
+    }
+    // Points falling on an original vertex or on each other are welded later by the encoder.
+    out.positions.reserve(mesh.positions.size() + samples.size());
+    for (const Corner& c : samples) {
+        out.positions.push_back(c.position);
+        if (mesh.has_normals()) out.normals.push_back(c.normal);
+        if (mesh.has_texcoords()) out.texcoords.push_back(c.texcoord);
+        if (mesh.has_colors()) out.colors.push_back(c.color);
+    }
+    added = samples.size();
+    return out;
+}
+
+}  // namespace ellicast::detail
