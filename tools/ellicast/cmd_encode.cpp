@@ -26,6 +26,8 @@ struct EncodeArgs {
     int position_bits = 14, normal_bits = 10, texcoord_bits = 12, color_bits = 8;
     int packet_size = int(kDefaultPacketSize);
     uint32_t seed = 1;
+    double sample_spacing = EncodeOptions{}.sample_spacing;
+    uint32_t max_samples = EncodeOptions{}.max_samples;
     uint32_t stream_id = 1;
     unsigned threads = 2;
     bool quiet = false;
@@ -51,6 +53,8 @@ int run_encode(const EncodeArgs& a) {
     options.color_bits = bits(a.color_bits);
     options.packet_size = uint16_t(a.packet_size < 0 || a.packet_size > 65535 ? 0 : a.packet_size);
     options.seed = a.seed;
+    options.sample_spacing = a.sample_spacing;
+    options.max_samples = a.max_samples;
     options.threads = a.threads;
     if (std::string why = check_encode_options(options); !why.empty()) return fail(kExitUsage, why);
 
@@ -89,9 +93,12 @@ int run_encode(const EncodeArgs& a) {
             std::printf("  object %zu %-24s point set: %u points\n", i, r.name.c_str(), r.points);
             continue;
         }
-        std::printf("  object %zu %-24s %u ellipsoids (%u for thin parts, %u flat) of %u candidates, %u points; "
+        std::string samples;
+        if (r.samples) samples.append(" + ").append(std::to_string(r.samples)).append(" surface samples");
+        std::printf("  object %zu %-24s %u ellipsoids (%u for thin parts, %u flat) of %u candidates, %u points (%u vertices%s); "
                     "%s, coverage %.1f%%, outside %.2f%%, surface near base %.1f%%\n",
                     i, r.name.c_str(), r.ellipsoids, r.surface_ellipsoids, r.flat_ellipsoids, r.candidates, r.points,
+                    r.vertices, samples.c_str(),
                     r.closed ? "closed" : "open", 100 * r.coverage, 100 * r.outside, 100 * r.surface_covered);
     }
     std::printf("objects %zu, ellipsoids %zu, points %zu\n", encoded.info.objects.size(), ellipsoids, points);
@@ -128,6 +135,13 @@ const RegisterCommand registered({10, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--color-bits", args->color_bits, "bits per colour channel (2..16)")->capture_default_str();
     cmd->add_option("--packet-size", args->packet_size, "largest packet in bytes (128..65000)")->capture_default_str();
     cmd->add_option("--seed", args->seed, "random seed (same seed, same stream)")->capture_default_str();
+    cmd->add_option("--sample-spacing", args->sample_spacing,
+                    "add surface samples so that no edge inside a face is longer than this fraction of the "
+                    "object's diagonal (half of it along creases); 0: original vertices only, [0, 1]")
+        ->capture_default_str();
+    cmd->add_option("--max-samples", args->max_samples,
+                    "most surface samples per object (or its vertex count if larger); the spacing grows to fit")
+        ->capture_default_str();
     cmd->add_option("--stream-id", args->stream_id, "stream id written in every packet")->capture_default_str();
     cmd->add_option("--threads", args->threads, "worker threads (1..256; the result does not depend on it)")
         ->capture_default_str();
