@@ -134,6 +134,19 @@ int main(int argc, char** argv) {
         for (int i = 0; i < 64; ++i) scene.push_back(small_sphere(8, {float(i % 8), float(i / 8), 0}, 0.4f));
         Run run = encode(scene, options);
         std::printf("%-28s %7.2f s  objects %zu\n", "64 small spheres", run.seconds, scene.size());
+        std::printf("    stages:");
+        for (const auto& [s, t] : run.stages) std::printf("  %s %.2f s", s.c_str(), t);
+        std::printf("\n");
+        double low = 1, high_out = 0;
+        size_t ellipsoids = 0;
+        for (const ObjectReport& r : run.result.reports) {
+            low = std::min(low, r.coverage);
+            high_out = std::max(high_out, r.outside);
+            ellipsoids += r.ellipsoids;
+        }
+        const ObjectReport& r = run.result.reports[0];
+        std::printf("    per sphere: lowest coverage %5.1f%%  highest outside %5.2f%%  ellipsoids %zu in all  grid %ux%ux%u  "
+                    "candidates %u\n", 100 * low, 100 * high_out, ellipsoids, r.grid[0], r.grid[1], r.grid[2], r.candidates);
     }
     std::vector<std::string> files;  // every model under the samples, in a fixed order
     if (std::filesystem::is_directory(samples))

@@ -242,6 +242,26 @@ TEST_CASE("a closed model's interior is mostly covered and little volume lies ou
     CHECK(r.reports[0].outside < 0.01);
 }
 
+TEST_CASE("each object of a scene of many small closed objects is still covered to the target") {
+    // Past 8 objects each gets fewer seeds and a coarser grid; the coverage target still holds.
+    std::vector<Mesh> scene;
+    for (int i = 0; i < 12; ++i) {
+        Mesh m = convex_shape(8);
+        for (auto& p : m.positions) p[0] += 2.5f * float(i);
+        scene.push_back(m);
+    }
+    EncodeOptions o;
+    o.max_ellipsoids = 100;
+    EncodeResult r = encode_meshes(scene, o);
+    REQUIRE(r.reports.size() == scene.size());
+    for (const auto& rep : r.reports) {
+        CHECK(rep.closed);
+        CHECK(rep.coverage >= 0.95);
+        CHECK(rep.outside <= 0.01);
+        CHECK(rep.ellipsoids <= 100);
+    }
+}
+
 TEST_CASE("a flat sheet with no inside still gets flat ellipsoids hugging it") {
     Mesh sheet;
     sheet.name = "sheet";

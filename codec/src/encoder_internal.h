@@ -75,6 +75,12 @@ struct VoxelGrid {
 VoxelGrid build_winding_grid(const TriangleTree& tree, const WindingNumber& winding, const TriangleTree::Box& box,
                              int cells, unsigned threads, const std::function<void(double)>& progress);
 
+// The same grid for a surface without boundary (every edge matched by an edge in the opposite
+// direction): exact integer winding numbers from signed ray crossings, one ray per row of voxels,
+// far cheaper than evaluating the winding number at each voxel.
+VoxelGrid build_closed_winding_grid(const TriangleTree& tree, const TriangleTree::Box& box, int cells,
+                                    unsigned threads);
+
 // ---------------------------------------------------------------------------------------------
 // ellipsoid_growth.cpp
 

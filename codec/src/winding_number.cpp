@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace ellicast::detail {
 
@@ -136,8 +137,10 @@ double VoxelGrid::sample(const Vec3& p) const {
     return v;
 }
 
-VoxelGrid build_winding_grid(const TriangleTree& tree, const WindingNumber& winding, const TriangleTree::Box& box,
-                             int cells, unsigned threads, const std::function<void(double)>& progress) {
+namespace {
+
+// A grid over `box` with `cells` voxels along its longest side and a one-voxel margin, all zero.
+VoxelGrid layout_grid(const TriangleTree::Box& box, int cells) {
     VoxelGrid g;
     double extent = 0;
     for (int k = 0; k < 3; ++k) extent = std::max(extent, box.max[k] - box.min[k]);
@@ -149,6 +152,86 @@ VoxelGrid build_winding_grid(const TriangleTree& tree, const WindingNumber& wind
         g.origin[k] = box.min[k] - 0.5 * (g.n[k] * g.h - e) + 0.5 * g.h;
     }
     g.w.assign(g.size(), 0.0f);
+    return g;
+}
+
+// Side of the (y, z) projection of edge a->b on which q lies, for q nudged by an infinitesimal
+// (eps, eps^2) so that it is never on an edge (simulation of simplicity): +1 left, -1 right, 0
+// only for an edge that projects to a point. The value is computed from the endpoints in a fixed
+// order, so the two triangles sharing an edge get exactly opposite answers: a ray through a shared
+// edge or vertex crosses exactly one of them.
+int edge_side(const V3& a, const V3& b, double qy, double qz) {
+    const bool swap = std::tie(a[1], a[2]) > std::tie(b[1], b[2]);
+    const V3& p = swap ? b : a;
+    const V3& r = swap ? a : b;
+    const double dy = r[1] - p[1], dz = r[2] - p[2];
+    const double e = dy * (qz - p[2]) - dz * (qy - p[1]);
+    int s = e > 0 ? 1 : e < 0 ? -1 : dz != 0 ? (dz < 0 ? 1 : -1) : dy != 0 ? (dy > 0 ? 1 : -1) : 0;
+    return swap ? -s : s;
+}
+
+}  // namespace
+
+VoxelGrid build_closed_winding_grid(const TriangleTree& tree, const TriangleTree::Box& box, int cells,
+                                    unsigned threads) {
+    VoxelGrid g = layout_grid(box, cells);
+    const auto& nodes = tree.nodes();
+    const auto& tris = tree.triangles();
+    if (nodes.empty()) return g;
+    // One ray along +x per row of voxels; each crossing adds its orientation (+1 leaving through an
+    // outward face) to every voxel before it.
+    parallel_for(size_t(g.n[2]), threads, [&](size_t z) {
+        std::vector<std::pair<double, int>> hits;
+        for (int y = 0; y < g.n[1]; ++y) {
+            const double qy = g.origin[1] + y * g.h, qz = g.origin[2] + double(z) * g.h;
+            hits.clear();
+            uint32_t stack[128];
+            int top = 0;
+            stack[top++] = 0;
+            while (top > 0) {
+                const auto& node = nodes[stack[--top]];
+                if (qy < node.bounds.min[1] || qy > node.bounds.max[1] || qz < node.bounds.min[2] ||
+                    qz > node.bounds.max[2])
+                    continue;
+                if (node.is_leaf()) {
+                    for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+                        const auto& v = tris[i].v;
+                        int s0 = edge_side(v[0], v[1], qy, qz), s1 = edge_side(v[1], v[2], qy, qz),
+                            s2 = edge_side(v[2], v[0], qy, qz);
+                        if (s0 == 0 || s0 != s1 || s1 != s2) continue;
+                        // Where the ray meets the triangle's plane (barycentric from the projection).
+                        const double n0 = (v[1][1] - v[0][1]) * (v[2][2] - v[0][2]) - (v[1][2] - v[0][2]) * (v[2][1] - v[0][1]);
+                        double x = (v[0][0] + v[1][0] + v[2][0]) / 3.0;
+                        if (n0 != 0) {
+                            const double wa = ((v[1][1] - qy) * (v[2][2] - qz) - (v[1][2] - qz) * (v[2][1] - qy)) / n0;
+                            const double wb = ((v[2][1] - qy) * (v[0][2] - qz) - (v[2][2] - qz) * (v[0][1] - qy)) / n0;
+                            x = wa * v[0][0] + wb * v[1][0] + (1 - wa - wb) * v[2][0];
+                        }
+                        hits.push_back({x, s0});
+                    }
+                    continue;
+                }
+                if (top + 2 > 128) continue;
+                stack[top++] = node.first;
+                stack[top++] = node.right;
+            }
+            std::sort(hits.begin(), hits.end());
+            // Voxels from the far end of the row back: the winding number is the sum of the crossings beyond.
+            int w = 0;
+            size_t k = hits.size();
+            for (int x = g.n[0] - 1; x >= 0; --x) {
+                const double qx = g.origin[0] + x * g.h;
+                while (k > 0 && hits[k - 1].first > qx) w += hits[--k].second;
+                g.w[g.index(x, y, int(z))] = float(w);
+            }
+        }
+    });
+    return g;
+}
+
+VoxelGrid build_winding_grid(const TriangleTree& tree, const WindingNumber& winding, const TriangleTree::Box& box,
+                             int cells, unsigned threads, const std::function<void(double)>& progress) {
+    VoxelGrid g = layout_grid(box, cells);
     auto center = [&](int x, int y, int z) -> V3 {
         return {g.origin[0] + x * g.h, g.origin[1] + y * g.h, g.origin[2] + z * g.h};
     };
