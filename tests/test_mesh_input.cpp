@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 using namespace ellicast;
 using ellicast::test::have_sample;
@@ -185,8 +186,22 @@ TEST_CASE("bad input files are refused with a message naming the file and the pr
         spit(dir / "face.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 )3\n");
         std::string e = error_of((dir / "face.obj").string());
         CHECK(e.find("line 4") != std::string::npos);
-        spit(dir / "face2.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
-        CHECK(error_of((dir / "face2.obj").string()).find("does not refer to a defined vertex") != std::string::npos);
+        spit(dir / "face2.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\nv 0 1 0\n");
+        e = error_of((dir / "face2.obj").string());
+        CHECK(e.find("line 3: face corner \"9\" refers to vertex 9, but the file defines 3 vertices") != std::string::npos);
+        spit(dir / "face3.obj", "v 0 0 0\nf -1 -2 -3\nv 1 0 0\nv 0 1 0\n");
+        e = error_of((dir / "face3.obj").string());
+        CHECK(e.find("line 2: face corner \"-2\" counts back 2 vertices from line 2, but only 1 are defined before it") !=
+              std::string::npos);
+        spit(dir / "face4.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n");
+        CHECK(error_of((dir / "face4.obj").string()).find("line 5: face corner \"2/2\" refers to texture coordinate 2") !=
+              std::string::npos);
+        // Indented lines are lines too (OpenMesh trims them): an indented bad face is caught.
+        spit(dir / "face5.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n  \tf 1 2 4\n");
+        CHECK(error_of((dir / "face5.obj").string()).find("line 4") != std::string::npos);
+        // A coordinate a float cannot hold would make OpenMesh skip the vertex and shift every index.
+        spit(dir / "big.obj", "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n");
+        CHECK(error_of((dir / "big.obj").string()).find("line 2: vertex value 1") != std::string::npos);
     }
     SUBCASE("PLY cut short, with a bad face index, or with a header OpenMesh would spin on") {
         const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
@@ -304,4 +319,44 @@ TEST_CASE("KHR_mesh_quantization: integer positions and normalized normals, dequ
     bool warned = std::any_of(r.warnings.begin(), r.warnings.end(),
                               [](const std::string& w) { return w.find("LINES") != std::string::npos; });
     CHECK(warned);
+}
+
+TEST_CASE("OBJ faces may refer to vertices, texture coordinates and normals defined later in the file") {
+    auto dir = ellicast::test::scratch_dir("mesh_input_obj_forward");
+    // A tetrahedron with per-corner texture coordinates and normals, written twice: elements first
+    // (the usual order), and faces first with every element after them (absolute indices) or
+    // between them (relative indices, which count back from the face).
+    const std::string elements = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                                 "vn 0 0 -1\nvn 0 -1 0\nvn -1 0 0\nvn 0.577 0.577 0.577\n";
+    const std::string faces = "f 1/1/1 3/3/1 2/2/1\nf 1/1/2 2/2/2 4/3/2\nf 1/1/3 4/3/3 3/2/3\nf 2/1/4 3/2/4 4/3/4\n";
+    spit(dir / "usual.obj", elements + faces);
+    spit(dir / "forward.obj", "# faces first\n" + faces + elements);
+    spit(dir / "mixed.obj", "v 0 0 0\nv 1 0 0\nvt 0 0\nvt 1 0\nf 1/1 -1/-1 4/3\nv 0 1 0\nv 0 0 1\nvt 0 1\n"
+                            "f -4/-3 -2/-1 -3/-2\nf 1/1 4/3 3/2\nf 2/1 3/2 4/3\n");
+    LoadResult usual = load_meshes((dir / "usual.obj").string());
+    LoadResult forward = load_meshes((dir / "forward.obj").string());
+    REQUIRE(usual.meshes.size() == 1);
+    REQUIRE(forward.meshes.size() == 1);
+    const Mesh& a = usual.meshes[0];
+    const Mesh& b = forward.meshes[0];
+    CHECK(a.triangles.size() == 4);
+    CHECK(b.triangles == a.triangles);
+    CHECK(b.positions == a.positions);
+    CHECK(b.texcoords == a.texcoords);
+    CHECK(b.normals == a.normals);
+    LoadResult mixed = load_meshes((dir / "mixed.obj").string());
+    REQUIRE(mixed.meshes.size() == 1);
+    const Mesh& m = mixed.meshes[0];
+    REQUIRE(m.triangles.size() == 4);
+    // Every face is a face of the tetrahedron: the four corners, each face a different triple.
+    std::set<std::array<float, 3>> corners;
+    std::set<std::set<std::array<float, 3>>> triples;
+    for (const auto& t : m.triangles) {
+        std::set<std::array<float, 3>> triple;
+        for (uint32_t v : t) triple.insert(m.positions[v]), corners.insert(m.positions[v]);
+        CHECK(triple.size() == 3);
+        triples.insert(triple);
+    }
+    CHECK(corners == std::set<std::array<float, 3>>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+    CHECK(triples.size() == 4);
 }

@@ -7,7 +7,9 @@
 #include <OpenMesh/Core/System/omstream.hh>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -76,49 +78,80 @@ uint64_t file_size(const std::string& path) {
     return ec ? 0 : uint64_t(size);
 }
 
-// OBJ: finite vertex coordinates; face corners "v", "v/t", "v//n", "v/t/n" whose indices refer to
-// elements already defined (negative: relative to the last one).
+// OBJ, checked the way OpenMesh's reader reads it (two passes: every "v" / "vt" / "vn" first, then
+// the faces), so that what passes here cannot make it index outside its arrays: lines trimmed of
+// " \t\r\n", keyword up to the first white space; "v" / "vt" / "vn" with numbers a float holds;
+// face corners "v", "v/t", "v//n", "v/t/n" whose positive indices refer to an element anywhere in the
+// file (OBJ allows a face before its vertices) and whose negative indices count back from the last
+// element defined before the face.
 void check_obj(const std::string& path) {
     std::ifstream in(path);
-    std::string line;
-    long long counts[3] = {0, 0, 0};  // v, vt, vn
+    const char* const kinds[3] = {"vertex", "texture coordinate", "normal"};
+    const char* const plural[3] = {"vertices", "texture coordinates", "normals"};
+    long long counts[3] = {0, 0, 0};  // v, vt, vn so far
+    // The largest positive index of each kind, with where it was: checked against the totals at the end.
+    struct Reference {
+        long long index = 0;
+        size_t line = 0;
+        std::string corner;
+    } largest[3];
+    std::istringstream fields;
+    std::string line, keyword;
     for (size_t number = 1; std::getline(in, line); ++number) {
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (line.size() < 2 || (line[1] != ' ' && line[1] != '\t' && line[1] != 't' && line[1] != 'n')) continue;
-        if (line[0] == 'v') {
-            int kind = line[1] == 't' ? 1 : line[1] == 'n' ? 2 : 0;
-            if (kind != 0 && (line.size() < 3 || (line[2] != ' ' && line[2] != '\t'))) continue;
+        const size_t first = line.find_first_not_of(" \t\r\n");
+        if (first == std::string::npos || line[first] == '#' || std::isspace(static_cast<unsigned char>(line[first])))
+            continue;
+        size_t end = first;
+        while (end < line.size() && !std::isspace(static_cast<unsigned char>(line[end]))) ++end;
+        keyword.assign(line, first, end - first);
+        const int kind = keyword == "v" ? 0 : keyword == "vt" ? 1 : keyword == "vn" ? 2 : -1;
+        if (kind >= 0) {
             ++counts[kind];
-            if (kind != 0) continue;
-            const char* p = line.c_str() + 2;
-            for (int k = 0; k < 3; ++k) {
-                char* end = nullptr;
-                double value = std::strtod(p, &end);
-                if (end == p || !std::isfinite(value))
-                    bad(path, number, "vertex coordinate " + std::to_string(k + 1) + " is not a finite number (\"" +
-                                          line + "\")");
-                p = end;
+            fields.str(line.substr(end));
+            fields.clear();
+            const int needed = kind == 1 ? 2 : 3;
+            for (int k = 0; k < needed; ++k) {
+                float value = 0;
+                fields >> value;
+                if (fields.fail() || !std::isfinite(value))
+                    bad(path, number, std::string(kinds[kind]) + " value " + std::to_string(k + 1) +
+                                          " is not a finite number a float holds (\"" + line + "\")");
             }
-        } else if (line[0] == 'f' && (line[1] == ' ' || line[1] == '\t')) {
-            std::istringstream tokens(line.substr(2));
-            std::string corner;
-            while (tokens >> corner) {
-                size_t start = 0;
-                for (int part = 0; part < 3 && start <= corner.size(); ++part) {
-                    size_t slash = corner.find('/', start);
-                    std::string text = corner.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
-                    start = slash == std::string::npos ? corner.size() + 1 : slash + 1;
-                    if (text.empty() && part > 0) continue;  // "v//n"
-                    char* end = nullptr;
-                    long long index = std::strtoll(text.c_str(), &end, 10);
-                    if (text.empty() || *end != '\0' || index == 0 || index > counts[part] || -index > counts[part])
-                        bad(path, number, "face corner \"" + corner + "\" does not refer to a defined " +
-                                              (part == 0 ? "vertex" : part == 1 ? "texture coordinate" : "normal") +
-                                              " (" + std::to_string(counts[part]) + " so far)");
-                }
+            continue;
+        }
+        if (keyword != "f") continue;
+        fields.str(line.substr(end));
+        fields.clear();
+        std::string corner;
+        while (fields >> corner) {
+            size_t start = 0;
+            for (int part = 0; part < 3 && start <= corner.size(); ++part) {
+                size_t slash = corner.find('/', start);
+                std::string text = corner.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+                start = slash == std::string::npos ? corner.size() + 1 : slash + 1;
+                if (text.empty() && part > 0) continue;  // "v//n", "v/t/"
+                char* stop = nullptr;
+                errno = 0;
+                long long index = std::strtoll(text.c_str(), &stop, 10);
+                if (text.empty() || *stop != '\0' || errno == ERANGE || index == 0 || index > INT32_MAX ||
+                    index < -INT32_MAX)
+                    bad(path, number, "face corner \"" + corner + "\" is not a " + kinds[part] +
+                                          " index (a nonzero whole number)");
+                if (index < 0 && -index > counts[part])
+                    bad(path, number, "face corner \"" + corner + "\" counts back " + std::to_string(-index) + " " +
+                                          (-index == 1 ? kinds[part] : plural[part]) + " from line " +
+                                          std::to_string(number) + ", but only " + std::to_string(counts[part]) +
+                                          " are defined before it");
+                if (index > largest[part].index) largest[part] = {index, number, corner};
             }
         }
     }
+    if (in.bad()) throw InputError(path + ": could not be read to the end");
+    for (int part = 0; part < 3; ++part)
+        if (largest[part].index > counts[part])
+            bad(path, largest[part].line, "face corner \"" + largest[part].corner + "\" refers to " + kinds[part] + " " +
+                                              std::to_string(largest[part].index) + ", but the file defines " +
+                                              std::to_string(counts[part]) + " " + plural[part]);
 }
 
 // PLY: a complete header of known types, then a body holding every declared element whole, with
