@@ -285,18 +285,39 @@ TEST_CASE("a receiver writes what arrived: lost textures, materials, objects and
         check_valid(out);
         check_same_scene(in, load_asset(out.string()));
     }
-    SUBCASE("a texture fragment lost: the texture is left out, its materials keep their factors") {
+    SUBCASE("a texture fragment lost: the materials using the texture are not shown, their primitives get the "
+            "default material, the other materials are unchanged") {
         Asset got = received_asset(receive(true, true, 1, 99), in.objects);
-        CHECK(any_of(got.warnings, "incomplete"));
+        // The truck's body and wheels share the one texture: both wait for it, named with what arrived.
+        CHECK(any_of(got.warnings, "material 0 (truck) is waiting for its baseColorTexture texture 0 ("));
+        CHECK(any_of(got.warnings, "material 3 (wheels) is waiting for its baseColorTexture texture 0 ("));
+        CHECK(any_of(got.warnings, " bytes arrived); its primitives get the default material"));
+        CHECK(!any_of(got.warnings, "did not arrive"));  // the materials did arrive
         CHECK(got.scene.textures.empty());
+        REQUIRE(got.scene.materials.size() == 2);
+        CHECK(got.scene.materials[0].name == "glass");
+        CHECK(got.scene.materials[1].name == "window_trim");
         fs::path out = dir / "no_texture.glb";
         write_ok(out, got, {});
         check_valid(out);
-        Asset back = load_asset(out.string());
-        REQUIRE(back.scene.materials.size() == 4);
-        CHECK(back.scene.materials[0].base_color_texture.texture == kNone);
-        CHECK(back.scene.materials[1].base_color[1] == doctest::Approx(in.scene.materials[1].base_color[1]));
-        CHECK(back.scene.textures.empty());
+        Glb glb = read_glb(out);
+        CHECK(!glb.json.contains("textures"));
+        CHECK(!glb.json.contains("images"));
+        REQUIRE(glb.json["meshes"].size() == 2);
+        const auto& truck = glb.json["meshes"][0]["primitives"];
+        REQUIRE(truck.size() == 3);
+        CHECK(!truck[0].contains("material"));  // the body: default material
+        CHECK(truck[1]["material"] == 0);        // glass
+        CHECK(truck[2]["material"] == 1);        // window trim
+        CHECK(!glb.json["meshes"][1]["primitives"][0].contains("material"));  // the wheels
+        const auto& glass = glb.json["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"];
+        for (int k = 0; k < 4; ++k) CHECK(glass[k].get<double>() == doctest::Approx(in.scene.materials[1].base_color[k]));
+    }
+    SUBCASE("a texture complete: the materials waiting for it are shown") {
+        Asset got = received_asset(receive(true, true, 0, 99), in.objects);
+        REQUIRE(got.scene.materials.size() == 4);
+        CHECK(got.scene.materials[0].base_color_texture.texture == 0);
+        CHECK(got.scene.materials[3].base_color_texture.texture == 0);
     }
     SUBCASE("a material lost: its primitives get the default material") {
         Asset got = received_asset(receive(true, true, 0, 1), in.objects);
@@ -407,6 +428,10 @@ TEST_CASE("write_asset leaves out what does not hold together and still writes a
         CHECK(any_of(warnings, "neither PNG nor JPEG"));
         CHECK(any_of(warnings, "has no image"));
         CHECK(any_of(warnings, "TEXCOORD_1"));
+        // The material's base colour texture is garbage: object 0, drawn with it, gets the default material.
+        CHECK(any_of(warnings, "texture 0 is not available; primitives using the material get the default material"));
+        Glb glb = read_glb(out);
+        CHECK(!glb.json["meshes"][0]["primitives"][0].contains("material"));
     }
 }
 

@@ -163,10 +163,21 @@ private:
     }
 
     // ---- materials: material i is glTF material i; variants without textures are appended
+    // A material whose TEXCOORD_0 texture cannot be written is kept in the table (indices stay) but
+    // no primitive uses it: they get the default material, as at a receiver still waiting for it.
     void write_materials() {
         const auto& materials = asset_.scene.materials;
-        for (size_t i = 0; i < materials.size(); ++i)
-            model_.materials.push_back(gltf_material(materials[i], i, false));
+        for (size_t i = 0; i < materials.size(); ++i) {
+            const Material& m = materials[i];
+            bool whole = true;
+            for (const TextureRef* ref : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
+                                          &m.occlusion_texture, &m.emissive_texture})
+                if (ref->texture != kNone && ref->texcoord == 0 &&
+                    (ref->texture >= texture_out_.size() || texture_out_[ref->texture] < 0))
+                    whole = false;
+            material_whole_.push_back(whole);
+            model_.materials.push_back(gltf_material(m, i, false));
+        }
     }
 
     // The glTF texture info of a reference, or index -1 when it cannot be shown (with a warning).
@@ -174,7 +185,7 @@ private:
         if (ref.texture == kNone) return -1;
         if (ref.texture >= texture_out_.size() || texture_out_[ref.texture] < 0) {
             warnings_.push_back(what + ": texture " + std::to_string(ref.texture) +
-                                " is not available; the material is written without it");
+                                " is not available; primitives using the material get the default material");
             return -1;
         }
         if (ref.texcoord != 0) {
@@ -232,6 +243,7 @@ private:
                                 " is not available; drawn with the default material");
             return -1;
         }
+        if (!material_whole_[material]) return -1;  // named by texture_index
         if (object.has_texcoords() || !has_texture(material)) return material;
         auto it = untextured_.find(material);
         if (it == untextured_.end()) {
@@ -661,6 +673,7 @@ private:
     std::vector<std::string>& warnings_;
     tinygltf::Model model_;
     std::vector<int> texture_out_;
+    std::vector<bool> material_whole_;  // per asset material: every texture it uses was written
     std::map<uint16_t, int> untextured_;
     std::map<std::pair<size_t, int>, std::optional<tinygltf::Primitive>> primitives_;
     std::map<size_t, int> mesh_out_;

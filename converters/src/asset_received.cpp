@@ -15,19 +15,10 @@ std::string texture_gap(const ReceivedStream::ReceivedTexture& t) {
     return std::to_string(t.received_bytes) + " of " + std::to_string(t.info.image_size) + " bytes arrived";
 }
 
-// Texture reference `ref` renumbered to the complete textures, or cleared (with a warning).
-void renumber_texture(TextureRef& ref, const std::map<uint16_t, uint16_t>& texture_map,
-                      const ReceivedStream& stream, const std::string& what, std::vector<std::string>& warnings) {
-    if (ref.texture == kNone) return;
-    if (auto it = texture_map.find(ref.texture); it != texture_map.end()) {
-        ref.texture = it->second;
-        return;
-    }
-    auto t = stream.textures().find(ref.texture);
-    warnings.push_back(what + ": texture " + std::to_string(ref.texture) + " is incomplete (" +
-                       (t == stream.textures().end() ? std::string("none of it arrived") : texture_gap(t->second)) +
-                       "); the material is shown without it");
-    ref.texture = kNone;
+// Why texture `index` cannot be shown yet.
+std::string texture_missing(const ReceivedStream& stream, uint16_t index) {
+    auto t = stream.textures().find(index);
+    return t == stream.textures().end() ? std::string("none of it arrived") : texture_gap(t->second);
 }
 
 }  // namespace
@@ -55,21 +46,49 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
         asset.scene.textures.push_back(std::move(out));
     }
 
-    // Materials that arrived, renumbered; their references to incomplete textures cleared.
+    // Materials that arrived and whose textures are all complete, renumbered. A material still
+    // waiting for a texture is not shown at all (its primitives get the default material, as if it
+    // had not arrived): a textured material without its texture would show the wrong colours. A
+    // reference to a texture-coordinate set other than TEXCOORD_0 cannot be shown (ellicast
+    // carries TEXCOORD_0 only): it is cleared and the material shown without that texture.
     std::map<uint16_t, uint16_t> material_map;
+    std::set<uint16_t> waiting_materials;
     uint16_t material_count = 0;
     for (const auto& [index, m] : stream.materials()) {
         material_count = std::max(material_count, m.material_count);
-        material_map[index] = uint16_t(asset.scene.materials.size());
         Material out = m;
-        out.index = uint16_t(asset.scene.materials.size());
         const std::string what = "material " + std::to_string(index) + (m.name.empty() ? "" : " (" + m.name + ")");
-        renumber_texture(out.base_color_texture, texture_map, stream, what + " baseColorTexture", warnings);
-        renumber_texture(out.metallic_roughness_texture, texture_map, stream, what + " metallicRoughnessTexture",
-                         warnings);
-        renumber_texture(out.normal_texture, texture_map, stream, what + " normalTexture", warnings);
-        renumber_texture(out.occlusion_texture, texture_map, stream, what + " occlusionTexture", warnings);
-        renumber_texture(out.emissive_texture, texture_map, stream, what + " emissiveTexture", warnings);
+        std::vector<std::string> waiting;
+        const std::pair<TextureRef*, const char*> slots[] = {{&out.base_color_texture, "baseColorTexture"},
+                                                             {&out.metallic_roughness_texture, "metallicRoughnessTexture"},
+                                                             {&out.normal_texture, "normalTexture"},
+                                                             {&out.occlusion_texture, "occlusionTexture"},
+                                                             {&out.emissive_texture, "emissiveTexture"}};
+        for (auto [ref, slot] : slots) {
+            if (ref->texture == kNone) continue;
+            if (ref->texcoord != 0) {
+                warnings.push_back(what + " " + slot + " uses TEXCOORD_" + std::to_string(ref->texcoord) +
+                                   ", which ellicast does not carry; the material is shown without that texture");
+                ref->texture = kNone;
+                continue;
+            }
+            if (auto it = texture_map.find(ref->texture); it != texture_map.end()) {
+                ref->texture = it->second;
+                continue;
+            }
+            waiting.push_back(std::string(slot) + " texture " + std::to_string(ref->texture) + " (" +
+                              texture_missing(stream, ref->texture) + ")");
+        }
+        if (!waiting.empty()) {
+            std::string list;
+            for (size_t i = 0; i < waiting.size(); ++i) list += (i ? ", " : "") + waiting[i];
+            warnings.push_back(what + " is waiting for its " + list +
+                               "; its primitives get the default material until the texture is complete");
+            waiting_materials.insert(index);
+            continue;
+        }
+        material_map[index] = uint16_t(asset.scene.materials.size());
+        out.index = uint16_t(asset.scene.materials.size());
         asset.scene.materials.push_back(std::move(out));
     }
     if (stream.materials().size() < material_count)
@@ -89,7 +108,7 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
             if (auto it = material_map.find(p.material); it != material_map.end()) {
                 p.material = it->second;
             } else {
-                missing_materials.insert(p.material);
+                if (!waiting_materials.count(p.material)) missing_materials.insert(p.material);
                 p.material = kNone;
             }
         }

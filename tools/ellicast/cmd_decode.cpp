@@ -35,6 +35,29 @@ std::string snapshot_path(const std::string& output, size_t object, size_t point
     return (out.parent_path() / (out.stem().string() + name + out.extension().string())).string();
 }
 
+// One line on what arrived of the scene: table sizes as the packets announce them ("?" when no
+// packet of that kind arrived), materials shown (a material waiting for a texture is not; the
+// warnings name it and the texture), textures complete.
+void print_scene_summary(const ReceivedStream& stream, const Asset& asset) {
+    size_t material_total = 0, texture_total = 0, textures_complete = 0;
+    for (const auto& [index, m] : stream.materials()) material_total = std::max<size_t>(material_total, m.material_count);
+    for (const auto& [index, t] : stream.textures()) {
+        texture_total = std::max<size_t>(texture_total, t.info.texture_count);
+        if (t.complete) ++textures_complete;
+    }
+    auto total = [](size_t n, bool known) { return known ? std::to_string(n) : std::string("?"); };
+    const size_t shown = asset.scene.materials.size();
+    // With a scene, every material that arrived is shown unless it waits for a texture; without
+    // one nothing can be placed (received_asset says so).
+    const size_t waiting = stream.has_scene() ? stream.materials().size() - std::min(shown, stream.materials().size()) : 0;
+    std::printf("scene: %zu of %s nodes, %zu of %s meshes, %zu of %s materials shown", stream.scene_nodes().size(),
+                total(stream.scene_node_count(), stream.has_scene()).c_str(), stream.scene_meshes().size(),
+                total(stream.scene_mesh_count(), stream.has_scene()).c_str(), shown,
+                total(material_total, !stream.materials().empty()).c_str());
+    if (waiting) std::printf(" (%zu waiting for a texture)", waiting);
+    std::printf(", %zu of %s textures complete\n", textures_complete, total(texture_total, !stream.textures().empty()).c_str());
+}
+
 int run_decode(const DecodeArgs& args) {
     MeshFileType type;
     if (!mesh_file_type_from_path(args.output, type))
@@ -111,6 +134,8 @@ int run_decode(const DecodeArgs& args) {
                 (unsigned long long)c.accepted, (unsigned long long)c.duplicates, (unsigned long long)c.skipped,
                 (unsigned long long)c.rejected, (unsigned long long)c.pending, contents.damaged.size(),
                 (unsigned long long)damaged_bytes);
+    if (stream.has_scene() || !stream.materials().empty() || !stream.textures().empty())
+        print_scene_summary(stream, asset);
     const auto& objects = stream.objects();
     for (size_t i = 0; i < report.objects.size(); ++i) {
         const auto& o = report.objects[i];

@@ -36,8 +36,10 @@ struct Asset {
 // identical image + sampler pairs are sent once). What ellicast does not carry (animations, skins,
 // morph targets, cameras, lights, other scenes, other image types, TANGENT / TEXCOORD_1+ /
 // JOINTS / WEIGHTS attributes, unknown extensions) is named in a warning; geometry is taken in its
-// bind/rest pose. OBJ / PLY / OFF / STL: one node with one mesh, no material. Throws InputError
-// when the file cannot be read or holds nothing to send.
+// bind/rest pose. A material's texture on another set than TEXCOORD_0, or with
+// KHR_texture_transform, is not sent (warning naming the material and slot): the material keeps
+// its factors and its other textures. OBJ / PLY / OFF / STL: one node with one mesh, no material.
+// Throws InputError when the file cannot be read or holds nothing to send.
 Asset load_asset(const std::string& path);
 
 // True when `path` names a glTF file: a .gltf or .glb extension (any case), or the GLB magic.
@@ -45,10 +47,12 @@ bool is_gltf_file(const std::string& path);
 
 // The asset a receiver can write from what has arrived: `objects[i]` is the decoded object i
 // (empty positions: not arrived), the scene from the stream's SCENE / MATERIAL / TEXTURE_FRAGMENT
-// packets. Nodes whose ancestors did not all arrive are left out; materials and textures that did
-// not (completely) arrive are left out and their references cleared (a primitive without a
-// material gets glTF's default material); objects that no arrived node shows get a root node of
-// their own. Without any scene (a format 1.0 stream, or every SCENE packet lost) each object gets
+// packets. Nodes whose ancestors did not all arrive are left out; textures that did not
+// completely arrive (every byte, matching checksum) are left out; a material that did not arrive,
+// or that refers to a texture not yet complete, is left out and its primitives get glTF's default
+// material (a textured material is shown whole or not at all); a reference to a texture set
+// other than TEXCOORD_0 is cleared (not carried); objects that no arrived node shows get a root
+// node of their own. Without any scene (a format 1.0 stream, or every SCENE packet lost) each object gets
 // its own node and mesh. Every such gap is named in `warnings` of the result.
 Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects);
 
@@ -72,7 +76,8 @@ std::string check_asset_write_options(const AssetWriteOptions& options);
 // materials and textures (images embedded in the buffer, bytes as given); anything that does not
 // hold together (an absent object, an out-of-range reference, an empty texture image, a texture
 // set the primitive lacks) is left out with a warning appended to `warnings`, so the file is
-// always valid glTF. PLY / OBJ (no scene graph): the world-space meshes of flatten_asset. Writes
+// always valid glTF; a primitive whose material uses a texture that cannot be written gets the
+// default material. PLY / OBJ (no scene graph): the world-space meshes of flatten_asset. Writes
 // through a temporary name. Returns false with `error` naming the file and the problem when it
 // cannot write (or when Draco / quantization is asked of PLY / OBJ).
 bool write_asset(const std::string& path, const Asset& asset, const AssetWriteOptions& options,
