@@ -247,3 +247,53 @@ TEST_CASE("load_asset refuses missing, empty and broken files with a message nam
         CHECK(message((dir / "half.glb").string()).find("half.glb") != std::string::npos);
     }
 }
+
+TEST_CASE("a texture on TEXCOORD_1 or with KHR_texture_transform is not sent: the warning names the material and "
+          "slot, the material keeps its factors, and the receiver's file is valid") {
+    const char* f = "gltf/Duck/Duck.gltf";
+    if (!have_sample(f)) return;
+    auto dir = ellicast::test::scratch_dir("asset_input_texcoord_transform");
+    for (const char* file : {"Duck0.bin", "DuckCM.png"})
+        std::filesystem::copy_file(shared_samples() / "gltf/Duck" / file, dir / file);
+    const auto original = nlohmann::json::parse(slurp(shared_samples() / f));
+    Asset plain = load_asset(sample(f));
+    REQUIRE(plain.scene.textures.size() == 1);
+
+    nlohmann::json transform = original;
+    transform["extensionsUsed"] = {"KHR_texture_transform"};
+    transform["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {
+        {"offset", {0.5, 0}}, {"scale", {2, 2}}};
+    nlohmann::json set1 = original;  // the same coordinates as TEXCOORD_1, which the texture uses
+    auto& attributes = set1["meshes"][0]["primitives"][0]["attributes"];
+    attributes["TEXCOORD_1"] = attributes["TEXCOORD_0"];
+    set1["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
+
+    for (const auto& [name, json, needle] :
+         {std::tuple{"transform", transform, "has a KHR_texture_transform"}, std::tuple{"set1", set1, "uses TEXCOORD_1"}}) {
+        CAPTURE(name);
+        const auto path = dir / (std::string(name) + ".gltf");
+        spit(path, json.dump());
+        Asset a = load_asset(path.string());
+        CHECK(any_warning(a, "material 0 (blinn3-fx) baseColorTexture " + std::string(needle)));
+        CHECK(any_warning(a, "this texture is not sent (the material keeps its factors and its other textures)"));
+        CHECK(a.scene.textures.empty());  // its only use was this reference: the image is not sent either
+        REQUIRE(a.scene.materials.size() == 1);
+        CHECK(a.scene.materials[0].base_color_texture.texture == kNone);
+        CHECK(a.scene.materials[0].base_color == plain.scene.materials[0].base_color);
+        CHECK(a.scene.materials[0].roughness == plain.scene.materials[0].roughness);
+        CHECK(a.scene.meshes[0].primitives[0].material == 0);
+        // What a receiver writes of it: valid, the material without texture on the Duck.
+        const auto out = dir / (std::string(name) + "_out.glb");
+        std::vector<std::string> warnings;
+        std::string error;
+        REQUIRE_MESSAGE(write_asset(out.string(), a, {}, warnings, error), error);
+        CHECK(warnings.empty());
+        int errors = -1;
+        std::string report;
+        if (ellicast::test::validate_gltf(out, errors, report)) CHECK_MESSAGE(errors == 0, report);
+        Asset back = load_asset(out.string());
+        REQUIRE(back.scene.materials.size() == 1);
+        CHECK(back.scene.meshes[0].primitives[0].material == 0);
+        CHECK(back.scene.textures.empty());
+    }
+}

@@ -251,16 +251,18 @@ private:
             m.alpha_cutoff = float(gm.alphaCutoff);
             m.double_sided = gm.doubleSided;
             m.base_color_texture = texture_ref(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, 1,
-                                               where + " baseColorTexture");
+                                               pbr.baseColorTexture.extensions, where + " baseColorTexture");
             m.metallic_roughness_texture = texture_ref(pbr.metallicRoughnessTexture.index,
                                                        pbr.metallicRoughnessTexture.texCoord, 1,
+                                                       pbr.metallicRoughnessTexture.extensions,
                                                        where + " metallicRoughnessTexture");
             m.normal_texture = texture_ref(gm.normalTexture.index, gm.normalTexture.texCoord, gm.normalTexture.scale,
-                                           where + " normalTexture");
+                                           gm.normalTexture.extensions, where + " normalTexture");
             m.occlusion_texture = texture_ref(gm.occlusionTexture.index, gm.occlusionTexture.texCoord,
-                                              gm.occlusionTexture.strength, where + " occlusionTexture");
+                                              gm.occlusionTexture.strength, gm.occlusionTexture.extensions,
+                                              where + " occlusionTexture");
             m.emissive_texture = texture_ref(gm.emissiveTexture.index, gm.emissiveTexture.texCoord, 1,
-                                             where + " emissiveTexture");
+                                             gm.emissiveTexture.extensions, where + " emissiveTexture");
             std::vector<std::string> exts;
             for (const auto& [name, value] : gm.extensions) exts.push_back(name);
             for (const auto& [name, value] : pbr.extensions) exts.push_back(name);
@@ -270,8 +272,12 @@ private:
         }
     }
 
-    // The Asset texture for glTF texture `index` (identical image bytes + sampler are one texture).
-    TextureRef texture_ref(int index, int texcoord, double scale, const std::string& where) {
+    // The Asset texture reference of a material's glTF texture info. ellicast carries TEXCOORD_0
+    // only and no texture transform: a reference to another set, or one with KHR_texture_transform,
+    // is not sent (nor its image, unless another reference uses it); the material keeps its factors
+    // and its other textures, and the warning names the material and the slot.
+    TextureRef texture_ref(int index, int texcoord, double scale, const tinygltf::ExtensionMap& extensions,
+                           const std::string& where) {
         TextureRef ref;
         ref.scale = float(scale);
         if (index < 0) return ref;
@@ -279,10 +285,23 @@ private:
             warnings_.push_back(where + ": texCoord " + std::to_string(texcoord) + " is out of range; texture not sent");
             return ref;
         }
-        if (texcoord > 0)
+        if (texcoord > 0) {
             warnings_.push_back(where + " uses TEXCOORD_" + std::to_string(texcoord) +
-                                "; ellicast carries TEXCOORD_0 only, so the receiver cannot show this texture");
-        ref.texcoord = uint8_t(texcoord);
+                                "; ellicast carries TEXCOORD_0 only, so this texture is not sent (the material "
+                                "keeps its factors and its other textures)");
+            return ref;
+        }
+        for (const auto& [name, value] : extensions) {
+            (void)value;
+            if (name == "KHR_texture_transform") {
+                warnings_.push_back(where + " has a KHR_texture_transform (offset, rotation or scale of its texture "
+                                    "coordinates), which ellicast does not carry; this texture is not sent (the "
+                                    "material keeps its factors and its other textures)");
+                return ref;
+            }
+            warnings_.push_back(where + ": extension " + name + " of the texture reference not sent");
+        }
+        ref.texcoord = 0;
         ref.texture = texture_index(index, where);
         return ref;
     }
