@@ -635,7 +635,10 @@ private:
     void write_flat() {
         tinygltf::Scene scene;
         for (size_t o = 0; o < asset_.objects.size(); ++o) {
-            if (!object_present(o)) continue;
+            if (!object_present(o)) {
+                warnings_.push_back(path_ + ": object " + std::to_string(o) + " has not arrived; left out");
+                continue;
+            }
             SceneMesh m;
             m.name = asset_.objects[o].name.empty() ? "object" + std::to_string(o) : asset_.objects[o].name;
             m.primitives.push_back({uint16_t(o), kNone});
