@@ -242,6 +242,20 @@ TEST_CASE("a closed model's interior is mostly covered and little volume lies ou
     CHECK(r.reports[0].outside < 0.01);
 }
 
+TEST_CASE("sharp-edged closed models (a box, the fandisk) are covered to the 95% target at the defaults") {
+    for (const char* rel : {"gltf/Box-glb/Box.glb", "meshes/fandisk.obj"}) {
+        if (!have_sample(rel)) continue;
+        CAPTURE(rel);
+        EncodeResult r = encode_meshes(load_meshes(sample(rel)).meshes, EncodeOptions{});
+        REQUIRE(r.reports.size() == 1);
+        CHECK(r.reports[0].closed);
+        CHECK(r.reports[0].coverage >= 0.95);
+        CHECK(r.reports[0].outside <= 0.01);
+        CHECK(r.reports[0].ellipsoids <= 400);
+        CHECK(r.warnings.empty());
+    }
+}
+
 TEST_CASE("each object of a scene of many small closed objects is still covered to the target") {
     // Past 8 objects each gets fewer seeds and a coarser grid; the coverage target still holds.
     std::vector<Mesh> scene;

@@ -212,6 +212,40 @@ bool ellipsoid_inside(const GrowthContext& ctx, const Candidate& e, uint32_t* hi
     return clear_of_surface(ctx.tree, e, hint);
 }
 
+namespace {
+
+// Stretches e while it stays inside: per axis (the first `axes` of them) try to extend both ends,
+// then one end (moving the centre), with halving steps.
+void stretch(const GrowthContext& ctx, Candidate& e, int axes, uint32_t& hint) {
+    int tests = 0;
+    for (double step = 1.0; step > 0.02 && tests < 120; step *= 0.5) {
+        bool improved = true;
+        for (int round = 0; improved && round < 6 && tests < 120; ++round) {
+            improved = false;
+            for (int axis = 0; axis < axes; ++axis) {
+                double delta = step * e.radii[axis];
+                for (int mode = 0; mode < 3; ++mode) {
+                    Candidate t = e;
+                    if (mode == 0) {
+                        t.radii[axis] += delta;
+                    } else {
+                        t.radii[axis] += 0.5 * delta;
+                        t.center += e.axes.col(axis) * (mode == 1 ? 0.5 * delta : -0.5 * delta);
+                    }
+                    ++tests;
+                    if (ellipsoid_inside(ctx, t, &hint)) {
+                        e = t;
+                        improved = true;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+}
+
+}  // namespace
+
 bool grow_ellipsoid(const GrowthContext& ctx, const Vec3& p, const Vec3& n, Candidate& out) {
     // Initial radius: half the way along n until the winding grid says outside.
     const double h = ctx.grid.h;
@@ -233,8 +267,10 @@ bool grow_ellipsoid(const GrowthContext& ctx, const Vec3& p, const Vec3& n, Cand
         r = next < r ? next : 0.5 * r;
         if (r < ctx.min_radius) return false;
     }
+    // A hair smaller than the ball, so that it does not touch the surface at p: an absolute gap
+    // (a tenth of a voxel) for a large ball, whose relative 3% would leave a voxel uncovered.
     Candidate e;
-    e.radii = Vec3::Constant(r * 0.97);
+    e.radii = Vec3::Constant(r - std::min(0.03 * r, 0.1 * h));
     e.center = p + n * r;
     e.axes = local_axes(ctx, e.center, 2.5 * r, n);
     uint32_t hint = UINT32_MAX;
@@ -246,32 +282,34 @@ bool grow_ellipsoid(const GrowthContext& ctx, const Vec3& p, const Vec3& n, Cand
         if (e.radii.x() < ctx.min_radius) return false;
     }
 
-    // Stretch: per axis try to extend both ends, then one end (moving the centre), with halving steps.
-    int tests = 0;
-    for (double step = 1.0; step > 0.02 && tests < 120; step *= 0.5) {
-        bool improved = true;
-        for (int round = 0; improved && round < 6 && tests < 120; ++round) {
-            improved = false;
-            for (int axis = 0; axis < 3; ++axis) {
-                double delta = step * e.radii[axis];
-                for (int mode = 0; mode < 3; ++mode) {
-                    Candidate t = e;
-                    if (mode == 0) {
-                        t.radii[axis] += delta;
-                    } else {
-                        t.radii[axis] += 0.5 * delta;
-                        t.center += e.axes.col(axis) * (mode == 1 ? 0.5 * delta : -0.5 * delta);
-                    }
-                    ++tests;
-                    if (ellipsoid_inside(ctx, t, &hint)) {
-                        e = t;
-                        improved = true;
-                        break;
-                    }
-                }
-            }
-        }
+    stretch(ctx, e, 3, hint);
+    out = e;
+    return true;
+}
+
+bool grow_flat(const GrowthContext& ctx, const Vec3& p, const Vec3& n, double thickness, double turn, Candidate& out) {
+    const double h = ctx.grid.h;
+    double t = std::max(thickness, ctx.min_radius);
+    Candidate e;
+    uint32_t hint = UINT32_MAX;
+    for (int tries = 0;; ++tries) {
+        e.center = p + n * t;
+        e.radii = Vec3::Constant(t - std::min(0.03 * t, 0.1 * h));
+        if (ellipsoid_inside(ctx, e, &hint)) break;
+        t *= 0.7;
+        if (tries >= 6 || t < ctx.min_radius) return false;
     }
+    // The tangent axes of the local surface (over a few voxels), the normal as third axis.
+    const Eigen::Matrix3d pca = local_axes(ctx, e.center, std::max(2.5 * t, 4 * h), n);
+    Vec3 a = pca.col(0) - pca.col(0).dot(n) * n;
+    if (a.norm() < 1e-3) a = pca.col(1) - pca.col(1).dot(n) * n;
+    if (a.norm() < 1e-3) a = n.cross(std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY());
+    a.normalize();
+    a = std::cos(turn) * a + std::sin(turn) * n.cross(a);
+    e.axes.col(0) = a;
+    e.axes.col(1) = n.cross(a).normalized();
+    e.axes.col(2) = e.axes.col(0).cross(e.axes.col(1));
+    stretch(ctx, e, 2, hint);
     out = e;
     return true;
 }

@@ -117,6 +117,13 @@ bool ellipsoid_inside(const GrowthContext& ctx, const Candidate& e, uint32_t* hi
 // when that helps) while it stays inside. False when no sphere of min_radius fits.
 bool grow_ellipsoid(const GrowthContext& ctx, const Vec3& p, const Vec3& n, Candidate& out);
 
+// Grows a flat candidate from surface point `p` with unit inward normal `n`: a ball of radius
+// `thickness` tangent at p (smaller if that does not fit), stretched only along the surface (its
+// axes those of the local surface turned by `turn` radians about n), so that it hugs the surface
+// and fills the thin layer under it that large ellipsoids leave.
+bool grow_flat(const GrowthContext& ctx, const Vec3& p, const Vec3& n, double thickness, double turn,
+               Candidate& out);
+
 // ---------------------------------------------------------------------------------------------
 // ellipsoid_selection.cpp
 
