@@ -245,6 +245,7 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
         report.notes.push_back(std::to_string(report.skipped_ellipsoids) + " degenerate ellipsoid(s) skipped");
     if (grid.empty()) return points_only("no usable ellipsoid");
 
+    const std::vector<char> on_sheet = points_on_sheets(ellipsoids, grid.cell, points);
     auto t1 = std::chrono::steady_clock::now();
     DecoderTriMesh base = marching_cubes(grid);
     grid.value = {};
@@ -268,6 +269,12 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
         if (kind != Insertion::SeamDuplicate) {
             flip_edges_around(r, v);
             collapse_mc_vertices_near(r, v);
+            OpenMesh::VertexHandle back;
+            if (on_sheet[i] && insert_on_other_side(r, uint32_t(i), points[i].position, v, 3 * grid.cell, back)) {
+                ++report.sheet_points;
+                flip_edges_around(r, back);
+                collapse_mc_vertices_near(r, back);
+            }
         }
         if ((i & 1023) == 0) progress("insert points", double(i) / points.size());
         if (options.snapshot && options.snapshot_every > 0 && (i + 1) % options.snapshot_every == 0 &&

@@ -166,7 +166,9 @@ void FaceGrid::remove(OpenMesh::FaceHandle f) {
 }
 
 OpenMesh::FaceHandle FaceGrid::nearest(const DecoderTriMesh& mesh, const Vec3& p, Vec3& closest,
-                                       std::array<double, 3>& bary) const {
+                                       std::array<double, 3>& bary,
+                                       const std::function<bool(OpenMesh::FaceHandle)>& accept,
+                                       double max_distance) const {
     OpenMesh::FaceHandle best;
     if (live_ == 0) return best;
     if (seen_.size() < version_.size()) seen_.resize(version_.size(), 0);
@@ -176,13 +178,15 @@ OpenMesh::FaceHandle FaceGrid::nearest(const DecoderTriMesh& mesh, const Vec3& p
     }
     int c[3];
     for (int k = 0; k < 3; ++k) c[k] = std::clamp(int(std::floor((p[k] - lo_[k]) / cell_)), 0, dims_[k] - 1);
-    double best_d2 = std::numeric_limits<double>::max();
+    double best_d2 = max_distance < std::numeric_limits<double>::max() ? max_distance * max_distance
+                                                                       : std::numeric_limits<double>::max();
     const int max_ring = std::max({dims_[0], dims_[1], dims_[2]});
     auto visit = [&](int i, int j, int k) {
         for (const Entry& e : cells_[cell_of(i, j, k)]) {
             if (e.version != version_[e.face] || seen_[e.face] == stamp_) continue;
             seen_[e.face] = stamp_;
             OpenMesh::FaceHandle f(int(e.face));
+            if (accept && !accept(f)) continue;
             auto fv = mesh.cfv_iter(f);
             const Vec3& a = mesh.point(*fv);
             const Vec3& b = mesh.point(*++fv);
@@ -230,6 +234,7 @@ OpenMesh::FaceHandle FaceGrid::nearest(const DecoderTriMesh& mesh, const Vec3& p
             if (c[a] + r < dims_[a] - 1) reach = std::min(reach, std::max(0.0, to_high[a]) + r * cell_);
         }
         if (best.is_valid() && best_d2 <= reach * reach) break;
+        if (reach > max_distance) break;  // nothing accepted within max_distance
         if (reach == std::numeric_limits<double>::max()) break;  // the whole grid was visited
     }
     return best;

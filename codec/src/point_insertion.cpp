@@ -88,19 +88,30 @@ Insertion insert_point(Reconstruction& r, uint32_t point_index, const std::array
     const Vec3 p(position[0], position[1], position[2]);
     const uint64_t key = position_key(position);
     auto& same = r.by_position[key];
+    bool merged = false;
     for (auto v : same) {
+        // Every vertex at this position takes the point: a seam's vertex, or both sides of a sheet.
         if (!mesh.status(v).deleted() && mesh.point(v) == p) {
             r.vertex_points[v.idx()].push_back(point_index);
-            ++r.seam_merges;
-            vertex = v;
-            return Insertion::SeamDuplicate;
+            if (!merged) ++r.seam_merges, vertex = v;
+            merged = true;
         }
     }
+    if (merged) return Insertion::SeamDuplicate;
 
     Vec3 closest;
     std::array<double, 3> bary;
     OpenMesh::FaceHandle f = r.faces.nearest(mesh, p, closest, bary);
     if (!f.is_valid()) return Insertion::NoMesh;
+    return insert_into_face(r, point_index, position, f, bary, vertex);
+}
+
+Insertion insert_into_face(Reconstruction& r, uint32_t point_index, const std::array<float, 3>& position,
+                           OpenMesh::FaceHandle f, const std::array<double, 3>& bary,
+                           OpenMesh::VertexHandle& vertex) {
+    DecoderTriMesh& mesh = r.mesh;
+    const Vec3 p(position[0], position[1], position[2]);
+    auto& same = r.by_position[position_key(position)];
     OpenMesh::VertexHandle fv[3];
     OpenMesh::HalfedgeHandle opposite[3];  // halfedge of f opposite corner i
     {

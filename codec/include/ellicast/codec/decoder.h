@@ -21,6 +21,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -91,9 +92,12 @@ public:
     // Forgets face `f` (call when it is deleted).
     void remove(OpenMesh::FaceHandle f);
     // The live face nearest to p (invalid handle when the mesh has no face), its closest point and
-    // the barycentric coordinates of that point.
+    // the barycentric coordinates of that point. With `accept`, only faces it accepts count; with
+    // `max_distance`, only faces closer than that (else an invalid handle, without a wider search).
     OpenMesh::FaceHandle nearest(const DecoderTriMesh& mesh, const OpenMesh::Vec3d& p, OpenMesh::Vec3d& closest,
-                                 std::array<double, 3>& bary) const;
+                                 std::array<double, 3>& bary,
+                                 const std::function<bool(OpenMesh::FaceHandle)>& accept = {},
+                                 double max_distance = std::numeric_limits<double>::max()) const;
     size_t live_faces() const { return live_; }
 
 private:
@@ -174,6 +178,28 @@ enum class Insertion : uint8_t {
 Insertion insert_point(Reconstruction& r, uint32_t point_index, const std::array<float, 3>& position,
                        OpenMesh::VertexHandle& vertex);
 
+// Inserts the point into face f at barycentric coordinates `bary` (those of FaceGrid::nearest: an
+// edge split near an edge, the marching-cubes corner moved onto it, else a 1-to-3 split).
+Insertion insert_into_face(Reconstruction& r, uint32_t point_index, const std::array<float, 3>& position,
+                           OpenMesh::FaceHandle f, const std::array<double, 3>& bary,
+                           OpenMesh::VertexHandle& vertex);
+
+// ---------------------------------------------------------------------------------------------
+// Sheets (sheet_sides.cpp)
+
+// For each point, whether it lies on a sheet: in the middle of one of the flat ellipsoids (thinner
+// than two grid cells, twice as wide as thick both ways) that an encoder lays across surface
+// with no inside, where no ellipsoid kept inside a surface could hold a point of it. The base there
+// is a thin closed shell, both of whose sides stand for the same surface.
+std::vector<char> points_on_sheets(const std::vector<Ellipsoid>& ellipsoids, double cell,
+                                   const std::vector<SurfacePoint>& points);
+
+// A sheet point already inserted at `first` goes into the shell's other side as well: into the
+// nearest face behind `first` (facing the other way, within `reach`), as a second vertex at the
+// same position. Returns false (and leaves the mesh alone) when there is no such face.
+bool insert_on_other_side(Reconstruction& r, uint32_t point_index, const std::array<float, 3>& position,
+                          OpenMesh::VertexHandle first, double reach, OpenMesh::VertexHandle& vertex);
+
 // ---------------------------------------------------------------------------------------------
 // Edge flips (edge_flip.cpp)
 
@@ -230,6 +256,7 @@ struct ObjectDecodeReport {
     size_t vertices_out = 0, faces_out = 0;
     size_t mc_vertices_left = 0;     // marching-cubes vertices still in the output
     size_t face_splits = 0, edge_splits = 0, vertex_moves = 0, seam_merges = 0, flips = 0, collapses = 0;
+    size_t sheet_points = 0;   // points also inserted into the other side of a sheet's thin base
     bool complete = false;           // every declared point arrived
     bool has_surface = false;        // false: output is a point set (no ellipsoids, or a PointSet object)
     std::vector<std::string> notes;  // what the user should know ("no ellipsoids: points only", ...)

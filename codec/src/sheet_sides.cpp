@@ -1,0 +1,103 @@
+// Sheets: surface with no inside (a flat figure, a single-sided panel) gets flat ellipsoids that
+// straddle it, so its base is a thin closed shell with two sides standing for one surface. A point of
+// the sheet goes into both sides; otherwise each side gets a random half of the points, and the
+// two halves, flattened onto one plane, leave each other's gaps open.
+#include "ellicast/codec/decoder.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ellicast {
+
+using Vec3 = OpenMesh::Vec3d;
+
+namespace {
+
+struct FlatEllipsoid {
+    Vec3 center;
+    Vec3 axis[3];    // unit axes (columns of the rotation)
+    double inv_r[3];  // 1 / radius
+    int thin;         // the axis of the smallest radius
+    double bound;     // largest radius
+};
+
+}  // namespace
+
+std::vector<char> points_on_sheets(const std::vector<Ellipsoid>& ellipsoids, double cell,
+                                   const std::vector<SurfacePoint>& points) {
+    std::vector<char> on_sheet(points.size(), 0);
+    std::vector<FlatEllipsoid> flat;
+    for (const Ellipsoid& e : ellipsoids) {
+        const double lo = std::min({e.radii[0], e.radii[1], e.radii[2]});
+        const double hi = std::max({e.radii[0], e.radii[1], e.radii[2]});
+        const double mid = double(e.radii[0]) + e.radii[1] + e.radii[2] - lo - hi;
+        // A disc, not a needle: a needle's side holds surface points at the middle of its thickness.
+        if (!(lo > 0) || !(lo <= 2 * cell) || !(mid >= 2 * lo) || !std::isfinite(hi)) continue;
+        const double w = e.rotation[0], x = e.rotation[1], y = e.rotation[2], z = e.rotation[3];
+        const double n = std::sqrt(w * w + x * x + y * y + z * z);
+        if (!(n > 0)) continue;
+        const double a = w / n, b = x / n, c = y / n, d = z / n;
+        FlatEllipsoid f;
+        f.center = Vec3(e.center[0], e.center[1], e.center[2]);
+        // Columns of the rotation matrix of the unit quaternion (a, b, c, d).
+        f.axis[0] = Vec3(1 - 2 * (c * c + d * d), 2 * (b * c + a * d), 2 * (b * d - a * c));
+        f.axis[1] = Vec3(2 * (b * c - a * d), 1 - 2 * (b * b + d * d), 2 * (c * d + a * b));
+        f.axis[2] = Vec3(2 * (b * d + a * c), 2 * (c * d - a * b), 1 - 2 * (b * b + c * c));
+        for (int k = 0; k < 3; ++k) f.inv_r[k] = 1.0 / e.radii[k];
+        f.thin = e.radii[0] == lo ? 0 : (e.radii[1] == lo ? 1 : 2);
+        f.bound = hi;
+        flat.push_back(f);
+    }
+    if (flat.empty()) return on_sheet;
+    for (size_t i = 0; i < points.size(); ++i) {
+        const Vec3 p(points[i].position[0], points[i].position[1], points[i].position[2]);
+        for (const FlatEllipsoid& f : flat) {
+            const Vec3 d = p - f.center;
+            if (d.sqrnorm() > f.bound * f.bound) continue;
+            // Well inside the ellipsoid across its thickness: an ellipsoid kept inside a surface
+            // never holds a point of it there, so this one straddles a sheet.
+            double s = 0, across = 0;
+            for (int k = 0; k < 3; ++k) {
+                const double t = OpenMesh::dot(d, f.axis[k]) * f.inv_r[k];
+                (k == f.thin ? across : s) += t * t;
+            }
+            if (across <= 0.25 && s <= 1) {
+                on_sheet[i] = 1;
+                break;
+            }
+        }
+    }
+    return on_sheet;
+}
+
+bool insert_on_other_side(Reconstruction& r, uint32_t point_index, const std::array<float, 3>& position,
+                          OpenMesh::VertexHandle first, double reach, OpenMesh::VertexHandle& vertex) {
+    DecoderTriMesh& mesh = r.mesh;
+    const Vec3 p(position[0], position[1], position[2]);
+    Vec3 normal(0, 0, 0);
+    for (auto f : mesh.vf_range(first)) {
+        auto it = mesh.cfv_iter(f);
+        const Vec3 a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
+        normal += OpenMesh::cross(b - a, c - a);
+    }
+    const double length = normal.norm();
+    if (!(length > 0)) return false;  // a sheet's rim: its faces already face both ways
+    normal /= length;
+    // The nearest face within reach that faces the other way and is not around `first`.
+    Vec3 closest;
+    std::array<double, 3> bary;
+    auto other_side = [&](OpenMesh::FaceHandle f) {
+        auto it = mesh.cfv_iter(f);
+        const OpenMesh::VertexHandle va = *it, vb = *++it, vc = *++it;
+        if (va == first || vb == first || vc == first) return false;
+        const Vec3 n = OpenMesh::cross(mesh.point(vb) - mesh.point(va), mesh.point(vc) - mesh.point(va));
+        const double l = n.norm();
+        return l > 0 && OpenMesh::dot(n, normal) < -0.5 * l;
+    };
+    const OpenMesh::FaceHandle f = r.faces.nearest(mesh, p, closest, bary, other_side, reach);
+    if (!f.is_valid()) return false;
+    insert_into_face(r, point_index, position, f, bary, vertex);
+    return true;
+}
+
+}  // namespace ellicast
