@@ -11,6 +11,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <tuple>
 
 using namespace ellicast;
 using ellicast::test::have_sample;
@@ -248,33 +250,59 @@ TEST_CASE("load_asset refuses missing, empty and broken files with a message nam
     }
 }
 
-TEST_CASE("a texture on TEXCOORD_1 or with KHR_texture_transform is not sent: the warning names the material and "
-          "slot, the material keeps its factors, and the receiver's file is valid") {
+namespace {
+
+// The Duck's glTF (with its .bin and texture next to it in `dir`) changed by `edit`, loaded.
+Asset edited_duck(const std::filesystem::path& dir, const std::string& name,
+                  const std::function<void(nlohmann::json&)>& edit) {
+    for (const char* file : {"Duck0.bin", "DuckCM.png"})
+        if (!std::filesystem::exists(dir / file)) std::filesystem::copy_file(shared_samples() / "gltf/Duck" / file, dir / file);
+    auto json = nlohmann::json::parse(slurp(shared_samples() / "gltf/Duck/Duck.gltf"));
+    edit(json);
+    spit(dir / (name + ".gltf"), json.dump());
+    return load_asset((dir / (name + ".gltf")).string());
+}
+
+// What a receiver writes of `a` (write_asset), checked by the Khronos validator, read back.
+Asset written_and_read(const Asset& a, const std::filesystem::path& path) {
+    std::vector<std::string> warnings;
+    std::string error;
+    REQUIRE_MESSAGE(write_asset(path.string(), a, {}, warnings, error), error);
+    CHECK(warnings.empty());
+    int errors = -1;
+    std::string report;
+    if (ellicast::test::validate_gltf(path, errors, report)) CHECK_MESSAGE(errors == 0, report);
+    return load_asset(path.string());
+}
+
+}  // namespace
+
+TEST_CASE("a texture on TEXCOORD_1 is not sent: the warning names the material and slot, the material keeps its "
+          "factors, and the receiver's file is valid") {
     const char* f = "gltf/Duck/Duck.gltf";
     if (!have_sample(f)) return;
-    auto dir = ellicast::test::scratch_dir("asset_input_texcoord_transform");
-    for (const char* file : {"Duck0.bin", "DuckCM.png"})
-        std::filesystem::copy_file(shared_samples() / "gltf/Duck" / file, dir / file);
-    const auto original = nlohmann::json::parse(slurp(shared_samples() / f));
+    auto dir = ellicast::test::scratch_dir("asset_input_texcoord1");
     Asset plain = load_asset(sample(f));
     REQUIRE(plain.scene.textures.size() == 1);
-
-    nlohmann::json transform = original;
-    transform["extensionsUsed"] = {"KHR_texture_transform"};
-    transform["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {
-        {"offset", {0.5, 0}}, {"scale", {2, 2}}};
-    nlohmann::json set1 = original;  // the same coordinates as TEXCOORD_1, which the texture uses
-    auto& attributes = set1["meshes"][0]["primitives"][0]["attributes"];
-    attributes["TEXCOORD_1"] = attributes["TEXCOORD_0"];
-    set1["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
-
-    for (const auto& [name, json, needle] :
-         {std::tuple{"transform", transform, "has a KHR_texture_transform"}, std::tuple{"set1", set1, "uses TEXCOORD_1"}}) {
+    auto to_set1 = [](nlohmann::json& j) {  // the same coordinates as TEXCOORD_1, which the texture uses
+        auto& attributes = j["meshes"][0]["primitives"][0]["attributes"];
+        attributes["TEXCOORD_1"] = attributes["TEXCOORD_0"];
+        j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
+    };
+    auto through_transform = [](nlohmann::json& j) {  // TEXCOORD_1 selected by the transform's texCoord
+        auto& attributes = j["meshes"][0]["primitives"][0]["attributes"];
+        attributes["TEXCOORD_1"] = attributes["TEXCOORD_0"];
+        j["extensionsUsed"] = {"KHR_texture_transform"};
+        j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {
+            {"texCoord", 1}};
+    };
+    for (const auto& [name, edit, needle] :
+         {std::tuple{std::string("set1"), std::function<void(nlohmann::json&)>(to_set1), " uses TEXCOORD_1"},
+          std::tuple{std::string("transform_set1"), std::function<void(nlohmann::json&)>(through_transform),
+                     ": its KHR_texture_transform selects another texture-coordinate set"}}) {
         CAPTURE(name);
-        const auto path = dir / (std::string(name) + ".gltf");
-        spit(path, json.dump());
-        Asset a = load_asset(path.string());
-        CHECK(any_warning(a, "material 0 (blinn3-fx) baseColorTexture " + std::string(needle)));
+        Asset a = edited_duck(dir, name, edit);
+        CHECK(any_warning(a, "material 0 (blinn3-fx) baseColorTexture" + std::string(needle)));
         CHECK(any_warning(a, "this texture is not sent (the material keeps its factors and its other textures)"));
         CHECK(a.scene.textures.empty());  // its only use was this reference: the image is not sent either
         REQUIRE(a.scene.materials.size() == 1);
@@ -282,18 +310,51 @@ TEST_CASE("a texture on TEXCOORD_1 or with KHR_texture_transform is not sent: th
         CHECK(a.scene.materials[0].base_color == plain.scene.materials[0].base_color);
         CHECK(a.scene.materials[0].roughness == plain.scene.materials[0].roughness);
         CHECK(a.scene.meshes[0].primitives[0].material == 0);
-        // What a receiver writes of it: valid, the material without texture on the Duck.
-        const auto out = dir / (std::string(name) + "_out.glb");
-        std::vector<std::string> warnings;
-        std::string error;
-        REQUIRE_MESSAGE(write_asset(out.string(), a, {}, warnings, error), error);
-        CHECK(warnings.empty());
-        int errors = -1;
-        std::string report;
-        if (ellicast::test::validate_gltf(out, errors, report)) CHECK_MESSAGE(errors == 0, report);
-        Asset back = load_asset(out.string());
+        Asset back = written_and_read(a, dir / (std::string(name) + "_out.glb"));
         REQUIRE(back.scene.materials.size() == 1);
         CHECK(back.scene.meshes[0].primitives[0].material == 0);
         CHECK(back.scene.textures.empty());
     }
+}
+
+TEST_CASE("a material's KHR_texture_transform is applied to the texture coordinates it is drawn with; a texture "
+          "whose transform differs is not sent") {
+    const char* f = "gltf/Duck/Duck.gltf";
+    if (!have_sample(f)) return;
+    auto dir = ellicast::test::scratch_dir("asset_input_texture_transform");
+    Asset plain = load_asset(sample(f));
+    REQUIRE(plain.objects.size() == 1);
+    REQUIRE(plain.objects[0].has_texcoords());
+    const double pi = std::acos(-1.0);
+    Asset a = edited_duck(dir, "transform", [&](nlohmann::json& j) {
+        j["extensionsUsed"] = {"KHR_texture_transform"};
+        auto& material = j["materials"][0];
+        // The extension's own example: the lower left quadrant, turned a quarter.
+        material["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {
+            {"offset", {0, 1}}, {"rotation", pi / 2}, {"scale", {0.5, 0.5}}};
+        material["emissiveTexture"] = {{"index", 0},
+                                       {"extensions", {{"KHR_texture_transform", {{"scale", {3, 3}}}}}}};
+    });
+    CHECK(any_warning(a, "material 0 (blinn3-fx): its KHR_texture_transform is applied to the texture coordinates"));
+    CHECK(!any_warning(a, "extension(s) KHR_texture_transform not sent"));
+    CHECK(any_warning(a, "material 0 (blinn3-fx) emissiveTexture: its KHR_texture_transform differs from that of "
+                         "the baseColorTexture"));
+    REQUIRE(a.scene.textures.size() == 1);
+    CHECK(a.scene.textures[0].image == plain.scene.textures[0].image);
+    CHECK(a.scene.materials[0].base_color_texture.texture == 0);
+    CHECK(a.scene.materials[0].emissive_texture.texture == kNone);
+    REQUIRE(a.objects.size() == 1);
+    REQUIRE(a.objects[0].texcoords.size() == plain.objects[0].texcoords.size());
+    for (size_t i = 0; i < a.objects[0].texcoords.size(); ++i) {
+        const auto& uv = plain.objects[0].texcoords[i];
+        const auto& t = a.objects[0].texcoords[i];
+        CHECK(t[0] == doctest::Approx(0.5 * uv[1]).epsilon(1e-5));        // u' = v / 2
+        CHECK(t[1] == doctest::Approx(1 - 0.5 * uv[0]).epsilon(1e-5));    // v' = 1 - u / 2
+    }
+    CHECK(a.objects[0].positions == plain.objects[0].positions);
+    // The receiver's file: no extension, the transformed coordinates, the texture.
+    Asset back = written_and_read(a, dir / "transform_out.glb");
+    REQUIRE(back.scene.textures.size() == 1);
+    CHECK(back.scene.materials[0].base_color_texture.texture == 0);
+    CHECK(back.objects[0].texcoords == a.objects[0].texcoords);
 }

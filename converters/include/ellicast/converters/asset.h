@@ -36,9 +36,11 @@ struct Asset {
 // identical image + sampler pairs are sent once). What ellicast does not carry (animations, skins,
 // morph targets, cameras, lights, other scenes, other image types, TANGENT / TEXCOORD_1+ /
 // JOINTS / WEIGHTS attributes, unknown extensions) is named in a warning; geometry is taken in its
-// bind/rest pose. A material's texture on another set than TEXCOORD_0, or with
-// KHR_texture_transform, is not sent (warning naming the material and slot): the material keeps
-// its factors and its other textures. OBJ / PLY / OFF / STL: one node with one mesh, no material.
+// bind/rest pose. A material's texture on another set than TEXCOORD_0 is not sent (warning
+// naming the material and slot): the material keeps its factors and its other textures. A
+// material's KHR_texture_transform is applied to the texture coordinates of the objects drawn
+// with it (same accessors under another transform: another object); a texture whose transform
+// differs from the material's first texture is not sent. OBJ / PLY / OFF / STL: one node with one mesh, no material.
 // Throws InputError when the file cannot be read or holds nothing to send.
 Asset load_asset(const std::string& path);
 
