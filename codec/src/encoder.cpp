@@ -456,7 +456,11 @@ std::vector<QuantizedPoint> encode_points(const Mesh& mesh, const StreamInfo& in
 }
 
 // Spacings for the surface samples of one object, from its bounding box.
-SurfaceSampleOptions sample_options(const Mesh& mesh, const Frame& frame, const EncodeOptions& options) {
+// A sheet (an object given flat ellipsoids) gets half the spacing: its base is a thin shell whose two
+// sides share its points, and woody, a flat figure, needs 1.5% rather than 3% to come back within
+// 0.1% RMS (bench/run.sh quality).
+SurfaceSampleOptions sample_options(const Mesh& mesh, const Frame& frame, const EncodeOptions& options,
+                                    bool sheet) {
     std::array<float, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
     for (const auto& p : mesh.positions)
         for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
@@ -465,7 +469,7 @@ SurfaceSampleOptions sample_options(const Mesh& mesh, const Frame& frame, const 
     diagonal = std::sqrt(diagonal);
     if (!(diagonal > 0)) diagonal = frame.scale;
     SurfaceSampleOptions s;
-    s.spacing = options.sample_spacing * diagonal;
+    s.spacing = options.sample_spacing * diagonal * (sheet ? 0.5 : 1.0);
     s.crease_spacing = s.spacing / 2;
     s.max_samples = std::max<size_t>(options.max_samples, mesh.positions.size());
     return s;
@@ -556,7 +560,7 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         progress("points", 0.97);
         if (!mesh.is_point_set && !mesh.triangles.empty() && options.sample_spacing > 0) {
             size_t added = 0;
-            const Mesh sampled = with_surface_samples(mesh, sample_options(mesh, object.frame, options), added);
+            const Mesh sampled = with_surface_samples(mesh, sample_options(mesh, object.frame, options, report.flat_ellipsoids > 0), added);
             report.samples = uint32_t(added);
             content.points = encode_points(sampled, info, object, object_seed);
         } else {

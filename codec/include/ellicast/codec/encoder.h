@@ -39,7 +39,8 @@ struct EncodeOptions {
     uint32_t seed = 1;
     // Surface samples added to the original vertices where triangles are large: no edge inside a
     // face longer than this fraction of the object's bounding-box diagonal, half of it along
-    // creases and boundaries. 0: the original vertices only. [0, 1]
+    // creases and boundaries (both halved again on an object with sheets, whose thin base has two
+    // sides to fill). 0: the original vertices only. [0, 1]
     double sample_spacing = 0.03;
     // At most this many samples per object, or as many as it has vertices if that is more (the
     // spacings grow until they fit). 0..10000000
