@@ -94,8 +94,43 @@ bool insert_on_other_side(Reconstruction& r, uint32_t point_index, const std::ar
         const double l = n.norm();
         return l > 0 && OpenMesh::dot(n, normal) < -0.5 * l;
     };
-    const OpenMesh::FaceHandle f = r.faces.nearest(mesh, p, closest, bary, other_side, reach);
+    OpenMesh::FaceHandle f = r.faces.nearest(mesh, p, closest, bary, other_side, reach);
     if (!f.is_valid()) return false;
+    // Once both sides lie flat on the sheet, the nearest face can be one beside the point rather
+    // than under it, and a split there would fold. Walk towards the face under the point.
+    OpenMesh::VertexHandle corner[3];
+    auto weights = [&](OpenMesh::FaceHandle face) {
+        int n = 0;
+        for (auto v : mesh.fv_range(face)) corner[n++] = v;  // FaceGrid::nearest's corner order
+        const Vec3 a = mesh.point(corner[0]), b = mesh.point(corner[1]), c = mesh.point(corner[2]);
+        const Vec3 nf = OpenMesh::cross(b - a, c - a);
+        const double n2 = nf.sqrnorm();
+        std::array<double, 3> w{OpenMesh::dot(OpenMesh::cross(c - b, p - b), nf) / n2,
+                                OpenMesh::dot(OpenMesh::cross(a - c, p - c), nf) / n2, 0.0};
+        w[2] = 1 - w[0] - w[1];
+        return w;
+    };
+    const OpenMesh::FaceHandle nearest = f;
+    std::array<double, 3> w = weights(f);
+    for (int step = 0; step < 16; ++step) {
+        const int worst = int(std::min_element(w.begin(), w.end()) - w.begin());
+        if (!(w[worst] < 0)) break;
+        OpenMesh::FaceHandle next;  // across the edge opposite the most negative corner
+        for (auto h : mesh.fh_range(f))
+            if (mesh.from_vertex_handle(h) != corner[worst] && mesh.to_vertex_handle(h) != corner[worst])
+                next = mesh.opposite_face_handle(h);
+        if (!next.is_valid() || !other_side(next)) break;
+        f = next;
+        w = weights(f);
+    }
+    if (std::isfinite(w[0] + w[1] + w[2]) && *std::min_element(w.begin(), w.end()) >= 0) {
+        bary = w;
+    } else if (f != nearest) {
+        double sum = 0;
+        for (double& x : w) sum += (x = std::isfinite(x) ? std::max(0.0, x) : 0.0);
+        bary = sum > 0 ? std::array<double, 3>{w[0] / sum, w[1] / sum, w[2] / sum}
+                       : std::array<double, 3>{1.0 / 3, 1.0 / 3, 1.0 / 3};
+    }
     insert_into_face(r, point_index, position, f, bary, vertex);
     return true;
 }
