@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <optional>
 #include <queue>
 
 namespace ellicast::detail {
@@ -129,9 +130,10 @@ bool inside_inflated(const Candidate& e, const Vec3& p, double inflate) {
 
 }  // namespace
 
-SelectionResult select_ellipsoids(const VoxelGrid& grid, const std::vector<Candidate>& candidates,
-                                  const std::vector<Vec3>& surface_samples, double near, double coverage,
-                                  uint32_t max_volume, uint32_t max_count, const std::function<void(double)>& progress) {
+SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measure,
+                                  const std::vector<Candidate>& candidates, const std::vector<Vec3>& surface_samples,
+                                  double near, double coverage, uint32_t max_volume, uint32_t max_count,
+                                  const std::function<void(double)>& progress) {
     SelectionResult result;
     const size_t n = candidates.size();
     const size_t rows = size_t(grid.n[1]) * grid.n[2];
@@ -149,18 +151,34 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const std::vector<Candi
     if (progress) progress(0.3);
 
     std::vector<bool> chosen(n, false);
+    // Coverage is counted on the measuring grid when there is one (the chosen candidates only).
+    std::optional<VoxelBits> measured;
+    size_t measured_interior = interior;
+    if (measure) {
+        measured.emplace(*measure, false);
+        measured_interior = 0;
+        for (size_t row = 0; row < size_t(measure->n[1]) * measure->n[2]; ++row)
+            for (int x = 0; x < measure->n[0]; ++x)
+                if (measure->inside(row * measure->n[0] + x)) measured->set(x, row, true), ++measured_interior;
+    }
     size_t covered = 0;
-    const size_t target = size_t(std::ceil(coverage * double(interior)));
+    const size_t target = size_t(std::ceil(coverage * double(measured_interior)));
     lazy_greedy(
         n, gains, [&](size_t i) { return remaining.count(spans[i]); },
         [&](size_t i) {
-            covered += remaining.count(spans[i]);
+            if (measured) {
+                const auto fine = rasterize(*measure, candidates[i], 0);
+                covered += measured->count(fine);
+                measured->clear(fine);
+            } else {
+                covered += remaining.count(spans[i]);
+            }
             remaining.clear(spans[i]);
             result.volume.push_back(uint32_t(i));
             chosen[i] = true;
         },
         [&] { return result.volume.size() < std::min(max_volume, max_count) && covered < target; }, 1);
-    result.coverage = interior ? double(covered) / double(interior) : 0;
+    result.coverage = measured_interior ? double(covered) / double(measured_interior) : 0;
     if (progress) progress(0.6);
 
     // Surface pass: samples farther than `near` from every chosen ellipsoid.

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
@@ -177,13 +178,27 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     }
     progress("inside test", 0.0);
     // A surface without boundary gets exact winding numbers from ray crossings (far cheaper).
-    VoxelGrid grid = is_cycle(mesh, weld)
+    const bool cycle = is_cycle(mesh, weld);
+    VoxelGrid grid = cycle
                          ? build_closed_winding_grid(tree, box, cells, options.threads)
                          : build_winding_grid(tree, winding, box, cells, options.threads,
                                               [&](double f) { progress("inside test", 0.2 * f); });
-    for (int k = 0; k < 3; ++k) report.grid[k] = uint32_t(grid.n[k]);
     size_t interior = 0;
     for (size_t i = 0; i < grid.size(); ++i) interior += grid.inside(i);
+    // A model whose inside spans few voxels (thin limbs, small parts far apart) gets a finer grid,
+    // up to twice as fine, so that about 50,000 voxels (fewer for a small share) sample its inside;
+    // only where the exact inside test is cheap.
+    const double wanted_interior = 50000 * share;
+    if (options.grid == 0 && cycle && interior > 0 && double(interior) < 0.6 * wanted_interior) {
+        const int finer = std::min({2 * cells, 256, int(std::ceil(cells * std::cbrt(wanted_interior / double(interior))))});
+        if (finer > cells) {
+            cells = finer;
+            grid = build_closed_winding_grid(tree, box, cells, options.threads);
+            interior = 0;
+            for (size_t i = 0; i < grid.size(); ++i) interior += grid.inside(i);
+        }
+    }
+    for (int k = 0; k < 3; ++k) report.grid[k] = uint32_t(grid.n[k]);
     report.interior_fraction = double(interior) / double(grid.size());
 
     // Seeds: points spread over the surface by area, each with the normal pointing inside.
@@ -282,9 +297,20 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         report.closed ? options.max_ellipsoids : std::max<uint32_t>(1, uint32_t(0.8 * options.max_ellipsoids));
     const uint32_t max_inside =
         report.closed ? options.max_ellipsoids : std::max<uint32_t>(1, uint32_t(0.9 * options.max_ellipsoids));
+    // Coverage (when the selection stops, and what is reported) is measured on a grid twice as
+    // fine as the working one when the surface has no boundary (its exact inside test is cheap), so
+    // that ellipsoids hugging flat faces aligned with the voxels are not credited with the whole
+    // voxel layer they reach, nor thin parts misjudged by few voxel centres; else on the working grid.
+    std::optional<VoxelGrid> fine;
+    if (cycle && interior > 0 && grid.size() <= (size_t(2) << 20))  // at most 16M fine voxels
+        fine = build_closed_winding_grid(tree, box, 2 * cells, options.threads);
+    const VoxelGrid& measure_grid = fine ? *fine : grid;
+    const VoxelGrid* measure = fine ? &*fine : nullptr;
+    size_t measure_interior = 0;
+    for (size_t i = 0; i < measure_grid.size(); ++i) measure_interior += measure_grid.inside(i);
     // Aim a little higher: quantization may shrink a few ellipsoids by a step.
     const double aim = std::min(1.0, options.coverage + 0.01);
-    SelectionResult chosen = select_ellipsoids(grid, candidates, samples, near, aim, max_volume,
+    SelectionResult chosen = select_ellipsoids(grid, measure, candidates, samples, near, aim, max_volume,
                                                max_inside, [&](double f) { progress("selection", 0.7 + 0.1 * f); });
 
     // More rounds where the first left interior uncovered (corners, crevices, sharp edges, the thin
@@ -329,7 +355,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         for (size_t i = 0; i < 2 * extra; ++i)
             if (more_ok[i]) candidates.push_back(more[i]);
         report.candidates = uint32_t(candidates.size());
-        chosen = select_ellipsoids(grid, candidates, samples, near, aim, max_volume, max_inside,
+        chosen = select_ellipsoids(grid, measure, candidates, samples, near, aim, max_volume, max_inside,
                                    [&](double f) { progress("selection", 0.9 + 0.05 * f); });
         gained = chosen.coverage - before;
     }
@@ -353,10 +379,6 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         }
         return false;
     };
-    for (uint32_t i : chosen.volume) place(candidates[i], true);
-    size_t before_surface = out.size();
-    for (uint32_t i : chosen.surface) place(candidates[i], true);
-    report.surface_ellipsoids = uint32_t(out.size() - before_surface);
 
     // Surface samples far from every chosen ellipsoid (after quantization).
     auto voxel_row = [&](const Vec3& p, size_t& x, size_t& row) {
@@ -381,31 +403,49 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         }
         return count;
     };
-    std::vector<uint32_t> lonely;
-    near_count(&lonely);
-    // Flat ellipsoids go where the surface stays far from the base: on an open surface (a sheet, a
-    // single-sided panel), or on a closed one with no inside voxel at all (thinner than the grid).
-    // A closed surface with an inside never gets them: its ellipsoids must stay inside it.
-    std::vector<uint32_t> sheet_samples;
-    if (!report.closed || interior == 0) sheet_samples = lonely;
-    if (!sheet_samples.empty() && out.size() < options.max_ellipsoids)
-        for (const Candidate& flat :
-             sheet_ellipsoids(samples, sample_normals, sheet_samples, grid.h, options.max_ellipsoids - out.size()))
-            if (place(flat, false)) ++report.flat_ellipsoids;
-    report.surface_covered = samples.empty() ? 0 : double(near_count(nullptr)) / double(samples.size());
+
+    // Quantize and place the chosen ellipsoids, add flat ones for sheets, and measure. When the
+    // finer measure falls short of the target the working grid said was reached, choose again
+    // aiming higher by the difference (at most twice).
+    double select_aim = aim;
+    for (int pass = 0;; ++pass) {
+        out.clear();
+        report.shrunk = report.flat_ellipsoids = 0;
+        for (uint32_t i : chosen.volume) place(candidates[i], true);
+        size_t before_surface = out.size();
+        for (uint32_t i : chosen.surface) place(candidates[i], true);
+        report.surface_ellipsoids = uint32_t(out.size() - before_surface);
+
+        std::vector<uint32_t> lonely;
+        near_count(&lonely);
+        // Flat ellipsoids go where the surface stays far from the base: on an open surface (a sheet, a
+        // single-sided panel), or on a closed one with no inside voxel at all (thinner than the grid).
+        // A closed surface with an inside never gets them: its ellipsoids must stay inside it.
+        std::vector<uint32_t> sheet_samples;
+        if (!report.closed || interior == 0) sheet_samples = lonely;
+        if (!sheet_samples.empty() && out.size() < options.max_ellipsoids)
+            for (const Candidate& flat :
+                 sheet_ellipsoids(samples, sample_normals, sheet_samples, grid.h, options.max_ellipsoids - out.size()))
+                if (place(flat, false)) ++report.flat_ellipsoids;
+        report.surface_covered = samples.empty() ? 0 : double(near_count(nullptr)) / double(samples.size());
+
+        VoxelBits uni(measure_grid, false);
+        for (const auto& q : out) uni.fill(rasterize(measure_grid, to_candidate(dequantize_ellipsoid(q, frame)), 0));
+        size_t in_cov = 0, out_cov = 0;
+        for (size_t row = 0; row < size_t(measure_grid.n[1]) * measure_grid.n[2]; ++row)
+            for (int x = 0; x < measure_grid.n[0]; ++x)
+                if (uni.get(x, row)) (measure_grid.inside(row * measure_grid.n[0] + x) ? in_cov : out_cov)++;
+        report.coverage = measure_interior ? double(in_cov) / double(measure_interior) : 0;
+        report.outside = measure_interior ? double(out_cov) / double(measure_interior) : 0;
+        report.ellipsoids = uint32_t(out.size());
+        const bool short_of_aim = chosen.coverage + 1e-9 < select_aim;  // stopped by the count or no gain
+        if (pass >= 2 || !fine || report.coverage >= options.coverage + 0.002 || short_of_aim || select_aim >= 1) break;
+        select_aim = std::min(1.0, select_aim + (options.coverage + 0.005 - report.coverage));
+        chosen = select_ellipsoids(grid, measure, candidates, samples, near, select_aim, max_volume, max_inside,
+                                   [&](double f) { progress("selection", 0.95 + 0.04 * f); });
+    }
     if (interior == 0 && report.flat_ellipsoids == 0 && out.empty())
         warnings.push_back(mesh.name + ": no interior volume and no sheet found; no ellipsoids");
-
-    // Coverage of the dequantized ellipsoids on the grid: covered interior, and volume outside.
-    VoxelBits uni(grid, false);
-    for (const auto& q : out) uni.fill(rasterize(grid, to_candidate(dequantize_ellipsoid(q, frame)), 0));
-    size_t in_cov = 0, out_cov = 0;
-    for (size_t row = 0; row < size_t(grid.n[1]) * grid.n[2]; ++row)
-        for (int x = 0; x < grid.n[0]; ++x)
-            if (uni.get(x, row)) (grid.inside(row * grid.n[0] + x) ? in_cov : out_cov)++;
-    report.coverage = interior ? double(in_cov) / double(interior) : 0;
-    report.outside = interior ? double(out_cov) / double(interior) : 0;
-    report.ellipsoids = uint32_t(out.size());
     if (report.closed && interior > 0 && report.coverage + 1e-9 < options.coverage) {  // the target is for closed models
         char text[256];
         std::snprintf(text, sizeof text, "%s: the ellipsoids cover %.1f%% of the interior, below the target %.1f%% (%zu "

@@ -153,15 +153,18 @@ private:
 struct SelectionResult {
     std::vector<uint32_t> volume;   // candidate indices chosen for volume, in order
     std::vector<uint32_t> surface;  // candidate indices chosen for surface coverage
-    double coverage = 0;            // covered fraction of interior voxels by the chosen ones
+    double coverage = 0;            // covered fraction of interior voxels by the chosen ones (measuring grid)
 };
 
 // Greedy: the largest candidate first, then the one with the largest gain of covered interior
 // voxels, until `coverage` or `max_volume`; then, until `max_count` in all, the candidate covering
-// the most surface samples still farther than `near` from every chosen ellipsoid.
-SelectionResult select_ellipsoids(const VoxelGrid& grid, const std::vector<Candidate>& candidates,
-                                  const std::vector<Vec3>& surface_samples, double near, double coverage,
-                                  uint32_t max_volume, uint32_t max_count, const std::function<void(double)>& progress);
+// the most surface samples still farther than `near` from every chosen ellipsoid. Gains are
+// counted on `grid`; the coverage (when to stop, and the result's) on `measure` when given (a
+// finer grid over the same model: a truer measure than the working grid's voxel centres).
+SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measure,
+                                  const std::vector<Candidate>& candidates, const std::vector<Vec3>& surface_samples,
+                                  double near, double coverage, uint32_t max_volume, uint32_t max_count,
+                                  const std::function<void(double)>& progress);
 
 // ---------------------------------------------------------------------------------------------
 // sheet_ellipsoids.cpp

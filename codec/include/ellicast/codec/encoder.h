@@ -69,6 +69,8 @@ struct ObjectReport {
     double interior_fraction = 0;     // of the grid's voxels, inside the surface
     double coverage = 0;              // covered fraction of the interior volume (dequantized ellipsoids)
     double outside = 0;               // volume of the ellipsoids outside the model / interior volume
+                                      // (both on a grid twice as fine as `grid` for a surface
+                                      // without boundary, else on `grid`)
     double surface_covered = 0;       // fraction of surface samples near the base
     uint32_t grid[3] = {0, 0, 0};     // voxel grid used
 };
