@@ -1,6 +1,8 @@
 // Nearest triangle of a changing mesh: a uniform grid of face lists with lazy deletion.
 #include "ellicast/codec/decoder.h"
 
+#include "closest_point.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,54 +10,6 @@
 namespace ellicast {
 
 using Vec3 = OpenMesh::Vec3d;
-
-namespace {
-
-// Closest point of triangle (a, b, c) to p, with its barycentric coordinates (insertion needs them
-// to tell a face split from an edge split).
-Vec3 closest_point_barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
-                               std::array<double, 3>& bary) {
-    // Ericson, Real-Time Collision Detection, 5.1.5: Voronoi regions of the triangle.
-    Vec3 ab = b - a, ac = c - a, ap = p - a;
-    double d1 = OpenMesh::dot(ab, ap), d2 = OpenMesh::dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return bary = {1, 0, 0}, a;
-    Vec3 bp = p - b;
-    double d3 = OpenMesh::dot(ab, bp), d4 = OpenMesh::dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return bary = {0, 1, 0}, b;
-    double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        double v = d1 / (d1 - d3);
-        bary = {1 - v, v, 0};
-        return a + v * ab;
-    }
-    Vec3 cp = p - c;
-    double d5 = OpenMesh::dot(ab, cp), d6 = OpenMesh::dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return bary = {0, 0, 1}, c;
-    double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        double w = d2 / (d2 - d6);
-        bary = {1 - w, 0, w};
-        return a + w * ac;
-    }
-    double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        bary = {0, 1 - w, w};
-        return b + w * (c - b);
-    }
-    double denom = va + vb + vc;
-    if (!(std::abs(denom) > 0)) {  // degenerate triangle: nearest of its vertices
-        double da = (p - a).sqrnorm(), db = (p - b).sqrnorm(), dc = (p - c).sqrnorm();
-        if (da <= db && da <= dc) return bary = {1, 0, 0}, a;
-        if (db <= dc) return bary = {0, 1, 0}, b;
-        return bary = {0, 0, 1}, c;
-    }
-    double v = vb / denom, w = vc / denom;
-    bary = {1 - v - w, v, w};
-    return a + v * ab + w * ac;
-}
-
-}  // namespace
 
 void FaceGrid::reset(const Vec3& lo, const Vec3& hi, double cell) {
     lo_ = lo;
@@ -118,7 +72,7 @@ void FaceGrid::add_entries(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f) {
                     double plane = OpenMesh::dot(centre - a, normal);
                     if (plane * plane > reach2) continue;  // far from the triangle's plane
                     std::array<double, 3> bary;
-                    if ((closest_point_barycentric(centre, a, b, c, bary) - centre).sqrnorm() > reach2) continue;
+                    if ((detail::closest_point_on_triangle(centre, a, b, c, &bary) - centre).sqrnorm() > reach2) continue;
                 }
                 auto& list = cells_[cell_of(i, j, k)];
                 // Drop stale entries of this cell before it grows: keeps every cell within about twice
@@ -192,7 +146,7 @@ OpenMesh::FaceHandle FaceGrid::nearest(const DecoderTriMesh& mesh, const Vec3& p
             const Vec3& b = mesh.point(*++fv);
             const Vec3& cc = mesh.point(*++fv);
             std::array<double, 3> bc;
-            Vec3 q = closest_point_barycentric(p, a, b, cc, bc);
+            Vec3 q = detail::closest_point_on_triangle(p, a, b, cc, &bc);
             double d2 = (q - p).sqrnorm();
             if (d2 < best_d2) best_d2 = d2, best = f, closest = q, bary = bc;
         }

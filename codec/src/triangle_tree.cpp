@@ -2,6 +2,8 @@
 // centroid bounds, small leaves, depth-first queries visiting the nearer child first.
 #include "ellicast/codec/triangle_tree.h"
 
+#include "closest_point.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -16,7 +18,6 @@ constexpr uint32_t kLeafSize = 4;
 
 V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 madd(const V3& a, const V3& d, double t) { return {a[0] + d[0] * t, a[1] + d[1] * t, a[2] + d[2] * t}; }
 double sq(const V3& a) { return dot(a, a); }
 
 void grow(TriangleTree::Box& box, const V3& p) {
@@ -29,48 +30,7 @@ void grow(TriangleTree::Box& box, const V3& p) {
 }  // namespace
 
 V3 closest_point_on_triangle(const V3& p, const V3& a, const V3& b, const V3& c) {
-    // Ericson, Real-Time Collision Detection, 5.1.5: Voronoi regions of the triangle.
-    V3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
-    double d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    V3 bp = sub(p, b);
-    double d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        double denom = d1 - d3;
-        return denom > 0 ? madd(a, ab, d1 / denom) : a;
-    }
-    V3 cp = sub(p, c);
-    double d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        double denom = d2 - d6;
-        return denom > 0 ? madd(a, ac, d2 / denom) : a;
-    }
-    double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-        double denom = (d4 - d3) + (d5 - d6);
-        return denom > 0 ? madd(b, sub(c, b), (d4 - d3) / denom) : b;
-    }
-    double sum = va + vb + vc;
-    if (!(sum > 0) || !std::isfinite(sum)) {
-        // Degenerate (collinear) triangle: the closest of its three edges.
-        auto on_segment = [&](const V3& s, const V3& e) {
-            V3 d = sub(e, s);
-            double len = sq(d);
-            double t = len > 0 ? std::clamp(dot(sub(p, s), d) / len, 0.0, 1.0) : 0.0;
-            return madd(s, d, t);
-        };
-        V3 best = on_segment(a, b);
-        for (const V3& q : {on_segment(b, c), on_segment(c, a)})
-            if (sq(sub(q, p)) < sq(sub(best, p))) best = q;
-        return best;
-    }
-    double denom = 1.0 / sum;
-    double v = vb * denom, w = vc * denom;
-    return {a[0] + ab[0] * v + ac[0] * w, a[1] + ab[1] * v + ac[1] * w, a[2] + ab[2] * v + ac[2] * w};
+    return detail::closest_point_on_triangle(p, a, b, c);
 }
 
 double squared_distance_to_box(const V3& p, const TriangleTree::Box& box) {
