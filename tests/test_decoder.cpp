@@ -178,6 +178,29 @@ TEST_CASE("a fully received sphere ends as a closed mesh of original vertices on
     }
 }
 
+TEST_CASE("a stream far sparser than its base (a cube's 8 corners on a ball) ends as the cube, promptly") {
+    // 8 original vertices against tens of thousands of marching-cubes vertices: the final forced
+    // collapse must remove them all without re-indexing ever larger faces (it used to take ~10 s).
+    std::vector<SurfacePoint> corners;
+    for (int i = 0; i < 8; ++i) {
+        SurfacePoint p;
+        p.position = {i & 1 ? 0.55f : -0.55f, i & 2 ? 0.55f : -0.55f, i & 4 ? 0.55f : -0.55f};
+        corners.push_back(p);
+    }
+    auto info = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, corners.size(), 0);
+    Mesh mesh;
+    ObjectDecodeReport report;
+    std::string error;
+    REQUIRE(decode_object(info, {sphere_ellipsoid({0, 0, 0}, 0.9f)}, corners, 0, DecodeOptions{}, 0, mesh, report,
+                          error));
+    CHECK(report.base_vertices > 10000);
+    CHECK(report.mc_vertices_left == 0);
+    CHECK(mesh.positions.size() == 8);
+    CHECK(mesh.triangles.size() == 12);
+    CHECK(open_or_nonmanifold_edges(mesh) == 0);
+    CHECK(signed_volume(mesh) == doctest::Approx(1.1 * 1.1 * 1.1).epsilon(1e-4));  // faces on the cube's sides
+}
+
 TEST_CASE("with half of the points lost the sphere is still closed and close") {
     auto all = fibonacci_sphere(3000, 1.0);
     std::vector<SurfacePoint> half;

@@ -88,7 +88,7 @@ size_t remove_components_without_originals(Reconstruction& r) {
             std::array<OpenMesh::VertexHandle, 3> vs;
             int k = 0;
             for (auto v : mesh.fv_range(g)) vs[k++] = v;
-            r.faces.remove(g);
+            r.face_removed(g);
             mesh.delete_face(g, true);
             for (auto v : vs)
                 if (mesh.status(v).deleted()) --r.mc_vertices;

@@ -59,8 +59,8 @@ static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat,
     if (!old_ok) {  // a degenerate old face: any legal flip that helps
         if (!(new_worst < old_worst) || !mesh.is_flip_ok(e)) return false;
         mesh.flip(e);
-        r.faces.update(mesh, mesh.face_handle(h0));
-        r.faces.update(mesh, mesh.face_handle(h1));
+        r.face_changed(mesh.face_handle(h0));
+        r.face_changed(mesh.face_handle(h1));
         ++r.flips;
         return true;
     }
@@ -77,8 +77,8 @@ static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat,
     else flip = new_worst < old_worst - 1e-12 && new_dot > old_dot + 1e-9;
     if (!flip || !mesh.is_flip_ok(e)) return false;  // topology last: it walks a one-ring
     mesh.flip(e);
-    r.faces.update(mesh, mesh.face_handle(h0));
-    r.faces.update(mesh, mesh.face_handle(h1));
+    r.face_changed(mesh.face_handle(h0));
+    r.face_changed(mesh.face_handle(h1));
     ++r.flips;
     return true;
 }

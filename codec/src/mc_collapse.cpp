@@ -109,7 +109,7 @@ bool try_collapse(Reconstruction& r, OpenMesh::VertexHandle m, bool force, bool 
         if (na < int(around.size())) around[na++] = f;
     mesh.collapse(chosen);
     for (int i = 0; i < na; ++i) {
-        if (mesh.status(around[i]).deleted()) r.faces.remove(around[i]);
+        if (mesh.status(around[i]).deleted()) r.face_removed(around[i]);
     }
     reindex_faces_around(r, target);
     --r.mc_vertices;
@@ -143,6 +143,7 @@ size_t collapse_mc_vertices_near(Reconstruction& r, OpenMesh::VertexHandle v) {
 size_t collapse_all_mc_vertices(Reconstruction& r, bool force) {
     size_t total = 0;
     if (r.mc_vertices == 0) return 0;
+    r.index_paused = true;
     // Stage 0: the ordinary rule; when forcing, stage 1: any original neighbour is enough; stage 2:
     // marching-cubes neighbours too. Each stage works through a queue: a vertex is tried again only
     // when a collapse next to it changed its neighbourhood.

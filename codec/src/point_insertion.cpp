@@ -45,7 +45,7 @@ bool move_is_safe(const DecoderTriMesh& mesh, OpenMesh::VertexHandle v, const Ve
 }  // namespace
 
 void reindex_faces_around(Reconstruction& r, OpenMesh::VertexHandle v) {
-    for (auto f : r.mesh.vf_range(v)) r.faces.update(r.mesh, f);
+    for (auto f : r.mesh.vf_range(v)) r.face_changed(f);
 }
 
 void start_reconstruction(Reconstruction& r, DecoderTriMesh&& base, const Frame& frame, double cell,
@@ -80,6 +80,7 @@ void start_reconstruction(Reconstruction& r, DecoderTriMesh&& base, const Frame&
     if (!(size > 0)) size = cell;
     r.faces.reset(lo, hi, size);
     r.faces.build(r.mesh);
+    r.index_paused = false;
 }
 
 Insertion insert_point(Reconstruction& r, uint32_t point_index, const std::array<float, 3>& position,
@@ -99,6 +100,10 @@ Insertion insert_point(Reconstruction& r, uint32_t point_index, const std::array
     }
     if (merged) return Insertion::SeamDuplicate;
 
+    if (r.index_paused) {
+        r.faces.build(mesh);
+        r.index_paused = false;
+    }
     Vec3 closest;
     std::array<double, 3> bary;
     OpenMesh::FaceHandle f = r.faces.nearest(mesh, p, closest, bary);

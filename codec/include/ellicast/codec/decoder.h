@@ -150,7 +150,19 @@ struct Reconstruction {
     size_t face_splits = 0, edge_splits = 0, vertex_moves = 0, seam_merges = 0, flips = 0, collapses = 0,
            rejected_collapses = 0;
 
+    // True while `faces` is not kept up to date (collapse_all_mc_vertices: no insertion follows it,
+    // and re-indexing the large faces of a sparse stream's last collapses would cost more than the
+    // collapses); insert_point rebuilds the index first when it is set.
+    bool index_paused = false;
+
     bool is_original(OpenMesh::VertexHandle v) const { return !vertex_points[v.idx()].empty(); }
+    // Keep the face index in step with a changed or deleted face.
+    void face_changed(OpenMesh::FaceHandle f) {
+        if (!index_paused) faces.update(mesh, f);
+    }
+    void face_removed(OpenMesh::FaceHandle f) {
+        if (!index_paused) faces.remove(f);
+    }
 };
 
 // Takes ownership of a base mesh (from marching_cubes with node spacing `cell`): builds the face
@@ -223,6 +235,8 @@ size_t collapse_mc_vertices_near(Reconstruction& r, OpenMesh::VertexHandle v);
 // Tries every remaining marching-cubes vertex. With `force`, any original neighbour is enough and
 // vertices with none collapse into a marching-cubes neighbour, pass after pass, so that a fully
 // received stream ends with original vertices only (only topologically impossible collapses stay).
+// Meant for the end of a stream: it leaves r.faces out of date (r.index_paused) and a later
+// insert_point rebuilds it.
 size_t collapse_all_mc_vertices(Reconstruction& r, bool force);
 
 // ---------------------------------------------------------------------------------------------
