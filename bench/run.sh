@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reruns the benchmarks whose figures the README quotes and writes their output to bench/results/.
-#   bash bench/run.sh [encode|decode|quality|broadcast|compare ...]   (default: encode decode quality)
+#   bash bench/run.sh [encode|decode|quality|gallery|broadcast|compare ...]   (default: encode decode quality)
 # Speed figures are only meaningful on an otherwise idle machine: check `uptime` first.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -30,6 +30,38 @@ for what in "$@"; do
         "$build/bench/bench_decode" "$tmp/${m%.*}.ellc" "$samples/meshes/$m" 3 2>&1 | tee -a "$results/quality.txt"
       done
       rm -rf "$tmp" ;;
+    gallery)
+      # Pictures of the reconstructions: original | ellipsoids only | after a quarter of the points |
+      # every packet | what one carousel cycle through a 50%-loss channel delivers.
+      echo "== gallery: reconstructions as pictures (bench/results/gallery/*.png)" >&2
+      tmp=$(mktemp -d)
+      mkdir -p "$results/gallery"
+      : > "$results/gallery/README.md"
+      echo "# Reconstructions" >> "$results/gallery/README.md"
+      echo >> "$results/gallery/README.md"
+      echo "Made by \`bash bench/run.sh gallery\`. Panels, left to right: the original; the base from the ellipsoids" >> "$results/gallery/README.md"
+      echo "alone; after the first quarter of the points; every packet; what a receiver holds after listening" >> "$results/gallery/README.md"
+      echo "to one carousel cycle through a channel losing 50% of the packets (seed 1)." >> "$results/gallery/README.md"
+      echo >> "$results/gallery/README.md"
+      for spec in meshes/spot.obj:30:15 meshes/fandisk.obj:200:20 meshes/woody.obj:0:0 meshes/bunny.ply:20:10 \
+                  gltf/Fox/Fox.gltf:60:15 gltf/Box-glb/Box.glb:35:25; do
+        IFS=: read -r m az el <<< "$spec"
+        n=$(basename "$m"); n=${n%.*}
+        "$build/ellicast" encode -q "$samples/$m" -o "$tmp/$n.ellc" > /dev/null
+        points=$("$build/ellicast" inspect --json "$tmp/$n.ellc" | python3 -c 'import json,sys; print(sum(o["point_count"] for o in json.load(sys.stdin)["objects"]))')
+        quarter=$(( (points + 3) / 4 ))
+        "$build/ellicast" decode -q "$tmp/$n.ellc" -o "$tmp/$n.full.ply" --snapshots "$quarter" > /dev/null
+        "$build/ellicast" simulate "$tmp/$n.ellc" -o "$tmp/$n.lossy.ellc" --loss 0.5 --seed 1 > "$tmp/$n.sim.txt" 2>&1
+        "$build/ellicast" decode -q "$tmp/$n.lossy.ellc" -o "$tmp/$n.lossy.ply" > /dev/null
+        "$build/ellicast" render "$samples/$m" "$tmp/$n.full.snap-o0-p0000000.ply" "$(printf '%s/%s.full.snap-o0-p%07d.ply' "$tmp" "$n" "$quarter")" \
+          "$tmp/$n.full.ply" "$tmp/$n.lossy.ply" -o "$results/gallery/$n.png" --width 360 --height 360 \
+          --azimuth "$az" --elevation "$el" --frame-from "$samples/$m" > /dev/null
+        received=$(grep -o 'points: [0-9,]* of [0-9,]*' "$tmp/$n.sim.txt" | head -1 | sed 's/points: //')
+        lost=$(grep -o 'channel did: [0-9]* lost ([0-9.]*%)' "$tmp/$n.sim.txt" | sed 's/channel did: //')
+        echo "- \`$n.png\`: $m, $points points; the lossy channel's cycle: $lost packets, $received points received." >> "$results/gallery/README.md"
+        echo "  gallery: $n ($points points; 50% loss: $received)" >&2
+      done
+      rm -rf "$tmp" ;;
     broadcast)
       echo "== broadcast on loopback (bench_broadcast, bunny, 2 Mbit/s)" >&2
       "$build/bench/bench_broadcast" "$samples/meshes/bunny.ply" --trials 20 --loss 0,0.05,0.1,0.2,0.3,0.5,0.7 --out "$results/broadcast" 2>&1 |
@@ -39,6 +71,6 @@ for what in "$@"; do
       "$build/ellicast" compare "$samples/meshes/bunny.ply" --times 0.25,0.5,1,2 --time-loss 0.1,0.5 --samples 50000 \
         -o "$results/bunny"
       "$build/ellicast" compare "$samples/meshes/spot.obj" --burst 0,8 -o "$results/spot" ;;
-    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, broadcast, compare)" >&2; exit 2 ;;
+    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, broadcast, compare)" >&2; exit 2 ;;
   esac
 done
