@@ -318,9 +318,9 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     // one candidate toward its voxel and one flat candidate hugging the surface there (its axes
     // turned by 45 degrees for every other seed, to reach into the corners of a face); then choose
     // again among all candidates (a better set may reach more coverage with the same count). At
-    // most three rounds, and none after a round that gained less than 0.1% of the interior.
+    // most three rounds, and none after a round that gained less than 0.25% of the interior.
     double gained = 1;
-    for (int round = 0; round < 3 && chosen.coverage < aim && interior > 0 && gained >= 0.001; ++round) {
+    for (int round = 0; round < 3 && chosen.coverage < aim && interior > 0 && gained >= 0.0025; ++round) {
         const double before = chosen.coverage;
         VoxelBits covered(grid, false);
         for (uint32_t i : chosen.volume) covered.fill(rasterize(grid, candidates[i], 0));
