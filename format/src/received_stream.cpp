@@ -277,7 +277,6 @@ Error ReceivedStream::take_texture_fragment(const PacketView& packet, uint64_t w
         t.pieces.emplace(a, std::vector<uint8_t>(f.data.begin() + (a - begin), f.data.begin() + (b - begin)));
     t.received_bytes += fresh;
     texture_bytes_ += fresh;
-    ++counters_.accepted;
     if (t.received_bytes == t.info.image_size) {
         std::vector<uint8_t> image;
         image.reserve(t.info.image_size);
@@ -294,6 +293,7 @@ Error ReceivedStream::take_texture_fragment(const PacketView& packet, uint64_t w
         t.received_bytes = t.info.image_size;
         t.complete = true;
     }
+    ++counters_.accepted;  // after the image check: a completing fragment that fails it is rejected only
     return Error::Ok;
 }
 
