@@ -128,6 +128,19 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         if (!missing.empty()) r.violations.push_back({std::nullopt, "scene: nodes missing: " + missing});
         missing = missing_ranges(r.stream.scene_meshes(), r.stream.scene_mesh_count());
         if (!missing.empty()) r.violations.push_back({std::nullopt, "scene: meshes missing: " + missing});
+        // Parent links that never reach a root (spec 15.1: no packet can be rejected for a cycle).
+        const auto& nodes = r.stream.scene_nodes();
+        std::string cyclic;
+        for (const auto& [index, node] : nodes) {
+            uint16_t at = index;
+            size_t steps = 0;
+            for (auto it = nodes.find(at); it != nodes.end() && it->second.parent != kNone && steps <= nodes.size();
+                 it = nodes.find(at), ++steps)
+                at = it->second.parent;
+            if (steps > nodes.size()) cyclic += (cyclic.empty() ? "" : ", ") + std::to_string(index);
+        }
+        if (!cyclic.empty())
+            r.violations.push_back({std::nullopt, "scene: the parent chain of node(s) " + cyclic + " runs into a cycle and never reaches a root"});
     }
     if (!r.stream.materials().empty()) {
         std::string missing = missing_ranges(r.stream.materials(), r.stream.materials().begin()->second.material_count);
