@@ -1,26 +1,32 @@
 #!/usr/bin/env python3
-"""An independent format 1.0 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.1 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
     python3 spec/vectors/check_vectors.py --dump valid/minimal   # annotated fields of one vector
 
 It re-derives everything the JSON states (container errors, damaged regions, packet results,
-rejections, counters, stream info, every element's integers and dequantized values, digests) so that a
-disagreement between the spec text and the reference library shows up as a failing vector.
+rejections, counters, stream info, every element's integers and dequantized values, digests; for
+format 1.1 the scene graph, materials, textures and what a receiver shows of them, spec section 15, and
+a 1.0 decoder's view of the same file) so that a disagreement between the spec text and the reference
+library shows up as a failing vector. Every complete PNG texture is also checked to be a PNG file
+(chunk CRCs, IHDR, the inflated image data of the size IHDR announces).
 """
 import json
 import math
 import os
 import struct
 import sys
+import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 MAGIC = b"\xE1LCS"
 SIGNATURE = b"\x89ELC\r\n\x1a\n"
 KNOWN_10 = {1: "STREAM_INFO", 2: "ELLIPSOIDS", 3: "POINTS"}
-# Format 1.1 types (spec section 4): known to the reference library, never present in the 1.0 vectors.
+# Format 1.1 types (spec sections 4 and 15).
 KNOWN_11 = {0x10: "SCENE", 0x11: "MATERIAL", 0x12: "TEXTURE_FRAGMENT"}
+NONE = 0xFFFF
+SLOTS = ("base_color", "metallic_roughness", "normal", "occlusion", "emissive")
 
 
 def crc32c(data, crc=0):
@@ -226,10 +232,146 @@ def fnv(words):
     return "%016x" % h
 
 
+class Body:
+    """Bounded little-endian reads from a record body or payload; reading past the end sets `failed`."""
+
+    def __init__(self, data):
+        self.data, self.pos, self.failed = data, 0, False
+
+    def take(self, fmt):
+        n = struct.calcsize(fmt)
+        if self.pos + n > len(self.data):
+            self.failed = True
+            return (0,) * len(fmt.lstrip("<"))
+        v = struct.unpack_from(fmt, self.data, self.pos)
+        self.pos += n
+        return v
+
+    def name(self):
+        (n,) = self.take("<B")
+        if self.failed or self.pos + n > len(self.data):
+            self.failed = True
+            return ""
+        v = self.data[self.pos:self.pos + n].decode("utf-8")
+        self.pos += n
+        return v
+
+
+def finite(values):
+    return all(math.isfinite(v) for v in values)
+
+
+def decode_scene(p):
+    """Spec 15.1: ((node_count, mesh_count), nodes, meshes) or None when malformed."""
+    if len(p) < 8:
+        return None
+    node_count, mesh_count, record_count = struct.unpack_from("<HHH", p, 0)
+    pos, nodes, meshes = 8, [], []
+    for _ in range(record_count):
+        if pos + 3 > len(p):
+            return None
+        kind, length = struct.unpack_from("<BH", p, pos)
+        pos += 3
+        if pos + length > len(p):
+            return None
+        b = Body(p[pos:pos + length])
+        pos += length
+        if kind == 1:
+            index, parent, mesh, flags = b.take("<HHHB")
+            n = dict(index=index, parent=parent, mesh=mesh, name=b.name())
+            if flags & 1:
+                n["matrix"] = list(b.take("<16f"))
+            else:
+                n["translation"], n["rotation"], n["scale"] = list(b.take("<3f")), list(b.take("<4f")), list(b.take("<3f"))
+            floats = n.get("matrix", []) + n.get("translation", []) + n.get("rotation", []) + n.get("scale", [])
+            if b.failed or index >= node_count or parent == index or (parent != NONE and parent >= node_count) \
+                    or (mesh != NONE and mesh >= mesh_count) or not finite(floats):
+                return None
+            nodes.append(n)
+        elif kind == 2:
+            (index,) = b.take("<H")
+            name = b.name()
+            (count,) = b.take("<H")
+            prims = [dict(zip(("object", "material"), b.take("<HH"))) for _ in range(count)]
+            if b.failed or index >= mesh_count:
+                return None
+            meshes.append(dict(index=index, name=name, primitives=prims))
+        # other kinds: skipped by their length
+    if pos != len(p):
+        return None
+    return (node_count, mesh_count), nodes, meshes
+
+
+def decode_material(p):
+    """Spec 15.2: the material's fields or None when malformed."""
+    if len(p) < 88:
+        return None
+    index, count, alpha, double, name_length = struct.unpack_from("<HHBBB", p, 0)
+    if len(p) != 88 + name_length:
+        return None
+    factors = struct.unpack_from("<10f", p, 8)
+    refs = [(struct.unpack_from("<H", p, 48 + 8 * k)[0], p[48 + 8 * k + 2], struct.unpack_from("<f", p, 48 + 8 * k + 4)[0])
+            for k in range(5)]
+    if index >= count or alpha > 2 or not finite(list(factors) + [r[2] for r in refs]):
+        return None
+    return dict(index=index, material_count=count, alpha=alpha, double_sided=double != 0, factors=list(factors),
+                refs=refs, name=p[88:].decode("utf-8"))
+
+
+def node_json(n):
+    return dict(n, parent=None if n["parent"] == NONE else n["parent"], mesh=None if n["mesh"] == NONE else n["mesh"])
+
+
+def material_json(m):
+    f = m["factors"]
+    textures = {slot: None if ref[0] == NONE else dict(texture=ref[0], texcoord=ref[1], scale=ref[2])
+                for slot, ref in zip(SLOTS, m["refs"])}
+    return dict(index=m["index"], name=m["name"], alpha_mode=("OPAQUE", "MASK", "BLEND")[m["alpha"]],
+                alpha_cutoff=f[9], double_sided=m["double_sided"], base_color=f[0:4], metallic=f[4], roughness=f[5],
+                emissive=f[6:9], textures=textures)
+
+
+def fnv_bytes(data):
+    h = 0xCBF29CE484222325
+    for b in data:
+        h = ((h ^ b) * 0x100000001B3) & 0xFFFFFFFFFFFFFFFF
+    return "%016x" % h
+
+
+def png_problem(data):
+    """None when `data` is a well-formed 8-bit PNG (chunk CRCs, IHDR, inflated size), else what is wrong."""
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        return "no PNG signature"
+    pos, ihdr, idat = 8, None, b""
+    while pos + 12 <= len(data):
+        (length,) = struct.unpack_from(">I", data, pos)
+        kind, body = data[pos + 4:pos + 8], data[pos + 8:pos + 8 + length]
+        (crc,) = struct.unpack_from(">I", data, pos + 8 + length)
+        if zlib.crc32(kind + body) != crc:
+            return "chunk %r: bad CRC" % kind
+        if kind == b"IHDR":
+            ihdr = struct.unpack(">IIBBBBB", body)
+        elif kind == b"IDAT":
+            idat += body
+        elif kind == b"IEND":
+            break
+        pos += 12 + length
+    if ihdr is None or ihdr[2] != 8:
+        return "no 8-bit IHDR"
+    channels = {0: 1, 2: 3, 4: 2, 6: 4}.get(ihdr[3])
+    if channels is None or len(zlib.decompress(idat)) != ihdr[1] * (1 + ihdr[0] * channels):
+        return "image data does not match IHDR"
+    return None
+
+
 class Receiver:
     """Spec 11.1 steps 9..14 and 11.2."""
 
-    def __init__(self):
+    def __init__(self, know_11=True):
+        self.know_11 = know_11
+        self.scene_counts = None  # (node_count, mesh_count) once a SCENE packet was accepted
+        self.nodes, self.meshes, self.materials, self.textures = {}, {}, {}, {}
+        self.material_count = None
         self.stream_id = None
         self.info = None
         self.object_count = 0
@@ -248,16 +390,23 @@ class Receiver:
         if self.stream_id is not None and h["stream_id"] != self.stream_id:
             return self.reject(offset, "stream mismatch")
         t = h["type"]
-        if t not in KNOWN_10 and t not in KNOWN_11:
+        if t not in KNOWN_10 and (t not in KNOWN_11 or not self.know_11):
             if not h["flags"] & 1:
                 return self.reject(offset, "unknown critical type")
             self.stream_id = h["stream_id"]
             self.counters["skipped"] += 1
             self.newest_minor = max(self.newest_minor, h["minor"])
             return "skipped"
-        if t in KNOWN_11:
-            raise SystemExit("format 1.1 packets are outside what this 1.0 checker decodes")
-        result = self.stream_info(h, offset) if t == 1 else self.object_packet(h, offset)
+        if t == 1:
+            result = self.stream_info(h, offset)
+        elif t == 0x10:
+            result = self.scene(h, offset)
+        elif t == 0x11:
+            result = self.material(h, offset)
+        elif t == 0x12:
+            result = self.fragment(h, offset)
+        else:
+            result = self.object_packet(h, offset)
         if result in ("accepted", "duplicate", "held"):
             self.stream_id = h["stream_id"]
             self.newest_minor = max(self.newest_minor, h["minor"])
@@ -328,21 +477,148 @@ class Receiver:
         self.counters["accepted" if news else "duplicates"] += 1
         return "accepted" if news else "duplicate"
 
+    def news(self, fresh):
+        self.counters["accepted" if fresh else "duplicates"] += 1
+        return "accepted" if fresh else "duplicate"
 
-def decode(buf):
-    err, packets, damaged = read_container(buf)
-    out = dict(file_size=len(buf), container_error=err, damaged=damaged)
-    r = Receiver()
-    plist = []
-    for offset, size, h in packets:
-        result = r.add(h, offset)
-        name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or "UNKNOWN(0x%02X)" % h["type"]
-        plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
-                          flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
-                          object_id=h["object_id"], payload_length=h["payload_length"], result=result))
-    out.update(packets=plist, rejections=r.rejections, counters=r.counters, stream_id=r.stream_id,
-               newest_minor=r.newest_minor)
-    out["stream_info"] = dict(r.info, object_count=r.object_count) if r.info is not None else None
+    def scene(self, h, offset):
+        """Spec 15.1."""
+        d = decode_scene(h["payload"])
+        if d is None:
+            return self.reject(offset, "malformed payload")
+        counts, nodes, meshes = d
+        if self.scene_counts is not None and counts != self.scene_counts:
+            return self.reject(offset, "stream mismatch")
+        for table, records in ((self.nodes, nodes), (self.meshes, meshes)):
+            for r in records:
+                if r["index"] in table and table[r["index"]] != r:
+                    return self.reject(offset, "stream mismatch")
+        self.scene_counts = counts
+        fresh = False
+        for table, records in ((self.nodes, nodes), (self.meshes, meshes)):
+            for r in records:
+                if r["index"] not in table:
+                    table[r["index"]] = r
+                    fresh = True
+        return self.news(fresh)
+
+    def material(self, h, offset):
+        """Spec 15.2."""
+        m = decode_material(h["payload"])
+        if m is None:
+            return self.reject(offset, "malformed payload")
+        count = m.pop("material_count")
+        if self.materials and count != self.material_count:
+            return self.reject(offset, "stream mismatch")
+        if m["index"] in self.materials:
+            if self.materials[m["index"]] != m:
+                return self.reject(offset, "stream mismatch")
+            return self.news(False)
+        self.material_count = count
+        self.materials[m["index"]] = m
+        return self.news(True)
+
+    def fragment(self, h, offset):
+        """Spec 15.3: pieces keyed by byte offset; complete once every byte arrived and the CRC matches."""
+        p = h["payload"]
+        if len(p) <= 28:
+            return self.reject(offset, "malformed payload")
+        index, count, itype = struct.unpack_from("<HHB", p, 0)
+        sampler = list(struct.unpack_from("<4H", p, 6))
+        size, crc, at = struct.unpack_from("<III", p, 16)
+        data = p[28:]
+        if index >= count or itype not in (1, 2) or at + len(data) > size:
+            return self.reject(offset, "malformed payload")
+        desc = dict(index=index, texture_count=count, image_type=itype, sampler=sampler, image_size=size, image_crc=crc)
+        if self.textures and count != next(iter(self.textures.values()))["desc"]["texture_count"]:
+            return self.reject(offset, "stream mismatch")
+        t = self.textures.setdefault(index, dict(desc=desc, have=bytearray(size), got=[False] * size,
+                                                 received=0, complete=False, image=None))
+        if t["desc"] != desc:
+            return self.reject(offset, "stream mismatch")
+        if t["complete"]:
+            return self.news(False)
+        fresh = 0
+        for k, b in enumerate(data):
+            if not t["got"][at + k]:  # the first copy of a byte is kept
+                t["got"][at + k] = True
+                t["have"][at + k] = b
+                fresh += 1
+        if not fresh:
+            return self.news(False)
+        t["received"] += fresh
+        if t["received"] == size:
+            if crc32c(t["have"]) != crc:
+                t["got"], t["received"] = [False] * size, 0
+                return self.reject(offset, "stream mismatch")
+            t["complete"], t["image"] = True, bytes(t["have"])
+        return self.news(True)
+
+    def scene_json(self):
+        nodes = [self.nodes[k] for k in sorted(self.nodes)]
+        meshes = [self.meshes[k] for k in sorted(self.meshes)]
+        textures = []
+        for k in sorted(self.textures):
+            t = self.textures[k]
+            d = t["desc"]
+            missing, run = [], None
+            for i, g in enumerate(t["got"]):
+                if not g and run is None:
+                    run = i
+                elif g and run is not None:
+                    missing.append([run, i])
+                    run = None
+            if run is not None:
+                missing.append([run, d["image_size"]])
+            textures.append(dict(index=k, image_type="PNG" if d["image_type"] == 1 else "JPEG", sampler=d["sampler"],
+                                 image_size=d["image_size"], image_crc=d["image_crc"], received_bytes=t["received"],
+                                 missing=[] if t["complete"] else missing, complete=t["complete"],
+                                 image_digest=fnv_bytes(t["image"]) if t["complete"] else None))
+        return dict(node_count=self.scene_counts[0] if self.scene_counts else None,
+                    mesh_count=self.scene_counts[1] if self.scene_counts else None,
+                    nodes=[node_json(n) for n in nodes], meshes=meshes,
+                    material_count=self.material_count if self.materials else None,
+                    materials=[material_json(self.materials[k]) for k in sorted(self.materials)],
+                    texture_count=self.textures[min(self.textures)]["desc"]["texture_count"] if self.textures else None,
+                    textures=textures, shown=self.shown())
+
+    def shown(self):
+        """Spec 15.4: what a receiver shows."""
+        done = [k for k in sorted(self.textures) if self.textures[k]["complete"]]
+        materials, waiting, ignored = [], [], []
+        for k in sorted(self.materials):
+            ok = True
+            for slot, ref in zip(SLOTS, self.materials[k]["refs"]):
+                texture, texcoord, _ = ref
+                if texture == NONE:
+                    continue
+                if texcoord != 0:
+                    ignored.append(dict(material=k, slot=slot, texcoord=texcoord))
+                    continue
+                if texture in done:
+                    continue
+                ok = False
+                t = self.textures.get(texture)
+                waiting.append(dict(material=k, slot=slot, texture=texture, received_bytes=t["received"] if t else 0,
+                                    image_size=t["desc"]["image_size"] if t else None))
+            if ok:
+                materials.append(k)
+        nodes = []
+        for k in sorted(self.nodes):
+            at, seen, reaches = k, set(), False
+            while at in self.nodes and at not in seen:
+                seen.add(at)
+                if self.nodes[at]["parent"] == NONE:
+                    reaches = True
+                    break
+                at = self.nodes[at]["parent"]
+            if reaches:
+                mesh = self.nodes[k]["mesh"]
+                nodes.append(dict(index=k, mesh=mesh if mesh != NONE and mesh in self.meshes else None))
+        return dict(textures=done, materials=materials, waiting=waiting, ignored_references=ignored, nodes=nodes)
+
+
+def objects_json(r):
     objects = []
     for i, obj in enumerate(r.objects):
         o = dict(id=i, info=obj["info"], ellipsoids_received=len(obj["ellipsoids"]),
@@ -358,7 +634,43 @@ def decode(buf):
             o["points"] = [dict(index=k, q=q, **dequantize_point(q, r.info, obj["info"]))
                            for k, q in sorted(obj["points"].items())] if o["points_listed"] else []
         objects.append(o)
-    out["objects"] = objects
+    return objects
+
+
+def decode(buf):
+    err, packets, damaged = read_container(buf)
+    out = dict(file_size=len(buf), container_error=err, damaged=damaged)
+    r = Receiver()
+    old = Receiver(know_11=False)  # a format 1.0 decoder: the 1.1 types are unknown to it (spec 9)
+    plist = []
+    for offset, size, h in packets:
+        result = r.add(h, offset)
+        old.add(h, offset)
+        name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or "UNKNOWN(0x%02X)" % h["type"]
+        plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
+                          flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
+                          object_id=h["object_id"], payload_length=h["payload_length"], result=result))
+    out.update(packets=plist, rejections=r.rejections, counters=r.counters, stream_id=r.stream_id,
+               newest_minor=r.newest_minor)
+    info = lambda rx: dict(rx.info, object_count=rx.object_count) if rx.info is not None else None
+    out["stream_info"] = info(r)
+    out["objects"] = objects_json(r)
+    any_scene = any(h["type"] in KNOWN_11 for _, _, h in packets)
+    out["scene"] = r.scene_json() if any_scene else None
+    if any_scene:
+        out["as_1_0"] = dict(counters=old.counters, newest_minor=old.newest_minor,
+                             same_objects=info(old) == out["stream_info"] and objects_json(old) == out["objects"])
+    return out, r
+
+
+def png_failures(r, path):
+    """Every complete PNG texture must be a PNG file."""
+    out = []
+    for k, t in sorted(r.textures.items()):
+        if t["complete"] and t["desc"]["image_type"] == 1:
+            problem = png_problem(t["image"])
+            if problem:
+                out.append("%s: texture %d: %s" % (path, k, problem))
     return out
 
 
@@ -393,7 +705,7 @@ def compare(expected, actual, path, diffs):
 
 def main(argv):
     if len(argv) == 3 and argv[1] == "--dump":
-        print(json.dumps(decode(open(os.path.join(HERE, argv[2] + ".ellc"), "rb").read()), indent=1))
+        print(json.dumps(decode(open(os.path.join(HERE, argv[2] + ".ellc"), "rb").read())[0], indent=1))
         return 0
     failures = 0
     count = 0
@@ -403,8 +715,8 @@ def main(argv):
                 continue
             base = os.path.join(HERE, subset, name[:-5])
             expected = json.load(open(base + ".json"))
-            actual = decode(open(base + ".ellc", "rb").read())
-            diffs = []
+            actual, receiver = decode(open(base + ".ellc", "rb").read())
+            diffs = png_failures(receiver, subset + "/" + name[:-5])
             compare(expected, actual, subset + "/" + name[:-5], diffs)
             count += 1
             if diffs:

@@ -1,4 +1,4 @@
-// The expected decode of a conformance vector as JSON: what a format 1.0 decoder makes of a container
+// The expected decode of a conformance vector as JSON: what a format 1.1 decoder makes of a container
 // file (spec/format.md sections 10 and 11). The vector generator (make_vectors.cpp) writes it next to
 // each .ellc; tests/test_conformance.cpp recomputes it with the library and compares. The JSON layout
 // is described in spec/vectors/README.md.
@@ -7,6 +7,7 @@
 #include <ellicast/format.h>
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -117,60 +118,9 @@ inline nlohmann::json object_info_json(const ObjectInfo& o) {
             {"texcoord_scale", floats(o.texcoord_scale.data(), 2)}};
 }
 
-// Decodes a container held in memory the way spec/format.md describes and returns the result.
-inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
+// The objects a receiver holds, as the JSON lists them.
+inline nlohmann::json objects_json(const ReceivedStream& stream) {
     using nlohmann::json;
-    json out;
-    out["file_size"] = bytes.size();
-    ContainerContents contents = read_container(bytes);
-    out["container_error"] = contents.header_error == Error::Ok ? json(nullptr) : json(reason_name(contents.header_error));
-
-    ReceivedStream stream;
-    json packets = json::array();
-    for (const ContainerPacket& p : contents.packets) {
-        const ReceiveCounters before = stream.counters();
-        Error e = stream.add_parsed(p.view, p.offset);
-        const ReceiveCounters& after = stream.counters();
-        std::string result = reason_name(e);
-        if (e == Error::Ok) {
-            if (after.accepted > before.accepted) result = "accepted";
-            else if (after.duplicates > before.duplicates) result = "duplicate";
-            else if (after.skipped > before.skipped) result = "skipped";
-            else result = "held";
-        }
-        const PacketHeader& h = p.view.header;
-        char version[8];
-        std::snprintf(version, sizeof version, "%u.%u", h.version_major, h.version_minor);
-        packets.push_back({{"offset", p.offset},
-                           {"size", p.view.size},
-                           {"version", version},
-                           {"type", packet_type_name(h.type)},
-                           {"flags", h.flags},
-                           {"stream_id", h.stream_id},
-                           {"sequence", h.sequence},
-                           {"object_id", h.object_id},
-                           {"payload_length", h.payload_length},
-                           {"result", result}});
-    }
-    out["packets"] = packets;
-
-    json damaged = json::array();
-    for (const DamagedRegion& d : contents.damaged)
-        damaged.push_back({{"offset", d.offset}, {"length", d.length}, {"reason", reason_name(d.first_error)}});
-    out["damaged"] = damaged;
-
-    json rejections = json::array();
-    for (const Rejection& r : stream.rejections())
-        rejections.push_back({{"offset", r.where}, {"reason", reason_name(r.error)}, {"detail", r.detail}});
-    out["rejections"] = rejections;
-
-    const ReceiveCounters& c = stream.counters();
-    out["counters"] = {{"accepted", c.accepted}, {"duplicates", c.duplicates}, {"skipped", c.skipped},
-                       {"rejected", c.rejected}, {"held", c.pending}};
-    out["stream_id"] = stream.has_stream_id() ? json(stream.stream_id()) : json(nullptr);
-    out["newest_minor"] = stream.newest_minor();
-    out["stream_info"] = stream.info() ? stream_info_json(*stream.info(), stream.objects().size()) : json(nullptr);
-
     json objects = json::array();
     for (size_t i = 0; i < stream.objects().size(); ++i) {
         const ReceivedObject& object = stream.objects()[i];
@@ -216,7 +166,243 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
         }
         objects.push_back(o);
     }
-    out["objects"] = objects;
+    return objects;
+}
+
+inline nlohmann::json counters_json(const ReceiveCounters& c) {
+    return {{"accepted", c.accepted}, {"duplicates", c.duplicates}, {"skipped", c.skipped},
+            {"rejected", c.rejected}, {"held", c.pending}};
+}
+
+// ---- Format 1.1 scene (spec section 15) ----
+
+inline bool is_scene_type(uint8_t type) {
+    return type == uint8_t(PacketType::Scene) || type == uint8_t(PacketType::Material) ||
+           type == uint8_t(PacketType::TextureFragment);
+}
+
+inline nlohmann::json none_or(uint16_t v) { return v == kNone ? nlohmann::json(nullptr) : nlohmann::json(v); }
+
+// FNV-1a 64 over the bytes of a complete texture image.
+inline std::string bytes_digest(const std::vector<uint8_t>& bytes) {
+    uint64_t h = 0xCBF29CE484222325ull;
+    for (uint8_t b : bytes) {
+        h ^= b;
+        h *= 0x100000001B3ull;
+    }
+    char buf[20];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+}
+
+inline const char* kTextureSlots[5] = {"base_color", "metallic_roughness", "normal", "occlusion", "emissive"};
+
+inline std::array<const TextureRef*, 5> texture_refs(const Material& m) {
+    return {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture, &m.occlusion_texture,
+            &m.emissive_texture};
+}
+
+inline nlohmann::json node_json(const SceneNode& n) {
+    nlohmann::json j = {{"index", n.index}, {"parent", none_or(n.parent)}, {"mesh", none_or(n.mesh)}, {"name", n.name}};
+    if (n.has_matrix) {
+        j["matrix"] = floats(n.matrix.data(), 16);
+    } else {
+        j["translation"] = floats(n.translation.data(), 3);
+        j["rotation"] = floats(n.rotation.data(), 4);
+        j["scale"] = floats(n.scale.data(), 3);
+    }
+    return j;
+}
+
+inline nlohmann::json material_json(const Material& m) {
+    static const char* modes[] = {"OPAQUE", "MASK", "BLEND"};
+    nlohmann::json textures;
+    auto refs = texture_refs(m);
+    for (size_t i = 0; i < refs.size(); ++i)
+        textures[kTextureSlots[i]] = refs[i]->texture == kNone
+                                         ? nlohmann::json(nullptr)
+                                         : nlohmann::json{{"texture", refs[i]->texture},
+                                                          {"texcoord", refs[i]->texcoord},
+                                                          {"scale", shortest(refs[i]->scale)}};
+    return {{"index", m.index},
+            {"name", m.name},
+            {"alpha_mode", modes[static_cast<int>(m.alpha_mode)]},
+            {"alpha_cutoff", shortest(m.alpha_cutoff)},
+            {"double_sided", m.double_sided},
+            {"base_color", floats(m.base_color.data(), 4)},
+            {"metallic", shortest(m.metallic)},
+            {"roughness", shortest(m.roughness)},
+            {"emissive", floats(m.emissive.data(), 3)},
+            {"textures", textures}};
+}
+
+inline nlohmann::json texture_json(const ReceivedStream::ReceivedTexture& t) {
+    const TextureInfo& i = t.info;
+    nlohmann::json missing = nlohmann::json::array();
+    if (!t.complete) {
+        uint64_t cursor = 0;
+        for (const auto& [offset, bytes] : t.pieces) {
+            if (offset > cursor) missing.push_back({cursor, offset});
+            cursor = uint64_t(offset) + bytes.size();
+        }
+        if (cursor < i.image_size) missing.push_back({cursor, i.image_size});
+    }
+    return {{"index", i.index},
+            {"image_type", i.image_type == ImageType::Png ? "PNG" : "JPEG"},
+            {"sampler", {i.mag_filter, i.min_filter, i.wrap_s, i.wrap_t}},
+            {"image_size", i.image_size},
+            {"image_crc", i.image_crc},
+            {"received_bytes", t.complete ? uint64_t(i.image_size) : t.received_bytes},
+            {"missing", missing},
+            {"complete", t.complete},
+            {"image_digest", t.complete ? nlohmann::json(bytes_digest(t.image)) : nlohmann::json(nullptr)}};
+}
+
+// What a receiver shows of the scene (spec 15.4): complete textures; materials whose texture
+// references on set 0 are all complete (the others wait, named with how much of the texture
+// arrived); references on other sets ignored; nodes whose parent chain reaches a root through
+// arrived nodes, with their mesh when its record arrived.
+inline nlohmann::json shown_json(const ReceivedStream& s) {
+    using nlohmann::json;
+    json textures = json::array(), materials = json::array(), waiting = json::array(), ignored = json::array(),
+         nodes = json::array();
+    for (const auto& [index, t] : s.textures())
+        if (t.complete) textures.push_back(index);
+    for (const auto& [index, m] : s.materials()) {
+        bool shown = true;
+        auto refs = texture_refs(m);
+        for (size_t k = 0; k < refs.size(); ++k) {
+            const TextureRef& r = *refs[k];
+            if (r.texture == kNone) continue;
+            if (r.texcoord != 0) {
+                ignored.push_back({{"material", index}, {"slot", kTextureSlots[k]}, {"texcoord", r.texcoord}});
+                continue;
+            }
+            auto t = s.textures().find(r.texture);
+            if (t != s.textures().end() && t->second.complete) continue;
+            shown = false;
+            waiting.push_back({{"material", index},
+                               {"slot", kTextureSlots[k]},
+                               {"texture", r.texture},
+                               {"received_bytes", t == s.textures().end() ? 0 : t->second.received_bytes},
+                               {"image_size", t == s.textures().end() ? json(nullptr) : json(t->second.info.image_size)}});
+        }
+        if (shown) materials.push_back(index);
+    }
+    const auto& all = s.scene_nodes();
+    for (const auto& [index, n] : all) {
+        uint16_t at = index;
+        bool reaches = false;
+        for (size_t steps = 0; steps <= all.size(); ++steps) {
+            auto it = all.find(at);
+            if (it == all.end()) break;
+            if (it->second.parent == kNone) {
+                reaches = true;
+                break;
+            }
+            at = it->second.parent;
+        }
+        if (!reaches) continue;
+        const bool has_mesh = n.mesh != kNone && s.scene_meshes().count(n.mesh);
+        nodes.push_back({{"index", index}, {"mesh", has_mesh ? json(n.mesh) : json(nullptr)}});
+    }
+    return {{"textures", textures}, {"materials", materials}, {"waiting", waiting},
+            {"ignored_references", ignored}, {"nodes", nodes}};
+}
+
+inline nlohmann::json scene_json(const ReceivedStream& s) {
+    using nlohmann::json;
+    json nodes = json::array(), meshes = json::array(), materials = json::array(), textures = json::array();
+    for (const auto& [index, n] : s.scene_nodes()) nodes.push_back(node_json(n));
+    for (const auto& [index, m] : s.scene_meshes()) {
+        json prims = json::array();
+        for (const auto& p : m.primitives) prims.push_back({{"object", p.object}, {"material", none_or(p.material)}});
+        meshes.push_back({{"index", m.index}, {"name", m.name}, {"primitives", prims}});
+    }
+    for (const auto& [index, m] : s.materials()) materials.push_back(material_json(m));
+    for (const auto& [index, t] : s.textures()) textures.push_back(texture_json(t));
+    const bool scene = s.has_scene() || !s.scene_nodes().empty() || !s.scene_meshes().empty();
+    return {{"node_count", scene ? json(s.scene_node_count()) : json(nullptr)},
+            {"mesh_count", scene ? json(s.scene_mesh_count()) : json(nullptr)},
+            {"nodes", nodes},
+            {"meshes", meshes},
+            {"material_count", s.materials().empty() ? json(nullptr) : json(s.materials().begin()->second.material_count)},
+            {"materials", materials},
+            {"texture_count",
+             s.textures().empty() ? json(nullptr) : json(s.textures().begin()->second.info.texture_count)},
+            {"textures", textures},
+            {"shown", shown_json(s)}};
+}
+
+// Decodes a container held in memory the way spec/format.md describes and returns the result.
+inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
+    using nlohmann::json;
+    json out;
+    out["file_size"] = bytes.size();
+    ContainerContents contents = read_container(bytes);
+    out["container_error"] = contents.header_error == Error::Ok ? json(nullptr) : json(reason_name(contents.header_error));
+
+    ReceivedStream stream;
+    // A format 1.0 decoder's view: the 1.1 scene types are unknown to it (spec section 9).
+    ReceivedStream as_1_0;
+    bool any_scene_packet = false;
+    json packets = json::array();
+    for (const ContainerPacket& p : contents.packets) {
+        const ReceiveCounters before = stream.counters();
+        Error e = stream.add_parsed(p.view, p.offset);
+        const ReceiveCounters& after = stream.counters();
+        std::string result = reason_name(e);
+        if (e == Error::Ok) {
+            if (after.accepted > before.accepted) result = "accepted";
+            else if (after.duplicates > before.duplicates) result = "duplicate";
+            else if (after.skipped > before.skipped) result = "skipped";
+            else result = "held";
+        }
+        const PacketHeader& h = p.view.header;
+        PacketView old = p.view;
+        if (is_scene_type(h.type)) {
+            any_scene_packet = true;
+            old.header.type = 0xFF;  // a type a 1.0 decoder does not know
+        }
+        as_1_0.add_parsed(old, p.offset);
+        char version[8];
+        std::snprintf(version, sizeof version, "%u.%u", h.version_major, h.version_minor);
+        packets.push_back({{"offset", p.offset},
+                           {"size", p.view.size},
+                           {"version", version},
+                           {"type", packet_type_name(h.type)},
+                           {"flags", h.flags},
+                           {"stream_id", h.stream_id},
+                           {"sequence", h.sequence},
+                           {"object_id", h.object_id},
+                           {"payload_length", h.payload_length},
+                           {"result", result}});
+    }
+    out["packets"] = packets;
+
+    json damaged = json::array();
+    for (const DamagedRegion& d : contents.damaged)
+        damaged.push_back({{"offset", d.offset}, {"length", d.length}, {"reason", reason_name(d.first_error)}});
+    out["damaged"] = damaged;
+
+    json rejections = json::array();
+    for (const Rejection& r : stream.rejections())
+        rejections.push_back({{"offset", r.where}, {"reason", reason_name(r.error)}, {"detail", r.detail}});
+    out["rejections"] = rejections;
+
+    out["counters"] = counters_json(stream.counters());
+    out["stream_id"] = stream.has_stream_id() ? json(stream.stream_id()) : json(nullptr);
+    out["newest_minor"] = stream.newest_minor();
+    out["stream_info"] = stream.info() ? stream_info_json(*stream.info(), stream.objects().size()) : json(nullptr);
+    out["objects"] = objects_json(stream);
+    // Format 1.1: present when the file holds any SCENE, MATERIAL or TEXTURE_FRAGMENT packet.
+    out["scene"] = any_scene_packet ? scene_json(stream) : json(nullptr);
+    if (any_scene_packet) {
+        json info_1_0 = as_1_0.info() ? stream_info_json(*as_1_0.info(), as_1_0.objects().size()) : json(nullptr);
+        out["as_1_0"] = {{"counters", counters_json(as_1_0.counters())},
+                         {"newest_minor", as_1_0.newest_minor()},
+                         {"same_objects", info_1_0 == out["stream_info"] && objects_json(as_1_0) == out["objects"]}};
+    }
     return out;
 }
 

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -580,6 +581,430 @@ void faulty_vectors(Writer& w) {
     }
 }
 
+// ------------------------------------------------------------------------------------------------
+// Format 1.1: scene, materials, textures (spec section 15)
+
+// CRC-32 of PNG chunks (ISO-HDLC, reflected polynomial 0xEDB88320), bitwise.
+uint32_t png_crc(const uint8_t* p, size_t n) {
+    uint32_t c = 0xFFFFFFFFu;
+    while (n--) {
+        c ^= *p++;
+        for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    }
+    return c ^ 0xFFFFFFFFu;
+}
+
+// A real w x h RGB PNG file: signature, IHDR, one IDAT (zlib stream of stored deflate blocks), IEND.
+// Every byte is fixed by (w, h, seed), so the vectors stay deterministic.
+std::vector<uint8_t> make_png(uint32_t w, uint32_t h, uint64_t seed) {
+    std::vector<uint8_t> raw;
+    Rng rng(seed);
+    for (uint32_t y = 0; y < h; ++y) {
+        raw.push_back(0);  // filter: none
+        for (uint32_t x = 0; x < w; ++x) {
+            raw.push_back(uint8_t(x * 255 / std::max(1u, w - 1)));
+            raw.push_back(uint8_t(y * 255 / std::max(1u, h - 1)));
+            raw.push_back(uint8_t(rng.next()));
+        }
+    }
+    std::vector<uint8_t> z = {0x78, 0x01};
+    for (size_t at = 0; at < raw.size(); at += 65535) {
+        const size_t n = std::min<size_t>(65535, raw.size() - at);
+        z.push_back(at + n == raw.size() ? 1 : 0);
+        z.push_back(uint8_t(n));
+        z.push_back(uint8_t(n >> 8));
+        z.push_back(uint8_t(~n));
+        z.push_back(uint8_t(~n >> 8));
+        z.insert(z.end(), raw.begin() + long(at), raw.begin() + long(at + n));
+    }
+    uint32_t a = 1, b = 0;
+    for (uint8_t v : raw) {
+        a = (a + v) % 65521;
+        b = (b + a) % 65521;
+    }
+    const uint32_t adler = (b << 16) | a;
+    for (int i = 3; i >= 0; --i) z.push_back(uint8_t(adler >> (8 * i)));
+
+    std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+    auto chunk = [&](const char* type, const std::vector<uint8_t>& data) {
+        for (int i = 3; i >= 0; --i) png.push_back(uint8_t(data.size() >> (8 * i)));
+        const size_t start = png.size();
+        png.insert(png.end(), type, type + 4);
+        png.insert(png.end(), data.begin(), data.end());
+        const uint32_t crc = png_crc(png.data() + start, png.size() - start);
+        for (int i = 3; i >= 0; --i) png.push_back(uint8_t(crc >> (8 * i)));
+    };
+    std::vector<uint8_t> ihdr;
+    for (uint32_t v : {w, h})
+        for (int i = 3; i >= 0; --i) ihdr.push_back(uint8_t(v >> (8 * i)));
+    ihdr.insert(ihdr.end(), {8, 2, 0, 0, 0});  // 8 bits, RGB, deflate, adaptive filtering, no interlace
+    chunk("IHDR", ihdr);
+    chunk("IDAT", z);
+    chunk("IEND", {});
+    return png;
+}
+
+// A small car: a root, a body (matrix transform) with two instances of one wheel mesh (TRS), and a
+// lamp node without mesh; two materials (a textured, double-sided MASK paint; a BLEND rubber with
+// a normal map); two PNG textures.
+SceneDescription make_scene() {
+    SceneDescription s;
+    SceneNode root;
+    root.index = 0;
+    root.name = "Car";
+    root.translation = {1, 0, -2};
+    root.rotation = {0, 0.38268343f, 0, 0.9238795f};  // 45 degrees about y
+    SceneNode body;
+    body.index = 1;
+    body.parent = 0;
+    body.mesh = 0;
+    body.name = "Body";
+    body.has_matrix = true;
+    body.matrix = {2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0.5f, 0, 1};  // column-major: scale x 2, lift 0.5
+    SceneNode front;
+    front.index = 2;
+    front.parent = 1;
+    front.mesh = 1;
+    front.name = "Wheel.Front";
+    front.translation = {0.4f, -0.3f, 0};
+    front.scale = {0.5f, 1, 1};
+    SceneNode back = front;
+    back.index = 3;
+    back.name = "Wheel.Back";
+    back.translation = {-0.4f, -0.3f, 0};
+    SceneNode lamp;
+    lamp.index = 4;
+    lamp.parent = 0;
+    lamp.name = "Lampe \xC3\xBC";  // UTF-8
+    lamp.translation = {0, 1.5f, 0};
+    s.nodes = {root, body, front, back, lamp};
+    s.meshes = {{0, "Body", {{0, 0}}}, {1, "Wheel", {{1, 1}}}};
+
+    Material paint;
+    paint.name = "Paint";
+    paint.base_color = {1, 0.9f, 0.8f, 1};
+    paint.metallic = 0.25f;
+    paint.roughness = 0.6f;
+    paint.emissive = {0.1f, 0.05f, 0};
+    paint.alpha_mode = AlphaMode::Mask;
+    paint.alpha_cutoff = 0.3f;
+    paint.double_sided = true;
+    paint.base_color_texture = {0, 0, 1};
+    Material rubber;
+    rubber.name = "Rubber";
+    rubber.base_color = {0.05f, 0.05f, 0.06f, 0.8f};
+    rubber.metallic = 0;
+    rubber.roughness = 0.9f;
+    rubber.alpha_mode = AlphaMode::Blend;
+    rubber.normal_texture = {1, 0, 0.5f};
+    s.materials = {paint, rubber};
+
+    SceneDescription::Texture checker;
+    checker.info.image_type = ImageType::Png;
+    checker.info.mag_filter = 9729;  // LINEAR
+    checker.info.min_filter = 9987;  // LINEAR_MIPMAP_LINEAR
+    checker.info.wrap_s = 33071;     // CLAMP_TO_EDGE
+    checker.info.wrap_t = 10497;     // REPEAT
+    checker.image = make_png(12, 12, 41);
+    SceneDescription::Texture bumps;
+    bumps.info.image_type = ImageType::Png;
+    bumps.image = make_png(4, 4, 42);
+    s.textures = {checker, bumps};
+    return s;
+}
+
+// The car's geometry (format 1.1 packets, as the library writes them) and its scene packets,
+// numbered after the geometry.
+struct SceneStream {
+    Stream geometry;
+    ScenePackets scene;
+    Packets all() const {
+        Packets out = geometry.all();
+        for (const auto* group : {&scene.scene, &scene.materials, &scene.textures})
+            out.insert(out.end(), group->begin(), group->end());
+        return out;
+    }
+};
+
+SceneStream make_scene_stream(const SceneDescription& scene, uint16_t packet_size) {
+    SceneStream s;
+    StreamInfo info = default_info({make_object({-1, -1, -1}, 2, 6, 30, kAttrNormal | kAttrTexcoord),
+                                    make_object({-0.5f, -0.5f, -0.5f}, 1, 4, 20, kAttrNormal)},
+                                   packet_size);
+    Rng rng(30);
+    for (const ObjectInfo& o : info.objects) s.geometry.contents.push_back(make_content(info, o, rng));
+    s.geometry.info = info;
+    if (packetize_stream(info, s.geometry.contents, kStreamId, s.geometry.packets) != Error::Ok) {
+        std::cerr << "make_vectors: packetize_stream failed\n";
+        std::exit(1);
+    }
+    const uint32_t next = uint32_t(s.geometry.all().size());
+    if (packetize_scene(scene, packet_size, kStreamId, next, s.scene) != Error::Ok) {
+        std::cerr << "make_vectors: packetize_scene failed\n";
+        std::exit(1);
+    }
+    return s;
+}
+
+// A SCENE packet written from a batch as given (packetize_scene refuses bad references; the
+// faulty vectors need them).
+Packet scene_packet(const SceneBatch& batch, uint32_t sequence) {
+    PacketHeader h;
+    h.type = uint8_t(PacketType::Scene);
+    h.flags = kFlagSkippable;
+    h.stream_id = kStreamId;
+    h.sequence = sequence;
+    h.object_id = kStreamObjectId;
+    return write_packet(h, encode_scene_payload(batch));
+}
+
+// The whole node and mesh tables of `scene` in one SCENE packet.
+SceneBatch whole_scene(const SceneDescription& scene) {
+    return {uint16_t(scene.nodes.size()), uint16_t(scene.meshes.size()), scene.nodes, scene.meshes};
+}
+
+// Offsets in a TEXTURE_FRAGMENT payload (spec 15.3).
+constexpr size_t kFragImageSize = kHeaderSize + 16, kFragImageCrc = kHeaderSize + 20, kFragOffset = kHeaderSize + 24,
+                 kFragData = kHeaderSize + 28;
+
+void scene_vectors(Writer& w) {
+    const SceneDescription scene = make_scene();
+    const SceneStream base = make_scene_stream(scene, 200);
+    const Packets& fragments = base.scene.textures;  // texture 0: 4 fragments, texture 1: 1 fragment
+    {
+        // Fragments out of order, one byte-identical duplicate and one retransmission.
+        Packets sent = base.geometry.all();
+        for (const auto* group : {&base.scene.scene, &base.scene.materials}) sent.insert(sent.end(), group->begin(), group->end());
+        Packets frags = fragments;
+        Rng rng(31);
+        for (size_t i = frags.size(); i > 1; --i) std::swap(frags[i - 1], frags[rng.below(i)]);
+        for (size_t i = 0; i < frags.size(); ++i) {
+            sent.push_back(frags[i]);
+            if (i == 1) sent.push_back(frags[i]);
+            if (i == 3) {
+                Packet again = frags[0];
+                restamp_packet(again, 900);
+                sent.push_back(again);
+            }
+        }
+        w.write("valid", "scene",
+                "a format 1.1 scene (spec 15): 5 nodes (a root with TRS, a body with a matrix, one wheel mesh instanced "
+                "by two nodes, a lamp without mesh, a UTF-8 name) over 3 SCENE packets, 2 materials (textured "
+                "double-sided MASK paint with cutoff 0.3; BLEND rubber with a normal map of scale 0.5), 2 PNG textures "
+                "(512 bytes in 4 fragments, 120 bytes in 1), the fragments out of order with a duplicate and a "
+                "retransmission; every texture complete, every material shown",
+                sent);
+    }
+    {
+        // Smallest packets: one record per SCENE packet; everything scene-level sent first and twice.
+        const SceneStream small = make_scene_stream(scene, kMinPacketSize);
+        Packets sent;
+        for (auto it = small.scene.textures.rbegin(); it != small.scene.textures.rend(); ++it) sent.push_back(*it);
+        for (const auto& p : small.scene.materials) sent.push_back(p);
+        for (auto it = small.scene.scene.rbegin(); it != small.scene.scene.rend(); ++it) sent.push_back(*it);
+        uint32_t sequence = 2000;
+        for (const auto* group : {&small.scene.scene, &small.scene.materials})
+            for (Packet p : *group) {
+                restamp_packet(p, sequence++);
+                sent.push_back(p);
+            }
+        for (const auto& p : small.geometry.all()) sent.push_back(p);
+        w.write("unusual", "scene_split_repeated",
+                "packet size 128: the SCENE table split over one packet per record, sent in reverse order before the "
+                "geometry, with the texture fragments (reversed) and materials first; SCENE and MATERIAL packets "
+                "repeated with new sequence numbers are duplicates; decodes to the scene of valid/scene",
+                sent);
+    }
+    {
+        // What a later minor version may add (spec 15.1): a record of an unknown kind, and a node
+        // record with fields appended after those of 1.1.
+        Packets sent = base.geometry.all();
+        std::vector<uint8_t> payload = payload_of(base.scene.scene[0]);
+        put16(payload, 4, uint16_t(get16(payload, 4) + 1));  // record_count
+        // Grow the first node record by 6 bytes.
+        const uint16_t length = get16(payload, 9);
+        put16(payload, 9, uint16_t(length + 6));
+        const std::vector<uint8_t> extra = {0xE1, 0xE2, 0xE3, 0xE4, 0xE5, 0xE6};
+        payload.insert(payload.begin() + 11 + length, extra.begin(), extra.end());
+        const std::vector<uint8_t> unknown = {7, 5, 0, 'h', 'e', 'l', 'l', 'o'};  // kind 7, 5 bytes
+        payload.insert(payload.begin() + 8, unknown.begin(), unknown.end());
+        Packet grown = with_payload(base.scene.scene[0], payload);
+        grown[5] = 2;  // minor version 2
+        reseal(grown);
+        sent.push_back(grown);
+        sent.insert(sent.end(), base.scene.scene.begin() + 1, base.scene.scene.end());
+        for (const auto* group : {&base.scene.materials, &base.scene.textures}) sent.insert(sent.end(), group->begin(), group->end());
+        w.write("unusual", "scene_newer_records",
+                "the first SCENE packet says format 1.2 and carries a record of the unknown kind 7 (skipped by its "
+                "length) and 6 unknown bytes appended to its first node record (ignored), spec 15.1; decodes to the "
+                "scene of valid/scene",
+                sent);
+    }
+    {
+        SceneDescription s = scene;
+        s.materials[0].base_color_texture.texcoord = 1;
+        const SceneStream t = make_scene_stream(s, 200);
+        w.write("unusual", "scene_texcoord_1",
+                "material 0's base colour texture on texture-coordinate set 1: the reference is ignored and the "
+                "material shown without it (spec 15.4)",
+                t.all());
+    }
+    {
+        Packets sent;
+        Packets geometry = base.geometry.all();
+        mark_version_1_0(geometry);
+        sent = geometry;
+        for (const auto* group : {&base.scene.scene, &base.scene.materials, &base.scene.textures})
+            sent.insert(sent.end(), group->begin(), group->end());
+        w.write("unusual", "scene_geometry_1_0",
+                "geometry packets say 1.0, scene packets 1.1 (spec 9 allows the lower minor version): a 1.1 decoder "
+                "takes everything; a 1.0 decoder (as_1_0) skips the 10 scene packets and decodes the same objects",
+                sent);
+    }
+
+    // ---- faulty ----
+    auto with_fragments = [&](const Packets& frags) {
+        Packets sent = base.geometry.all();
+        for (const auto* group : {&base.scene.scene, &base.scene.materials}) sent.insert(sent.end(), group->begin(), group->end());
+        sent.insert(sent.end(), frags.begin(), frags.end());
+        return sent;
+    };
+    {
+        Packets frags = {fragments[0], fragments[3], fragments[4]};
+        w.write("faulty", "scene_texture_incomplete",
+                "fragments 1 and 2 of texture 0 lost (bytes 148..443 of 512): no rejection; texture 0 is not complete "
+                "and not shown, material 0 waits for it and is not shown either, its primitives get the default "
+                "material (spec 15.4)",
+                with_fragments(frags));
+    }
+    {
+        Packets frags(fragments.begin(), fragments.begin() + 4);
+        w.write("faulty", "scene_texture_lost",
+                "every fragment of texture 1 lost: texture 1 is missing from the table, material 1 (its normal map) "
+                "waits for it with 0 bytes received and is not shown (spec 15.4)",
+                with_fragments(frags));
+    }
+    {
+        Packets frags = fragments;
+        put32(frags[3], kFragOffset, get32(frags[3], kFragOffset) + 1);
+        reseal(frags[3]);
+        w.write("faulty", "scene_fragment_past_end",
+                "the last fragment of texture 0 moved one byte up, so that offset + data length exceeds image_size: "
+                "rejected, malformed payload (spec 15.3: 'Malformed when ... offset + data length > image_size'); "
+                "the texture stays incomplete",
+                with_fragments(frags));
+    }
+    {
+        Packets frags = fragments;
+        put32(frags[2], kFragImageSize, get32(frags[2], kFragImageSize) + 100);
+        reseal(frags[2]);
+        w.write("faulty", "scene_fragment_size_mismatch",
+                "fragment 2 of texture 0 declares image_size 612 where the others say 512: rejected, stream mismatch "
+                "(spec 15.3: 'Fragments of one texture repeat the same description ..., else stream mismatch')",
+                with_fragments(frags));
+    }
+    {
+        Packets frags = fragments;
+        put32(frags[1], kFragImageCrc, get32(frags[1], kFragImageCrc) ^ 0x00010000u);
+        reseal(frags[1]);
+        w.write("faulty", "scene_fragment_crc_mismatch",
+                "fragment 1 of texture 0 declares another image_crc: rejected, stream mismatch (spec 15.3: 'Fragments "
+                "of one texture repeat the same description ..., else stream mismatch')",
+                with_fragments(frags));
+    }
+    {
+        Packets frags = fragments;
+        frags[2][kFragData + 10] ^= 0x40;
+        reseal(frags[2]);
+        w.write("faulty", "scene_image_crc_wrong",
+                "one image byte of fragment 2 of texture 0 changed (the packet checksum recomputed): every byte "
+                "arrives, but the image's CRC-32C does not match image_crc; the completing fragment is rejected, "
+                "stream mismatch, and the image's bytes are discarded (spec 15.3: 'When every byte has arrived, the "
+                "image's CRC-32C MUST match image_crc; if it does not, the decoder discards the image's bytes and "
+                "reports stream mismatch')",
+                with_fragments(frags));
+    }
+    // The stream with every SCENE packet decoded, edited by `edit` and written again.
+    auto edit_scene = [&](const std::function<void(SceneBatch&)>& edit) {
+        Packets sent = base.all();
+        for (Packet& p : sent) {
+            if (p[6] != uint8_t(PacketType::Scene)) continue;
+            SceneBatch b;
+            if (decode_scene_payload(payload_of(p), b) != Error::Ok) std::exit(1);
+            edit(b);
+            p = scene_packet(b, get32(p, 12));
+        }
+        return sent;
+    };
+    auto edit_node = [&](uint16_t index, const std::function<void(SceneNode&)>& edit) {
+        return edit_scene([&](SceneBatch& b) {
+            for (SceneNode& n : b.nodes)
+                if (n.index == index) edit(n);
+        });
+    };
+    const size_t scene_sequence = base.geometry.all().size();
+    {
+        w.write("faulty", "scene_parent_out_of_range",
+                "node 4 names parent 5 in a table of 5 nodes: the SCENE packet holding it is rejected, malformed payload "
+                "(spec 15.1: 'The payload is malformed when ... a reference points outside its table'); the records of "
+                "that packet (node 4, both meshes) are lost",
+                edit_node(4, [](SceneNode& n) { n.parent = 5; }));
+    }
+    {
+        w.write("faulty", "scene_node_own_parent",
+                "node 4 names itself as its parent: the SCENE packet is rejected, malformed payload (spec 15.1: 'The "
+                "payload is malformed when ... a node is its own parent'); the records of that packet are lost",
+                edit_node(4, [](SceneNode& n) { n.parent = 4; }));
+    }
+    {
+        w.write("faulty", "scene_parent_cycle",
+                "nodes 2 and 3 name each other as parent: no packet can be rejected for it (spec 15.1: the links may "
+                "arrive in different packets); neither node reaches a root, so both are left out like nodes whose "
+                "parent chain did not arrive (spec 15.4); the stream does not conform (spec 15.4, completeness)",
+                edit_scene([](SceneBatch& b) {
+                    for (SceneNode& n : b.nodes)
+                        if (n.index == 2 || n.index == 3) n.parent = uint16_t(5 - n.index);
+                }));
+    }
+    {
+        Packets sent = base.all();
+        for (Packet& p : sent)
+            if (p[6] == uint8_t(PacketType::Material) && get16(p, kHeaderSize) == 1) {
+                p[kHeaderSize + 4] = 3;
+                reseal(p);
+            }
+        w.write("faulty", "scene_alpha_mode_3",
+                "material 1 with alpha_mode 3 (0..2 defined): rejected, malformed payload (spec 15.2: 'Malformed "
+                "when ... alpha_mode > 2'); its primitives get the default material",
+                sent);
+    }
+    {
+        Packets sent = base.all();
+        Packet& last_scene = sent[scene_sequence + base.scene.scene.size() - 1];
+        auto payload = payload_of(last_scene);
+        payload.resize(payload.size() - 10);
+        last_scene = with_payload(last_scene, payload);
+        w.write("faulty", "scene_truncated",
+                "the last SCENE packet's payload cut by 10 bytes (payload_length and checksum follow): its last record "
+                "runs past the payload, rejected, malformed payload (spec 15.1: 'The payload is malformed when a "
+                "record runs past the payload'): node 4 and both meshes are lost, nodes 0..3 of the other SCENE "
+                "packets are shown without meshes (spec 15.4)",
+                sent);
+    }
+    {
+        Packets sent = base.all();
+        SceneBatch b = whole_scene(scene);
+        b.nodes.resize(1);
+        b.meshes.clear();
+        b.nodes[0].translation[1] = 0.25f;
+        sent.push_back(scene_packet(b, 999));
+        w.write("faulty", "scene_contradicting_node",
+                "a later SCENE packet repeats node 0 with another translation: rejected, stream mismatch (spec 15.1: "
+                "'a record received twice is identical; otherwise stream mismatch'); the first node 0 stays",
+                sent);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -592,6 +1017,7 @@ int main(int argc, char** argv) {
     valid_vectors(w);
     unusual_vectors(w);
     faulty_vectors(w);
+    scene_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
