@@ -869,6 +869,13 @@ void scene_vectors(Writer& w) {
         sent.insert(sent.end(), frags.begin(), frags.end());
         return sent;
     };
+    // The stream with a u32 field of fragment `i` raised by `delta` (the packet resealed).
+    auto with_fragment_u32 = [&](size_t i, size_t at, uint32_t delta) {
+        Packets frags = fragments;
+        put32(frags[i], at, get32(frags[i], at) + delta);
+        reseal(frags[i]);
+        return with_fragments(frags);
+    };
     {
         Packets frags = {fragments[0], fragments[3], fragments[4]};
         w.write("faulty", "scene_texture_incomplete",
@@ -885,32 +892,23 @@ void scene_vectors(Writer& w) {
                 with_fragments(frags));
     }
     {
-        Packets frags = fragments;
-        put32(frags[3], kFragOffset, get32(frags[3], kFragOffset) + 1);
-        reseal(frags[3]);
         w.write("faulty", "scene_fragment_past_end",
                 "the last fragment of texture 0 moved one byte up, so that offset + data length exceeds image_size: "
                 "rejected, malformed payload (spec 15.3: 'Malformed when ... offset + data length > image_size'); "
                 "the texture stays incomplete",
-                with_fragments(frags));
+                with_fragment_u32(3, kFragOffset, 1));
     }
     {
-        Packets frags = fragments;
-        put32(frags[2], kFragImageSize, get32(frags[2], kFragImageSize) + 100);
-        reseal(frags[2]);
         w.write("faulty", "scene_fragment_size_mismatch",
                 "fragment 2 of texture 0 declares image_size 612 where the others say 512: rejected, stream mismatch "
                 "(spec 15.3: 'Fragments of one texture repeat the same description ..., else stream mismatch')",
-                with_fragments(frags));
+                with_fragment_u32(2, kFragImageSize, 100));
     }
     {
-        Packets frags = fragments;
-        put32(frags[1], kFragImageCrc, get32(frags[1], kFragImageCrc) ^ 0x00010000u);
-        reseal(frags[1]);
         w.write("faulty", "scene_fragment_crc_mismatch",
                 "fragment 1 of texture 0 declares another image_crc: rejected, stream mismatch (spec 15.3: 'Fragments "
                 "of one texture repeat the same description ..., else stream mismatch')",
-                with_fragments(frags));
+                with_fragment_u32(1, kFragImageCrc, 0x00010000u));
     }
     {
         Packets frags = fragments;
