@@ -151,6 +151,28 @@ Insertion insert_into_face(Reconstruction& r, uint32_t point_index, const std::a
         return Insertion::VertexMoved;
     }
 
+    // A vertex of the faces to split already stands at p (the other side of a sheet folded onto
+    // this one): the point joins it rather than making a zero-area face.
+    {
+        OpenMesh::VertexHandle at;
+        for (int i = 0; i < 3; ++i)
+            if (mesh.point(fv[i]) == p) at = fv[i];
+        if (small >= 1) {
+            auto o = mesh.opposite_halfedge_handle(opposite[smallest]);
+            if (!mesh.is_boundary(o)) {
+                auto x = mesh.to_vertex_handle(mesh.next_halfedge_handle(o));
+                if (mesh.point(x) == p) at = x;
+            }
+        }
+        if (at.is_valid()) {
+            if (!r.is_original(at)) --r.mc_vertices, ++r.original_vertices;
+            r.vertex_points[at.idx()].push_back(point_index);
+            same.push_back(at);
+            ++r.seam_merges;
+            vertex = at;
+            return Insertion::SeamDuplicate;
+        }
+    }
     vertex = mesh.add_vertex(p);
     r.vertex_points.resize(mesh.n_vertices());
     r.vertex_points[vertex.idx()].push_back(point_index);
