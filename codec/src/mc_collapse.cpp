@@ -118,6 +118,37 @@ bool try_collapse(Reconstruction& r, OpenMesh::VertexHandle m, bool force, bool 
     return true;
 }
 
+// Flips the link edge of m (an edge opposite m in one of its faces) whose flip makes the best-shaped
+// pair of faces, so that m gains a neighbour. Returns false when no link edge can flip.
+bool flip_link_edge(Reconstruction& r, OpenMesh::VertexHandle m) {
+    DecoderTriMesh& mesh = r.mesh;
+    OpenMesh::EdgeHandle best;
+    double best_area = 0;
+    const Vec3 pm = mesh.point(m);
+    for (auto h : mesh.voh_range(m)) {
+        if (mesh.is_boundary(h)) continue;
+        auto link = mesh.next_halfedge_handle(h);
+        auto e = mesh.edge_handle(link);
+        if (mesh.is_boundary(e)) continue;
+        const Vec3& a = mesh.point(mesh.from_vertex_handle(link));
+        const Vec3& b = mesh.point(mesh.to_vertex_handle(link));
+        const Vec3& x = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(link))));
+        // New faces (m, a, x) and (m, x, b): the smaller one's area over its longest squared edge.
+        auto quality = [](const Vec3& p, const Vec3& q, const Vec3& s) {
+            double l = std::max({(q - p).sqrnorm(), (s - q).sqrnorm(), (p - s).sqrnorm()});
+            return l > 0 ? OpenMesh::cross(q - p, s - p).norm() / l : 0.0;
+        };
+        double area = std::min(quality(pm, a, x), quality(pm, x, b));
+        if (area > best_area && mesh.is_flip_ok(e)) best_area = area, best = e;
+    }
+    if (!best.is_valid() || best_area < 1e-6) return false;
+    mesh.flip(best);
+    r.face_changed(mesh.face_handle(mesh.halfedge_handle(best, 0)));
+    r.face_changed(mesh.face_handle(mesh.halfedge_handle(best, 1)));
+    ++r.flips;
+    return true;
+}
+
 }  // namespace
 
 size_t collapse_mc_vertices_near(Reconstruction& r, OpenMesh::VertexHandle v) {
@@ -177,6 +208,21 @@ size_t collapse_all_mc_vertices(Reconstruction& r, bool force) {
                     queue.push_back(x);
                 }
                 if (!r.is_original(w) && !queued[w.idx()]) queued[w.idx()] = 1, queue.push_back(w);
+            }
+        }
+    }
+    if (force) {
+        // Last stage: a vertex no collapse can remove (typically a spike over originals in a row,
+        // say samples along a crease, whose removal would leave a flat triangle) first gets a link
+        // edge flipped towards it, which gives it one more neighbour, and is tried again.
+        for (auto m : mesh.vertices()) {
+            if (r.mc_vertices == 0) break;
+            for (int attempt = 0; attempt < 4 && !mesh.status(m).deleted() && !r.is_original(m); ++attempt) {
+                if (try_collapse(r, m, true, true)) {
+                    ++total;
+                    break;
+                }
+                if (!flip_link_edge(r, m)) break;
             }
         }
     }
