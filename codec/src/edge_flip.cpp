@@ -113,6 +113,9 @@ static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat,
         if (across_normal(mesh, had, o)) cost_old += angle(n2, o), cost_new += angle(m1, o);
         if (across_normal(mesh, hdb, o)) cost_old += angle(n2, o), cost_new += angle(m2, o);
         flip = cost_new < 0.95 * cost_old - 1e-9;  // by a margin: no flip-flopping on smooth parts
+        // On smooth parts the rule alone lays long thin triangles along the curvature: a flip that
+        // makes the smallest angle smaller must cut the total angle by 30% (a crease, not noise).
+        flip = flip && (new_worst < old_worst || cost_new < 0.7 * cost_old);
         // No slivers (an angle under 3 degrees) unless the old pair was worse: they would turn into
         // zero-area triangles in the single-precision output.
         flip = flip && (new_worst < kSliverCos || new_worst < old_worst);
