@@ -1,7 +1,8 @@
 // Decoder benchmarks.
 //
 //   bench_decode                         speed on synthetic input: base mesh from 400 ellipsoids,
-//                                        50k points inserted with flips and collapses; peak memory
+//                                        50k points inserted with flips and collapses; a stream far
+//                                        sparser than its base (8 points); peak memory
 //   bench_decode STREAM.ellc ORIGINAL    quality on a real stream against its original model:
 //                                        ellipsoids only, every packet, half of the point packets
 //                                        lost at random (several seeds); RMS/max/far area both ways
@@ -137,6 +138,43 @@ int speed() {
                     "output mesh %.3f s wall, %.3f s CPU; %zu faces\n",
                     clean_wall, clean_cpu, r.collapses - during, r.mc_vertices, out_wall, out_cpu, out.triangles.size());
         std::printf("  peak memory so far (max RSS): %.1f MB\n", peak_mb());
+    }
+    {
+        // A stream far sparser than its base (what an older encoder, or --sample-spacing 0, sends for
+        // a cube): a ball's base and the cube's 8 corners. The final forced collapse removes every
+        // marching-cubes vertex; it should cost about as much as the base.
+        ObjectInfo cube = info;
+        cube.point_count = 8;
+        std::vector<SurfacePoint> corners(8);
+        for (int i = 0; i < 8; ++i)
+            corners[i].position = {i & 1 ? 0.55f : -0.55f, i & 2 ? 0.55f : -0.55f, i & 4 ? 0.55f : -0.55f};
+        Ellipsoid ball;
+        ball.center = {0, 0, 0};
+        ball.radii = {0.9f, 0.9f, 0.9f};
+        double w0 = wall_now(), c0 = cpu_now();
+        EllipsoidGrid grid;
+        std::string error;
+        rasterize_ellipsoids({ball}, cube.frame, kDefaultGridResolution, grid, error);
+        DecoderTriMesh base = marching_cubes(grid);
+        const double base_cpu = cpu_now() - c0, base_wall = wall_now() - w0;
+        const size_t base_vertices = base.n_vertices();
+        Reconstruction r;
+        start_reconstruction(r, std::move(base), cube.frame, grid.cell, 8, ReconstructionOptions{});
+        for (size_t i = 0; i < corners.size(); ++i) {
+            OpenMesh::VertexHandle v;
+            if (insert_point(r, uint32_t(i), corners[i].position, v) == Insertion::SeamDuplicate) continue;
+            flip_edges_around(r, v);
+            collapse_mc_vertices_near(r, v);
+        }
+        w0 = wall_now(), c0 = cpu_now();
+        collapse_all_mc_vertices(r, true);
+        const double clean_cpu = cpu_now() - c0, clean_wall = wall_now() - w0;
+        Mesh out = extract_mesh(r, cube, corners);
+        std::printf("sparse stream (8 cube corners on a ball's base of %zu vertices): base %.3f s wall, %.3f s CPU; "
+                    "final collapse %.3f s wall, %.3f s CPU (%zu collapses, %zu flips, %zu MC vertices left); %zu "
+                    "faces out\n",
+                    base_vertices, base_wall, base_cpu, clean_wall, clean_cpu, r.collapses, r.flips, r.mc_vertices,
+                    out.triangles.size());
     }
     std::printf("peak memory (max RSS): %.1f MB\n", peak_mb());
     return 0;

@@ -47,7 +47,7 @@ double collapse_worst_dot(const DecoderTriMesh& mesh, OpenMesh::HalfedgeHandle h
 constexpr size_t kMaxCollapseValence = 48;
 
 bool try_collapse(Reconstruction& r, OpenMesh::VertexHandle m, bool force, bool any_target,
-                  OpenMesh::VertexHandle* into = nullptr) {
+                  OpenMesh::VertexHandle* into = nullptr, bool flip_after = true) {
     DecoderTriMesh& mesh = r.mesh;
     if (mesh.status(m).deleted() || r.is_original(m)) return false;
     int total = 0, originals = 0;
@@ -114,7 +114,7 @@ bool try_collapse(Reconstruction& r, OpenMesh::VertexHandle m, bool force, bool 
     reindex_faces_around(r, target);
     --r.mc_vertices;
     ++r.collapses;
-    flip_edges_around(r, target);
+    if (flip_after) flip_edges_around(r, target);
     return true;
 }
 
@@ -179,6 +179,11 @@ size_t collapse_all_mc_vertices(Reconstruction& r, bool force) {
     // marching-cubes neighbours too. Each stage works through a queue: a vertex is tried again only
     // when a collapse next to it changed its neighbourhood.
     DecoderTriMesh& mesh = r.mesh;
+    // A stream far sparser than its base (a cube sent as its 8 corners): nearly every forced
+    // collapse lands on one of a few originals, and flipping around that ever larger fan after each
+    // would cost many times the base. The forced stages then collapse without flipping, and one
+    // flip pass follows.
+    const bool sparse = force && r.mc_vertices > 4 * r.original_vertices;
     std::vector<char> queued(mesh.n_vertices(), 0);
     std::vector<OpenMesh::VertexHandle> queue;
     for (int stage = 0; stage < (force ? 3 : 1) && r.mc_vertices > 0; ++stage) {
@@ -197,7 +202,7 @@ size_t collapse_all_mc_vertices(Reconstruction& r, bool force) {
             int n = 0;
             for (auto w : mesh.vv_range(m))
                 if (n < int(ring.size())) ring[n++] = w;
-            if (!try_collapse(r, m, stage >= 1, stage >= 2)) continue;
+            if (!try_collapse(r, m, stage >= 1, stage >= 2, nullptr, !(sparse && stage >= 1))) continue;
             ++total;
             for (int i = 0; i < n; ++i) {
                 auto w = ring[i];
@@ -210,6 +215,10 @@ size_t collapse_all_mc_vertices(Reconstruction& r, bool force) {
                 if (!r.is_original(w) && !queued[w.idx()]) queued[w.idx()] = 1, queue.push_back(w);
             }
         }
+    }
+    if (sparse) {
+        // The flips left out above, once, on the (now small) mesh.
+        for (auto v : mesh.vertices()) flip_edges_around(r, v);
     }
     if (force) {
         // Last stage: a vertex no collapse can remove (typically a spike over originals in a row,
