@@ -3,11 +3,13 @@
 // An edge (a, b) between faces (a, b, c) and (b, a, d) may become (c, d):
 //  - flat (both dihedral angles, before and after, under the flat threshold): flip when the
 //    smallest angle of the two faces grows (the surface analogue of a Delaunay flip);
-//  - curved: flip only when the smallest angle grows AND the dihedral angle shrinks, so creases and
-//    curvature lines are kept; or when the edge is folded over (dihedral beyond the fold-over bound)
-//    and the flip unfolds it;
+//  - curved: the data-dependent triangulation rule (Dyn, Levin & Rippa 1990): flip when the total
+//    angle between neighbouring face normals over the quad's five edges drops by 5%, and, if the
+//    smallest angle shrinks, by 30% (a crease, not the noise of a smooth part); never into a sliver.
+//    Edges then run along creases instead of across them;
+//  - folded over (dihedral beyond the fold-over bound): flip when that straightens the edge;
 //  - never when a new face would turn more than the fold-over bound away from the old faces' mean
-//    normal, or would be degenerate.
+//    normal (unless folded), or would be degenerate.
 #include "ellicast/codec/decoder.h"
 
 #include <algorithm>

@@ -217,8 +217,9 @@ bool insert_on_other_side(Reconstruction& r, uint32_t point_index, const std::ar
 
 // Flips edges around vertex v until no flip improves: where the two faces of an edge are nearly
 // flat (dihedral under options.flat_angle_degrees) towards a larger minimum angle; where curved,
-// towards a smaller dihedral angle, never turning a face by more than options.foldover_degrees.
-// Returns the number of flips.
+// towards a smaller total angle between neighbouring normals over the quad's five edges (so edges
+// follow creases), never turning a face by more than options.foldover_degrees. Returns the number
+// of flips.
 size_t flip_edges_around(Reconstruction& r, OpenMesh::VertexHandle v);
 
 // ---------------------------------------------------------------------------------------------
@@ -234,7 +235,10 @@ size_t collapse_mc_vertices_near(Reconstruction& r, OpenMesh::VertexHandle v);
 
 // Tries every remaining marching-cubes vertex. With `force`, any original neighbour is enough and
 // vertices with none collapse into a marching-cubes neighbour, pass after pass, so that a fully
-// received stream ends with original vertices only (only topologically impossible collapses stay).
+// received stream ends with original vertices only; a vertex no collapse can remove gets a link edge
+// flipped towards it first (only topologically impossible collapses stay). When the marching-cubes
+// vertices outnumber the originals 4 to 1, the forced stages skip the flips after each collapse and
+// one flip pass follows, so that a sparse stream's end costs about as much as its base.
 // Meant for the end of a stream: it leaves r.faces out of date (r.index_paused) and a later
 // insert_point rebuilds it.
 size_t collapse_all_mc_vertices(Reconstruction& r, bool force);
