@@ -20,23 +20,24 @@ namespace fs = std::filesystem;
 namespace {
 
 // Each sample with the decoder grid it is decoded at (0: the stream's hint) and the RMS distance
-// bound (% of the bounding-box diagonal, both ways) its objects meet with every packet. 0.1% is the
-// decoder's own bound (its test on spot); the open, thin or faceted models meet only a looser one
-// today (the base cannot follow sheets and sharp creases: see the issue's closing note). The Box's
-// decode at the stream's grid hint takes minutes (decoder collapse pass on a 12-triangle cube), so
-// it uses a coarse grid.
+// bound (% of the bounding-box diagonal, both ways) its objects meet with every packet, encoded with
+// the default options. 0.1% is the decoder's own bound: the Duck, Fox, the sphere and the vertex
+// colour plate meet it. Measured at the last change (in -> out / out -> in): Box 0.047 / 0.107
+// (chamfered corners); the milk truck's body 0.20 / 0.63, glass 0.15 / 0.20, trim 0.11 / 0.34 (thin
+// open panels meeting at sharp creases); VertexColorTest's label 0.14 / 0.05 (a flat sheet). Those
+// get bounds just above what they reach, so that a regression shows.
 struct SampleCase {
     const char* path;
     int grid;
     double rms_percent;
 };
-const SampleCase kGltfSamples[] = {{"gltf/Box-glb/Box.glb", 12, 10},
-                                   {"gltf/Box-glb/Box_Draco.glb", 12, 10},
+const SampleCase kGltfSamples[] = {{"gltf/Box-glb/Box.glb", 0, 0.13},
+                                   {"gltf/Box-glb/Box_Draco.glb", 0, 0.13},
                                    {"gltf/Duck/Duck.gltf", 0, 0.1},
                                    {"gltf/Duck-glb/Duck.glb", 0, 0.1},
-                                   {"gltf/CesiumMilkTruck/CesiumMilkTruck.gltf", 0, 10},
-                                   {"gltf/Fox/Fox.gltf", 0, 1},
-                                   {"gltf/VertexColorTest/VertexColorTest.gltf", 0, 20},
+                                   {"gltf/CesiumMilkTruck/CesiumMilkTruck.gltf", 0, 0.75},
+                                   {"gltf/Fox/Fox.gltf", 0, 0.1},
+                                   {"gltf/VertexColorTest/VertexColorTest.gltf", 0, 0.17},
                                    {"gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf", 0, 0.1}};
 
 std::string sample(const std::string& rel) { return (shared_samples() / rel).string(); }
@@ -57,10 +58,11 @@ EncodeOptions coarse_encoding() {
     o.coverage = 0.8;
     return o;
 }
-Asset round_trip(const Asset& in, int grid, const std::vector<size_t>& drop = {}) {
+Asset round_trip(const Asset& in, int grid, const std::vector<size_t>& drop = {},
+                 const EncodeOptions& encoding = coarse_encoding()) {
     EncodedAsset encoded;
     std::string error;
-    REQUIRE_MESSAGE(encode_asset(in, coarse_encoding(), 1, true, encoded, error), error);
+    REQUIRE_MESSAGE(encode_asset(in, encoding, 1, true, encoded, error), error);
     ReceivedStream stream;
     for (size_t i = 0; i < encoded.packets.size(); ++i)
         if (!std::count(drop.begin(), drop.end(), i)) REQUIRE(stream.add_packet(encoded.packets[i], i) == Error::Ok);
@@ -132,7 +134,7 @@ TEST_CASE("every glTF sample through encode and decode with all packets: same sc
         std::string name = f;
         CAPTURE(name);
         Asset in = load_asset(sample(f));
-        Asset out = round_trip(in, c.grid);
+        Asset out = round_trip(in, c.grid, {}, EncodeOptions{});  // the defaults: the quality a user gets
         CHECK(out.warnings.empty());
         check_geometry(in, out, c.rms_percent);
         fs::path file = dir / (fs::path(f).stem().string() + ".glb");
