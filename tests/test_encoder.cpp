@@ -3,6 +3,7 @@
 #include "ellicast/codec/encoder.h"
 #include "ellicast/converters/mesh_input.h"
 #include "ellicast/format.h"
+#include "encode_options.h"
 #include "support.h"
 
 #include <doctest/doctest.h>
@@ -18,18 +19,10 @@
 
 using namespace ellicast;
 using ellicast::test::have_sample;
+using ellicast::test::fast_options;
 using ellicast::test::shared_samples;
 
 namespace {
-
-// Coarse settings keep the suite fast; the benchmarks run the defaults.
-EncodeOptions fast_options() {
-    EncodeOptions o;
-    o.max_ellipsoids = 40;
-    o.candidates = 200;
-    o.grid = 32;
-    return o;
-}
 
 // A closed convex polyhedron: a UV sphere squashed to radii (1, 0.6, 0.35), outward faces.
 Mesh convex_shape(int n) {

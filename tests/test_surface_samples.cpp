@@ -5,6 +5,7 @@
 #include "ellicast/codec/surface_distance.h"
 #include "ellicast/converters/mesh_input.h"
 #include "ellicast/format.h"
+#include "encode_options.h"
 #include "support.h"
 
 #include <doctest/doctest.h>
@@ -16,6 +17,7 @@
 
 using namespace ellicast;
 using ellicast::test::have_sample;
+using ellicast::test::fast_options;
 using ellicast::test::shared_samples;
 
 namespace {
@@ -47,14 +49,6 @@ Mesh cube() {
             }
         }
     return m;
-}
-
-EncodeOptions fast_options() {
-    EncodeOptions o;
-    o.max_ellipsoids = 40;
-    o.candidates = 200;
-    o.grid = 32;
-    return o;
 }
 
 // The stream's points of object 0, dequantized, with their normals.
