@@ -59,6 +59,7 @@ TEST_CASE("the base share option picks the chunk count whose share is closest") 
     for (double share : {0.05, 0.15, 0.3}) {
         CarouselOptions options;
         options.base_share = share;
+        options.min_base_repetitions = 1;
         Carousel c;
         std::string error;
         REQUIRE(build_carousel(packets, options, c, error));
@@ -71,6 +72,29 @@ TEST_CASE("the base share option picks the chunk count whose share is closest") 
             CHECK(std::abs(s.base_share - share) <= std::abs(other - share) + 1e-12);
         }
     }
+}
+
+TEST_CASE("a small stream's base is repeated at least the minimum number of times per cycle") {
+    // spot-sized: 115 ellipsoids and 4,000 points, where a 15% share alone gives 2 repetitions.
+    auto packets = test::synthetic_stream(115, 4000);
+    CarouselOptions options;
+    options.min_base_repetitions = 1;
+    Carousel by_share;
+    std::string error;
+    REQUIRE(build_carousel(packets, options, by_share, error));
+    CHECK(by_share.chunk_count < 4);
+    options.min_base_repetitions = 4;
+    Carousel c;
+    REQUIRE(build_carousel(packets, options, c, error));
+    CHECK(c.chunk_count == std::max<size_t>(by_share.chunk_count, std::min<size_t>(4, c.data.size())));
+    CHECK(c.chunk_count >= 4);
+    size_t repetitions = 0;
+    for (const auto& e : c.cycle) repetitions += e.base && e.packet == c.base[0];
+    CHECK(repetitions == c.chunk_count);
+    // Never more repetitions than point packets to put between them.
+    options.min_base_repetitions = 100000;
+    REQUIRE(build_carousel(packets, options, c, error));
+    CHECK(c.chunk_count == c.data.size());
 }
 
 TEST_CASE("overhead and worst-case base wait follow from the base and chunk sizes") {

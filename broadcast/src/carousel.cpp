@@ -79,6 +79,7 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
         chunks = out.data.empty() ? 1 : (out.data.size() + options.chunk_packets - 1) / options.chunk_packets;
     } else {
         chunks = chunks_for_share(out.base_bytes, out.data_bytes, out.data.size(), options.base_share);
+        chunks = std::max(chunks, std::min(options.min_base_repetitions, std::max<size_t>(1, out.data.size())));
     }
     // Spread the points packets evenly over the chunks (sizes differ by at most one packet).
     out.chunk_count = chunks;

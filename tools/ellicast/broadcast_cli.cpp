@@ -55,12 +55,17 @@ void CarouselCli::add(CLI::App* app) {
                     "share of the bandwidth spent on the base, when --chunk is not given (default 0.15)")
         ->check(CLI::Range(0.001, 0.999))
         ->excludes(chunk_option);
+    app->add_option("--min-base-repeats", min_base_repetitions,
+                    "with --base-share: repeat the base at least this often per cycle (default 4)")
+        ->check(CLI::Range(1, 100000))
+        ->excludes(chunk_option);
 }
 
 broadcast::CarouselOptions CarouselCli::options() const {
     broadcast::CarouselOptions o;
     o.chunk_packets = chunk;
     o.base_share = base_share;
+    o.min_base_repetitions = min_base_repetitions;
     return o;
 }
 

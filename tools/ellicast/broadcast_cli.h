@@ -30,6 +30,7 @@ int load_carousel(const std::string& path, const CarouselCli& options, std::vect
 struct CarouselCli {
     size_t chunk = 0;
     double base_share = 0.15;
+    size_t min_base_repetitions = broadcast::CarouselOptions{}.min_base_repetitions;
     void add(CLI::App* app);
     broadcast::CarouselOptions options() const;
 };
