@@ -4,6 +4,7 @@
 #include "ellicast/codec/encoder.h"
 #include "ellicast/converters/mesh_input.h"
 #include "ellicast/format.h"
+#include "shapes.h"
 
 #include <algorithm>
 #include <chrono>
@@ -44,25 +45,8 @@ Mesh bumpy_torus(int u, int v) {
 
 // A small closed sphere of `n` rings around `c`.
 Mesh small_sphere(int n, std::array<float, 3> c, float r) {
-    Mesh m;
+    Mesh m = samples::uv_ellipsoid(n, {c[0], c[1], c[2]}, {r, r, r});
     m.name = "sphere";
-    m.positions.push_back({c[0], c[1], c[2] + r});
-    for (int i = 1; i < n; ++i)
-        for (int j = 0; j < 2 * n; ++j) {
-            double th = M_PI * i / n, ph = M_PI * j / n;
-            m.positions.push_back({float(c[0] + r * std::sin(th) * std::cos(ph)),
-                                   float(c[1] + r * std::sin(th) * std::sin(ph)), float(c[2] + r * std::cos(th))});
-        }
-    m.positions.push_back({c[0], c[1], c[2] - r});
-    auto ring = [&](int i, int j) { return uint32_t(1 + (i - 1) * 2 * n + (j % (2 * n))); };
-    for (int j = 0; j < 2 * n; ++j) m.triangles.push_back({0, ring(1, j), ring(1, j + 1)});
-    for (int i = 1; i < n - 1; ++i)
-        for (int j = 0; j < 2 * n; ++j) {
-            m.triangles.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-            m.triangles.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-        }
-    uint32_t south = uint32_t(m.positions.size() - 1);
-    for (int j = 0; j < 2 * n; ++j) m.triangles.push_back({ring(n - 1, j + 1), ring(n - 1, j), south});
     return m;
 }
 

@@ -4,6 +4,7 @@
 #include "ellicast/converters/mesh_input.h"
 #include "ellicast/format.h"
 #include "encode_options.h"
+#include "shapes.h"
 #include "support.h"
 
 #include <doctest/doctest.h>
@@ -26,25 +27,8 @@ namespace {
 
 // A closed convex polyhedron: a UV sphere squashed to radii (1, 0.6, 0.35), outward faces.
 Mesh convex_shape(int n) {
-    Mesh m;
+    Mesh m = samples::uv_ellipsoid(n, {0, 0, 0}, {1, 0.6, 0.35});
     m.name = "convex";
-    m.positions.push_back({0, 0, 0.35f});
-    for (int i = 1; i < n; ++i)
-        for (int j = 0; j < 2 * n; ++j) {
-            double th = M_PI * i / n, ph = M_PI * j / n;
-            m.positions.push_back({float(std::sin(th) * std::cos(ph)), float(0.6 * std::sin(th) * std::sin(ph)),
-                                   float(0.35 * std::cos(th))});
-        }
-    m.positions.push_back({0, 0, -0.35f});
-    auto ring = [&](int i, int j) { return uint32_t(1 + (i - 1) * 2 * n + (j % (2 * n))); };
-    for (int j = 0; j < 2 * n; ++j) m.triangles.push_back({0, ring(1, j), ring(1, j + 1)});
-    for (int i = 1; i < n - 1; ++i)
-        for (int j = 0; j < 2 * n; ++j) {
-            m.triangles.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-            m.triangles.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-        }
-    uint32_t south = uint32_t(m.positions.size() - 1);
-    for (int j = 0; j < 2 * n; ++j) m.triangles.push_back({ring(n - 1, j + 1), ring(n - 1, j), south});
     return m;
 }
 

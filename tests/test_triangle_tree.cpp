@@ -1,5 +1,6 @@
 // The triangle tree answers closest-point queries exactly like a brute-force scan.
 #include "ellicast/codec/triangle_tree.h"
+#include "shapes.h"
 
 #include <doctest/doctest.h>
 
@@ -10,26 +11,11 @@ using namespace ellicast;
 
 namespace {
 
-// A closed octahedron-like sphere: a UV sphere with `n` rings.
+// A closed unit UV sphere with `n` rings.
 void make_sphere(int n, std::vector<std::array<float, 3>>& pos, std::vector<std::array<uint32_t, 3>>& tri) {
-    pos.clear();
-    tri.clear();
-    pos.push_back({0, 0, 1});
-    for (int i = 1; i < n; ++i)
-        for (int j = 0; j < 2 * n; ++j) {
-            double th = M_PI * i / n, ph = M_PI * j / n;
-            pos.push_back({float(std::sin(th) * std::cos(ph)), float(std::sin(th) * std::sin(ph)), float(std::cos(th))});
-        }
-    pos.push_back({0, 0, -1});
-    auto ring = [&](int i, int j) { return uint32_t(1 + (i - 1) * 2 * n + (j % (2 * n))); };
-    for (int j = 0; j < 2 * n; ++j) tri.push_back({0, ring(1, j), ring(1, j + 1)});
-    for (int i = 1; i < n - 1; ++i)
-        for (int j = 0; j < 2 * n; ++j) {
-            tri.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-            tri.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-        }
-    uint32_t south = uint32_t(pos.size() - 1);
-    for (int j = 0; j < 2 * n; ++j) tri.push_back({ring(n - 1, j + 1), ring(n - 1, j), south});
+    Mesh m = samples::uv_ellipsoid(n, {0, 0, 0}, {1, 1, 1});
+    pos = std::move(m.positions);
+    tri = std::move(m.triangles);
 }
 
 }  // namespace
