@@ -20,25 +20,25 @@ namespace fs = std::filesystem;
 namespace {
 
 // Each sample with the decoder grid it is decoded at (0: the stream's hint) and the RMS distance
-// bound (% of the bounding-box diagonal, both ways) its objects meet with every packet, encoded with
-// the default options. 0.1% is the decoder's own bound: the Duck, Fox, the sphere and the vertex
-// colour plate meet it. Measured at the last change (in -> out / out -> in): Box 0.047 / 0.107
-// (chamfered corners); the milk truck's body 0.20 / 0.63, glass 0.15 / 0.20, trim 0.11 / 0.34 (thin
-// open panels meeting at sharp creases); VertexColorTest's label 0.14 / 0.05 (a flat sheet). Those
-// get bounds just above what they reach, so that a regression shows.
+// bound (% of the bounding-box diagonal) its objects meet with every packet, encoded with the default
+// options. The rule is the decoder's (issue 4): RMS at most 0.1%, both ways on a closed object, from
+// the original to the reconstruction on an open one (the base closes its holes and boundary, so the
+// way back measures the closing, not the object). Samples with an object that misses 0.1% get a bound
+// just above what it reaches, so that a regression shows; the comment names the object.
 struct SampleCase {
     const char* path;
     int grid;
     double rms_percent;
 };
-const SampleCase kGltfSamples[] = {{"gltf/Box-glb/Box.glb", 0, 0.13},
-                                   {"gltf/Box-glb/Box_Draco.glb", 0, 0.13},
-                                   {"gltf/Duck/Duck.gltf", 0, 0.1},
-                                   {"gltf/Duck-glb/Duck.glb", 0, 0.1},
-                                   {"gltf/CesiumMilkTruck/CesiumMilkTruck.gltf", 0, 0.75},
-                                   {"gltf/Fox/Fox.gltf", 0, 0.1},
-                                   {"gltf/VertexColorTest/VertexColorTest.gltf", 0, 0.17},
-                                   {"gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf", 0, 0.1}};
+const SampleCase kGltfSamples[] = {
+    {"gltf/Box-glb/Box.glb", 0, 0.13},         // closed: 0.047 / 0.107 (corners and edges)
+    {"gltf/Box-glb/Box_Draco.glb", 0, 0.13},   // the same
+    {"gltf/Duck/Duck.gltf", 0, 0.1},
+    {"gltf/Duck-glb/Duck.glb", 0, 0.1},
+    {"gltf/CesiumMilkTruck/CesiumMilkTruck.gltf", 0, 0.22},  // open body 0.195, glass 0.150, trim 0.110
+    {"gltf/Fox/Fox.gltf", 0, 0.1},
+    {"gltf/VertexColorTest/VertexColorTest.gltf", 0, 0.17},  // open label 0.141
+    {"gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf", 0, 0.1}};
 
 std::string sample(const std::string& rel) { return (shared_samples() / rel).string(); }
 
@@ -58,11 +58,17 @@ EncodeOptions coarse_encoding() {
     o.coverage = 0.8;
     return o;
 }
+// Encodes `in`, loses the packets at the indices in `drop`, decodes at `grid`. `closed`, when given,
+// gets the encoder's verdict per object: no boundary edges.
 Asset round_trip(const Asset& in, int grid, const std::vector<size_t>& drop = {},
-                 const EncodeOptions& encoding = coarse_encoding()) {
+                 const EncodeOptions& encoding = coarse_encoding(), std::vector<bool>* closed = nullptr) {
     EncodedAsset encoded;
     std::string error;
     REQUIRE_MESSAGE(encode_asset(in, encoding, 1, true, encoded, error), error);
+    if (closed) {
+        closed->clear();
+        for (const auto& r : encoded.encoded.reports) closed->push_back(r.closed);
+    }
     ReceivedStream stream;
     for (size_t i = 0; i < encoded.packets.size(); ++i)
         if (!std::count(drop.begin(), drop.end(), i)) REQUIRE(stream.add_packet(encoded.packets[i], i) == Error::Ok);
@@ -87,9 +93,10 @@ void check_valid(const fs::path& path) {
 
 // Each object of `out` is object i of `in`: every original vertex is there (all points arrived),
 // within the stream's 14-bit position step; a triangle object is within `rms_percent` of the
-// bounding-box diagonal (RMS surface distance, both ways).
-void check_geometry(const Asset& in, const Asset& out, double rms_percent) {
+// bounding-box diagonal (RMS surface distance from the original, and back when it is closed).
+void check_geometry(const Asset& in, const Asset& out, const std::vector<bool>& closed, double rms_percent) {
     REQUIRE(out.objects.size() == in.objects.size());
+    REQUIRE(closed.size() == in.objects.size());
     for (size_t i = 0; i < in.objects.size(); ++i) {
         const Mesh& a = in.objects[i];
         const Mesh& b = out.objects[i];
@@ -116,10 +123,10 @@ void check_geometry(const Asset& in, const Asset& out, double rms_percent) {
         SurfaceDistance d;
         std::string error;
         REQUIRE_MESSAGE(surface_distance({a}, {b}, options, d, error), error);
-        MESSAGE(a.name << ": RMS distance " << d.percent(d.a_to_b.rms) << "% (in -> out), " << d.percent(d.b_to_a.rms)
-                       << "% (out -> in) of the diagonal");
+        MESSAGE(a.name << std::string(closed[i] ? " (closed)" : " (open)") << ": RMS distance " << d.percent(d.a_to_b.rms)
+                       << "% (in -> out), " << d.percent(d.b_to_a.rms) << "% (out -> in) of the diagonal");
         CHECK(d.percent(d.a_to_b.rms) <= rms_percent);
-        CHECK(d.percent(d.b_to_a.rms) <= rms_percent);
+        if (closed[i]) CHECK(d.percent(d.b_to_a.rms) <= rms_percent);
     }
 }
 
@@ -134,9 +141,10 @@ TEST_CASE("every glTF sample through encode and decode with all packets: same sc
         std::string name = f;
         CAPTURE(name);
         Asset in = load_asset(sample(f));
-        Asset out = round_trip(in, c.grid, {}, EncodeOptions{});  // the defaults: the quality a user gets
+        std::vector<bool> closed;
+        Asset out = round_trip(in, c.grid, {}, EncodeOptions{}, &closed);  // the defaults: what a user gets
         CHECK(out.warnings.empty());
-        check_geometry(in, out, c.rms_percent);
+        check_geometry(in, out, closed, c.rms_percent);
         fs::path file = dir / (fs::path(f).stem().string() + ".glb");
         std::vector<std::string> warnings;
         std::string error;
