@@ -9,8 +9,10 @@ It re-derives everything the JSON states (container errors, damaged regions, pac
 rejections, counters, stream info, every element's integers and dequantized values, digests; for
 format 1.1 the scene graph, materials, textures and what a receiver shows of them, spec section 15, and
 a 1.0 decoder's view of the same file) so that a disagreement between the spec text and the reference
-library shows up as a failing vector. Every complete PNG texture is also checked to be a PNG file
-(chunk CRCs, IHDR, the inflated image data of the size IHDR announces).
+library shows up as a failing vector. Every complete texture is also checked to be a file of its
+image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
+JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
+EOI at the end).
 """
 import json
 import math
@@ -364,6 +366,91 @@ def png_problem(data):
     return None
 
 
+def jpeg_problem(data):
+    """None when `data` is a well-formed JPEG file (ITU-T T.81 markers: SOI, one frame header, the tables
+    each scan uses defined before it, entropy-coded data, EOI as the last 2 bytes), else what is wrong.
+    The structure is checked; the entropy-coded data is not decoded."""
+    if data[:2] != b"\xff\xd8":
+        return "no JPEG SOI marker"
+    pos, frame, scans = 2, None, 0
+    quant, huffman = set(), set()  # defined quantization tables; (class, id) of Huffman tables
+    while True:
+        if pos >= len(data) or data[pos] != 0xFF:
+            return "no marker at byte %d" % pos
+        while pos < len(data) and data[pos] == 0xFF:  # fill bytes
+            pos += 1
+        if pos >= len(data):
+            return "truncated at byte %d" % pos
+        marker, pos = data[pos], pos + 1
+        if marker == 0xD9:  # EOI
+            if frame is None or scans == 0:
+                return "EOI before a frame and a scan"
+            return None if pos == len(data) else "%d bytes after EOI" % (len(data) - pos)
+        if marker == 0x01 or 0xD0 <= marker <= 0xD8:
+            return "marker %02X outside a scan at byte %d" % (marker, pos - 2)
+        if pos + 2 > len(data):
+            return "truncated at byte %d" % pos
+        (length,) = struct.unpack_from(">H", data, pos)
+        if length < 2 or pos + length > len(data):
+            return "segment %02X at byte %d runs past the end" % (marker, pos - 2)
+        body, pos = data[pos + 2:pos + length], pos + length
+        if marker in (0xC0, 0xC1, 0xC2, 0xC3, 0xC5, 0xC6, 0xC7, 0xC9, 0xCA, 0xCB, 0xCD, 0xCE, 0xCF):
+            if frame is not None:
+                return "a second frame header"
+            if len(body) < 6 or len(body) != 6 + 3 * body[5]:
+                return "frame header of the wrong length"
+            _, height, width, count = struct.unpack_from(">BHHB", body)
+            if height == 0 or width == 0 or count not in (1, 2, 3, 4):
+                return "frame of %d x %d with %d components" % (width, height, count)
+            components = {body[6 + 3 * i]: body[8 + 3 * i] & 15 for i in range(count)}
+            frame = (marker, components)
+        elif marker == 0xDB:  # DQT: (Pq, Tq) then 64 values of 1 or 2 bytes, repeated
+            at = 0
+            while at < len(body):
+                precision, table = body[at] >> 4, body[at] & 15
+                at += 1 + 64 * (2 if precision else 1)
+                quant.add(table)
+            if at != len(body):
+                return "DQT segment of the wrong length"
+        elif marker == 0xC4:  # DHT: (Tc, Th), 16 counts, the values, repeated
+            at = 0
+            while at + 17 <= len(body):
+                huffman.add((body[at] >> 4, body[at] & 15))
+                at += 17 + sum(body[at + 1:at + 17])
+            if at != len(body):
+                return "DHT segment of the wrong length"
+        elif marker == 0xDA:  # SOS, then entropy-coded data up to the next marker that is not RSTn
+            if frame is None:
+                return "a scan before the frame header"
+            if len(body) < 4 or len(body) != 4 + 2 * body[0]:
+                return "scan header of the wrong length"
+            start, ah = body[1 + 2 * body[0]], body[3 + 2 * body[0]] >> 4
+            arithmetic = frame[0] >= 0xC9
+            for i in range(body[0]):
+                selector, tables = body[1 + 2 * i], body[2 + 2 * i]
+                if selector not in frame[1]:
+                    return "a scan names component %d, not in the frame" % selector
+                if frame[0] & 3 != 3 and frame[1][selector] not in quant:  # lossless (n & 3 == 3): none
+                    return "a scan uses an undefined quantization table"
+                needed = []  # arithmetic coding needs no tables
+                if not arithmetic and frame[0] & 3 == 3:  # lossless: DC tables only
+                    needed = [(0, tables >> 4)]
+                elif not arithmetic and frame[0] & 3 == 2:  # progressive
+                    needed = [(1, tables & 15)] if start > 0 else ([] if ah else [(0, tables >> 4)])
+                elif not arithmetic:
+                    needed = [(0, tables >> 4), (1, tables & 15)]
+                if not set(needed) <= huffman:
+                    return "a scan uses an undefined Huffman table"
+            scans += 1
+            while True:
+                if pos + 1 >= len(data):
+                    return "entropy-coded data runs to the end of the file (truncated, no EOI)"
+                if data[pos] == 0xFF and data[pos + 1] != 0 and not 0xD0 <= data[pos + 1] <= 0xD7:
+                    break
+                pos += 2 if data[pos] == 0xFF else 1
+        # APPn, COM, DRI, DAC and the like: skipped by their length
+
+
 class Receiver:
     """Spec 11.1 steps 9..14 and 11.2."""
 
@@ -663,12 +750,12 @@ def decode(buf):
     return out, r
 
 
-def png_failures(r, path):
-    """Every complete PNG texture must be a PNG file."""
+def image_failures(r, path):
+    """Every complete texture must be a file of its image_type: a PNG (1) or a JPEG (2) file."""
     out = []
     for k, t in sorted(r.textures.items()):
-        if t["complete"] and t["desc"]["image_type"] == 1:
-            problem = png_problem(t["image"])
+        if t["complete"]:
+            problem = (png_problem if t["desc"]["image_type"] == 1 else jpeg_problem)(t["image"])
             if problem:
                 out.append("%s: texture %d: %s" % (path, k, problem))
     return out
@@ -716,7 +803,7 @@ def main(argv):
             base = os.path.join(HERE, subset, name[:-5])
             expected = json.load(open(base + ".json"))
             actual, receiver = decode(open(base + ".ellc", "rb").read())
-            diffs = png_failures(receiver, subset + "/" + name[:-5])
+            diffs = image_failures(receiver, subset + "/" + name[:-5])
             compare(expected, actual, subset + "/" + name[:-5], diffs)
             count += 1
             if diffs:

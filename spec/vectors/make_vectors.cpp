@@ -7,6 +7,7 @@
 // unusual and faulty ones are then edited byte by byte the way a channel, a newer encoder or a broken
 // encoder would, and resealed (checksum recomputed) where the defect must not be a checksum error.
 #include "expected_decode.h"
+#include "../../samples/jpeg_images.h"
 
 #include <ellicast/format.h>
 
@@ -763,6 +764,27 @@ SceneBatch whole_scene(const SceneDescription& scene) {
     return {uint16_t(scene.nodes.size()), uint16_t(scene.meshes.size()), scene.nodes, scene.meshes};
 }
 
+// The car's geometry, SCENE and MATERIAL packets in order, then its texture fragments shuffled
+// (seeded), the second one sent twice (a byte-identical duplicate) and the first one again after the
+// fourth with a new sequence number (a retransmission).
+Packets with_shuffled_fragments(const SceneStream& stream, uint64_t seed) {
+    Packets sent = stream.geometry.all();
+    for (const auto* group : {&stream.scene.scene, &stream.scene.materials}) sent.insert(sent.end(), group->begin(), group->end());
+    Packets frags = stream.scene.textures;
+    Rng rng(seed);
+    for (size_t i = frags.size(); i > 1; --i) std::swap(frags[i - 1], frags[rng.below(i)]);
+    for (size_t i = 0; i < frags.size(); ++i) {
+        sent.push_back(frags[i]);
+        if (i == 1) sent.push_back(frags[i]);
+        if (i == 3) {
+            Packet again = frags[0];
+            restamp_packet(again, 900);
+            sent.push_back(again);
+        }
+    }
+    return sent;
+}
+
 // Offsets in a TEXTURE_FRAGMENT payload (spec 15.3).
 constexpr size_t kFragImageSize = kHeaderSize + 16, kFragImageCrc = kHeaderSize + 20, kFragOffset = kHeaderSize + 24,
                  kFragData = kHeaderSize + 28;
@@ -772,21 +794,7 @@ void scene_vectors(Writer& w) {
     const SceneStream base = make_scene_stream(scene, 200);
     const Packets& fragments = base.scene.textures;  // texture 0: 4 fragments, texture 1: 1 fragment
     {
-        // Fragments out of order, one byte-identical duplicate and one retransmission.
-        Packets sent = base.geometry.all();
-        for (const auto* group : {&base.scene.scene, &base.scene.materials}) sent.insert(sent.end(), group->begin(), group->end());
-        Packets frags = fragments;
-        Rng rng(31);
-        for (size_t i = frags.size(); i > 1; --i) std::swap(frags[i - 1], frags[rng.below(i)]);
-        for (size_t i = 0; i < frags.size(); ++i) {
-            sent.push_back(frags[i]);
-            if (i == 1) sent.push_back(frags[i]);
-            if (i == 3) {
-                Packet again = frags[0];
-                restamp_packet(again, 900);
-                sent.push_back(again);
-            }
-        }
+        const Packets sent = with_shuffled_fragments(base, 31);
         w.write("valid", "scene",
                 "a format 1.1 scene (spec 15): 5 nodes (a root with TRS, a body with a matrix, one wheel mesh instanced "
                 "by two nodes, a lamp without mesh, a UTF-8 name) over 3 SCENE packets, 2 materials (textured "
@@ -794,6 +802,22 @@ void scene_vectors(Writer& w) {
                 "(512 bytes in 4 fragments, 120 bytes in 1), the fragments out of order with a duplicate and a "
                 "retransmission; every texture complete, every material shown",
                 sent);
+    }
+    {
+        // The same car with JPEG textures (image_type 2): real files from a JPEG encoder, baseline and
+        // progressive (samples/jpeg_images.h), carried byte for byte like the PNGs.
+        SceneDescription jpeg = scene;
+        jpeg.textures[0].info.image_type = ImageType::Jpeg;
+        jpeg.textures[0].image = samples::kJpegBaseline16;
+        jpeg.textures[1].info.image_type = ImageType::Jpeg;
+        jpeg.textures[1].image = samples::kJpegProgressive16;
+        const SceneStream t = make_scene_stream(jpeg, 200);
+        w.write("valid", "scene_jpeg",
+                "the car of valid/scene with 2 JPEG textures (image_type 2; 16 x 16, made by a JPEG encoder): a "
+                "baseline JPEG of 354 bytes in 3 fragments (the paint's base colour) and a progressive one of 583 "
+                "bytes in 5 (the rubber's normal map), the fragments out of order with a duplicate and a "
+                "retransmission; every texture complete, every material shown",
+                with_shuffled_fragments(t, 32));
     }
     {
         // Smallest packets: one record per SCENE packet; everything scene-level sent first and twice.
