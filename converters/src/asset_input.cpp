@@ -4,6 +4,7 @@
 #include "ellicast/converters/asset.h"
 
 #include "gltf_read.h"
+#include "image_file.h"
 
 #include <algorithm>
 #include <array>
@@ -38,12 +39,6 @@ bool capture_image(tinygltf::Image* image, const int index, std::string*, std::s
     if (bytes && size > 0) static_cast<CapturedImages*>(user)->bytes[index].assign(bytes, bytes + size);
     return true;
 }
-
-bool is_png(const std::vector<uint8_t>& b) {
-    static const uint8_t sig[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
-    return b.size() >= 8 && std::memcmp(b.data(), sig, 8) == 0;
-}
-bool is_jpeg(const std::vector<uint8_t>& b) { return b.size() >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF; }
 
 // A name cut to the wire's 255 bytes without splitting a UTF-8 sequence.
 std::string wire_name(const std::string& name, const std::string& what, std::vector<std::string>& warnings) {
@@ -414,14 +409,9 @@ private:
             return kNone;
         }
         SceneDescription::Texture out;
-        if (is_png(*bytes)) out.info.image_type = ImageType::Png;
-        else if (is_jpeg(*bytes)) out.info.image_type = ImageType::Jpeg;
-        else {
-            std::string mime = model_.images[size_t(tex.source)].mimeType;
-            warnings_.push_back(image_where + " is neither PNG nor JPEG" + (mime.empty() ? "" : " (" + mime + ")") +
-                                "; its texture is not sent");
-            return kNone;
-        }
+        const image_file::Format format = checked_image(tex.source, *bytes);
+        if (format == image_file::Format::Unknown) return kNone;
+        out.info.image_type = format == image_file::Format::Png ? ImageType::Png : ImageType::Jpeg;
         if (bytes->size() > 0xFFFFFFFFu) {
             warnings_.push_back(image_where + " is larger than 4 GiB; not sent");
             return kNone;
@@ -448,6 +438,45 @@ private:
         out.info.index = uint16_t(asset_.scene.textures.size());
         asset_.scene.textures.push_back(std::move(out));
         return texture_map_[key] = uint16_t(asset_.scene.textures.size() - 1);
+    }
+
+    // The format of image `i` (`bytes` its file), Unknown when it is not sent: neither PNG nor JPEG,
+    // or cut off before the header a viewer needs. Says once per image what is wrong with it: its
+    // file is damaged (a file cut off in its image data is sent as it is: viewers show what they can
+    // of it, as they do of the asset), or it is not what its mimeType or file name declares (it is sent
+    // as what its bytes are; the receiver's glTF names it by them).
+    image_file::Format checked_image(int i, const std::vector<uint8_t>& bytes) {
+        if (auto it = image_formats_.find(i); it != image_formats_.end()) return it->second;
+        const tinygltf::Image& image = model_.images[size_t(i)];
+        const bool external = !image.uri.empty() && image.uri.rfind("data:", 0) != 0;
+        const std::string where = path_ + ": image " + std::to_string(i) + (external ? " (" + image.uri + ")" : "");
+        const image_file::Check check = image_file::check(bytes);
+        image_file::Format format = check.format;
+        const std::string what = image_file::name(format);
+        if (format == image_file::Format::Unknown) {
+            warnings_.push_back(where + " is neither PNG nor JPEG" + (image.mimeType.empty() ? "" : " (" + image.mimeType + ")") +
+                                "; its texture is not sent");
+        } else if (!check.readable) {
+            warnings_.push_back(where + ": its " + what + " file " + check.problem +
+                                "; no viewer can open it, so its texture is not sent");
+            format = image_file::Format::Unknown;
+        } else {
+            if (!check.problem.empty())
+                warnings_.push_back(where + ": its " + what + " file " + check.problem +
+                                    "; sent as it is (viewers show what they can of it)");
+            std::string extension = std::filesystem::path(image.uri).extension().string();
+            std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+            const bool named_png = extension == ".png", named_jpeg = extension == ".jpg" || extension == ".jpeg";
+            const std::string mime = image_file::mime_type(format);
+            if (!image.mimeType.empty() && image.mimeType != mime)
+                warnings_.push_back(where + " is declared " + image.mimeType + " but its bytes are a " + what +
+                                    " file; sent as " + what + " (" + mime + ")");
+            else if (image.mimeType.empty() && external &&
+                     ((named_png && format != image_file::Format::Png) || (named_jpeg && format != image_file::Format::Jpeg)))
+                warnings_.push_back(where + " is named like a " + (named_png ? "PNG" : "JPEG") + " file but its bytes are a " +
+                                    what + " file; sent as " + what + " (" + mime + ")");
+        }
+        return image_formats_[i] = format;
     }
 
     // The file bytes of image `i`: from its URI (captured while loading) or its bufferView.
@@ -517,6 +546,7 @@ private:
     std::vector<UvTransform> material_transforms_;  // per glTF material
     std::map<std::tuple<int, uint16_t, uint16_t, uint16_t, uint16_t>, uint16_t> texture_map_;
     std::map<int, std::vector<uint8_t>> view_images_;
+    std::map<int, image_file::Format> image_formats_;  // checked_image's answers
     std::map<std::string, bool> not_carried_attributes_;
 };
 

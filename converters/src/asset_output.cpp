@@ -6,6 +6,7 @@
 #include "ellicast/converters/mesh_output.h"
 
 #include "gltf_write.h"
+#include "image_file.h"
 
 #include "ellicast/converters/draco_mesh.h"
 
@@ -29,13 +30,6 @@ using namespace gltf_write;
 
 const char* const kDracoExtension = "KHR_draco_mesh_compression";
 const char* const kQuantizationExtension = "KHR_mesh_quantization";
-
-const char* image_mime(const std::vector<uint8_t>& b) {
-    static const uint8_t png[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
-    if (b.size() >= 8 && std::memcmp(b.data(), png, 8) == 0) return "image/png";
-    if (b.size() >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) return "image/jpeg";
-    return nullptr;
-}
 
 bool valid_filter(uint16_t f, bool min) {
     return f == 9728 || f == 9729 || (min && f >= 9984 && f <= 9987);
@@ -120,11 +114,24 @@ private:
                 warnings_.push_back(what + " has no image; left out");
                 continue;
             }
-            const char* mime = image_mime(tex.image);
-            if (!mime) {
+            // The file is written as what its bytes are; one no viewer can open is left out (the
+            // validator refuses an image cut off in its header), one cut off in its image data is kept.
+            const image_file::Check check = image_file::check(tex.image);
+            if (check.format == image_file::Format::Unknown) {
                 warnings_.push_back(what + " is neither PNG nor JPEG; left out");
                 continue;
             }
+            const std::string kind = image_file::name(check.format);
+            if (!check.readable) {
+                warnings_.push_back(what + ": its " + kind + " file " + check.problem + "; no viewer can open it, left out");
+                continue;
+            }
+            if (!check.problem.empty()) warnings_.push_back(what + ": its " + kind + " file " + check.problem + "; written as it is");
+            const char* mime = image_file::mime_type(check.format);
+            const bool jpeg = check.format == image_file::Format::Jpeg;
+            if (jpeg != (tex.info.image_type == ImageType::Jpeg))
+                warnings_.push_back(what + " is announced as " + (jpeg ? "PNG" : "JPEG") + " but its bytes are a " + kind +
+                                    " file; written as " + mime);
             const uint32_t crc = crc32c(tex.image.data(), tex.image.size());
             int source = -1;
             for (auto [it, end] = images_by_crc.equal_range(crc); it != end; ++it)
