@@ -2,6 +2,7 @@
 // them, each distinct primitive once in its mesh's own frame, texture files byte for byte, and a
 // warning for everything that is not carried.
 #include "ellicast/converters/asset.h"
+#include "jpeg_images.h"
 #include "support.h"
 
 #include <doctest/doctest.h>
@@ -225,6 +226,92 @@ TEST_CASE("an image in a data: URI is kept byte for byte; a GIF is dropped with 
     Asset m = load_asset((dir / "missing.gltf").string());
     CHECK(m.scene.textures.empty());
     CHECK(any_warning(m, "could not be read"));
+}
+
+TEST_CASE("an image whose declared type (mimeType, data: URI, file name) is not what its bytes are is sent as "
+          "what its bytes are, with a warning naming the image") {
+    auto dir = ellicast::test::scratch_dir("asset_input_image_types");
+    const std::vector<uint8_t>& jpeg = ellicast::samples::kJpegBaseline16;
+    const std::vector<uint8_t> png = {  // a whole 1x1 PNG: IHDR, IDAT, IEND
+        0x89, 0x50, 0x4E, 0x47, 0x0D, 0x0A, 0x1A, 0x0A, 0x00, 0x00, 0x00, 0x0D, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00,
+        0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x02, 0x00, 0x00, 0x00, 0x90, 0x77, 0x53, 0xDE, 0x00, 0x00, 0x00,
+        0x0C, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9C, 0x63, 0xF8, 0xCF, 0xC0, 0x00, 0x00, 0x03, 0x01, 0x01, 0x00, 0xC9,
+        0xFE, 0x92, 0xEF, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4E, 0x44, 0xAE, 0x42, 0x60, 0x82};
+    struct Case {
+        const char* file;
+        std::string image_json;
+        const std::vector<uint8_t>& bytes;
+        ImageType type;
+        const char* warning;  // nullptr: none
+    };
+    spit(dir / "really_jpeg.png", std::string(jpeg.begin(), jpeg.end()));
+    spit(dir / "really_png.jpg", std::string(png.begin(), png.end()));
+    spit(dir / "picture.jpg", std::string(jpeg.begin(), jpeg.end()));
+    const Case cases[] = {
+        {"jpeg_as_png.gltf", R"({"uri":"data:image/png;base64,)" + base64(jpeg) + R"("})", jpeg, ImageType::Jpeg,
+         "image 0 is declared image/png but its bytes are a JPEG file; sent as JPEG (image/jpeg)"},
+        {"png_as_jpeg.gltf", R"({"uri":"data:image/jpeg;base64,)" + base64(png) + R"("})", png, ImageType::Png,
+         "image 0 is declared image/jpeg but its bytes are a PNG file; sent as PNG (image/png)"},
+        {"named_png.gltf", R"({"uri":"really_jpeg.png"})", jpeg, ImageType::Jpeg,
+         "image 0 (really_jpeg.png) is named like a PNG file but its bytes are a JPEG file; sent as JPEG (image/jpeg)"},
+        {"named_jpeg.gltf", R"({"uri":"really_png.jpg"})", png, ImageType::Png,
+         "image 0 (really_png.jpg) is named like a JPEG file but its bytes are a PNG file; sent as PNG (image/png)"},
+        {"external_declared_png.gltf", R"({"uri":"picture.jpg","mimeType":"image/png"})", jpeg, ImageType::Jpeg,
+         "image 0 (picture.jpg) is declared image/png but its bytes are a JPEG file; sent as JPEG (image/jpeg)"},
+        {"declared_mime_wins.gltf", R"({"uri":"really_jpeg.png","mimeType":"image/jpeg"})", jpeg, ImageType::Jpeg, nullptr},
+        {"jpeg.gltf", R"({"uri":"picture.jpg"})", jpeg, ImageType::Jpeg, nullptr},
+    };
+    for (const Case& c : cases) {
+        const std::string file = c.file;
+        CAPTURE(file);
+        spit(dir / file, triangle_gltf(c.image_json));
+        Asset a = load_asset((dir / file).string());
+        REQUIRE(a.scene.textures.size() == 1);
+        CHECK(a.scene.textures[0].image == c.bytes);
+        CHECK(a.scene.textures[0].info.image_type == c.type);
+        CHECK(a.scene.materials[0].base_color_texture.texture == 0);
+        if (c.warning) {
+            REQUIRE(a.warnings.size() == 1);
+            CHECK(a.warnings[0] == (dir / file).string() + ": " + c.warning);
+        } else {
+            CHECK(a.warnings.empty());
+        }
+    }
+}
+
+TEST_CASE("a JPEG cut off anywhere never crashes: cut in its header it is not sent, cut in its image data it is "
+          "sent as it is, each time with a warning naming the image and the byte") {
+    auto dir = ellicast::test::scratch_dir("asset_input_truncated_jpeg");
+    for (const std::vector<uint8_t>* jpeg : {&ellicast::samples::kJpegBaseline16, &ellicast::samples::kJpegProgressive16}) {
+        // The first scan's data starts after its SOS segment: from there on a viewer can show something.
+        size_t data_start = 0;
+        for (size_t i = 2; i + 3 < jpeg->size() && !data_start; ++i)
+            if ((*jpeg)[i] == 0xFF && (*jpeg)[i + 1] == 0xDA) data_start = i + 2 + ((*jpeg)[i + 2] << 8 | (*jpeg)[i + 3]);
+        REQUIRE(data_start > 100);
+        for (size_t n = 1; n < jpeg->size(); ++n) {
+            CAPTURE(n);
+            const std::vector<uint8_t> cut(jpeg->begin(), jpeg->begin() + long(n));
+            spit(dir / "cut.jpg", std::string(cut.begin(), cut.end()));
+            spit(dir / "cut.gltf", triangle_gltf(R"({"uri":"cut.jpg"})"));
+            Asset a = load_asset((dir / "cut.gltf").string());
+            REQUIRE(a.warnings.size() == 1);
+            const std::string& w = a.warnings[0];
+            CHECK(w.rfind((dir / "cut.gltf").string() + ": image 0 (cut.jpg)", 0) == 0);
+            if (n < 3) {
+                CHECK(w.find("neither PNG nor JPEG") != std::string::npos);
+                CHECK(a.scene.textures.empty());
+            } else if (n < data_start) {
+                CHECK_MESSAGE(w.find("is truncated at byte " + std::to_string(n)) != std::string::npos, w);
+                CHECK(w.find("no viewer can open it, so its texture is not sent") != std::string::npos);
+                CHECK(a.scene.textures.empty());
+                CHECK(a.scene.materials[0].base_color_texture.texture == kNone);  // the factors alone
+            } else {
+                CHECK(w.find("sent as it is") != std::string::npos);
+                REQUIRE(a.scene.textures.size() == 1);
+                CHECK(a.scene.textures[0].image == cut);
+            }
+        }
+    }
 }
 
 TEST_CASE("load_asset refuses missing, empty and broken files with a message naming them") {

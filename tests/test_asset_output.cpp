@@ -2,6 +2,7 @@
 // real samples come back with their scene graph, materials and texture files; Draco and quantized
 // output is read by the Khronos validator, glTF-Transform and Draco's own decoder; whatever is
 // missing or inconsistent is left out with a warning and the file stays valid.
+#include "jpeg_images.h"
 #include "scene_compare.h"
 #include "support.h"
 
@@ -455,6 +456,64 @@ TEST_CASE("write_asset leaves out what does not hold together and still writes a
         Glb glb = read_glb(out);
         CHECK(!glb.json["meshes"][0]["primitives"][0].contains("material"));
     }
+}
+
+TEST_CASE("write_asset writes a texture as what its bytes are (the stream's image_type aside), leaves out a JPEG "
+          "cut off in its header and keeps one cut off in its image data, naming each texture") {
+    auto dir = scratch_dir("asset_output_images");
+    const std::vector<uint8_t>& jpeg = samples::kJpegBaseline16;
+    // One textured triangle per texture, each with a material of its own.
+    Asset a;
+    Mesh tri;
+    tri.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    tri.texcoords = {{0, 0}, {1, 0}, {0, 1}};
+    tri.triangles = {{0, 1, 2}};
+    SceneMesh mesh{0, "tris", {}};
+    for (uint16_t i = 0; i < 4; ++i) {
+        a.objects.push_back(tri);
+        mesh.primitives.push_back({i, i});
+        Material m;
+        m.name = "m" + std::to_string(i);
+        m.base_color_texture.texture = i;
+        a.scene.materials.push_back(m);
+    }
+    a.scene.meshes = {mesh};
+    SceneNode root;
+    root.mesh = 0;
+    a.scene.nodes = {root};
+    SceneDescription::Texture mislabelled, header_cut, data_cut, whole;
+    mislabelled.info.image_type = ImageType::Png;  // a stream that says PNG for a JPEG file
+    mislabelled.image = jpeg;
+    header_cut.info.image_type = ImageType::Jpeg;
+    header_cut.image.assign(jpeg.begin(), jpeg.begin() + 150);  // inside the frame header (SOF0 at byte 140)
+    data_cut.info.image_type = ImageType::Jpeg;
+    data_cut.image.assign(jpeg.begin(), jpeg.end() - 40);  // inside the scan's data: no EOI
+    whole.info.image_type = ImageType::Jpeg;
+    whole.image = samples::kJpegProgressive16;
+    a.scene.textures = {mislabelled, header_cut, data_cut, whole};
+
+    std::vector<std::string> warnings;
+    write_ok(dir / "images.glb", a, {}, &warnings);
+    check_valid(dir / "images.glb");
+    CHECK(any_of(warnings, "texture 0 is announced as PNG but its bytes are a JPEG file; written as image/jpeg"));
+    CHECK(any_of(warnings, "texture 1: its JPEG file is truncated at byte 150 in the segment at byte 140 (17 bytes); "
+                           "no viewer can open it, left out"));
+    CHECK(any_of(warnings, "texture 2: its JPEG file is truncated at byte 314 in the data of scan 1 (no EOI marker); "
+                           "written as it is"));
+    CHECK(!any_of(warnings, "texture 3"));
+    Glb glb = read_glb(dir / "images.glb");
+    REQUIRE(glb.json["images"].size() == 3);
+    for (const auto& image : glb.json["images"]) CHECK(image["mimeType"] == "image/jpeg");
+    // Material 1 lost its texture: its triangle gets the default material; the others keep theirs.
+    const auto& primitives = glb.json["meshes"][0]["primitives"];
+    REQUIRE(primitives.size() == 4);
+    CHECK(!primitives[1].contains("material"));
+    for (int i : {0, 2, 3}) CHECK(primitives[i].contains("material"));
+    Asset back = load_asset((dir / "images.glb").string());
+    REQUIRE(back.scene.textures.size() == 3);
+    CHECK(back.scene.textures[0].image == jpeg);
+    CHECK(back.scene.textures[1].image == data_cut.image);
+    CHECK(back.scene.textures[2].image == samples::kJpegProgressive16);
 }
 
 TEST_CASE("write_asset refuses bad options, unknown file types and unwritable places with a clear error") {

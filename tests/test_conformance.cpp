@@ -5,6 +5,7 @@
 #include "support.h"
 
 #include "../spec/vectors/expected_decode.h"
+#include "../samples/jpeg_images.h"
 
 #include <ellicast/format.h>
 #ifndef ELLICAST_FORMAT_TESTS_ONLY
@@ -183,6 +184,30 @@ TEST_CASE("valid/scene decodes to the car it was made from: hierarchy, instancin
     CHECK(split.scene_meshes() == s.scene_meshes());
     CHECK(split.materials() == s.materials());
     CHECK(split.textures().at(0).image == s.textures().at(0).image);
+}
+
+TEST_CASE("valid/scene_jpeg carries two real JPEG files (baseline, progressive) byte for byte as image_type 2, "
+          "in the scene of valid/scene") {
+    const ReceivedStream png = receive(read_bytes(vectors_dir() / "valid" / "scene.ellc"));
+    const ReceivedStream s = receive(read_bytes(vectors_dir() / "valid" / "scene_jpeg.ellc"));
+    CHECK(s.scene_nodes() == png.scene_nodes());
+    CHECK(s.scene_meshes() == png.scene_meshes());
+    CHECK(s.materials() == png.materials());
+    REQUIRE(s.textures().size() == 2);
+    const std::vector<uint8_t>* files[] = {&samples::kJpegBaseline16, &samples::kJpegProgressive16};
+    for (const auto& [index, t] : s.textures()) {
+        INFO("texture " << index);
+        REQUIRE(t.complete);
+        CHECK(t.info.image_type == ImageType::Jpeg);
+        CHECK(t.info.image_size == files[index]->size());
+        CHECK(t.image == *files[index]);
+        CHECK(t.info.mag_filter == png.textures().at(index).info.mag_filter);
+        CHECK(t.info.wrap_s == png.textures().at(index).info.wrap_s);
+    }
+    const auto j = conformance::expected_decode(read_bytes(vectors_dir() / "valid" / "scene_jpeg.ellc"));
+    CHECK(j["scene"]["textures"][0]["image_type"] == "JPEG");
+    CHECK(j["scene"]["shown"]["materials"] == nlohmann::json::parse("[0, 1]"));
+    CHECK(j["counters"]["duplicates"] == 2);
 }
 
 TEST_CASE("a texture with fragments missing is not complete and the material using it waits, as spec 15.4 says") {

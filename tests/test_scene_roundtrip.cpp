@@ -1,7 +1,9 @@
 // Acceptance of issue 5: every glTF sample goes through encode -> packets -> decode and comes out as
 // the same scene: valid for the Khronos validator, same nodes and transforms, same materials,
 // byte-identical texture files, each object within the decoder's quality bound; with packets lost
-// the file is still valid, with what is missing named. And the commands do the same.
+// the file is still valid, with what is missing named. And the commands do the same. A JPEG texture
+// (a real file from a JPEG encoder, samples/jpeg_images.h) goes through like the samples' PNGs.
+#include "jpeg_images.h"
 #include "scene_compare.h"
 #include "support.h"
 
@@ -385,4 +387,143 @@ TEST_CASE("ellicast encode, decode --quantize and convert --draco carry a glTF's
     LoadResult ply = load_meshes((dir / "duck.ply").string());
     LoadResult world = load_gltf(sample(f));
     CHECK(bounding_box_diagonal(ply.meshes) == doctest::Approx(bounding_box_diagonal(world.meshes)).epsilon(0.02));
+}
+
+namespace {
+
+std::vector<uint8_t> file_bytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+void write_bytes(const fs::path& path, const std::vector<uint8_t>& bytes) {
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+// The Duck with its texture replaced by `jpeg`, written into `dir`: as Duck.gltf with an external
+// duck.jpg (no mimeType, as the Duck has it), or as duck.glb with the JPEG in a bufferView of the BIN
+// chunk (mimeType image/jpeg, as glTF requires there).
+fs::path jpeg_duck(const fs::path& dir, const std::vector<uint8_t>& jpeg, bool glb) {
+    auto json = nlohmann::json::parse(file_bytes(shared_samples() / "gltf/Duck/Duck.gltf"));
+    if (!glb) {
+        fs::copy_file(shared_samples() / "gltf/Duck/Duck0.bin", dir / "Duck0.bin", fs::copy_options::overwrite_existing);
+        write_bytes(dir / "duck.jpg", jpeg);
+        json["images"][0] = {{"uri", "duck.jpg"}};
+        std::ofstream(dir / "Duck.gltf") << json.dump();
+        return dir / "Duck.gltf";
+    }
+    std::vector<uint8_t> bin = file_bytes(shared_samples() / "gltf/Duck/Duck0.bin");
+    bin.resize((bin.size() + 3) / 4 * 4, 0);
+    json["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", jpeg.size()}});
+    json["images"][0] = {{"bufferView", json["bufferViews"].size() - 1}, {"mimeType", "image/jpeg"}};
+    bin.insert(bin.end(), jpeg.begin(), jpeg.end());
+    bin.resize((bin.size() + 3) / 4 * 4, 0);
+    json["buffers"][0] = {{"byteLength", bin.size()}};
+    std::string text = json.dump();
+    text.resize((text.size() + 3) / 4 * 4, ' ');
+    std::vector<uint8_t> out;
+    auto u32 = [&](uint32_t v) {
+        for (int k = 0; k < 4; ++k) out.push_back(uint8_t(v >> (8 * k)));
+    };
+    u32(0x46546C67);  // "glTF"
+    u32(2);
+    u32(uint32_t(12 + 8 + text.size() + 8 + bin.size()));
+    u32(uint32_t(text.size()));
+    u32(0x4E4F534A);  // JSON
+    out.insert(out.end(), text.begin(), text.end());
+    u32(uint32_t(bin.size()));
+    u32(0x004E4942);  // BIN
+    out.insert(out.end(), bin.begin(), bin.end());
+    write_bytes(dir / "duck.glb", out);
+    return dir / "duck.glb";
+}
+
+}  // namespace
+
+TEST_CASE("a JPEG texture goes through encode and decode byte for byte, as image/jpeg, from a .gltf with an "
+          "external .jpg and from a .glb with the JPEG in a bufferView, and the files are valid glTF") {
+    if (!have_sample("gltf/Duck/Duck.gltf")) return;
+    auto dir = scratch_dir("scene_roundtrip_jpeg");
+    const struct {
+        const char* name;
+        const std::vector<uint8_t>& jpeg;
+        bool glb;
+    } cases[] = {{"baseline", samples::kJpegBaseline16, false}, {"progressive", samples::kJpegProgressive16, true}};
+    for (const auto& c : cases) {
+        const std::string name = c.name;
+        CAPTURE(name);
+        const fs::path sub = dir / name;
+        fs::create_directories(sub);
+        const fs::path input = jpeg_duck(sub, c.jpeg, c.glb);
+        check_valid(input);
+        Asset in = load_asset(input.string());
+        REQUIRE(in.warnings.size() == 1);  // the Duck's camera, nothing about its image
+        CHECK(any_of(in.warnings, "1 camera(s) not sent"));
+        REQUIRE(in.scene.textures.size() == 1);
+        CHECK(in.scene.textures[0].info.image_type == ImageType::Jpeg);
+        CHECK(in.scene.textures[0].image == c.jpeg);
+
+        Asset out = round_trip(in, 24);
+        CHECK(out.warnings.empty());
+        REQUIRE(out.scene.textures.size() == 1);
+        CHECK(out.scene.textures[0].info.image_type == ImageType::Jpeg);
+        CHECK(out.scene.textures[0].image == c.jpeg);
+        REQUIRE(out.scene.materials.size() == 1);
+        CHECK(out.scene.materials[0].base_color_texture.texture == 0);
+        for (const char* extension : {".gltf", ".glb"}) {
+            const fs::path file = sub / (std::string("out") + extension);
+            std::vector<std::string> warnings;
+            std::string error;
+            REQUIRE_MESSAGE(write_asset(file.string(), out, {}, warnings, error), error);
+            CHECK(warnings.empty());
+            check_valid(file);
+            Asset back = load_asset(file.string());
+            CHECK(back.warnings.empty());
+            REQUIRE(back.scene.textures.size() == 1);
+            CHECK(back.scene.textures[0].image == c.jpeg);
+            check_same_scene(in, back);
+            if (std::string(extension) == ".gltf") {
+                auto json = nlohmann::json::parse(file_bytes(file));
+                REQUIRE(json["images"].size() == 1);
+                CHECK(json["images"][0]["mimeType"] == "image/jpeg");
+            }
+        }
+    }
+}
+
+TEST_CASE("with a JPEG texture fragment lost the Duck gets the default material and the file stays valid; "
+          "once every fragment arrived it shows the JPEG") {
+    if (!have_sample("gltf/Duck/Duck.gltf")) return;
+    auto dir = scratch_dir("scene_roundtrip_jpeg_loss");
+    Asset in = load_asset(jpeg_duck(dir, samples::kJpegBaseline16, false).string());
+    EncodeOptions encoding = coarse_encoding();
+    encoding.packet_size = 256;  // the 354-byte JPEG in 2 fragments
+    EncodedAsset encoded;
+    std::string error;
+    REQUIRE(encode_asset(in, encoding, 1, true, encoded, error));
+    std::vector<size_t> fragments;
+    for (size_t i = 0; i < encoded.packets.size(); ++i) {
+        PacketView view;
+        REQUIRE(parse_packet(encoded.packets[i], view) == Error::Ok);
+        if (PacketType(view.header.type) == PacketType::TextureFragment) fragments.push_back(i);
+    }
+    REQUIRE(fragments.size() == 2);
+    for (size_t lost : fragments) {
+        CAPTURE(lost);
+        Asset out = round_trip(in, 24, {lost}, encoding);
+        CHECK(any_of(out.warnings, "material 0 (blinn3-fx) is waiting for its baseColorTexture texture 0 ("));
+        CHECK(any_of(out.warnings, " of 354 bytes arrived)"));
+        const fs::path file = dir / ("lost" + std::to_string(lost) + ".glb");
+        std::vector<std::string> warnings;
+        REQUIRE_MESSAGE(write_asset(file.string(), out, {}, warnings, error), error);
+        check_valid(file);
+        Asset back = load_asset(file.string());
+        CHECK(back.scene.materials.empty());
+        CHECK(back.scene.textures.empty());
+        REQUIRE(back.scene.meshes.size() == 1);
+        CHECK(back.scene.meshes[0].primitives[0].material == kNone);
+    }
+    Asset whole = round_trip(in, 24, {}, encoding);
+    REQUIRE(whole.scene.textures.size() == 1);
+    CHECK(whole.scene.textures[0].image == samples::kJpegBaseline16);
 }

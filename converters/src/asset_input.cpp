@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #if defined(__GNUC__) && !defined(__clang__)
@@ -449,12 +450,22 @@ private:
         if (auto it = image_formats_.find(i); it != image_formats_.end()) return it->second;
         const tinygltf::Image& image = model_.images[size_t(i)];
         const bool external = !image.uri.empty() && image.uri.rfind("data:", 0) != 0;
+        std::string declared = image.mimeType;  // from a bufferView image or a data: URI
+        if (external) {  // tinygltf keeps no mimeType for an image given by URI
+            if (!json_) json_ = read_json(path_);
+            const nlohmann::json& doc = *json_;
+            if (doc.is_object() && doc.contains("images") && doc["images"].is_array() && size_t(i) < doc["images"].size()) {
+                const nlohmann::json& entry = doc["images"][size_t(i)];
+                if (entry.is_object() && entry.contains("mimeType") && entry["mimeType"].is_string())
+                    declared = entry["mimeType"].get<std::string>();
+            }
+        }
         const std::string where = path_ + ": image " + std::to_string(i) + (external ? " (" + image.uri + ")" : "");
         const image_file::Check check = image_file::check(bytes);
         image_file::Format format = check.format;
         const std::string what = image_file::name(format);
         if (format == image_file::Format::Unknown) {
-            warnings_.push_back(where + " is neither PNG nor JPEG" + (image.mimeType.empty() ? "" : " (" + image.mimeType + ")") +
+            warnings_.push_back(where + " is neither PNG nor JPEG" + (declared.empty() ? "" : " (" + declared + ")") +
                                 "; its texture is not sent");
         } else if (!check.readable) {
             warnings_.push_back(where + ": its " + what + " file " + check.problem +
@@ -468,10 +479,10 @@ private:
             std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
             const bool named_png = extension == ".png", named_jpeg = extension == ".jpg" || extension == ".jpeg";
             const std::string mime = image_file::mime_type(format);
-            if (!image.mimeType.empty() && image.mimeType != mime)
-                warnings_.push_back(where + " is declared " + image.mimeType + " but its bytes are a " + what +
+            if (!declared.empty() && declared != mime)
+                warnings_.push_back(where + " is declared " + declared + " but its bytes are a " + what +
                                     " file; sent as " + what + " (" + mime + ")");
-            else if (image.mimeType.empty() && external &&
+            else if (declared.empty() && external &&
                      ((named_png && format != image_file::Format::Png) || (named_jpeg && format != image_file::Format::Jpeg)))
                 warnings_.push_back(where + " is named like a " + (named_png ? "PNG" : "JPEG") + " file but its bytes are a " +
                                     what + " file; sent as " + what + " (" + mime + ")");
@@ -547,6 +558,7 @@ private:
     std::map<std::tuple<int, uint16_t, uint16_t, uint16_t, uint16_t>, uint16_t> texture_map_;
     std::map<int, std::vector<uint8_t>> view_images_;
     std::map<int, image_file::Format> image_formats_;  // checked_image's answers
+    std::optional<nlohmann::json> json_;                // the file's JSON, read when checked_image needs it
     std::map<std::string, bool> not_carried_attributes_;
 };
 

@@ -327,30 +327,34 @@ bool primitive_to_mesh(const tinygltf::Model& model, const tinygltf::Primitive& 
 
 namespace {
 
+// The JSON text of a .gltf file, or the JSON chunk of a GLB (12-byte header, then chunks of length,
+// type, data); "" when a GLB is too short to hold it.
+std::string json_text(const std::vector<uint8_t>& bytes, bool binary) {
+    if (!binary) return {bytes.begin(), bytes.end()};
+    if (bytes.size() < 20) return {};
+    uint32_t json_length;
+    std::memcpy(&json_length, bytes.data() + 12, 4);
+    if (uint64_t(json_length) + 20 > bytes.size()) return {};
+    return {reinterpret_cast<const char*>(bytes.data()) + 20, json_length};
+}
+
 // tinygltf's Draco path indexes buffers and buffer views without checking them (a wrong "buffer"
 // number crashed inside Draco). Check them here, on the JSON, before tinygltf sees the file.
 void check_buffer_views(const std::string& path, bool binary) {
     std::ifstream in(path, std::ios::binary);
     std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
-    std::string text;
+    const std::string text = json_text(bytes, binary);
     uint64_t bin_length = 0;
     bool has_bin = false;
     if (binary) {
-        // 12-byte header, then chunks: length, type, data. tinygltf reports header errors itself.
-        if (bytes.size() < 20) return;
-        uint32_t json_length;
-        std::memcpy(&json_length, bytes.data() + 12, 4);
-        if (uint64_t(json_length) + 20 > bytes.size()) return;
-        text.assign(reinterpret_cast<const char*>(bytes.data()) + 20, json_length);
-        uint64_t next = 20 + uint64_t(json_length);
+        if (text.empty()) return;  // tinygltf reports header errors itself
+        uint64_t next = 20 + uint64_t(text.size());
         if (next + 8 <= bytes.size()) {
             uint32_t length, type;
             std::memcpy(&length, bytes.data() + next, 4);
             std::memcpy(&type, bytes.data() + next + 4, 4);
             if (type == 0x004E4942u) has_bin = true, bin_length = std::min<uint64_t>(length, bytes.size() - next - 8);
         }
-    } else {
-        text.assign(bytes.begin(), bytes.end());
     }
     if (text.find("KHR_draco_mesh_compression") == std::string::npos) return;  // tinygltf checks the rest
     nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
@@ -392,6 +396,13 @@ void check_buffer_views(const std::string& path, bool binary) {
 }
 
 }  // namespace
+
+nlohmann::json read_json(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
+    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    return nlohmann::json::parse(json_text(bytes, binary), nullptr, false);
+}
 
 void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadImageDataFunction image_loader,
                 void* image_user_data, std::vector<std::string>& warnings) {

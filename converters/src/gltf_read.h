@@ -7,6 +7,8 @@
 
 #include <tiny_gltf.h>
 
+#include <nlohmann/json.hpp>
+
 #include <Eigen/Dense>
 
 #include <set>
@@ -29,6 +31,10 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
 // extension that is neither a geometry extension above nor appearance-only (those give a warning).
 void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadImageDataFunction image_loader,
                 void* image_user_data, std::vector<std::string>& warnings);
+
+// The JSON of the glTF file at `path` (a .gltf file's text or a GLB's JSON chunk), for what tinygltf
+// does not keep (e.g. the mimeType of an image given by URI); discarded when it cannot be parsed.
+nlohmann::json read_json(const std::string& path);
 
 // Values per element of a glTF accessor type (1 for SCALAR ... 4 for VEC4; 0 otherwise), and bytes
 // per component of a component type (0 when unknown).
