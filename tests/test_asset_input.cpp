@@ -314,6 +314,41 @@ TEST_CASE("a JPEG cut off anywhere never crashes: cut in its header it is not se
     }
 }
 
+TEST_CASE("a PNG cut off in its signature or IHDR chunk is not sent, one cut off after it is sent as it is, with a "
+          "warning naming the image") {
+    auto dir = ellicast::test::scratch_dir("asset_input_truncated_png");
+    const std::vector<uint8_t> png = {  // a whole 1x1 PNG: IHDR (bytes 8..32), IDAT, IEND
+        0x89, 0x50, 0x4E, 0x47, 0x0D, 0x0A, 0x1A, 0x0A, 0x00, 0x00, 0x00, 0x0D, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00,
+        0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x02, 0x00, 0x00, 0x00, 0x90, 0x77, 0x53, 0xDE, 0x00, 0x00, 0x00,
+        0x0C, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9C, 0x63, 0xF8, 0xCF, 0xC0, 0x00, 0x00, 0x03, 0x01, 0x01, 0x00, 0xC9,
+        0xFE, 0x92, 0xEF, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4E, 0x44, 0xAE, 0x42, 0x60, 0x82};
+    for (size_t n = 1; n <= png.size(); ++n) {
+        CAPTURE(n);
+        const std::vector<uint8_t> cut(png.begin(), png.begin() + long(n));
+        spit(dir / "cut.gltf", triangle_gltf(R"({"uri":"data:image/png;base64,)" + base64(cut) + R"("})"));
+        Asset a = load_asset((dir / "cut.gltf").string());
+        if (n == png.size()) {
+            CHECK(a.warnings.empty());
+            CHECK(a.scene.textures.size() == 1);
+            continue;
+        }
+        REQUIRE(a.warnings.size() == 1);
+        const std::string& w = a.warnings[0];
+        CHECK(w.rfind((dir / "cut.gltf").string() + ": image 0", 0) == 0);
+        if (n < 8) {
+            CHECK(w.find("neither PNG nor JPEG") != std::string::npos);
+            CHECK(a.scene.textures.empty());
+        } else if (n < 33) {
+            CHECK_MESSAGE(w.find("no viewer can open it, so its texture is not sent") != std::string::npos, w);
+            CHECK(a.scene.textures.empty());
+        } else {
+            CHECK_MESSAGE(w.find("sent as it is") != std::string::npos, w);
+            REQUIRE(a.scene.textures.size() == 1);
+            CHECK(a.scene.textures[0].image == cut);
+        }
+    }
+}
+
 TEST_CASE("load_asset refuses missing, empty and broken files with a message naming them") {
     auto dir = ellicast::test::scratch_dir("asset_input_errors");
     auto message = [](const std::string& path) -> std::string {
