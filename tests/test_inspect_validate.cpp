@@ -2,6 +2,8 @@
 // damaged and incomplete recordings, their exit codes, and their usage errors.
 #include "support.h"
 
+#include "ellicast/format.h"
+
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
@@ -172,4 +174,45 @@ TEST_CASE("inspect and validate refuse bad usage and unreadable files with a cle
     r = run_ellicast("inspect " + vector_path("faulty/truncated_container"));
     CHECK(r.code == 1);
     CHECK(contains(r.out, "container: unreadable"));
+}
+
+TEST_CASE("validate refuses a recording whose texture is not a file of its image_type (spec 15.3, 15.4)") {
+    // The JPEG scene vector conforms; the same packets with every fragment's image_type changed to
+    // PNG (checksums redone, so the receiver accepts them all) do not.
+    Result r = run_ellicast("validate " + vector_path("valid/scene_jpeg"));
+    CHECK(r.code == 0);
+    const fs::path source = ellicast::test::source_dir() / "spec" / "vectors" / "valid" / "scene_jpeg.ellc";
+    std::ifstream in(source, std::ios::binary);
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const ellicast::ContainerContents contents = ellicast::read_container(bytes);
+    REQUIRE(contents.header_error == ellicast::Error::Ok);
+    std::vector<std::vector<uint8_t>> packets;
+    int relabelled = 0;
+    for (const auto& p : contents.packets) {
+        if (ellicast::PacketType(p.view.header.type) != ellicast::PacketType::TextureFragment) {
+            packets.emplace_back(bytes.begin() + std::ptrdiff_t(p.offset),
+                                 bytes.begin() + std::ptrdiff_t(p.offset + p.view.size));
+            continue;
+        }
+        ellicast::TextureFragment f;
+        REQUIRE(ellicast::decode_texture_fragment_payload(p.view.payload, f) == ellicast::Error::Ok);
+        REQUIRE(f.info.image_type == ellicast::ImageType::Jpeg);
+        f.info.image_type = ellicast::ImageType::Png;
+        packets.push_back(ellicast::write_packet(p.view.header, ellicast::encode_texture_fragment_payload(f)));
+        ++relabelled;
+    }
+    REQUIRE(relabelled > 0);
+    const auto dir = ellicast::test::binary_dir() / "test-scratch" / "inspect_validate_image_type";
+    fs::create_directories(dir);
+    const fs::path file = dir / "jpeg_called_png.ellc";
+    {
+        const std::vector<uint8_t> out = ellicast::write_container(packets);
+        std::ofstream o(file, std::ios::binary);
+        o.write(reinterpret_cast<const char*>(out.data()), std::streamsize(out.size()));
+    }
+    r = run_ellicast("validate '" + file.string() + "'");
+    CHECK(r.code == 1);
+    CHECK(contains(r.out, "texture 0: image_type says PNG but the image is a JPEG file"));
+    CHECK(contains(r.out, "texture 1: image_type says PNG but the image is a JPEG file"));
+    CHECK(contains(r.out, "does not conform: 2 violations"));
 }

@@ -4,7 +4,7 @@
 #include "ellicast/converters/asset.h"
 
 #include "gltf_read.h"
-#include "image_file.h"
+#include "ellicast/converters/image_file.h"
 
 #include <algorithm>
 #include <array>

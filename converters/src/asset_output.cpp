@@ -6,7 +6,7 @@
 #include "ellicast/converters/mesh_output.h"
 
 #include "gltf_write.h"
-#include "image_file.h"
+#include "ellicast/converters/image_file.h"
 
 #include "ellicast/converters/draco_mesh.h"
 

@@ -1,5 +1,5 @@
 // The structure of PNG and JPEG files (see image_file.h): chunks or markers, never the pixels.
-#include "image_file.h"
+#include "ellicast/converters/image_file.h"
 
 #include <cstring>
 #include <map>

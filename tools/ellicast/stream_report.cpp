@@ -2,6 +2,8 @@
 // (spec/format.md section 11.4).
 #include "stream_report.h"
 
+#include "ellicast/converters/image_file.h"
+
 #include <cstdio>
 #include <set>
 
@@ -149,11 +151,27 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
     if (!r.stream.textures().empty()) {
         std::string missing = missing_ranges(r.stream.textures(), r.stream.textures().begin()->second.info.texture_count);
         if (!missing.empty()) r.violations.push_back({std::nullopt, "textures missing: " + missing});
-        for (const auto& [index, t] : r.stream.textures())
-            if (!t.complete)
-                r.violations.push_back({std::nullopt, "texture " + std::to_string(index) + ": " +
-                                                          std::to_string(t.received_bytes) + " of " +
+        for (const auto& [index, t] : r.stream.textures()) {
+            const std::string name = "texture " + std::to_string(index);
+            if (!t.complete) {
+                r.violations.push_back({std::nullopt, name + ": " + std::to_string(t.received_bytes) + " of " +
                                                           std::to_string(t.info.image_size) + " image bytes received"});
+                continue;
+            }
+            // Spec 15.3/15.4: a complete texture must be a file of its image_type, with the header a
+            // viewer needs (a file cut off in its image data is still one, as the source had it).
+            const auto declared = t.info.image_type == ImageType::Png ? image_file::Format::Png : image_file::Format::Jpeg;
+            const image_file::Check c = image_file::check(t.image);
+            if (c.format != declared)
+                r.violations.push_back({std::nullopt, name + ": image_type says " + image_file::name(declared) +
+                                                          " but the image is " +
+                                                          (c.format == image_file::Format::Unknown
+                                                               ? std::string("neither a PNG nor a JPEG file")
+                                                               : std::string("a ") + image_file::name(c.format) + " file")});
+            else if (!c.readable)
+                r.violations.push_back({std::nullopt, name + ": the " + image_file::name(c.format) +
+                                                          " file cannot be shown: " + c.problem});
+        }
     }
     return r;
 }

@@ -1,4 +1,4 @@
-// Internal to converters: what the bytes of a texture image file are. ellicast carries images as
+// What the bytes of a texture image file are (used by the converters and by `ellicast validate`). ellicast carries images as
 // the asset had them and never decodes them, but it must know a PNG from a JPEG (the stream's
 // image_type, the glTF mimeType) and must not pass on a file that no viewer can open (the glTF
 // validator rejects an image whose header is cut off). Only the file's structure is read.
