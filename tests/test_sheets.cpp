@@ -11,7 +11,9 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <map>
 #include <random>
+#include <set>
 
 using namespace ellicast;
 using ellicast::test::have_sample;
@@ -84,14 +86,67 @@ TEST_CASE("a flat disc comes back as a whole sheet: its points go into both side
     CHECK(encoded.reports[0].flat_ellipsoids > 0);
     CHECK(full.report.sheet_points > encoded.info.objects[0].point_count / 2);
     // Without the second side the disc came back at RMS 0.17% with 1.8% of its area farther than
-    // 0.5% of the diagonal (half of its points on each side of the base); with it, 0.13% and 1.0%.
-    // Folds remain where both sides flatten onto each other (see the decoder's closing note).
+    // 0.5% of the diagonal (half of its points on each side of the base); with it, 0.13% and 1.0%,
+    // the holes of its base still open; with flat ellipsoids from points inside its faces (a base
+    // without holes) and the base's leftovers round its rim removed, 0.017% / 0.0015% and none.
     double far = 1;
-    CHECK(rms_percent(original, full.mesh, false, &far) <= 0.15);
-    CHECK(rms_percent(original, full.mesh, true) <= 0.1);
-    CHECK(far < 0.015);
+    CHECK(rms_percent(original, full.mesh, false, &far) <= 0.03);
+    CHECK(rms_percent(original, full.mesh, true) <= 0.01);
+    CHECK(far < 0.001);
     // Most points have a vertex on each side.
     CHECK(full.mesh.positions.size() >= size_t(1.5 * encoded.info.objects[0].point_count));
+}
+
+TEST_CASE("a flat disc's thin base is one closed shell without holes, and the complete disc keeps no base vertex") {
+    // The disc's faces are several grid cells wide: flat ellipsoids fitted to its vertices alone
+    // left gaps between them thinner than the grid, each a tunnel through the base (genus 55 and 32
+    // loose bubbles) that no inserted point could close.
+    const std::vector<Mesh> original{flat_disc()};
+    EncodeResult encoded = encode_meshes(original, EncodeOptions{});
+    StreamPackets packets;
+    REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, packets) == Error::Ok);
+    ReceivedStream stream;
+    size_t where = 0;
+    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.points})
+        for (const auto& p : *group) REQUIRE(stream.add_packet(p, where++) == Error::Ok);
+    Mesh base;
+    DecodeOptions options;
+    options.snapshot = [&](size_t, size_t points, const Mesh& m) {
+        if (points == 0) base = m;
+    };
+    std::vector<Mesh> meshes;
+    StreamDecodeReport report;
+    std::string error;
+    REQUIRE_MESSAGE(decode_stream(stream, options, meshes, report, error), error);
+    REQUIRE(!base.triangles.empty());
+    // Euler characteristic V - E + F of the base, vertices welded by position: 2 for one sphere.
+    std::map<std::array<float, 3>, uint32_t> id;
+    std::set<std::pair<uint32_t, uint32_t>> edges;
+    for (const auto& t : base.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = id.emplace(base.positions[t[k]], uint32_t(id.size())).first->second;
+            const uint32_t b = id.emplace(base.positions[t[(k + 1) % 3]], uint32_t(id.size())).first->second;
+            edges.insert({std::min(a, b), std::max(a, b)});
+        }
+    CHECK(long(id.size()) - long(edges.size()) + long(base.triangles.size()) == 2);
+    CHECK(report.objects[0].mc_vertices_left == 0);
+}
+
+TEST_CASE("a low-poly sheet (two triangles) gets flat ellipsoids over its whole area, not only at its corners") {
+    // A square of two triangles, larger than many grid cells: its four vertices alone gave four
+    // small blobs at its corners, and the points of its middle had no base to go into.
+    Mesh square;
+    square.name = "square";
+    square.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    square.triangles = {{0, 1, 2}, {0, 2, 3}};
+    EncodeResult encoded;
+    Decoded full = encode_decode({square}, false, &encoded);
+    CHECK(encoded.reports[0].flat_ellipsoids > 8);
+    CHECK(full.report.sheet_points > encoded.info.objects[0].point_count / 2);
+    double far = 1;
+    CHECK(rms_percent({square}, full.mesh, false, &far) <= 0.05);
+    CHECK(rms_percent({square}, full.mesh, true) <= 0.05);
+    CHECK(far < 0.001);
 }
 
 TEST_CASE("a closed model has no sheet points") {
@@ -106,16 +161,18 @@ TEST_CASE("a closed model has no sheet points") {
     CHECK(full.report.sheet_points == 0);
 }
 
-TEST_CASE("woody, a flat figure: every packet within 0.1% RMS both ways, half of the points within 0.3%") {
+TEST_CASE("woody, a flat figure: every packet within 0.04% RMS (0.07% back), half of the points within 0.06%") {
     if (!have_sample("meshes/woody.obj")) return;
     const auto original = load_meshes((shared_samples() / "meshes/woody.obj").string()).meshes;
+    // Measured: 0.020% / 0.047% with every packet, 0.033% with half of them (flat ellipsoids from
+    // vertices alone: 0.046% / 0.045%, and 0.070% with half, its base holed).
     Decoded full = encode_decode(original, false);
     double far = 1;
-    CHECK(rms_percent(original, full.mesh, false, &far) <= 0.1);
-    CHECK(rms_percent(original, full.mesh, true) <= 0.1);
-    CHECK(far < 0.01);
+    CHECK(rms_percent(original, full.mesh, false, &far) <= 0.04);
+    CHECK(rms_percent(original, full.mesh, true) <= 0.07);
+    CHECK(far < 0.001);
     // An open sheet is measured from the original to the reconstruction (the issue's rule for open
     // models): with half of the points the base still stands where points are missing.
     Decoded half = encode_decode(original, true);
-    CHECK(rms_percent(original, half.mesh, false) <= 0.3);
+    CHECK(rms_percent(original, half.mesh, false) <= 0.06);
 }

@@ -294,6 +294,7 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
         r.spacing_scale = std::min(4.0, std::sqrt(double(info.point_count) / double(r.original_vertices)));
     collapse_all_mc_vertices(r, report.complete && !points.empty());
     if (report.complete && r.original_vertices > 0) {
+        if (report.sheet_points > 0) remove_sheet_leftovers(r, ellipsoids, grid.cell);
         size_t removed = remove_components_without_originals(r);
         if (removed > 0)
             report.notes.push_back(std::to_string(removed) + " base component(s) with no original vertex removed");

@@ -391,18 +391,31 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         row = size_t(idx[1]) + size_t(idx[2]) * grid.n[1];
         return true;
     };
-    auto near_count = [&](std::vector<uint32_t>* far) {
+    auto near_count = [&](const std::vector<Vec3>& points, std::vector<uint32_t>* far) {
         VoxelBits near_base(grid, false);
         for (const auto& q : out) near_base.fill(rasterize(grid, to_candidate(dequantize_ellipsoid(q, frame)), near + grid.h));
         size_t count = 0;
-        for (size_t s = 0; s < samples.size(); ++s) {
+        for (size_t s = 0; s < points.size(); ++s) {
             size_t x, row;
-            bool is_near = voxel_row(samples[s], x, row) && near_base.get(x, row);
+            bool is_near = voxel_row(points[s], x, row) && near_base.get(x, row);
             count += is_near;
             if (!is_near && far) far->push_back(uint32_t(s));
         }
         return count;
     };
+
+    // Sheets are looked for among the vertices and, on faces larger than the grid (a low-poly sheet
+    // has its vertices at its corners only), among points inside the faces.
+    const bool may_have_sheets = !report.closed || interior == 0;
+    std::vector<Vec3> sheet_points, sheet_normals, on_faces, on_faces_normals;
+    if (may_have_sheets) {
+        face_samples(tree, grid.h, 500000, on_faces, on_faces_normals);
+        sheet_points = samples;
+        sheet_normals = sample_normals;
+        sheet_points.insert(sheet_points.end(), on_faces.begin(), on_faces.end());
+        sheet_normals.insert(sheet_normals.end(), on_faces_normals.begin(), on_faces_normals.end());
+    }
+    std::vector<int8_t> face_sheet(on_faces.size(), -1);  // per face point: sheet-like (1), not (0), unknown
 
     // Quantize and place the chosen ellipsoids, add flat ones for sheets, and measure. When the
     // finer measure falls short of the target the working grid said was reached, choose again
@@ -416,18 +429,32 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         for (uint32_t i : chosen.surface) place(candidates[i], true);
         report.surface_ellipsoids = uint32_t(out.size() - before_surface);
 
-        std::vector<uint32_t> lonely;
-        near_count(&lonely);
         // Flat ellipsoids go where the surface stays far from the base: on an open surface (a sheet, a
         // single-sided panel), or on a closed one with no inside voxel at all (thinner than the grid).
         // A closed surface with an inside never gets them: its ellipsoids must stay inside it.
         std::vector<uint32_t> sheet_samples;
-        if (!report.closed || interior == 0) sheet_samples = lonely;
+        if (may_have_sheets) {
+            near_count(samples, &sheet_samples);
+            std::vector<uint32_t> far_on_faces;
+            near_count(on_faces, &far_on_faces);
+            // Only where no side is inside (as for the seeds): the edges and corners of a solid
+            // with a hole are far from its base too, but a flat ellipsoid there would stand for
+            // surface on both of its sides.
+            parallel_for(far_on_faces.size(), options.threads, [&](size_t k) {
+                const uint32_t i = far_on_faces[k];
+                if (face_sheet[i] >= 0) return;
+                const Vec3& p = on_faces[i];
+                const Vec3& n = on_faces_normals[i];
+                face_sheet[i] = winding(to_arr(p - eps * n)) <= 0.5 && winding(to_arr(p + eps * n)) <= 0.5;
+            });
+            for (uint32_t i : far_on_faces)
+                if (face_sheet[i] == 1) sheet_samples.push_back(uint32_t(samples.size() + i));
+        }
         if (!sheet_samples.empty() && out.size() < options.max_ellipsoids)
-            for (const Candidate& flat :
-                 sheet_ellipsoids(samples, sample_normals, sheet_samples, grid.h, options.max_ellipsoids - out.size()))
+            for (const Candidate& flat : sheet_ellipsoids(sheet_points, sheet_normals, sheet_samples, grid.h,
+                                                          options.max_ellipsoids - out.size()))
                 if (place(flat, false)) ++report.flat_ellipsoids;
-        report.surface_covered = samples.empty() ? 0 : double(near_count(nullptr)) / double(samples.size());
+        report.surface_covered = samples.empty() ? 0 : double(near_count(samples, nullptr)) / double(samples.size());
 
         VoxelBits uni(measure_grid, false);
         for (const auto& q : out) uni.fill(rasterize(measure_grid, to_candidate(dequantize_ellipsoid(q, frame)), 0));

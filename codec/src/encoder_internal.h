@@ -175,6 +175,12 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
 std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const std::vector<Vec3>& normals,
                                         const std::vector<uint32_t>& sheet, double h, size_t max_count);
 
+// Points inside the triangles of `tree` with an edge longer than 2h, on a lattice about h apart
+// (corners left out: the vertices are samples already), with the triangle's unit normal: surface
+// that vertex samples miss on a low-poly sheet. At most about `max_count` (the lattice widens).
+void face_samples(const TriangleTree& tree, double h, size_t max_count, std::vector<Vec3>& points,
+                  std::vector<Vec3>& normals);
+
 // ---------------------------------------------------------------------------------------------
 // point_order.cpp
 

@@ -1,7 +1,10 @@
 // Flat ellipsoids for sheets: surface with no inside on either side (a leaf, a flag, a single-sided
-// panel) has no volume to fill, yet the decoder needs a base there. Samples of such surface are
-// clustered greedily (within four voxels of a first unassigned sample, in sample order) and each
-// cluster becomes a disc-like ellipsoid fitted by PCA, about one voxel thick, straddling the sheet.
+// panel) has no volume to fill, yet the decoder needs a base there. Samples of such surface (its
+// vertices, and points inside its faces where they are larger than the grid) are clustered
+// greedily (within four voxels of a first unassigned sample, in sample order, normals within about
+// 45 degrees) and each cluster becomes a disc-like ellipsoid fitted by PCA, about one voxel thick,
+// straddling the sheet. Dense samples make neighbouring discs overlap enough that their union
+// holds a layer of grid nodes everywhere: the decoder's thin base then has no holes.
 #include "encoder_internal.h"
 
 #include <algorithm>
@@ -14,6 +17,9 @@ std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const 
                                         const std::vector<uint32_t>& sheet, double h, size_t max_count) {
     std::vector<Candidate> out;
     const double rho = 4 * h;
+    // Samples whose normals differ by more than about 45 degrees stand for different sheets (panes
+    // meeting at a corner): one disc across both would be thick and bridge them.
+    const double kSameSheet = 0.7;
     auto cell = [&](const Vec3& p) {
         return std::array<int, 3>{int(std::floor(p.x() / rho)), int(std::floor(p.y() / rho)), int(std::floor(p.z() / rho))};
     };
@@ -30,7 +36,9 @@ std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const 
                     auto it = cells.find({c0[0] + dx, c0[1] + dy, c0[2] + dz});
                     if (it == cells.end()) continue;
                     for (uint32_t t : it->second)
-                        if (!assigned[t] && (samples[t] - samples[s]).norm() <= rho) group.push_back(t);
+                        if (!assigned[t] && (samples[t] - samples[s]).norm() <= rho &&
+                            (t == s || std::abs(normals[t].dot(normals[s])) >= kSameSheet))
+                            group.push_back(t);
                 }
         std::sort(group.begin(), group.end());
         Vec3 mean = Vec3::Zero();
@@ -65,6 +73,43 @@ std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const 
         out.push_back(flat);
     }
     return out;
+}
+
+}  // namespace ellicast::detail
+
+namespace ellicast::detail {
+
+void face_samples(const TriangleTree& tree, double h, size_t max_count, std::vector<Vec3>& points,
+                  std::vector<Vec3>& normals) {
+    points.clear();
+    normals.clear();
+    if (!(h > 0)) return;
+    auto longest = [](const TriangleTree::Triangle& t) {
+        const Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), c = to_vec(t.v[2]);
+        return std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    };
+    // A triangle cut into n parts per edge holds (n + 1)(n + 2) / 2 lattice points.
+    double spacing = h, total = 0;
+    for (const auto& t : tree.triangles()) {
+        const double n = std::ceil(longest(t) / h);
+        if (n > 2) total += 0.5 * (n + 1) * (n + 2);
+    }
+    if (total > double(max_count)) spacing *= std::sqrt(total / double(max_count));
+    for (const auto& t : tree.triangles()) {
+        const double length = longest(t);
+        if (!(length > 2 * h) || !std::isfinite(length)) continue;
+        const int n = int(std::min(std::ceil(length / spacing), 4096.0));
+        const Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), c = to_vec(t.v[2]);
+        Vec3 normal = (b - a).cross(c - a);
+        if (!(normal.norm() > 0)) continue;
+        normal.normalize();
+        for (int i = 0; i <= n; ++i)
+            for (int j = 0; i + j <= n; ++j) {
+                if ((i == 0 && j == 0) || i == n || j == n) continue;  // the corners
+                points.push_back(a + (double(i) / n) * (b - a) + (double(j) / n) * (c - a));
+                normals.push_back(normal);
+            }
+    }
 }
 
 }  // namespace ellicast::detail

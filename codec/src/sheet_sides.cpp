@@ -21,17 +21,14 @@ struct FlatEllipsoid {
     double bound;     // largest radius
 };
 
-}  // namespace
-
-std::vector<char> points_on_sheets(const std::vector<Ellipsoid>& ellipsoids, double cell,
-                                   const std::vector<SurfacePoint>& points) {
-    std::vector<char> on_sheet(points.size(), 0);
+// The flat ellipsoids among `ellipsoids`: thinner than two grid cells, twice as wide as thick both
+// ways (a disc, not a needle: a needle's side holds surface points at the middle of its thickness).
+std::vector<FlatEllipsoid> flat_ellipsoids(const std::vector<Ellipsoid>& ellipsoids, double cell) {
     std::vector<FlatEllipsoid> flat;
     for (const Ellipsoid& e : ellipsoids) {
         const double lo = std::min({e.radii[0], e.radii[1], e.radii[2]});
         const double hi = std::max({e.radii[0], e.radii[1], e.radii[2]});
         const double mid = double(e.radii[0]) + e.radii[1] + e.radii[2] - lo - hi;
-        // A disc, not a needle: a needle's side holds surface points at the middle of its thickness.
         if (!(lo > 0) || !(lo <= 2 * cell) || !(mid >= 2 * lo) || !std::isfinite(hi)) continue;
         const double w = e.rotation[0], x = e.rotation[1], y = e.rotation[2], z = e.rotation[3];
         const double n = std::sqrt(w * w + x * x + y * y + z * z);
@@ -48,20 +45,35 @@ std::vector<char> points_on_sheets(const std::vector<Ellipsoid>& ellipsoids, dou
         f.bound = hi;
         flat.push_back(f);
     }
+    return flat;
+}
+
+// p's squared ellipsoidal coordinates in f: across its thickness and along its plane.
+void flat_coordinates(const FlatEllipsoid& f, const Vec3& p, double& across, double& along) {
+    across = along = 0;
+    const Vec3 d = p - f.center;
+    for (int k = 0; k < 3; ++k) {
+        const double t = OpenMesh::dot(d, f.axis[k]) * f.inv_r[k];
+        (k == f.thin ? across : along) += t * t;
+    }
+}
+
+}  // namespace
+
+std::vector<char> points_on_sheets(const std::vector<Ellipsoid>& ellipsoids, double cell,
+                                   const std::vector<SurfacePoint>& points) {
+    std::vector<char> on_sheet(points.size(), 0);
+    const std::vector<FlatEllipsoid> flat = flat_ellipsoids(ellipsoids, cell);
     if (flat.empty()) return on_sheet;
     for (size_t i = 0; i < points.size(); ++i) {
         const Vec3 p(points[i].position[0], points[i].position[1], points[i].position[2]);
         for (const FlatEllipsoid& f : flat) {
-            const Vec3 d = p - f.center;
-            if (d.sqrnorm() > f.bound * f.bound) continue;
+            if ((p - f.center).sqrnorm() > f.bound * f.bound) continue;
             // Well inside the ellipsoid across its thickness: an ellipsoid kept inside a surface
             // never holds a point of it there, so this one straddles a sheet.
-            double s = 0, across = 0;
-            for (int k = 0; k < 3; ++k) {
-                const double t = OpenMesh::dot(d, f.axis[k]) * f.inv_r[k];
-                (k == f.thin ? across : s) += t * t;
-            }
-            if (across <= 0.25 && s <= 1) {
+            double across, along;
+            flat_coordinates(f, p, across, along);
+            if (across <= 0.25 && along <= 1) {
                 on_sheet[i] = 1;
                 break;
             }
@@ -133,6 +145,42 @@ bool insert_on_other_side(Reconstruction& r, uint32_t point_index, const std::ar
     }
     insert_into_face(r, point_index, position, f, bary, vertex);
     return true;
+}
+
+
+size_t remove_sheet_leftovers(Reconstruction& r, const std::vector<Ellipsoid>& ellipsoids, double cell) {
+    const std::vector<FlatEllipsoid> flat = flat_ellipsoids(ellipsoids, cell);
+    if (flat.empty() || r.mc_vertices == 0) return 0;
+    DecoderTriMesh& mesh = r.mesh;
+    std::vector<OpenMesh::VertexHandle> leftovers;
+    for (auto v : mesh.vertices()) {
+        if (r.is_original(v)) continue;
+        const Vec3 p = mesh.point(v);
+        for (const FlatEllipsoid& f : flat) {
+            if ((p - f.center).sqrnorm() > 1.21 * f.bound * f.bound) continue;
+            double across, along;
+            flat_coordinates(f, p, across, along);
+            if (across + along <= 1.21) {  // on (or just off) the shell of a flat ellipsoid
+                leftovers.push_back(v);
+                break;
+            }
+        }
+    }
+    size_t removed = 0;
+    for (auto v : leftovers) {
+        if (mesh.status(v).deleted()) continue;
+        std::vector<OpenMesh::FaceHandle> faces(mesh.vf_begin(v), mesh.vf_end(v));
+        for (auto f : faces) {
+            std::array<OpenMesh::VertexHandle, 3> vs;
+            int k = 0;
+            for (auto u : mesh.fv_range(f)) vs[k++] = u;
+            r.face_removed(f);
+            mesh.delete_face(f, true);
+            for (auto u : vs)
+                if (mesh.status(u).deleted() && !r.is_original(u)) --r.mc_vertices, ++removed;
+        }
+    }
+    return removed;
 }
 
 }  // namespace ellicast

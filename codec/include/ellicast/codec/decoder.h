@@ -212,6 +212,12 @@ std::vector<char> points_on_sheets(const std::vector<Ellipsoid>& ellipsoids, dou
 bool insert_on_other_side(Reconstruction& r, uint32_t point_index, const std::array<float, 3>& position,
                           OpenMesh::VertexHandle first, double reach, OpenMesh::VertexHandle& vertex);
 
+// The end of a complete stream: the marching-cubes vertices that remain on the shell of a flat
+// ellipsoid (where the thin base wraps round a sheet's edge, beyond its last points) go with their
+// faces; the sheet's other side still covers what such a face covered inside it. The mesh may
+// become open, as the sheet is. Returns the number of vertices removed.
+size_t remove_sheet_leftovers(Reconstruction& r, const std::vector<Ellipsoid>& ellipsoids, double cell);
+
 // ---------------------------------------------------------------------------------------------
 // Edge flips (edge_flip.cpp)
 
