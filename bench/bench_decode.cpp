@@ -127,6 +127,10 @@ int speed() {
         collapse_all_mc_vertices(r, true);
         double clean_wall = wall_now() - w0, clean_cpu = cpu_now() - c0;
         w0 = wall_now(), c0 = cpu_now();
+        r.normals = &points;
+        const size_t reinserted = agree_with_received_normals(r);
+        double agree_wall = wall_now() - w0, agree_cpu = cpu_now() - c0;
+        w0 = wall_now(), c0 = cpu_now();
         Mesh out = extract_mesh(r, info, points);
         double out_wall = wall_now() - w0, out_cpu = cpu_now() - c0;
         std::printf("%zu points inserted with flips and collapses: %.3f s wall, %.3f s CPU (%.0f points/s CPU); "
@@ -137,6 +141,8 @@ int speed() {
         std::printf("  final collapse of the remaining MC vertices: %.3f s wall, %.3f s CPU (%zu collapses, %zu left); "
                     "output mesh %.3f s wall, %.3f s CPU; %zu faces\n",
                     clean_wall, clean_cpu, r.collapses - during, r.mc_vertices, out_wall, out_cpu, out.triangles.size());
+        std::printf("  agreement with the received normals: %.3f s wall, %.3f s CPU (%zu vertices inserted again)\n",
+                    agree_wall, agree_cpu, reinserted);
         std::printf("  peak memory so far (max RSS): %.1f MB\n", peak_mb());
     }
     {

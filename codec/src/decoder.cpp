@@ -258,6 +258,8 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
     Reconstruction r;
     start_reconstruction(r, std::move(base), info.frame, grid.cell, std::max<size_t>(points.size(), info.point_count),
                          options.reconstruction);
+    if (info.has(kAttrNormal)) r.normals = &points;
+    r.sheet_points = &on_sheet;
     if (options.snapshot) options.snapshot(object_index, 0, extract_mesh(r, info, points));
 
     auto t2 = std::chrono::steady_clock::now();
@@ -299,6 +301,8 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
         if (removed > 0)
             report.notes.push_back(std::to_string(removed) + " base component(s) with no original vertex removed");
     }
+    // Every normal has arrived: faces across creases and folds at corners are put right.
+    if (report.complete) agree_with_received_normals(r);
     report.timings.cleanup = seconds_since(t3);
 
     auto t4 = std::chrono::steady_clock::now();

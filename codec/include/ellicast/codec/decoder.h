@@ -7,6 +7,7 @@
 //   point_insertion.cpp  each point goes into its nearest triangle (1-to-3 or edge split)
 //   edge_flip.cpp        local flips after each insertion (min angle where flat, smoothness where curved)
 //   mc_collapse.cpp      marching-cubes vertices collapse into original vertices once enough arrived
+//   normal_repair.cpp    at the end, faces are made to agree with the received normals (creases, corners)
 //   decoder.cpp          a whole object / stream, attribute transfer, snapshots, progress, timings
 //
 // Everything here is deterministic: the same ellipsoids and points (in any order, with duplicate
@@ -145,6 +146,10 @@ struct Reconstruction {
     double spacing_scale = 1;                     // > 1 at the end of an incomplete stream: its real spacing
     size_t original_vertices = 0;
     ReconstructionOptions options;
+    // The received points when they carry normals (else null), and per point whether it lies on a
+    // sheet (points_on_sheets; may be null): agree_with_received_normals reads them.
+    const std::vector<SurfacePoint>* normals = nullptr;
+    const std::vector<char>* sheet_points = nullptr;
 
     // Counters
     size_t face_splits = 0, edge_splits = 0, vertex_moves = 0, seam_merges = 0, flips = 0, collapses = 0,
@@ -227,6 +232,20 @@ size_t remove_sheet_leftovers(Reconstruction& r, const std::vector<Ellipsoid>& e
 // follow creases), never turning a face by more than options.foldover_degrees. Returns the number
 // of flips.
 size_t flip_edges_around(Reconstruction& r, OpenMesh::VertexHandle v);
+
+// ---------------------------------------------------------------------------------------------
+// Agreement with the received normals (normal_repair.cpp)
+
+// For the end of a complete stream whose points carry normals (r.normals; does nothing without):
+// puts right the faces that disagree with the normals their corners received (more than 30
+// degrees from all of them), which nearest-triangle insertion leaves where the base is rounded off
+// (faces across a crease, corners turned inside out, folds). First flips that halve a pair's
+// disagreement; then, for a few rounds while it keeps converging, the vertices of disagreeing faces
+// are collapsed away and inserted again into the nearest face that agrees with their normals.
+// Normals are read the way most of the mesh's faces face (an open surface's may face into the
+// volume), both ways for sheet points; a vertex whose normals its neighbours do not fit (normals
+// smoothed across a crease) has no say. Returns the number of vertices inserted again.
+size_t agree_with_received_normals(Reconstruction& r);
 
 // ---------------------------------------------------------------------------------------------
 // Collapse of marching-cubes vertices (mc_collapse.cpp)

@@ -1,0 +1,369 @@
+// The end of a stream whose points carry normals: the mesh is made to agree with them.
+//
+// Nearest-triangle insertion goes wrong where the base is far from the surface compared with the
+// points' spacing: at sharp corners and along creases the marching-cubes base is rounded off, the
+// points of two faces meeting at a crease land on the same rounded triangles, and the mesh ends up
+// with faces across the crease, corners turned inside out and small folds. Every received point
+// knows the normal of its face (a crease or corner point one per face, the last of them arriving at
+// the very end of the stream), so a face that disagrees with the normals of its corners is wrong:
+//  - first, edge flips that make a pair of faces clearly agree better (a diagonal across a crease);
+//  - then the vertices of faces that still disagree are taken out (collapsed into a neighbour) and
+//    inserted again, now into a mesh where every other point is in place: their nearest face that
+//    agrees with their normal is, nearly always, the right one. A few rounds of this.
+#include "ellicast/codec/decoder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ellicast {
+
+using Vec3 = OpenMesh::Vec3d;
+
+namespace {
+
+// A face counts as agreeing with a corner when its normal is within 30 degrees of one of the
+// normals the corner received.
+const double kAgreeCos = std::cos(30.0 * M_PI / 180.0);
+
+bool unit_normal(const DecoderTriMesh& mesh, OpenMesh::VertexHandle a, OpenMesh::VertexHandle b,
+                 OpenMesh::VertexHandle c, Vec3& n) {
+    n = OpenMesh::cross(mesh.point(b) - mesh.point(a), mesh.point(c) - mesh.point(a));
+    const double l = n.norm();
+    if (!(l > 1e-300)) return false;
+    n /= l;
+    return true;
+}
+
+// How the received normals are read: which way they point compared with the mesh's faces (an open
+// surface's normals may face into the volume its ellipsoids fill: the base then faces the other
+// way), and which vertices have a say (a vertex whose neighbours do not lie near the tangent plane
+// of one of its normals does not: an asset whose normals are smoothed across a crease gives its
+// crease vertices a normal half-way between the faces, which no face there agrees with and no
+// repair could satisfy). A vertex's say is worked out when first needed and again after the mesh
+// around it changed.
+class NormalView {
+public:
+    explicit NormalView(const Reconstruction& r) : r_(r) {
+        size_t along = 0, against = 0;
+        const DecoderTriMesh& mesh = r.mesh;
+        // A majority needs no census: every 8th vertex.
+        for (size_t k = 0; k < mesh.n_vertices(); k += 8) {
+            const auto v = OpenMesh::VertexHandle(int(k));
+            if (mesh.status(v).deleted() || !has_say(v)) continue;
+            // The area-weighted normal of the faces around v against v's first normal.
+            Vec3 around(0, 0, 0);
+            for (auto f : mesh.vf_range(v)) {
+                auto it = mesh.cfv_iter(f);
+                const Vec3 a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
+                around += OpenMesh::cross(b - a, c - a);
+            }
+            const auto& m = (*r.normals)[r.vertex_points[v.idx()][0]].normal;
+            (around[0] * m[0] + around[1] * m[1] + around[2] * m[2] >= 0 ? along : against) += 1;
+        }
+        // Mostly one way: that way (the few others are the folds to repair); mixed: either way.
+        const double total = double(along + against);
+        sign_ = double(along) >= 0.8 * total ? 1 : (double(against) >= 0.8 * total ? -1 : 0);
+    }
+
+    // Forget what is known of v's say (its neighbours changed).
+    void forget(OpenMesh::VertexHandle v) {
+        if (size_t(v.idx()) < say_.size()) say_[v.idx()] = kUnknown;
+    }
+
+    // Whether v received normals that its neighbours fit.
+    bool has_say(OpenMesh::VertexHandle v) const {
+        if (say_.size() < r_.mesh.n_vertices()) say_.resize(r_.mesh.n_vertices(), kUnknown);
+        int8_t& known = say_[v.idx()];
+        if (known == kUnknown) known = work_out_say(v) ? kYes : kNo;
+        return known == kYes;
+    }
+
+    // The largest cosine between unit normal n and the normals received at v (a sheet point's both
+    // ways: the sheet's thin base has a side facing each way).
+    double best_cos(OpenMesh::VertexHandle v, const Vec3& n) const {
+        double best = -1;
+        for (uint32_t i : r_.vertex_points[v.idx()]) {
+            const auto& m = (*r_.normals)[i].normal;
+            const double d = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
+            const bool either_way = sign_ == 0 || (r_.sheet_points && (*r_.sheet_points)[i]);
+            best = std::max(best, either_way ? std::abs(d) : sign_ * d);
+        }
+        return best;
+    }
+
+    // A cosine between a face normal and a received normal, read the view's way.
+    double read(double d) const { return sign_ == 0 ? std::abs(d) : sign_ * d; }
+
+    // 1 - best_cos; 0 (no objection) for a vertex that objects more than 30 degrees but has no say.
+    double objection(OpenMesh::VertexHandle v, const Vec3& n) const {
+        if (!r_.is_original(v)) return 0;
+        const double d = 1 - best_cos(v, n);
+        return d <= 1 - kAgreeCos || has_say(v) ? d : 0;
+    }
+
+    // Sum of the corners' objections to face (a, b, c); -1 when it is degenerate. `worst` receives
+    // the largest single objection seen.
+    double disagreement(OpenMesh::VertexHandle a, OpenMesh::VertexHandle b, OpenMesh::VertexHandle c,
+                        double& worst) const {
+        Vec3 n;
+        if (!unit_normal(r_.mesh, a, b, c, n)) return -1;
+        const double x = objection(a, n), y = objection(b, n), z = objection(c, n);
+        worst = std::max({worst, x, y, z});
+        return x + y + z;
+    }
+
+    bool agrees(OpenMesh::FaceHandle f) const {
+        auto it = r_.mesh.cfv_iter(f);
+        const auto a = *it, b = *++it, c = *++it;
+        double worst = 0;
+        return disagreement(a, b, c, worst) >= 0 && worst <= 1 - kAgreeCos;
+    }
+
+private:
+    static constexpr int8_t kUnknown = -1, kNo = 0, kYes = 1;
+
+    bool work_out_say(OpenMesh::VertexHandle v) const {
+        const auto& list = r_.vertex_points[v.idx()];
+        if (list.empty()) return false;
+        const Vec3 p = r_.mesh.point(v);
+        int count = 0, fit = 0;
+        for (auto w : r_.mesh.vv_range(v)) {
+            const Vec3 e = r_.mesh.point(w) - p;
+            const double l = e.norm();
+            ++count;
+            for (uint32_t i : list) {
+                const auto& m = (*r_.normals)[i].normal;
+                if (std::abs(e[0] * m[0] + e[1] * m[1] + e[2] * m[2]) <= 0.5 * l) {  // within 30 degrees
+                    ++fit;
+                    break;
+                }
+            }
+        }
+        return count >= 3 && 4 * fit >= 3 * count;
+    }
+
+    const Reconstruction& r_;
+    int sign_ = 1;
+    mutable std::vector<int8_t> say_;
+};
+
+// The link condition, checked directly: the vertices next to both ends of h's edge are exactly the
+// apexes of its faces and no other face holds both ends (OpenMesh's is_collapse_ok lets through
+// collapses that leave faces with a repeated vertex in the folded regions this pass repairs); and
+// no face that stays becomes degenerate.
+bool collapse_keeps_manifold(DecoderTriMesh& mesh, OpenMesh::HalfedgeHandle h) {
+    if (!mesh.is_collapse_ok(h)) return false;
+    const auto from = mesh.from_vertex_handle(h), to = mesh.to_vertex_handle(h);
+    int apexes = 0;
+    if (!mesh.is_boundary(h)) ++apexes;
+    if (!mesh.is_boundary(mesh.opposite_halfedge_handle(h))) ++apexes;
+    int common = 0;
+    for (auto a : mesh.vv_range(from)) {
+        if (a == to) continue;
+        for (auto b : mesh.vv_range(to)) common += a == b;
+    }
+    if (common != apexes) return false;
+    int faces = 0;
+    for (auto f : mesh.vf_range(from))
+        for (auto v : mesh.fv_range(f)) faces += v == to;
+    if (faces != apexes) return false;
+    // No face left degenerate (the other side of a sheet stands at the same position).
+    const Vec3 target = mesh.point(to);
+    for (auto f : mesh.vf_range(from)) {
+        Vec3 q[3];
+        int n = 0;
+        bool removed = false;
+        for (auto v : mesh.fv_range(f)) {
+            removed |= v == to;
+            q[n++] = v == from ? target : mesh.point(v);
+        }
+        if (removed) continue;
+        const double scale = std::max({(q[1] - q[0]).sqrnorm(), (q[2] - q[0]).sqrnorm(), (q[2] - q[1]).sqrnorm()});
+        if (!(OpenMesh::cross(q[1] - q[0], q[2] - q[0]).norm() > 1e-6 * scale)) return false;
+    }
+    return true;
+}
+
+// Flips the edges of `faces` (and the edges around each flip, in turn) where the flipped pair's
+// total disagreement is less than half the old one and one old face disagrees.
+size_t flip_towards_agreement(Reconstruction& r, NormalView& view, const std::vector<OpenMesh::FaceHandle>& faces) {
+    DecoderTriMesh& mesh = r.mesh;
+    const double disagree = 1 - kAgreeCos;
+    std::vector<OpenMesh::EdgeHandle> stack;
+    for (auto f : faces) {
+        if (mesh.status(f).deleted()) continue;
+        for (auto h : mesh.fh_range(f)) stack.push_back(mesh.edge_handle(h));
+    }
+    std::sort(stack.begin(), stack.end());
+    stack.erase(std::unique(stack.begin(), stack.end()), stack.end());
+    std::reverse(stack.begin(), stack.end());  // pop_back takes them in index order
+    size_t flips = 0;
+    // Each flip halves a pair's disagreement, so this ends; the budget only bounds it.
+    size_t budget = 8 * stack.size() + 64;
+    while (!stack.empty() && budget-- > 0) {
+        const auto e = stack.back();
+        stack.pop_back();
+        if (mesh.status(e).deleted() || mesh.is_boundary(e)) continue;
+        const auto h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+        const auto va = mesh.from_vertex_handle(h0), vb = mesh.to_vertex_handle(h0);
+        const auto vc = mesh.to_vertex_handle(mesh.next_halfedge_handle(h0));
+        const auto vd = mesh.to_vertex_handle(mesh.next_halfedge_handle(h1));
+        double worst_old = 0, worst_new = 0;
+        const double f1 = view.disagreement(va, vb, vc, worst_old), f2 = view.disagreement(vb, va, vd, worst_old);
+        if (f1 < 0 || f2 < 0 || worst_old <= disagree) continue;
+        const double g1 = view.disagreement(va, vd, vc, worst_new), g2 = view.disagreement(vd, vb, vc, worst_new);
+        if (g1 < 0 || g2 < 0 || !(g1 + g2 < 0.5 * (f1 + f2))) continue;
+        // No (nearly) degenerate new face.
+        const Vec3 &a = mesh.point(va), &b = mesh.point(vb), &c = mesh.point(vc), &d = mesh.point(vd);
+        const double scale = std::max({(a - b).sqrnorm(), (c - d).sqrnorm(), (a - c).sqrnorm(), (b - d).sqrnorm()});
+        if (OpenMesh::cross(d - a, c - a).norm() < 1e-6 * scale || OpenMesh::cross(b - d, c - d).norm() < 1e-6 * scale)
+            continue;
+        if (!mesh.is_flip_ok(e)) continue;
+        mesh.flip(e);
+        r.face_changed(mesh.face_handle(h0));
+        r.face_changed(mesh.face_handle(h1));
+        for (auto v : {va, vb, vc, vd}) view.forget(v);
+        ++r.flips;
+        ++flips;
+        for (auto h : {mesh.next_halfedge_handle(h0), mesh.prev_halfedge_handle(h0), mesh.next_halfedge_handle(h1),
+                       mesh.prev_halfedge_handle(h1)})
+            stack.push_back(mesh.edge_handle(h));
+    }
+    return flips;
+}
+
+// Takes out each of `suspects` that is an original vertex with a say and a face that disagrees,
+// when a face within r.point_spacing agrees with it (far from one, the mesh around it is not right
+// either and a re-insertion could land anywhere): it collapses into its nearest neighbour. Then,
+// once all are out, inserts their points again, each into the nearest face that agrees with it
+// (else the nearest face), and flips around it. Sheet points stay (they stand in both sides of the
+// sheet's base, one vertex each). Returns the vertices inserted again.
+std::vector<OpenMesh::VertexHandle> reinsert(Reconstruction& r, NormalView& view,
+                                             const std::vector<OpenMesh::VertexHandle>& suspects) {
+    DecoderTriMesh& mesh = r.mesh;
+    const double reach = r.point_spacing > 0 ? r.point_spacing : std::numeric_limits<double>::max();
+    std::vector<std::pair<Vec3, std::vector<uint32_t>>> removed;
+    std::vector<OpenMesh::FaceHandle> around;
+    Vec3 closest;
+    std::array<double, 3> bary;
+    for (auto v : suspects) {
+        if (mesh.status(v).deleted() || !r.is_original(v) || !view.has_say(v)) continue;
+        bool disagrees = false;
+        for (auto f : mesh.vf_range(v)) disagrees |= !view.agrees(f);
+        if (!disagrees) continue;
+        const auto& list = r.vertex_points[v.idx()];
+        bool sheet = false;
+        for (uint32_t i : list) sheet |= r.sheet_points && (*r.sheet_points)[i];
+        if (sheet) continue;
+        const Vec3 p = mesh.point(v);
+        auto agrees_with_v = [&](OpenMesh::FaceHandle g) {
+            auto it = mesh.cfv_iter(g);
+            const auto a = *it, b = *++it, c = *++it;
+            Vec3 n;
+            return a != v && b != v && c != v && unit_normal(mesh, a, b, c, n) && view.best_cos(v, n) >= kAgreeCos;
+        };
+        if (!r.faces.nearest(mesh, p, closest, bary, agrees_with_v, reach).is_valid()) continue;
+        OpenMesh::HalfedgeHandle out;
+        double nearest = std::numeric_limits<double>::max();
+        for (auto h : mesh.voh_range(v)) {
+            const double d = (mesh.point(mesh.to_vertex_handle(h)) - p).sqrnorm();
+            if (d < nearest && collapse_keeps_manifold(mesh, h)) nearest = d, out = h;
+        }
+        if (!out.is_valid()) continue;
+        const auto target = mesh.to_vertex_handle(out);
+        around.clear();
+        for (auto f : mesh.vf_range(v)) around.push_back(f);
+        removed.push_back({p, list});
+        r.vertex_points[v.idx()].clear();
+        --r.original_vertices;
+        mesh.collapse(out);
+        for (auto f : around)
+            if (mesh.status(f).deleted()) r.face_removed(f);
+        reindex_faces_around(r, target);
+        for (auto w : mesh.vv_range(target)) view.forget(w);
+        view.forget(target);
+    }
+    std::vector<OpenMesh::VertexHandle> inserted;
+    for (const auto& [p, list] : removed) {
+        const std::array<float, 3>& position = (*r.normals)[list[0]].position;
+        // The point's own normals, read as the view reads them (its vertex is gone).
+        auto agrees_with_point = [&](OpenMesh::FaceHandle g) {
+            auto it = mesh.cfv_iter(g);
+            const auto a = *it, b = *++it, c = *++it;
+            Vec3 n;
+            if (!unit_normal(mesh, a, b, c, n)) return false;
+            for (uint32_t i : list) {
+                const auto& m = (*r.normals)[i].normal;
+                const double d = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
+                if (view.read(d) >= kAgreeCos) return true;
+            }
+            return false;
+        };
+        OpenMesh::VertexHandle back;
+        const auto g = r.faces.nearest(mesh, p, closest, bary, agrees_with_point, reach);
+        const Insertion kind = g.is_valid() ? insert_into_face(r, list[0], position, g, bary, back)
+                                            : insert_point(r, list[0], position, back);
+        if (kind == Insertion::NoMesh) break;
+        for (size_t k = 1; k < list.size(); ++k) {
+            OpenMesh::VertexHandle same;
+            insert_point(r, list[k], position, same);  // a seam duplicate of `back`
+        }
+        if (kind != Insertion::SeamDuplicate) flip_edges_around(r, back);
+        inserted.push_back(back);
+    }
+    for (auto v : inserted) {
+        if (mesh.status(v).deleted()) continue;
+        view.forget(v);
+        for (auto w : mesh.vv_range(v)) view.forget(w);
+    }
+    return inserted;
+}
+
+}  // namespace
+
+size_t agree_with_received_normals(Reconstruction& r) {
+    if (!r.normals) return 0;
+    DecoderTriMesh& mesh = r.mesh;
+    NormalView view(r);
+    // One look at the whole mesh; after that only where something changed.
+    std::vector<OpenMesh::FaceHandle> faces;
+    for (auto f : mesh.faces())
+        if (!view.agrees(f)) faces.push_back(f);
+    if (faces.empty()) return 0;
+    if (r.index_paused) {  // re-insertion looks faces up
+        r.faces.build(mesh);
+        r.index_paused = false;
+    }
+    flip_towards_agreement(r, view, faces);
+    std::vector<OpenMesh::VertexHandle> suspects;
+    for (auto f : faces)
+        if (!mesh.status(f).deleted())
+            for (auto v : mesh.fv_range(f)) suspects.push_back(v);
+    size_t total = 0, last = std::numeric_limits<size_t>::max();
+    // Each round fixes most of what the last one left (the Box: 604, 169, 56 vertices); where that
+    // stops (a region the points are too sparse to pin down), so does this.
+    for (int round = 0; round < 3 && !suspects.empty(); ++round) {
+        std::sort(suspects.begin(), suspects.end());
+        suspects.erase(std::unique(suspects.begin(), suspects.end()), suspects.end());
+        const auto inserted = reinsert(r, view, suspects);
+        total += inserted.size();
+        // What the round touched: the faces around the vertices inserted again, and their corners.
+        faces.clear();
+        suspects.clear();
+        for (auto v : inserted)
+            if (!mesh.status(v).deleted())
+                for (auto f : mesh.vf_range(v)) faces.push_back(f);
+        std::sort(faces.begin(), faces.end());
+        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+        flip_towards_agreement(r, view, faces);
+        for (auto f : faces)
+            if (!mesh.status(f).deleted())
+                for (auto v : mesh.fv_range(f)) suspects.push_back(v);
+        if (inserted.empty() || 2 * inserted.size() > last) break;
+        last = inserted.size();
+    }
+    return total;
+}
+
+}  // namespace ellicast
