@@ -240,8 +240,10 @@ size_t flip_edges_around(Reconstruction& r, OpenMesh::VertexHandle v);
 // puts right the faces that disagree with the normals their corners received (more than 30
 // degrees from all of them), which nearest-triangle insertion leaves where the base is rounded off
 // (faces across a crease, corners turned inside out, folds). First flips that halve a pair's
-// disagreement; then, for a few rounds while it keeps converging, the vertices of disagreeing faces
-// are collapsed away and inserted again into the nearest face that agrees with their normals.
+// disagreement; then faces with an edge longer than 8 point spacings (the walls of a tunnel the
+// ellipsoids left through the object) are cut out and their rims filled; then, for a few rounds
+// while it keeps converging, the vertices of disagreeing faces are collapsed away and inserted
+// again into the nearest face that agrees with their normals.
 // Normals are read the way most of the mesh's faces face (an open surface's may face into the
 // volume), both ways for sheet points; a vertex whose normals its neighbours do not fit (normals
 // smoothed across a crease) has no say. Returns the number of vertices inserted again.
