@@ -409,13 +409,14 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     const bool may_have_sheets = !report.closed || interior == 0;
     std::vector<Vec3> sheet_points, sheet_normals, on_faces, on_faces_normals;
     if (may_have_sheets) {
-        face_samples(tree, grid.h, 500000, on_faces, on_faces_normals);
+        // The faces of an open part (all of them on a closed model with no inside voxel).
+        const std::vector<char> allowed = interior == 0 ? std::vector<char>{} : triangles_of_open_parts(mesh, weld);
+        face_samples(tree, allowed, grid.h, 500000, on_faces, on_faces_normals);
         sheet_points = samples;
         sheet_normals = sample_normals;
         sheet_points.insert(sheet_points.end(), on_faces.begin(), on_faces.end());
         sheet_normals.insert(sheet_normals.end(), on_faces_normals.begin(), on_faces_normals.end());
     }
-    std::vector<int8_t> face_sheet(on_faces.size(), -1);  // per face point: sheet-like (1), not (0), unknown
 
     // Quantize and place the chosen ellipsoids, add flat ones for sheets, and measure. When the
     // finer measure falls short of the target the working grid said was reached, choose again
@@ -437,18 +438,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
             near_count(samples, &sheet_samples);
             std::vector<uint32_t> far_on_faces;
             near_count(on_faces, &far_on_faces);
-            // Only where no side is inside (as for the seeds): the edges and corners of a solid
-            // with a hole are far from its base too, but a flat ellipsoid there would stand for
-            // surface on both of its sides.
-            parallel_for(far_on_faces.size(), options.threads, [&](size_t k) {
-                const uint32_t i = far_on_faces[k];
-                if (face_sheet[i] >= 0) return;
-                const Vec3& p = on_faces[i];
-                const Vec3& n = on_faces_normals[i];
-                face_sheet[i] = winding(to_arr(p - eps * n)) <= 0.5 && winding(to_arr(p + eps * n)) <= 0.5;
-            });
-            for (uint32_t i : far_on_faces)
-                if (face_sheet[i] == 1) sheet_samples.push_back(uint32_t(samples.size() + i));
+            for (uint32_t i : far_on_faces) sheet_samples.push_back(uint32_t(samples.size() + i));
         }
         if (!sheet_samples.empty() && out.size() < options.max_ellipsoids)
             for (const Candidate& flat : sheet_ellipsoids(sheet_points, sheet_normals, sheet_samples, grid.h,

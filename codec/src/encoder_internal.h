@@ -1,6 +1,7 @@
 // Private interfaces between the encoder's algorithm files (one algorithm per .cpp).
 #pragma once
 
+#include "ellicast/codec/mesh.h"
 #include "ellicast/codec/triangle_tree.h"
 
 #include <Eigen/Dense>
@@ -177,9 +178,15 @@ std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const 
 
 // Points inside the triangles of `tree` with an edge longer than 2h, on a lattice about h apart
 // (corners left out: the vertices are samples already), with the triangle's unit normal: surface
-// that vertex samples miss on a low-poly sheet. At most about `max_count` (the lattice widens).
-void face_samples(const TriangleTree& tree, double h, size_t max_count, std::vector<Vec3>& points,
-                  std::vector<Vec3>& normals);
+// that vertex samples miss on a low-poly sheet. Only triangles whose input index is marked in
+// `allowed` (all when it is empty). At most about `max_count` (the lattice widens).
+void face_samples(const TriangleTree& tree, const std::vector<char>& allowed, double h, size_t max_count,
+                  std::vector<Vec3>& points, std::vector<Vec3>& normals);
+
+// Per triangle of `mesh` (vertices welded by `weld`): 1 when the connected part it belongs to has a
+// boundary (an edge of one triangle), 0 when that part is closed. A closed part has an inside and
+// no sheet, however open the rest of the mesh is.
+std::vector<char> triangles_of_open_parts(const Mesh& mesh, const std::vector<uint32_t>& weld);
 
 // ---------------------------------------------------------------------------------------------
 // point_order.cpp

@@ -79,11 +79,12 @@ std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const 
 
 namespace ellicast::detail {
 
-void face_samples(const TriangleTree& tree, double h, size_t max_count, std::vector<Vec3>& points,
-                  std::vector<Vec3>& normals) {
+void face_samples(const TriangleTree& tree, const std::vector<char>& allowed, double h, size_t max_count,
+                  std::vector<Vec3>& points, std::vector<Vec3>& normals) {
     points.clear();
     normals.clear();
     if (!(h > 0)) return;
+    auto skipped = [&](const TriangleTree::Triangle& t) { return !allowed.empty() && !allowed[t.index]; };
     auto longest = [](const TriangleTree::Triangle& t) {
         const Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), c = to_vec(t.v[2]);
         return std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
@@ -91,11 +92,13 @@ void face_samples(const TriangleTree& tree, double h, size_t max_count, std::vec
     // A triangle cut into n parts per edge holds (n + 1)(n + 2) / 2 lattice points.
     double spacing = h, total = 0;
     for (const auto& t : tree.triangles()) {
+        if (skipped(t)) continue;
         const double n = std::ceil(longest(t) / h);
         if (n > 2) total += 0.5 * (n + 1) * (n + 2);
     }
     if (total > double(max_count)) spacing *= std::sqrt(total / double(max_count));
     for (const auto& t : tree.triangles()) {
+        if (skipped(t)) continue;
         const double length = longest(t);
         if (!(length > 2 * h) || !std::isfinite(length)) continue;
         const int n = int(std::min(std::ceil(length / spacing), 4096.0));
@@ -110,6 +113,36 @@ void face_samples(const TriangleTree& tree, double h, size_t max_count, std::vec
                 normals.push_back(normal);
             }
     }
+}
+
+std::vector<char> triangles_of_open_parts(const Mesh& mesh, const std::vector<uint32_t>& weld) {
+    // Parts: triangles joined through shared (welded) vertices, by union-find over vertices.
+    std::vector<uint32_t> parent(weld.size());
+    for (size_t i = 0; i < parent.size(); ++i) parent[i] = uint32_t(i);
+    auto root = [&](uint32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    std::vector<uint64_t> edges;
+    edges.reserve(mesh.triangles.size() * 3);
+    for (const auto& t : mesh.triangles) {
+        for (int e = 0; e < 3; ++e) {
+            const uint32_t a = weld[t[e]], b = weld[t[(e + 1) % 3]];
+            edges.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+            parent[root(a)] = root(b);
+        }
+    }
+    std::sort(edges.begin(), edges.end());
+    std::vector<char> open_root(weld.size(), 0);
+    for (size_t i = 0; i < edges.size();) {
+        size_t j = i;
+        while (j < edges.size() && edges[j] == edges[i]) ++j;
+        if (j - i == 1) open_root[root(uint32_t(edges[i] >> 32))] = 1;
+        i = j;
+    }
+    std::vector<char> out(mesh.triangles.size(), 0);
+    for (size_t i = 0; i < mesh.triangles.size(); ++i) out[i] = open_root[root(weld[mesh.triangles[i][0]])];
+    return out;
 }
 
 }  // namespace ellicast::detail

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace ellicast {
 
@@ -170,6 +171,29 @@ size_t remove_sheet_leftovers(Reconstruction& r, const std::vector<Ellipsoid>& e
     for (auto v : leftovers) {
         if (mesh.status(v).deleted()) continue;
         std::vector<OpenMesh::FaceHandle> faces(mesh.vf_begin(v), mesh.vf_end(v));
+        // Every point keeps a face: an original vertex whose faces all touch v stays with them.
+        bool keeps_all = true;
+        for (auto u : mesh.vv_range(v)) {
+            if (!r.is_original(u)) continue;
+            bool other = false;
+            for (auto f : mesh.vf_range(u))
+                if (std::find(faces.begin(), faces.end(), f) == faces.end()) other = true;
+            keeps_all &= other;
+        }
+        if (!keeps_all) {
+            // Then v moves onto its nearest original neighbour: its faces shrink to slivers there.
+            OpenMesh::VertexHandle nearest;
+            double best = std::numeric_limits<double>::max();
+            for (auto u : mesh.vv_range(v)) {
+                const double d = (mesh.point(u) - mesh.point(v)).sqrnorm();
+                if (r.is_original(u) && d < best) best = d, nearest = u;
+            }
+            if (nearest.is_valid()) {
+                mesh.set_point(v, mesh.point(nearest));
+                reindex_faces_around(r, v);
+            }
+            continue;
+        }
         for (auto f : faces) {
             std::array<OpenMesh::VertexHandle, 3> vs;
             int k = 0;

@@ -220,7 +220,8 @@ bool insert_on_other_side(Reconstruction& r, uint32_t point_index, const std::ar
 // The end of a complete stream: the marching-cubes vertices that remain on the shell of a flat
 // ellipsoid (where the thin base wraps round a sheet's edge, beyond its last points) go with their
 // faces; the sheet's other side still covers what such a face covered inside it. The mesh may
-// become open, as the sheet is. Returns the number of vertices removed.
+// become open, as the sheet is. A vertex whose removal would leave an original vertex without a
+// face moves onto its nearest original neighbour instead. Returns the number of vertices removed.
 size_t remove_sheet_leftovers(Reconstruction& r, const std::vector<Ellipsoid>& ellipsoids, double cell);
 
 // ---------------------------------------------------------------------------------------------
