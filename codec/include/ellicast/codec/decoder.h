@@ -244,7 +244,8 @@ size_t flip_edges_around(Reconstruction& r, OpenMesh::VertexHandle v);
 // disagreement; then faces with an edge longer than 8 point spacings (the walls of a tunnel the
 // ellipsoids left through the object) are cut out and their rims filled; then, for a few rounds
 // while it keeps converging, the vertices of disagreeing faces are collapsed away and inserted
-// again into the nearest face that agrees with their normals.
+// again into the nearest face that agrees with their normals (not when more than a fifth of the
+// faces disagree: the mesh is then wrong throughout, not locally, and that does not converge).
 // Normals are read the way most of the mesh's faces face (an open surface's may face into the
 // volume), both ways for sheet points; a vertex whose normals its neighbours do not fit (normals
 // smoothed across a crease) has no say. Returns the number of vertices inserted again.
