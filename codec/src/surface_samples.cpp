@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace ellicast::detail {
@@ -97,10 +99,31 @@ std::vector<std::array<bool, 3>> sharp_edges(const Mesh& mesh, double crease_deg
     return sharp;
 }
 
-// Bisects every triangle; false (and `out` incomplete) as soon as more than `budget` points are made.
+// A corner by its bits: both faces along an edge make the same corner for each midpoint, and a
+// seam's two faces make two (one per attribute set), which the stream carries as two points.
+struct CornerBits {
+    size_t operator()(const Corner& c) const {
+        uint32_t bits[sizeof(Corner) / 4];
+        std::memcpy(bits, &c, sizeof bits);
+        uint64_t h = 0xCBF29CE484222325ull;
+        for (uint32_t b : bits) h = (h ^ b) * 0x100000001B3ull;
+        return size_t(h);
+    }
+    bool operator()(const Corner& a, const Corner& b) const { return std::memcmp(&a, &b, sizeof(Corner)) == 0; }
+};
+static_assert(sizeof(Corner) == 12 * sizeof(float), "Corner is compared by its bytes: no padding");
+
+// Bisects every triangle; false (and `out` incomplete) as soon as more than `budget` distinct
+// corners are made. Both triangles along an edge make its midpoints, bit for bit, so `out` holds
+// about two copies of each (the encoder welds them); the budget counts distinct ones, the points
+// the stream carries.
 bool bisect_all(const Mesh& mesh, const std::vector<std::array<bool, 3>>& sharp, double spacing,
-                double crease_spacing, size_t budget, std::vector<Corner>& out) {
+                double crease_spacing, size_t budget, std::vector<Corner>& out, size_t& distinct) {
     out.clear();
+    std::unordered_set<Corner, CornerBits, CornerBits> distinct_corners;
+    // A corner is made by every face around its edge: two on a manifold, more at a non-manifold
+    // edge; the copies kept stay bounded all the same.
+    const size_t corner_budget = 4 * budget;
     std::vector<Piece> stack;
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
         Piece root;
@@ -124,9 +147,10 @@ bool bisect_all(const Mesh& mesh, const std::vector<std::array<bool, 3>>& sharp,
                 if (r > worst_ratio) worst_ratio = r, worst = i;
             }
             if (worst < 0) continue;
-            if (out.size() >= budget) return false;
             const int a = worst, b = (worst + 1) % 3, c = (worst + 2) % 3;
             const Corner m = midpoint(p.v[a], p.v[b]);
+            if (distinct_corners.insert(m).second && distinct_corners.size() > budget) return false;
+            if (out.size() >= corner_budget) return false;
             out.push_back(m);
             Piece left, right;
             left.v[0] = p.v[a], left.v[1] = m, left.v[2] = p.v[c];
@@ -137,6 +161,7 @@ bool bisect_all(const Mesh& mesh, const std::vector<std::array<bool, 3>>& sharp,
             stack.push_back(right);
         }
     }
+    distinct = distinct_corners.size();
     return true;
 }
 
@@ -150,13 +175,15 @@ Mesh with_surface_samples(const Mesh& mesh, const SurfaceSampleOptions& options,
     double spacing = options.spacing;
     double crease = options.crease_spacing > 0 ? std::min(options.crease_spacing, spacing) : spacing;
     std::vector<Corner> samples;
+    size_t distinct = 0;
     // Too many for the budget: coarser spacings until they fit. Each try stops at the budget, so
     // the work stays bounded by (tries x budget).
-    for (int attempt = 0; !bisect_all(mesh, sharp, spacing, crease, options.max_samples, samples); ++attempt) {
-        spacing *= 1.5;
-        crease *= 1.5;
-        if (attempt > 60) {
+    for (int attempt = 0; !bisect_all(mesh, sharp, spacing, crease, options.max_samples, samples, distinct); ++attempt) {
+        spacing *= 1.2;
+        crease *= 1.2;
+        if (attempt > 100) {
             samples.clear();
+            distinct = 0;
             break;
         }
     }
@@ -168,7 +195,7 @@ Mesh with_surface_samples(const Mesh& mesh, const SurfaceSampleOptions& options,
         if (mesh.has_texcoords()) out.texcoords.push_back(c.texcoord);
         if (mesh.has_colors()) out.colors.push_back(c.color);
     }
-    added = samples.size();
+    added = distinct;
     return out;
 }
 

@@ -59,7 +59,7 @@ struct ObjectReport {
     bool point_set = false;
     uint32_t vertices = 0;            // input vertices
     uint32_t points = 0;              // points sent (after welding), samples included
-    uint32_t samples = 0;             // surface samples added to the vertices (before welding)
+    uint32_t samples = 0;             // surface samples added to the vertices (distinct position and attributes)
     uint32_t candidates = 0;          // candidate ellipsoids grown
     uint32_t ellipsoids = 0;          // ellipsoids sent
     uint32_t surface_ellipsoids = 0;  // of those, chosen for surface (thin parts) rather than volume
