@@ -264,6 +264,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     // Surface samples: the distinct vertex positions (at most 20000, a seeded subset beyond).
     std::vector<Vec3> samples;
     std::vector<Vec3> sample_normals;
+    std::vector<uint32_t> sample_vertex;  // the vertex each sample is
     {
         std::vector<Vec3> vnormal(mesh.positions.size(), Vec3::Zero());
         for (const auto& t : mesh.triangles) {
@@ -286,6 +287,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
             std::sort(distinct.begin(), distinct.end());
         }
         for (uint32_t i : distinct) {
+            sample_vertex.push_back(i);
             samples.emplace_back(mesh.positions[i][0], mesh.positions[i][1], mesh.positions[i][2]);
             double len = vnormal[i].norm();
             sample_normals.push_back(len > 0 ? Vec3(vnormal[i] / len) : Vec3::Zero());
@@ -408,14 +410,20 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     // has its vertices at its corners only), among points inside the faces.
     const bool may_have_sheets = !report.closed || interior == 0;
     std::vector<Vec3> sheet_points, sheet_normals, on_faces, on_faces_normals;
+    std::vector<uint32_t> sheet_parts, on_faces_triangles;
     if (may_have_sheets) {
         // The faces of an open part (all of them on a closed model with no inside voxel).
-        const std::vector<char> allowed = interior == 0 ? std::vector<char>{} : triangles_of_open_parts(mesh, weld);
-        face_samples(tree, allowed, grid.h, 500000, on_faces, on_faces_normals);
+        const MeshParts parts = mesh_parts(mesh, weld);
+        std::vector<char> allowed;
+        if (interior > 0)
+            for (uint32_t part : parts.of_triangle) allowed.push_back(parts.open[part]);
+        face_samples(tree, allowed, grid.h, 500000, on_faces, on_faces_normals, on_faces_triangles);
         sheet_points = samples;
         sheet_normals = sample_normals;
         sheet_points.insert(sheet_points.end(), on_faces.begin(), on_faces.end());
         sheet_normals.insert(sheet_normals.end(), on_faces_normals.begin(), on_faces_normals.end());
+        for (uint32_t v : sample_vertex) sheet_parts.push_back(parts.of_vertex[v]);
+        for (uint32_t t : on_faces_triangles) sheet_parts.push_back(parts.of_triangle[t]);
     }
 
     // Quantize and place the chosen ellipsoids, add flat ones for sheets, and measure. When the
@@ -441,7 +449,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
             for (uint32_t i : far_on_faces) sheet_samples.push_back(uint32_t(samples.size() + i));
         }
         if (!sheet_samples.empty() && out.size() < options.max_ellipsoids)
-            for (const Candidate& flat : sheet_ellipsoids(sheet_points, sheet_normals, sheet_samples, grid.h,
+            for (const Candidate& flat : sheet_ellipsoids(sheet_points, sheet_normals, sheet_parts, sheet_samples, grid.h,
                                                           options.max_ellipsoids - out.size()))
                 if (place(flat, false)) ++report.flat_ellipsoids;
         report.surface_covered = samples.empty() ? 0 : double(near_count(samples, nullptr)) / double(samples.size());

@@ -171,22 +171,29 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
 // sheet_ellipsoids.cpp
 
 // Flat ellipsoids straddling sheet-like surface: the samples listed in `sheet` (indices into
-// `samples`, with unit `normals`), clustered within 4h, one disc about h thick per cluster, at most
-// `max_count`, in the order of `sheet`.
+// `samples`, with unit `normals` and the connected `part` of the mesh each lies on), clustered
+// within 4h (more when `max_count` discs cannot cover them all) among samples of one part, one disc
+// about h thick per cluster, at most `max_count`, in the order of `sheet`.
 std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const std::vector<Vec3>& normals,
-                                        const std::vector<uint32_t>& sheet, double h, size_t max_count);
+                                        const std::vector<uint32_t>& part, const std::vector<uint32_t>& sheet,
+                                        double h, size_t max_count);
 
 // Points inside the triangles of `tree` with an edge longer than 2h, on a lattice about h apart
-// (corners left out: the vertices are samples already), with the triangle's unit normal: surface
-// that vertex samples miss on a low-poly sheet. Only triangles whose input index is marked in
-// `allowed` (all when it is empty). At most about `max_count` (the lattice widens).
+// (corners left out: the vertices are samples already), with the triangle's unit normal and input
+// index: surface that vertex samples miss on a low-poly sheet. Only triangles whose input index is
+// marked in `allowed` (all when it is empty). At most about `max_count` (the lattice widens).
 void face_samples(const TriangleTree& tree, const std::vector<char>& allowed, double h, size_t max_count,
-                  std::vector<Vec3>& points, std::vector<Vec3>& normals);
+                  std::vector<Vec3>& points, std::vector<Vec3>& normals, std::vector<uint32_t>& triangles);
 
-// Per triangle of `mesh` (vertices welded by `weld`): 1 when the connected part it belongs to has a
-// boundary (an edge of one triangle), 0 when that part is closed. A closed part has an inside and
-// no sheet, however open the rest of the mesh is.
-std::vector<char> triangles_of_open_parts(const Mesh& mesh, const std::vector<uint32_t>& weld);
+// The connected parts of `mesh` (triangles joined through vertices welded by `weld`): the part of
+// each vertex and of each triangle (a part is named by one of its vertices), and per part name
+// whether it has a boundary (an edge of one triangle). A closed part has an inside and no sheet,
+// however open the rest of the mesh is.
+struct MeshParts {
+    std::vector<uint32_t> of_vertex, of_triangle;
+    std::vector<char> open;
+};
+MeshParts mesh_parts(const Mesh& mesh, const std::vector<uint32_t>& weld);
 
 // ---------------------------------------------------------------------------------------------
 // point_order.cpp

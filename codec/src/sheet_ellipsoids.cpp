@@ -1,8 +1,8 @@
 // Flat ellipsoids for sheets: surface with no inside on either side (a leaf, a flag, a single-sided
 // panel) has no volume to fill, yet the decoder needs a base there. Samples of such surface (its
 // vertices, and points inside its faces where they are larger than the grid) are clustered
-// greedily (within four voxels of a first unassigned sample, in sample order, normals within about
-// 45 degrees) and each cluster becomes a disc-like ellipsoid fitted by PCA, about one voxel thick,
+// greedily (within four voxels of a first unassigned sample, more when the budget is short, in
+// sample order, normals within about 45 degrees) and each cluster becomes a disc-like ellipsoid fitted by PCA, about one voxel thick,
 // straddling the sheet. Dense samples make neighbouring discs overlap enough that their union
 // holds a layer of grid nodes everywhere: the decoder's thin base then has no holes.
 #include "encoder_internal.h"
@@ -13,12 +13,17 @@
 
 namespace ellicast::detail {
 
-std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const std::vector<Vec3>& normals,
-                                        const std::vector<uint32_t>& sheet, double h, size_t max_count) {
+namespace {
+
+// One disc per cluster of samples within `rho` of a first unassigned one; `complete` tells whether
+// every sample found a cluster within `max_count`.
+std::vector<Candidate> clustered_discs(const std::vector<Vec3>& samples, const std::vector<Vec3>& normals,
+                                       const std::vector<uint32_t>& part, const std::vector<uint32_t>& sheet, double h,
+                                       double rho, size_t max_count, bool& complete) {
     std::vector<Candidate> out;
-    const double rho = 4 * h;
-    // Samples whose normals differ by more than about 45 degrees stand for different sheets (panes
-    // meeting at a corner): one disc across both would be thick and bridge them.
+    complete = true;
+    // Samples of different parts, or whose normals differ by more than about 45 degrees (panes
+    // meeting at a corner), stand for different sheets: one disc across both would bridge them.
     const double kSameSheet = 0.7;
     auto cell = [&](const Vec3& p) {
         return std::array<int, 3>{int(std::floor(p.x() / rho)), int(std::floor(p.y() / rho)), int(std::floor(p.z() / rho))};
@@ -27,7 +32,11 @@ std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const 
     for (uint32_t s : sheet) cells[cell(samples[s])].push_back(s);
     std::vector<char> assigned(samples.size(), 0);
     for (uint32_t s : sheet) {
-        if (assigned[s] || out.size() >= max_count) continue;
+        if (assigned[s]) continue;
+        if (out.size() >= max_count) {
+            complete = false;
+            break;
+        }
         std::vector<uint32_t> group;
         auto c0 = cell(samples[s]);
         for (int dz = -1; dz <= 1; ++dz)
@@ -36,11 +45,28 @@ std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const 
                     auto it = cells.find({c0[0] + dx, c0[1] + dy, c0[2] + dz});
                     if (it == cells.end()) continue;
                     for (uint32_t t : it->second)
-                        if (!assigned[t] && (samples[t] - samples[s]).norm() <= rho &&
+                        if (!assigned[t] && part[t] == part[s] && (samples[t] - samples[s]).norm() <= rho &&
                             (t == s || std::abs(normals[t].dot(normals[s])) >= kSameSheet))
                             group.push_back(t);
                 }
         std::sort(group.begin(), group.end());
+        // A few samples left between discs already laid are inside one of them most of the time:
+        // a disc of their own would be a small round blob, no flatter than thick. Well inside one
+        // (where the union is thick), or anywhere inside one when the budget is short.
+        const double inside = rho > 4 * h ? 1.0 : 0.5;
+        if (group.size() < 3) {
+            auto covered = [&](uint32_t t) {
+                for (const Candidate& c : out) {
+                    const Vec3 local = c.axes.transpose() * (samples[t] - c.center);
+                    if (local.cwiseQuotient(c.radii).squaredNorm() <= inside) return true;
+                }
+                return false;
+            };
+            if (std::all_of(group.begin(), group.end(), covered)) {
+                for (uint32_t t : group) assigned[t] = 1;
+                continue;
+            }
+        }
         Vec3 mean = Vec3::Zero();
         for (uint32_t t : group) mean += samples[t];
         mean /= double(group.size());
@@ -75,14 +101,30 @@ std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const 
     return out;
 }
 
+}  // namespace
+
+std::vector<Candidate> sheet_ellipsoids(const std::vector<Vec3>& samples, const std::vector<Vec3>& normals,
+                                        const std::vector<uint32_t>& part, const std::vector<uint32_t>& sheet,
+                                        double h, size_t max_count) {
+    // Clusters four voxels across; wider ones (fewer, flatter discs) when the budget cannot cover
+    // every sample with those, since a sheet left without a base comes back with holes.
+    bool complete = false;
+    std::vector<Candidate> out;
+    double rho = 4 * h;
+    for (int attempt = 0; attempt < 5 && !complete; ++attempt, rho *= 1.5)
+        out = clustered_discs(samples, normals, part, sheet, h, rho, max_count, complete);
+    return out;
+}
+
 }  // namespace ellicast::detail
 
 namespace ellicast::detail {
 
 void face_samples(const TriangleTree& tree, const std::vector<char>& allowed, double h, size_t max_count,
-                  std::vector<Vec3>& points, std::vector<Vec3>& normals) {
+                  std::vector<Vec3>& points, std::vector<Vec3>& normals, std::vector<uint32_t>& triangles) {
     points.clear();
     normals.clear();
+    triangles.clear();
     if (!(h > 0)) return;
     auto skipped = [&](const TriangleTree::Triangle& t) { return !allowed.empty() && !allowed[t.index]; };
     auto longest = [](const TriangleTree::Triangle& t) {
@@ -111,12 +153,13 @@ void face_samples(const TriangleTree& tree, const std::vector<char>& allowed, do
                 if ((i == 0 && j == 0) || i == n || j == n) continue;  // the corners
                 points.push_back(a + (double(i) / n) * (b - a) + (double(j) / n) * (c - a));
                 normals.push_back(normal);
+                triangles.push_back(t.index);
             }
     }
 }
 
-std::vector<char> triangles_of_open_parts(const Mesh& mesh, const std::vector<uint32_t>& weld) {
-    // Parts: triangles joined through shared (welded) vertices, by union-find over vertices.
+MeshParts mesh_parts(const Mesh& mesh, const std::vector<uint32_t>& weld) {
+    // Union-find over the welded vertices, joined along every triangle.
     std::vector<uint32_t> parent(weld.size());
     for (size_t i = 0; i < parent.size(); ++i) parent[i] = uint32_t(i);
     auto root = [&](uint32_t x) {
@@ -132,17 +175,20 @@ std::vector<char> triangles_of_open_parts(const Mesh& mesh, const std::vector<ui
             parent[root(a)] = root(b);
         }
     }
+    MeshParts parts;
+    parts.of_vertex.resize(weld.size());
+    for (size_t i = 0; i < weld.size(); ++i) parts.of_vertex[i] = root(weld[i]);
+    parts.of_triangle.resize(mesh.triangles.size());
+    for (size_t i = 0; i < mesh.triangles.size(); ++i) parts.of_triangle[i] = parts.of_vertex[mesh.triangles[i][0]];
     std::sort(edges.begin(), edges.end());
-    std::vector<char> open_root(weld.size(), 0);
+    parts.open.assign(weld.size(), 0);
     for (size_t i = 0; i < edges.size();) {
         size_t j = i;
         while (j < edges.size() && edges[j] == edges[i]) ++j;
-        if (j - i == 1) open_root[root(uint32_t(edges[i] >> 32))] = 1;
+        if (j - i == 1) parts.open[root(uint32_t(edges[i] >> 32))] = 1;
         i = j;
     }
-    std::vector<char> out(mesh.triangles.size(), 0);
-    for (size_t i = 0; i < mesh.triangles.size(); ++i) out[i] = open_root[root(weld[mesh.triangles[i][0]])];
-    return out;
+    return parts;
 }
 
 }  // namespace ellicast::detail

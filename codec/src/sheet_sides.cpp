@@ -157,11 +157,14 @@ size_t remove_sheet_leftovers(Reconstruction& r, const std::vector<Ellipsoid>& e
     for (auto v : mesh.vertices()) {
         if (r.is_original(v)) continue;
         const Vec3 p = mesh.point(v);
-        for (const FlatEllipsoid& f : flat) {
-            if ((p - f.center).sqrnorm() > 1.21 * f.bound * f.bound) continue;
+        for (FlatEllipsoid f : flat) {
+            // On the shell of a flat ellipsoid: inside it grown by a cell (marching cubes places
+            // its vertices on grid edges, up to a cell off the ellipsoid's surface).
+            if ((p - f.center).norm() > f.bound + cell) continue;
+            for (double& inv : f.inv_r) inv = 1 / (1 / inv + cell);
             double across, along;
             flat_coordinates(f, p, across, along);
-            if (across + along <= 1.21) {  // on (or just off) the shell of a flat ellipsoid
+            if (across + along <= 1) {
                 leftovers.push_back(v);
                 break;
             }
