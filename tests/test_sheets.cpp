@@ -26,10 +26,11 @@ struct Decoded {
     ObjectDecodeReport report;
 };
 
-// Encodes `original` with the default options and decodes every packet, or the stream info, the
-// ellipsoids and a seeded random half of the point packets.
-Decoded encode_decode(const std::vector<Mesh>& original, bool half_of_the_points, EncodeResult* encoded_out = nullptr) {
-    EncodeResult encoded = encode_meshes(original, EncodeOptions{});
+// Encodes `original` (default options unless given) and decodes every packet, or the stream info,
+// the ellipsoids and a seeded random half of the point packets; `base` receives the base mesh.
+Decoded encode_decode(const std::vector<Mesh>& original, bool half_of_the_points, EncodeResult* encoded_out = nullptr,
+                      const EncodeOptions& options = {}, Mesh* base = nullptr) {
+    EncodeResult encoded = encode_meshes(original, options);
     StreamPackets packets;
     REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, packets) == Error::Ok);
     ReceivedStream stream;
@@ -42,7 +43,12 @@ Decoded encode_decode(const std::vector<Mesh>& original, bool half_of_the_points
     std::vector<Mesh> meshes;
     StreamDecodeReport report;
     std::string error;
-    REQUIRE_MESSAGE(decode_stream(stream, DecodeOptions{}, meshes, report, error), error);
+    DecodeOptions decoding;
+    if (base)
+        decoding.snapshot = [&](size_t, size_t points, const Mesh& m) {
+            if (points == 0) *base = m;
+        };
+    REQUIRE_MESSAGE(decode_stream(stream, decoding, meshes, report, error), error);
     REQUIRE(meshes.size() == 1);
     if (encoded_out) *encoded_out = encoded;
     return {meshes[0], report.objects[0]};
@@ -101,23 +107,8 @@ TEST_CASE("a flat disc's thin base is one closed shell without holes, and the co
     // The disc's faces are several grid cells wide: flat ellipsoids fitted to its vertices alone
     // left gaps between them thinner than the grid, each a tunnel through the base (genus 55 and 32
     // loose bubbles) that no inserted point could close.
-    const std::vector<Mesh> original{flat_disc()};
-    EncodeResult encoded = encode_meshes(original, EncodeOptions{});
-    StreamPackets packets;
-    REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, packets) == Error::Ok);
-    ReceivedStream stream;
-    size_t where = 0;
-    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.points})
-        for (const auto& p : *group) REQUIRE(stream.add_packet(p, where++) == Error::Ok);
     Mesh base;
-    DecodeOptions options;
-    options.snapshot = [&](size_t, size_t points, const Mesh& m) {
-        if (points == 0) base = m;
-    };
-    std::vector<Mesh> meshes;
-    StreamDecodeReport report;
-    std::string error;
-    REQUIRE_MESSAGE(decode_stream(stream, options, meshes, report, error), error);
+    Decoded full = encode_decode({flat_disc()}, false, nullptr, EncodeOptions{}, &base);
     REQUIRE(!base.triangles.empty());
     // Euler characteristic V - E + F of the base, vertices welded by position: 2 for one sphere.
     std::map<std::array<float, 3>, uint32_t> id;
@@ -129,7 +120,7 @@ TEST_CASE("a flat disc's thin base is one closed shell without holes, and the co
             edges.insert({std::min(a, b), std::max(a, b)});
         }
     CHECK(long(id.size()) - long(edges.size()) + long(base.triangles.size()) == 2);
-    CHECK(report.objects[0].mc_vertices_left == 0);
+    CHECK(full.report.mc_vertices_left == 0);
 }
 
 TEST_CASE("a low-poly sheet (two triangles) gets flat ellipsoids over its whole area, not only at its corners") {
@@ -158,22 +149,12 @@ TEST_CASE("a sheet gets flat ellipsoids over its whole area when the budget is s
     square.triangles = {{0, 1, 2}, {0, 2, 3}};
     EncodeOptions options;
     options.max_ellipsoids = 60;
-    EncodeResult encoded = encode_meshes({square}, options);
+    EncodeResult encoded;
+    Decoded full = encode_decode({square}, false, &encoded, options);
     CHECK(encoded.reports[0].flat_ellipsoids <= 60);
-    StreamPackets packets;
-    REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, packets) == Error::Ok);
-    ReceivedStream stream;
-    size_t where = 0;
-    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.points})
-        for (const auto& p : *group) REQUIRE(stream.add_packet(p, where++) == Error::Ok);
-    std::vector<Mesh> meshes;
-    StreamDecodeReport report;
-    std::string error;
-    REQUIRE_MESSAGE(decode_stream(stream, DecodeOptions{}, meshes, report, error), error);
-    REQUIRE(meshes.size() == 1);
     double far = 1;
-    CHECK(rms_percent({square}, meshes[0], false, &far) <= 0.03);
-    CHECK(rms_percent({square}, meshes[0], true) <= 0.03);
+    CHECK(rms_percent({square}, full.mesh, false, &far) <= 0.03);
+    CHECK(rms_percent({square}, full.mesh, true) <= 0.03);
     CHECK(far < 0.001);
 }
 
