@@ -1,7 +1,11 @@
-// Encoder settings shared by the tests that encode (not part of the format-only test build).
+// Encoder settings and stream plumbing shared by the tests that encode (not part of the format-only
+// test build).
 #pragma once
 
 #include "ellicast/codec/encoder.h"
+#include "ellicast/format.h"
+
+#include <doctest/doctest.h>
 
 namespace ellicast::test {
 
@@ -12,6 +16,17 @@ inline EncodeOptions fast_options() {
     o.candidates = 200;
     o.grid = 32;
     return o;
+}
+
+// Every packet of `encoded`, in transmission order, taken by a receiver.
+inline ReceivedStream receive_every_packet(const EncodeResult& encoded) {
+    StreamPackets packets;
+    REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, packets) == Error::Ok);
+    ReceivedStream stream;
+    size_t where = 0;
+    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.points})
+        for (const auto& p : *group) REQUIRE(stream.add_packet(p, where++) == Error::Ok);
+    return stream;
 }
 
 }  // namespace ellicast::test

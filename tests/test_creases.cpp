@@ -7,6 +7,7 @@
 #include "ellicast/converters/mesh_input.h"
 #include "ellicast/format.h"
 #include "decoder_shapes.h"
+#include "encode_options.h"
 #include "support.h"
 
 #include <doctest/doctest.h>
@@ -56,13 +57,7 @@ struct Decoded {
 
 // Encoded with the default options and decoded from every packet.
 Decoded encode_decode(const Mesh& original) {
-    EncodeResult encoded = encode_meshes({original}, EncodeOptions{});
-    StreamPackets packets;
-    REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, packets) == Error::Ok);
-    ReceivedStream stream;
-    size_t where = 0;
-    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.points})
-        for (const auto& p : *group) REQUIRE(stream.add_packet(p, where++) == Error::Ok);
+    const ReceivedStream stream = test::receive_every_packet(encode_meshes({original}, EncodeOptions{}));
     std::vector<Mesh> meshes;
     StreamDecodeReport report;
     std::string error;

@@ -18,6 +18,7 @@
 using namespace ellicast;
 using ellicast::test::have_sample;
 using ellicast::test::fast_options;
+using ellicast::test::receive_every_packet;
 using ellicast::test::shared_samples;
 
 namespace {
@@ -153,11 +154,7 @@ TEST_CASE("a low-poly model comes back closer with surface samples than from its
         EncodeOptions o;
         o.sample_spacing = spacing;
         EncodeResult r = encode_meshes(loaded.meshes, o);
-        ReceivedStream rx;
-        StreamPackets packets;
-        REQUIRE(packetize_stream(r.info, r.contents, 1, packets) == Error::Ok);
-        for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.points})
-            for (const auto& p : *group) REQUIRE(rx.add_packet(p, 0) == Error::Ok);
+        const ReceivedStream rx = receive_every_packet(r);
         std::vector<Mesh> decoded;
         StreamDecodeReport report;
         std::string error;
