@@ -173,3 +173,19 @@ TEST_CASE("a low-poly model comes back closer with surface samples than from its
     CHECK(sampled < vertices_only / 2);
     CHECK(sampled <= 0.2);  // 0.6% from the 1,728 vertices alone
 }
+
+TEST_CASE("a capped model gets nearly the whole sample budget, not a spacing step coarser") {
+    if (!have_sample("gltf/Fox/Fox.gltf")) return;
+    LoadResult loaded = load_meshes((shared_samples() / "gltf/Fox/Fox.gltf").string());
+    REQUIRE(loaded.meshes.size() == 1);
+    EncodeOptions o = fast_options();
+    o.sample_spacing = 0.003;  // far more samples than any budget below
+    for (uint32_t budget : {5000u, 8000u, 12000u}) {
+        o.max_samples = budget;
+        EncodeResult r = encode_meshes(loaded.meshes, o);
+        CAPTURE(budget);
+        MESSAGE("budget " << budget << ": " << r.reports[0].samples << " samples");
+        CHECK(r.reports[0].samples <= budget);
+        CHECK(r.reports[0].samples >= 0.93 * budget);
+    }
+}

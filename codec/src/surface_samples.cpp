@@ -178,13 +178,34 @@ Mesh with_surface_samples(const Mesh& mesh, const SurfaceSampleOptions& options,
     size_t distinct = 0;
     // Too many for the budget: coarser spacings until they fit. Each try stops at the budget, so
     // the work stays bounded by (tries x budget).
-    for (int attempt = 0; !bisect_all(mesh, sharp, spacing, crease, options.max_samples, samples, distinct); ++attempt) {
-        spacing *= 1.2;
-        crease *= 1.2;
+    double scale = 1;  // the spacings' growth
+    bool grown = false;
+    for (int attempt = 0; !bisect_all(mesh, sharp, spacing * scale, crease * scale, options.max_samples, samples, distinct);
+         ++attempt) {
+        scale *= 1.2;
+        grown = true;
         if (attempt > 100) {
             samples.clear();
             distinct = 0;
-            break;
+            return out;
+        }
+    }
+    // Steps of 1.2 can leave a quarter of the budget unused (the truck body: 18.8k of 20k samples,
+    // RMS 0.131% of the diagonal; 19.97k and 0.119% now): three halvings of the last step find the
+    // finest spacing within about 2% that still fits.
+    if (grown) {
+        double fits = scale, fails = scale / 1.2;
+        for (int i = 0; i < 3; ++i) {
+            const double mid = std::sqrt(fits * fails);
+            std::vector<Corner> tried;
+            size_t tried_distinct = 0;
+            if (bisect_all(mesh, sharp, spacing * mid, crease * mid, options.max_samples, tried, tried_distinct)) {
+                fits = mid;
+                samples = std::move(tried);
+                distinct = tried_distinct;
+            } else {
+                fails = mid;
+            }
         }
     }
     // Points falling on an original vertex or on each other are welded later by the encoder.
