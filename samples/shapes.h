@@ -37,4 +37,35 @@ inline Mesh uv_ellipsoid(int rings, std::array<double, 3> center, std::array<dou
     return m;
 }
 
+// An axis-aligned box centred on the origin as glTF has it: four vertices per face, each with that
+// face's normal (24 vertices, 12 triangles), faces counter-clockwise seen from outside; normals
+// point inwards when `inward` (an asset whose normals disagree with its winding).
+inline Mesh box(std::array<float, 3> size, bool inward = false) {
+    Mesh m;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            const float s = side ? 1.0f : -1.0f;
+            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            const uint32_t first = uint32_t(m.positions.size());
+            for (int k = 0; k < 4; ++k) {
+                std::array<float, 3> p{};
+                p[axis] = s * size[axis] / 2;
+                p[u] = ((k == 1 || k == 2) ? 1 : -1) * size[u] / 2;
+                p[v] = (k >= 2 ? 1 : -1) * size[v] / 2;
+                m.positions.push_back(p);
+                std::array<float, 3> n{};
+                n[axis] = inward ? -s : s;
+                m.normals.push_back(n);
+            }
+            if (side) {
+                m.triangles.push_back({first, first + 1, first + 2});
+                m.triangles.push_back({first, first + 2, first + 3});
+            } else {
+                m.triangles.push_back({first, first + 2, first + 1});
+                m.triangles.push_back({first, first + 3, first + 2});
+            }
+        }
+    return m;
+}
+
 }  // namespace ellicast::samples

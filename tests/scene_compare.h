@@ -12,6 +12,18 @@
 
 namespace ellicast::test {
 
+// Every glTF sample of ../shared/samples (paths relative to it), and one's full path.
+inline constexpr const char* kGltfSamples[] = {
+    "gltf/Box-glb/Box.glb",
+    "gltf/Box-glb/Box_Draco.glb",
+    "gltf/Duck/Duck.gltf",
+    "gltf/Duck-glb/Duck.glb",
+    "gltf/CesiumMilkTruck/CesiumMilkTruck.gltf",
+    "gltf/Fox/Fox.gltf",
+    "gltf/VertexColorTest/VertexColorTest.gltf",
+    "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf"};
+inline std::string sample(const std::string& rel) { return (shared_samples() / rel).string(); }
+
 // The image bytes a texture reference of `a` shows (empty when none).
 inline std::vector<uint8_t> referenced_image(const Asset& a, const TextureRef& ref) {
     if (ref.texture == kNone || ref.texture >= a.scene.textures.size()) return {};

@@ -24,17 +24,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* kGltfSamples[] = {"gltf/Box-glb/Box.glb",
-                              "gltf/Box-glb/Box_Draco.glb",
-                              "gltf/Duck/Duck.gltf",
-                              "gltf/Duck-glb/Duck.glb",
-                              "gltf/CesiumMilkTruck/CesiumMilkTruck.gltf",
-                              "gltf/Fox/Fox.gltf",
-                              "gltf/VertexColorTest/VertexColorTest.gltf",
-                              "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf"};
-
-std::string sample(const std::string& rel) { return (shared_samples() / rel).string(); }
-
 bool any_of(const std::vector<std::string>& warnings, const std::string& needle) {
     return std::any_of(warnings.begin(), warnings.end(),
                        [&](const std::string& w) { return w.find(needle) != std::string::npos; });

@@ -8,6 +8,7 @@
 #include "ellicast/format.h"
 #include "decoder_shapes.h"
 #include "encode_options.h"
+#include "shapes.h"
 #include "support.h"
 
 #include <doctest/doctest.h>
@@ -18,36 +19,7 @@ using namespace ellicast;
 
 namespace {
 
-// An axis-aligned box as glTF has it: 4 vertices per face with that face's normal (24 vertices,
-// 12 triangles), outward normals unless `inward`.
-Mesh box(std::array<float, 3> size, bool inward = false) {
-    Mesh m;
-    for (int axis = 0; axis < 3; ++axis)
-        for (int side = 0; side < 2; ++side) {
-            const float s = side ? 1.0f : -1.0f;
-            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-            const uint32_t first = uint32_t(m.positions.size());
-            for (int k = 0; k < 4; ++k) {
-                std::array<float, 3> p{};
-                p[axis] = s * size[axis] / 2;
-                p[u] = ((k == 1 || k == 2) ? 1 : -1) * size[u] / 2;
-                p[v] = (k >= 2 ? 1 : -1) * size[v] / 2;
-                m.positions.push_back(p);
-                std::array<float, 3> n{};
-                n[axis] = inward ? -s : s;
-                m.normals.push_back(n);
-            }
-            // Counter-clockwise seen from outside.
-            if (side) {
-                m.triangles.push_back({first, first + 1, first + 2});
-                m.triangles.push_back({first, first + 2, first + 3});
-            } else {
-                m.triangles.push_back({first, first + 2, first + 1});
-                m.triangles.push_back({first, first + 3, first + 2});
-            }
-        }
-    return m;
-}
+using samples::box;
 
 struct Decoded {
     Mesh mesh;

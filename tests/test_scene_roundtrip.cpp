@@ -26,20 +26,10 @@ namespace {
 // ways on a closed object, from the original to the reconstruction on an open one (the base closes
 // its holes and boundary, so the way back measures the closing, not the object).
 constexpr double kDecoderBoundPercent = 0.1;
-// The samples with what their objects reached at the last change (in -> out / out -> in):
+// What the objects of kGltfSamples (scene_compare.h) reached at the last change (in -> out / out -> in):
 //   Box 0.010 / 0.021 (0.047 / 0.107 before normal repair); Duck 0.016 / 0.021; Fox 0.030 / 0.037;
 //   milk truck (open) body 0.085, glass 0.097, trim 0.052, wheels 0.010 / 0.011; VertexColorTest
 //   (open) label 0.039, plate 0.008; the two-material sphere 0.017 / 0.017.
-const char* const kGltfSamples[] = {"gltf/Box-glb/Box.glb",
-                                    "gltf/Box-glb/Box_Draco.glb",
-                                    "gltf/Duck/Duck.gltf",
-                                    "gltf/Duck-glb/Duck.glb",
-                                    "gltf/CesiumMilkTruck/CesiumMilkTruck.gltf",
-                                    "gltf/Fox/Fox.gltf",
-                                    "gltf/VertexColorTest/VertexColorTest.gltf",
-                                    "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf"};
-
-std::string sample(const std::string& rel) { return (shared_samples() / rel).string(); }
 
 // A program's path quoted for the shell, with a space after it (built with +=: GCC 12's
 // -Wrestrict false positive on "'" + string).

@@ -6,6 +6,7 @@
 #include "ellicast/converters/mesh_input.h"
 #include "ellicast/format.h"
 #include "encode_options.h"
+#include "shapes.h"
 #include "support.h"
 
 #include <doctest/doctest.h>
@@ -26,29 +27,8 @@ namespace {
 // A unit cube centred on the origin as glTF has it: 24 vertices (four per face, each with its
 // face's normal), 12 triangles, outward.
 Mesh cube() {
-    Mesh m;
+    Mesh m = ellicast::samples::box({1, 1, 1});
     m.name = "cube";
-    for (int axis = 0; axis < 3; ++axis)
-        for (int sign : {-1, 1}) {
-            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-            const uint32_t base = uint32_t(m.positions.size());
-            for (int c = 0; c < 4; ++c) {
-                std::array<float, 3> p{}, n{};
-                p[axis] = 0.5f * sign;
-                p[u] = (c == 1 || c == 2) ? 0.5f : -0.5f;
-                p[v] = (c >= 2) ? 0.5f : -0.5f;
-                n[axis] = float(sign);
-                m.positions.push_back(p);
-                m.normals.push_back(n);
-            }
-            if (sign > 0) {
-                m.triangles.push_back({base, base + 1, base + 2});
-                m.triangles.push_back({base, base + 2, base + 3});
-            } else {
-                m.triangles.push_back({base, base + 2, base + 1});
-                m.triangles.push_back({base, base + 3, base + 2});
-            }
-        }
     return m;
 }
 

@@ -184,11 +184,7 @@ Mesh with_surface_samples(const Mesh& mesh, const SurfaceSampleOptions& options,
          ++attempt) {
         scale *= 1.2;
         grown = true;
-        if (attempt > 100) {
-            samples.clear();
-            distinct = 0;
-            return out;
-        }
+        if (attempt > 100) return out;  // no spacing fits: the vertices alone
     }
     // Steps of 1.2 can leave a quarter of the budget unused (the truck body: 18.8k of 20k samples,
     // RMS 0.131% of the diagonal; 19.97k and 0.119% now): three halvings of the last step find the
