@@ -541,6 +541,31 @@ SurfaceSampleOptions sample_options(const Mesh& mesh, const Frame& frame, const 
 }
 
 // The encoder trusts nothing of a Mesh it is handed: sizes, indices and coordinates are checked.
+// Fills `oriented` with `mesh` repaired by orient_outward() and returns how many triangles it
+// turned (0: `oriented` is left empty and `mesh` is right as it is), with a warning saying what.
+uint32_t orient_for_encoding(const Mesh& mesh, Mesh& oriented, std::vector<std::string>& warnings) {
+    if (mesh.is_point_set || mesh.triangles.empty()) return 0;
+    OrientationReport r;
+    auto triangles = orient_outward(mesh, weld_by_position(mesh), r);
+    if (r.turned_faces == 0) return 0;
+    oriented = mesh;
+    oriented.triangles = std::move(triangles);
+    std::string text = (mesh.name.empty() ? std::string("object") : mesh.name) + ": ";
+    if (r.reversed_parts > 0)
+        text += std::to_string(r.reversed_parts) + " of " + std::to_string(r.parts) +
+                (r.parts == 1 ? " part faces" : " parts face") + " inward";
+    if (r.mended_parts > 0)
+        text += std::string(r.reversed_parts > 0 ? "; " : "") + std::to_string(r.mended_parts) + " of " +
+                std::to_string(r.parts) + (r.parts == 1 ? " part has" : " parts have") +
+                " triangles facing against their neighbours";
+    text += " (" + std::to_string(r.turned_faces) + " of " + std::to_string(mesh.triangles.size()) +
+            " triangles); encoded as if turned to face outward";
+    if (r.non_orientable_parts > 0)
+        text += "; " + std::to_string(r.non_orientable_parts) + " non-orientable part(s) left as found";
+    warnings.push_back(text);
+    return uint32_t(r.turned_faces);
+}
+
 void check_mesh(const Mesh& mesh, size_t m) {
     const std::string name = "mesh " + std::to_string(m) + (mesh.name.empty() ? "" : " (" + mesh.name + ")");
     const size_t n = mesh.positions.size();
@@ -589,9 +614,14 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
     for (const Mesh& mesh : meshes) surfaces += !mesh.is_point_set && !mesh.triangles.empty();
     const double seed_share = surfaces > 8 ? 8.0 / double(surfaces) : 1.0;
     for (size_t m = 0; m < meshes.size(); ++m) {
-        const Mesh& mesh = meshes[m];
+        const Mesh& input = meshes[m];
         progress.object = m;
-        check_mesh(mesh, m);
+        check_mesh(input, m);
+        // The inside test and the crease detection need outward-facing triangles: parts that face
+        // inward or disagree with themselves are encoded as their repair (orientation.cpp).
+        Mesh oriented;
+        const uint32_t turned = orient_for_encoding(input, oriented, result.warnings);
+        const Mesh& mesh = turned > 0 ? oriented : input;
         ObjectInfo object;
         object.frame = frame_of(mesh);
         object.kind = mesh.is_point_set ? ObjectKind::PointSet : ObjectKind::Surface;
@@ -614,6 +644,7 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         report.name = mesh.name;
         report.point_set = mesh.is_point_set;
         report.vertices = uint32_t(mesh.positions.size());
+        report.turned_faces = turned;
         ObjectContent content;
         const uint32_t object_seed = options.seed * 2654435761u + uint32_t(m) * 40503u + 1u;
         if (!mesh.is_point_set && !mesh.triangles.empty()) {

@@ -196,6 +196,25 @@ struct MeshParts {
 MeshParts mesh_parts(const Mesh& mesh, const std::vector<uint32_t>& weld);
 
 // ---------------------------------------------------------------------------------------------
+// orientation.cpp
+
+struct OrientationReport {
+    size_t parts = 0;                 // parts joined across manifold edges
+    size_t reversed_parts = 0;        // parts whose every triangle was turned (they faced the wrong way)
+    size_t mended_parts = 0;          // parts of which only some triangles were turned (they disagreed)
+    size_t turned_faces = 0;          // triangles turned in all
+    size_t non_orientable_parts = 0;  // parts that cannot agree with themselves (left as found)
+    size_t cavities = 0;              // closed parts inside an odd number of others (facing inward)
+    bool nesting_unchecked = false;   // the bound on ray tests was reached: some nesting not counted
+};
+
+// The mesh's triangles, each part turned to agree with itself and to face outward (a cavity's
+// wall inward); triangles already right keep their corner order. `weld` maps each vertex to the
+// first vertex at its position.
+std::vector<std::array<uint32_t, 3>> orient_outward(const Mesh& mesh, const std::vector<uint32_t>& weld,
+                                                     OrientationReport& report);
+
+// ---------------------------------------------------------------------------------------------
 // point_order.cpp
 
 // An order of `positions` (distinct points) in which every prefix, and every run of consecutive

@@ -68,6 +68,8 @@ struct ObjectReport {
     uint32_t flat_ellipsoids = 0;     // of those, flat ones straddling a sheet without inside
     uint32_t shrunk = 0;              // ellipsoids shrunk after quantization to stay inside
     bool closed = false;              // no boundary edges
+    uint32_t turned_faces = 0;        // triangles encoded turned round: parts that faced inward or
+                                      // against their neighbours (the input is not changed)
     double interior_fraction = 0;     // of the grid's voxels, inside the surface
     double coverage = 0;              // covered fraction of the interior volume (dequantized ellipsoids)
     double outside = 0;               // volume of the ellipsoids outside the model / interior volume
