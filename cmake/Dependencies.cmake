@@ -4,6 +4,7 @@ find_package(OpenMesh CONFIG REQUIRED)          # Debian ships no version file: 
 find_package(draco CONFIG REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
+find_package(meshoptimizer CONFIG REQUIRED)   # EXT_meshopt_compression input (decoders only)
 find_package(Threads REQUIRED)
 if(ELLICAST_BUILD_TESTS)
   find_package(doctest CONFIG REQUIRED)

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <set>
 
@@ -325,10 +326,6 @@ bool primitive_to_mesh(const tinygltf::Model& model, const tinygltf::Primitive& 
     return true;
 }
 
-namespace {
-
-// The JSON text of a .gltf file, or the JSON chunk of a GLB (12-byte header, then chunks of length,
-// type, data); "" when a GLB is too short to hold it.
 std::string json_text(const std::vector<uint8_t>& bytes, bool binary) {
     if (!binary) return {bytes.begin(), bytes.end()};
     if (bytes.size() < 20) return {};
@@ -337,6 +334,8 @@ std::string json_text(const std::vector<uint8_t>& bytes, bool binary) {
     if (uint64_t(json_length) + 20 > bytes.size()) return {};
     return {reinterpret_cast<const char*>(bytes.data()) + 20, json_length};
 }
+
+namespace {
 
 // tinygltf's Draco path indexes buffers and buffer views without checking them (a wrong "buffer"
 // number crashed inside Draco). Check them here, on the JSON, before tinygltf sees the file.
@@ -418,8 +417,16 @@ void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadI
         std::fclose(f);
     }
     check_buffer_views(path, binary);
-    bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                     : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+    std::vector<uint8_t> decoded;
+    {
+        std::ifstream in(path, std::ios::binary);
+        decoded = decode_meshopt(path, std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {}), binary);
+    }
+    const std::string base_dir = std::filesystem::path(path).parent_path().string();
+    bool ok = !decoded.empty()
+                  ? loader.LoadBinaryFromMemory(&model, &err, &warn, decoded.data(), unsigned(decoded.size()), base_dir)
+                  : binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                           : loader.LoadASCIIFromFile(&model, &err, &warn, path);
     if (!ok) {
         while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
         throw InputError(path + ": not a readable glTF 2.0 " + std::string(binary ? "binary (.glb)" : "(.gltf)") +

@@ -32,6 +32,16 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
 void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadImageDataFunction image_loader,
                 void* image_user_data, std::vector<std::string>& warnings);
 
+// The JSON text of a .gltf file, or the JSON chunk of a GLB (12-byte header, then chunks of length,
+// type, data); "" when a GLB is too short to hold it.
+std::string json_text(const std::vector<uint8_t>& bytes, bool binary);
+
+// When the glTF file `bytes` (read from `path`) uses EXT_meshopt_compression: the same asset as a
+// GLB with every buffer view decoded into one buffer and the extension removed, for tinygltf (which
+// does not know it). Empty when the file does not use it. Throws InputError naming the buffer view
+// and what is wrong when the compressed data or its description is bad. (meshopt_input.cpp)
+std::vector<uint8_t> decode_meshopt(const std::string& path, const std::vector<uint8_t>& bytes, bool binary);
+
 // The JSON of the glTF file at `path` (a .gltf file's text or a GLB's JSON chunk), for what tinygltf
 // does not keep (e.g. the mimeType of an image given by URI); discarded when it cannot be parsed.
 nlohmann::json read_json(const std::string& path);
