@@ -360,3 +360,28 @@ TEST_CASE("OBJ faces may refer to vertices, texture coordinates and normals defi
     CHECK(corners == std::set<std::array<float, 3>>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
     CHECK(triples.size() == 4);
 }
+
+TEST_CASE("a model's size counts a .gltf's external buffers and images, and convert reports it beside the stream and the output") {
+    if (!have_sample("gltf/Duck/Duck.gltf")) return;
+    const auto dir = shared_samples() / "gltf" / "Duck";
+    const uint64_t files = std::filesystem::file_size(dir / "Duck.gltf") + std::filesystem::file_size(dir / "Duck0.bin") +
+                           std::filesystem::file_size(dir / "DuckCM.png");
+    CHECK(model_files_size((dir / "Duck.gltf").string()) == files);
+    CHECK(model_files_size((shared_samples() / "gltf" / "Box-glb" / "Box.glb").string()) ==
+          std::filesystem::file_size(shared_samples() / "gltf" / "Box-glb" / "Box.glb"));
+    CHECK(model_files_size("/nonexistent/model.gltf") == 0);
+
+    using namespace ellicast::test;
+    const auto out = scratch_dir("convert_sizes") / "duck.glb";
+    int status = 0;
+    std::string command = "'";
+    command += ellicast_exe().string();
+    command += "' convert -q '" + (dir / "Duck.gltf").string();
+    command += "' '" + out.string() + "'";
+    const std::string log = run_command(command, status);
+    INFO(log);
+    REQUIRE(status == 0);
+    const std::string line = "size: input " + std::to_string(files) + " bytes, stream ";
+    CHECK(log.find(line) != std::string::npos);
+    CHECK(log.find("output " + std::to_string(std::filesystem::file_size(out)) + " bytes (") != std::string::npos);
+}

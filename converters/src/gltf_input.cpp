@@ -499,6 +499,31 @@ void visit_node(Traversal& tr, int index, const Eigen::Matrix4d& parent, int dep
 
 }  // namespace
 
+uint64_t model_files_size(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    uint64_t total = 0;
+    if (auto n = fs::file_size(path, ec); !ec) total += n;
+    const std::string ext = fs::path(path).extension().string();
+    if (ext != ".gltf" && ext != ".GLTF") return total;
+    const nlohmann::json doc = gltf_read::read_json(path);
+    if (!doc.is_object()) return total;
+    std::set<fs::path> counted;
+    for (const char* list : {"buffers", "images"}) {
+        if (!doc.contains(list) || !doc[list].is_array()) continue;
+        for (const auto& item : doc[list]) {
+            if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+            const std::string uri = item["uri"].get<std::string>();
+            const fs::path rel(uri);
+            if (uri.rfind("data:", 0) == 0 || rel.is_absolute() || uri.find("..") != std::string::npos) continue;
+            const fs::path file = fs::path(path).parent_path() / rel;
+            if (!counted.insert(file).second) continue;
+            if (auto n = fs::file_size(file, ec); !ec) total += n;
+        }
+    }
+    return total;
+}
+
 LoadResult load_gltf(const std::string& path) {
     tinygltf::Model model;
     LoadResult result;

@@ -4,6 +4,7 @@
 #include "progress.h"
 
 #include "ellicast/converters/asset_stream.h"
+#include "ellicast/converters/mesh_input.h"
 #include "ellicast/converters/mesh_output.h"
 #include "ellicast/format.h"
 
@@ -104,6 +105,18 @@ int run_convert(const ConvertArgs& a) {
         std::printf("  object %zu: %zu ellipsoids, %zu points -> %zu vertices, %zu faces%s\n", i, o.ellipsoids,
                     o.points, o.vertices_out, o.faces_out, o.has_surface ? "" : " (point set)");
     }
+    const uint64_t in_bytes = model_files_size(a.input), out_bytes = model_files_size(a.output);
+    const size_t stream_bytes =
+        encoded.stream_info_bytes + encoded.ellipsoid_bytes + encoded.scene_bytes + encoded.point_bytes;
+    auto times = [&](double n) {
+        char text[32];
+        std::snprintf(text, sizeof text, in_bytes > 0 ? "%.2fx the input" : "input size unknown",
+                      in_bytes > 0 ? n / double(in_bytes) : 0.0);
+        return std::string(text);
+    };
+    std::printf("size: input %llu bytes, stream %zu bytes (%s), output %llu bytes (%s)\n",
+                static_cast<unsigned long long>(in_bytes), stream_bytes, times(double(stream_bytes)).c_str(),
+                static_cast<unsigned long long>(out_bytes), times(double(out_bytes)).c_str());
     std::printf("time %.2f s\n", seconds);
     return kExitOk;
 }

@@ -9,6 +9,7 @@
 #include "ellicast/codec/mesh.h"
 
 #include <stdexcept>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,11 @@ struct LoadResult {
 // magic). Throws InputError when the file cannot be read, holds no triangles or points, has
 // non-finite coordinates, or needs an unsupported glTF extension.
 LoadResult load_meshes(const std::string& path);
+
+// Bytes a user copies to move the model at `path`: the file, plus for a .gltf the external buffers
+// and images it names inside its folder (data: URIs are in the file already). Files that cannot be
+// read count 0.
+uint64_t model_files_size(const std::string& path);
 
 // Reads a glTF 2.0 file (.gltf or .glb). Same contract as load_meshes.
 LoadResult load_gltf(const std::string& path);
