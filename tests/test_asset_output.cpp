@@ -523,3 +523,78 @@ TEST_CASE("write_asset refuses bad options, unknown file types and unwritable pl
     CHECK(error.find("x.glb") != std::string::npos);
     CHECK(!fs::exists(dir / "missing" / "x.glb"));
 }
+
+TEST_CASE("a normal-mapped material's primitives get tangents along u, perpendicular to the normal, handed by the image's up") {
+    auto dir = scratch_dir("asset_output_tangents");
+    // Two unit squares in z = 0 facing +z: one mapped as glTF images are (v grows downwards, so the
+    // image's up is +y: right-handed, w = +1), one mirrored vertically (w = -1).
+    Mesh upright;
+    upright.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    upright.triangles = {{0, 1, 2}, {0, 2, 3}};
+    upright.normals.assign(4, {0, 0, 1});
+    upright.texcoords = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+    Mesh mirrored = upright;
+    mirrored.texcoords = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    Mesh plain = upright;  // drawn without a normal texture: no tangents
+    Asset a;
+    a.objects = {upright, mirrored, plain};
+    a.scene.meshes = {SceneMesh{0, "squares", {{0, 0}, {1, 0}, {2, 1}}}};
+    SceneNode root;
+    root.mesh = 0;
+    a.scene.nodes = {root};
+    Material normal_mapped;
+    normal_mapped.normal_texture.texture = 0;
+    Material flat;
+    a.scene.materials = {normal_mapped, flat};
+    SceneDescription::Texture png;  // a valid 1x1 PNG
+    png.image = {0x89, 0x50, 0x4E, 0x47, 0x0D, 0x0A, 0x1A, 0x0A, 0x00, 0x00, 0x00, 0x0D, 0x49, 0x48, 0x44, 0x52, 0x00,
+                 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x02, 0x00, 0x00, 0x00, 0x90, 0x77, 0x53, 0xDE, 0x00,
+                 0x00, 0x00, 0x0C, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9C, 0x63, 0xF8, 0xCF, 0xC0, 0x00, 0x00, 0x03, 0x01,
+                 0x01, 0x00, 0xC9, 0xFE, 0x92, 0xEF, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4E, 0x44, 0xAE, 0x42, 0x60,
+                 0x82};
+    a.scene.textures = {png};
+
+    for (AssetWriteOptions options : {AssetWriteOptions{}, AssetWriteOptions{.draco = true},
+                                      AssetWriteOptions{.quantize = true}}) {
+        fs::path out = dir / (options.draco ? "draco.glb" : options.quantize ? "quantize.glb" : "plain.glb");
+        CAPTURE(out);
+        write_ok(out, a, options);
+        int errors = -1;
+        std::string report;
+        if (validate_gltf(out, errors, report)) {
+            CHECK_MESSAGE(errors == 0, report);
+            CHECK_MESSAGE(nlohmann::json::parse(report).value("numWarnings", -1) == 0, report);  // no generated tangent space
+        }
+        Glb glb = read_glb(out);
+        const auto& prims = glb.json["meshes"][0]["primitives"];
+        REQUIRE(prims.size() == 3);
+        CHECK_FALSE(prims[2]["attributes"].contains("TANGENT"));
+        for (int p = 0; p < 2; ++p) {
+            REQUIRE(prims[p]["attributes"].contains("TANGENT"));
+            const auto& acc = glb.json["accessors"][prims[p]["attributes"]["TANGENT"].get<int>()];
+            CHECK(acc["type"] == "VEC4");
+            const auto& view = glb.json["bufferViews"][acc["bufferView"].get<int>()];
+            const size_t offset = view.value("byteOffset", 0) + acc.value("byteOffset", 0);
+            const int component = acc["componentType"];
+            const size_t stride = view.value("byteStride", component == 5126 ? 16 : 4);
+            for (size_t v = 0; v < acc["count"].get<size_t>(); ++v) {
+                std::array<double, 4> t{};
+                for (int k = 0; k < 4; ++k) {
+                    const uint8_t* at = glb.bin.data() + offset + v * stride;
+                    if (component == 5126) {
+                        float f;
+                        std::memcpy(&f, at + 4 * k, 4);
+                        t[k] = f;
+                    } else {
+                        REQUIRE(component == 5120);  // normalized signed byte (KHR_mesh_quantization)
+                        t[k] = std::max(-1.0, int8_t(at[k]) / 127.0);
+                    }
+                }
+                CHECK(t[0] == doctest::Approx(1).epsilon(0.01));
+                CHECK(std::abs(t[1]) < 0.01);
+                CHECK(std::abs(t[2]) < 0.01);
+                CHECK(t[3] == (p == 0 ? 1.0 : -1.0));
+            }
+        }
+    }
+}

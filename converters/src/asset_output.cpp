@@ -6,6 +6,7 @@
 #include "ellicast/converters/mesh_output.h"
 
 #include "gltf_write.h"
+#include "tangents.h"
 #include "ellicast/converters/image_file.h"
 
 #include "ellicast/converters/draco_mesh.h"
@@ -15,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <tuple>
 #include <optional>
 #include <set>
 
@@ -264,19 +266,26 @@ private:
 
     // ---- geometry
 
-    // The primitive (without material) of object `o`, written once per dequantization.
+    // The primitive (without material) of object `o`, written once per dequantization and need of
+    // tangents (a normal-mapped material: TANGENT from tangents.cpp, for an object with normals and
+    // texture coordinates).
     std::optional<tinygltf::Primitive> object_primitive(size_t o, const std::optional<Dequantization>& dq,
-                                                        int dq_key, const std::string& what) {
-        auto key = std::make_pair(o, dq_key);
+                                                        int dq_key, bool tangents, const std::string& what) {
+        auto key = std::make_tuple(o, dq_key, tangents);
         if (auto it = primitives_.find(key); it != primitives_.end()) return it->second;
         std::optional<tinygltf::Primitive> result;
         if (std::optional<Mesh> mesh = writable_object(asset_.objects[o], what, warnings_)) {
-            if (options_.draco && !mesh->is_point_set && !mesh->triangles.empty())
-                result = draco_primitive(*mesh, what);
-            else if (dq)
+            tangents = tangents && mesh->has_normals() && mesh->has_texcoords() && !mesh->triangles.empty();
+            if (options_.draco && !mesh->is_point_set && !mesh->triangles.empty()) {
+                result = draco_primitive(*mesh, what, tangents);
+            } else if (dq) {
                 result = quantized_primitive(*mesh, *dq);
-            else
+                if (tangents) add_quantized_tangents(*result, *mesh);
+            } else {
                 result = add_primitive(model_, *mesh);
+                if (tangents)
+                    result->attributes["TANGENT"] = add_float_attribute(model_, mesh_tangents(*mesh), TINYGLTF_TYPE_VEC4, false);
+            }
         }
         primitives_[key] = result;
         return result;
@@ -350,6 +359,21 @@ private:
         return prim;
     }
 
+    // TANGENT under KHR_mesh_quantization: normalized int8 xyz (nearest unit-length direction) and w.
+    void add_quantized_tangents(tinygltf::Primitive& prim, const Mesh& mesh) {
+        const auto tangents = mesh_tangents(mesh);
+        std::vector<int8_t> q(tangents.size() * 4);
+        for (size_t i = 0; i < tangents.size(); ++i) {
+            auto best = quantize_unit_int8({tangents[i][0], tangents[i][1], tangents[i][2]});
+            for (int k = 0; k < 3; ++k) q[i * 4 + k] = best[k];
+            q[i * 4 + 3] = tangents[i][3] < 0 ? int8_t(-127) : int8_t(127);
+        }
+        int view = add_buffer_view(model_, q.data(), q.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
+        model_.bufferViews[size_t(view)].byteStride = 4;
+        prim.attributes["TANGENT"] =
+            add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC4, tangents.size(), {}, {}, true);
+    }
+
     // The int8 vector nearest in direction to the unit vector `n` whose length is closest to 1
     // (a normalized int8 normal must still be unit length within the validator's tolerance).
     static std::array<int8_t, 3> quantize_unit_int8(const std::array<float, 3>& n) {
@@ -377,7 +401,7 @@ private:
     // KHR_draco_mesh_compression: the triangles and attributes go through Draco's encoder (the
     // baselines' codec); the accessors take count and bounds from a decode of the encoded data
     // (Edgebreaker reorders and may split vertices).
-    std::optional<tinygltf::Primitive> draco_primitive(const Mesh& input, const std::string& what) {
+    std::optional<tinygltf::Primitive> draco_primitive(const Mesh& input, const std::string& what, bool tangents) {
         Mesh mesh = input;
         if (mesh.has_colors()) {
             std::vector<float> c = clamped_colors(mesh);
@@ -407,7 +431,10 @@ private:
             problem = "an attribute was lost";
         if (!problem.empty()) {
             warnings_.push_back(what + ": Draco: " + problem + "; written uncompressed");
-            return add_primitive(model_, input);
+            tinygltf::Primitive plain = add_primitive(model_, input);
+            if (tangents)
+                plain.attributes["TANGENT"] = add_float_attribute(model_, mesh_tangents(input), TINYGLTF_TYPE_VEC4, false);
+            return plain;
         }
         const size_t points = decoded.positions.size();
         tinygltf::Primitive prim;
@@ -433,6 +460,10 @@ private:
                                     points <= 0xFFFF ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
                                                      : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
                                     TINYGLTF_TYPE_SCALAR, decoded.triangles.size() * 3);
+        // Tangents are not in the Draco data: an ordinary accessor in the decoded vertex order, which
+        // KHR_draco_mesh_compression allows for attributes it does not list.
+        if (tangents)
+            prim.attributes["TANGENT"] = add_float_attribute(model_, mesh_tangents(decoded), TINYGLTF_TYPE_VEC4, false);
         tinygltf::Value::Object extension;
         extension["bufferView"] = tinygltf::Value(add_buffer_view(model_, encoded.data(), encoded.size(), 0));
         extension["attributes"] = tinygltf::Value(attributes);
@@ -482,9 +513,11 @@ private:
                                     "; left out");
                 continue;
             }
-            auto prim = object_primitive(sp.object, dq, dq ? int(mi) : -1, what);
+            const int material = primitive_material(sp.material, asset_.objects[sp.object], what);
+            const bool normal_mapped = material >= 0 && model_.materials[size_t(material)].normalTexture.index >= 0;
+            auto prim = object_primitive(sp.object, dq, dq ? int(mi) : -1, normal_mapped, what);
             if (!prim) continue;
-            prim->material = primitive_material(sp.material, asset_.objects[sp.object], what);
+            prim->material = material;
             g.primitives.push_back(std::move(*prim));
         }
         int index = -1;
@@ -655,7 +688,7 @@ private:
             const SceneMesh& m = flat_meshes_[i];
             std::optional<Dequantization> dq = mesh_dequantization(m);
             const uint16_t o = m.primitives[0].object;
-            auto prim = object_primitive(o, dq, dq ? int(o) : -1, path_ + ": object " + std::to_string(o));
+            auto prim = object_primitive(o, dq, dq ? int(o) : -1, false, path_ + ": object " + std::to_string(o));
             if (!prim) continue;
             tinygltf::Mesh g;
             g.name = m.name;
@@ -685,7 +718,7 @@ private:
     std::vector<int> texture_out_;
     std::vector<bool> material_whole_;  // per asset material: every texture it uses was written
     std::map<uint16_t, int> untextured_;
-    std::map<std::pair<size_t, int>, std::optional<tinygltf::Primitive>> primitives_;
+    std::map<std::tuple<size_t, int, bool>, std::optional<tinygltf::Primitive>> primitives_;
     std::map<size_t, int> mesh_out_;
     std::map<int, Dequantization> dequantization_;
     std::vector<int> parent_;
