@@ -60,6 +60,7 @@ TEST_CASE("the base share option picks the chunk count whose share is closest") 
         CarouselOptions options;
         options.base_share = share;
         options.min_base_repetitions = 1;
+        options.stream_info_every = 0;  // the share of the base copies alone
         Carousel c;
         std::string error;
         REQUIRE(build_carousel(packets, options, c, error));
@@ -106,8 +107,9 @@ TEST_CASE("overhead and worst-case base wait follow from the base and chunk size
     REQUIRE(build_carousel(packets, options, c, error));
     CarouselStats s = carousel_stats(c);
     const double once = double(c.base_bytes + c.data_bytes);
-    CHECK(s.repetition_overhead == doctest::Approx(double((c.chunk_count - 1) * c.base_bytes) / once));
-    CHECK(s.cycle_bytes == c.chunk_count * c.base_bytes + c.data_bytes);
+    CHECK(c.repeat_bytes > 0);  // the stream info inside the chunks of 10 (after the 8th packet)
+    CHECK(s.repetition_overhead == doctest::Approx(double((c.chunk_count - 1) * c.base_bytes + c.repeat_bytes) / once));
+    CHECK(s.cycle_bytes == c.chunk_count * c.base_bytes + c.data_bytes + c.repeat_bytes);
     // Tuning in just after the base's largest packet started: the rest of the base, a chunk, and
     // the base again up to that packet.
     uint32_t largest = 0;
@@ -252,4 +254,54 @@ TEST_CASE("the expected wait under loss matches the mean over simulated loss tra
         CHECK(sum_full / trials ==
               doctest::Approx(expected_wait_bytes(c, WaitFor::Everything, loss, 0, true)).epsilon(0.03));
     }
+}
+
+TEST_CASE("inside each chunk the stream info comes again after every k point packets, so a receiver rarely waits for it") {
+    auto packets = test::synthetic_stream(400, 30000);
+    CarouselOptions options;
+    options.chunk_packets = 20;
+    Carousel c;
+    std::string error;
+    REQUIRE(build_carousel(packets, options, c, error));
+    REQUIRE(c.stream_info.size() == 1);
+    const uint32_t info = c.stream_info[0];
+    // Walk each chunk: after the base, point packets with the stream info after the 8th and 16th
+    // (not after the 20th: the base follows).
+    size_t pos = 0, repeats = 0;
+    for (size_t chunk = 0; chunk < c.chunk_count; ++chunk) {
+        for (size_t b = 0; b < c.base.size(); ++b, ++pos) CHECK_FALSE(c.cycle[pos].stream_info_repeat);
+        size_t points = 0;
+        while (pos < c.cycle.size() && !(c.cycle[pos].base && !c.cycle[pos].stream_info_repeat)) {
+            if (c.cycle[pos].stream_info_repeat) {
+                CHECK(c.cycle[pos].packet == info);
+                CHECK(c.cycle[pos].base);
+                CHECK(points % 8 == 0);
+                ++repeats;
+            } else {
+                ++points;
+            }
+            ++pos;
+        }
+        CHECK(points <= 20);
+    }
+    CHECK(repeats == c.repeat_bytes / c.sizes[info]);
+    CHECK(repeats >= 2 * (c.chunk_count - 1));
+    // Between two copies of the stream info there are at most 8 point packets or one base.
+    int64_t last = -1;
+    size_t longest_gap = 0;
+    for (size_t k = 0; k < 2 * c.cycle.size(); ++k) {
+        if (c.packet_at(k) != info) continue;
+        if (last >= 0) longest_gap = std::max(longest_gap, k - size_t(last));
+        last = int64_t(k);
+    }
+    CHECK(longest_gap <= std::max<size_t>(9, c.base.size() + 8));
+
+    options.stream_info_every = 0;
+    Carousel without;
+    REQUIRE(build_carousel(packets, options, without, error));
+    CHECK(without.repeat_bytes == 0);
+    CHECK(without.cycle.size() == without.chunk_count * without.base.size() + without.data.size());
+    // The price: a little over one stream info per 8 point packets.
+    CHECK(c.cycle_bytes - without.cycle_bytes == c.repeat_bytes);
+    CHECK(double(c.repeat_bytes) < 0.02 * double(c.cycle_bytes));
 }

@@ -68,6 +68,8 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
         out.sizes.push_back(static_cast<uint32_t>(packets[i].size()));
         if (is_base_packet(view.header)) {
             out.base.push_back(static_cast<uint32_t>(i));
+            if (view.header.type == static_cast<uint8_t>(PacketType::StreamInfo))
+                out.stream_info.push_back(static_cast<uint32_t>(i));
             out.base_bytes += packets[i].size();
         } else {
             out.data.push_back(static_cast<uint32_t>(i));
@@ -84,14 +86,22 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
     // Spread the points packets evenly over the chunks (sizes differ by at most one packet).
     out.chunk_count = chunks;
     out.chunk_packets = out.data.empty() ? 0 : (out.data.size() + chunks - 1) / chunks;
-    size_t next = 0;
+    size_t next = 0, next_info = 0;
     for (size_t c = 0; c < chunks; ++c) {
-        for (uint32_t b : out.base) out.cycle.push_back({b, true, static_cast<uint32_t>(c)});
+        for (uint32_t b : out.base) out.cycle.push_back({b, true, false, static_cast<uint32_t>(c)});
         size_t end = out.data.size() * (c + 1) / chunks;
         uint64_t chunk_bytes = 0;
-        for (; next < end; ++next) {
-            out.cycle.push_back({out.data[next], false, static_cast<uint32_t>(c)});
+        for (size_t in_chunk = 1; next < end; ++next, ++in_chunk) {
+            out.cycle.push_back({out.data[next], false, false, static_cast<uint32_t>(c)});
             chunk_bytes += packets[out.data[next]].size();
+            // A stream info part after every k-th packet, unless the base comes next anyway.
+            if (options.stream_info_every > 0 && !out.stream_info.empty() && in_chunk % options.stream_info_every == 0 &&
+                next + 1 < end) {
+                const uint32_t info = out.stream_info[next_info++ % out.stream_info.size()];
+                out.cycle.push_back({info, true, true, static_cast<uint32_t>(c)});
+                chunk_bytes += packets[info].size();
+                out.repeat_bytes += packets[info].size();
+            }
         }
         out.max_chunk_bytes = std::max(out.max_chunk_bytes, chunk_bytes);
     }
@@ -167,7 +177,7 @@ CarouselStats carousel_stats(const Carousel& c) {
     if (c.cycle.empty()) return s;
     double once = double(c.base_bytes + c.data_bytes);
     s.repetition_overhead = double(c.cycle_bytes) / once - 1.0;
-    s.base_share = double(c.chunk_count * c.base_bytes) / double(c.cycle_bytes);
+    s.base_share = double(c.chunk_count * c.base_bytes + c.repeat_bytes) / double(c.cycle_bytes);
     const size_t n = c.cycle.size();
     for (WaitFor what : {WaitFor::Base, WaitFor::Everything}) {
         auto waits = lossless_waits(c, what);

@@ -59,6 +59,10 @@ void CarouselCli::add(CLI::App* app) {
                     "with --base-share: repeat the base at least this often per cycle (default 4)")
         ->check(CLI::Range(1, 100000))
         ->excludes(chunk_option);
+    app->add_option("--stream-info-every", stream_info_every,
+                    "inside each chunk, the stream info again after every N POINTS packets (0: only with the base; "
+                    "default 8)")
+        ->check(CLI::Range(0, 1000000));
 }
 
 broadcast::CarouselOptions CarouselCli::options() const {
@@ -66,6 +70,7 @@ broadcast::CarouselOptions CarouselCli::options() const {
     o.chunk_packets = chunk;
     o.base_share = base_share;
     o.min_base_repetitions = min_base_repetitions;
+    o.stream_info_every = stream_info_every;
     return o;
 }
 

@@ -31,6 +31,7 @@ struct CarouselCli {
     size_t chunk = 0;
     double base_share = 0.15;
     size_t min_base_repetitions = broadcast::CarouselOptions{}.min_base_repetitions;
+    size_t stream_info_every = broadcast::CarouselOptions{}.stream_info_every;
     void add(CLI::App* app);
     broadcast::CarouselOptions options() const;
 };
