@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reruns the benchmarks whose figures the README quotes and writes their output to bench/results/.
-#   bash bench/run.sh [encode|decode|quality|gallery|broadcast|compare ...]   (default: encode decode quality)
+#   bash bench/run.sh [encode|decode|quality|gallery|first-picture|broadcast|compare ...]   (default: encode decode quality)
 # Speed figures are only meaningful on an otherwise idle machine: check `uptime` first.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -62,6 +62,17 @@ for what in "$@"; do
         echo "  gallery: $n ($points points; 50% loss: $received)" >&2
       done
       rm -rf "$tmp" ;;
+    first-picture)
+      echo "== first picture: share of receivers holding a stream info and an ellipsoid packet (bench_first_picture)" >&2
+      tmp=$(mktemp -d)
+      : > "$results/first_picture.txt"
+      for m in bunny.ply spot.obj; do
+        "$build/ellicast" encode -q "$samples/meshes/$m" -o "$tmp/${m%.*}.ellc" > /dev/null
+        for loss in 0.3 0.5 0.7; do
+          "$build/bench/bench_first_picture" "$tmp/${m%.*}.ellc" --loss "$loss" --trials 20000 | tee -a "$results/first_picture.txt"
+        done
+      done
+      rm -rf "$tmp" ;;
     broadcast)
       echo "== broadcast on loopback (bench_broadcast, bunny, 2 Mbit/s)" >&2
       "$build/bench/bench_broadcast" "$samples/meshes/bunny.ply" --trials 20 --loss 0,0.05,0.1,0.2,0.3,0.5,0.7 --out "$results/broadcast" 2>&1 |
@@ -71,6 +82,6 @@ for what in "$@"; do
       "$build/ellicast" compare "$samples/meshes/bunny.ply" --times 0.25,0.5,1,2 --time-loss 0.1,0.5 --samples 50000 \
         -o "$results/bunny"
       "$build/ellicast" compare "$samples/meshes/spot.obj" --burst 0,8 -o "$results/spot" ;;
-    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, broadcast, compare)" >&2; exit 2 ;;
+    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, first-picture, broadcast, compare)" >&2; exit 2 ;;
   esac
 done

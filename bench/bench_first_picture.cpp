@@ -1,0 +1,86 @@
+// How soon after tuning in a receiver can show a first picture: it needs the stream info part of
+// an object and one ELLIPSOIDS packet of it. Simulates the carousel of a stream file under
+// independent loss, with and without the stream info repeated inside the chunks, and prints the
+// share of receivers that can show something after a given time and the percentiles of the wait.
+//   bench_first_picture STREAM.ellc [--loss 0.5] [--trials 20000] [--seed 1]
+#include <ellicast/broadcast/carousel.h>
+#include <ellicast/format.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace ellicast;
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: bench_first_picture STREAM.ellc [--loss P] [--trials N] [--seed S]\n");
+        return 2;
+    }
+    double loss = 0.5;
+    size_t trials = 20000;
+    uint32_t seed = 1;
+    for (int i = 2; i + 1 < argc; i += 2) {
+        if (!std::strcmp(argv[i], "--loss")) loss = std::stod(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--trials")) trials = std::stoul(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--seed")) seed = uint32_t(std::stoul(argv[i + 1]));
+        else return std::fprintf(stderr, "unknown option %s\n", argv[i]), 2;
+    }
+    std::ifstream in(argv[1], std::ios::binary);
+    std::vector<uint8_t> bytes{std::istreambuf_iterator<char>(in), {}};
+    ContainerContents contents = read_container(bytes);
+    if (contents.header_error != Error::Ok || contents.packets.empty())
+        return std::fprintf(stderr, "%s: not an ellicast stream file\n", argv[1]), 1;
+    std::vector<std::vector<uint8_t>> packets;
+    std::vector<uint8_t> type;
+    for (const auto& p : contents.packets) {
+        packets.emplace_back(bytes.data() + p.offset, bytes.data() + p.offset + p.view.size);
+        type.push_back(p.view.header.type);
+    }
+    std::printf("%s: %zu packets, loss %.2f, %zu trials\n", std::filesystem::path(argv[1]).filename().c_str(), packets.size(), loss, trials);
+    std::printf("%-28s %10s %10s %10s %10s %10s %10s\n", "carousel", "cycle B", "shown@.125", "shown@.25", "shown@.5",
+                "p50 cyc", "p99 cyc");
+    for (size_t every : {size_t(0), size_t(8), size_t(4)}) {
+        broadcast::CarouselOptions options;
+        options.stream_info_every = every;
+        broadcast::Carousel c;
+        std::string error;
+        if (!broadcast::build_carousel(packets, options, c, error)) return std::fprintf(stderr, "%s\n", error.c_str()), 1;
+        std::mt19937_64 rng(seed);
+        std::uniform_real_distribution<double> uniform(0, 1);
+        const double cycle = double(c.cycle_bytes);
+        std::vector<double> waits;
+        for (size_t t = 0; t < trials; ++t) {
+            // Tune in at a uniformly random moment: the packet on the air is missed.
+            const double at = uniform(rng) * cycle;
+            uint64_t slot = uint64_t(std::upper_bound(c.cycle_offsets.begin(), c.cycle_offsets.end(), uint64_t(at)) -
+                                     c.cycle_offsets.begin());
+            const double start = at;
+            bool info = false, ellipsoids = false;
+            double wait = -1;
+            for (uint64_t k = 0; k < 64 * c.cycle.size(); ++k, ++slot) {
+                if (uniform(rng) < loss) continue;
+                const uint8_t ty = type[c.packet_at(slot)];
+                info |= ty == uint8_t(PacketType::StreamInfo);
+                ellipsoids |= ty == uint8_t(PacketType::Ellipsoids);
+                if (info && ellipsoids) {
+                    wait = (double(c.bytes_before(slot + 1)) - start) / cycle;
+                    break;
+                }
+            }
+            waits.push_back(wait < 0 ? 1e9 : wait);
+        }
+        std::sort(waits.begin(), waits.end());
+        auto shown = [&](double x) { return 100.0 * double(std::upper_bound(waits.begin(), waits.end(), x) - waits.begin()) / double(trials); };
+        char name[64];
+        std::snprintf(name, sizeof name, every ? "stream info every %zu" : "stream info with base only", every);
+        std::printf("%-28s %10llu %9.1f%% %9.1f%% %9.1f%% %10.3f %10.3f\n", name, (unsigned long long)c.cycle_bytes,
+                    shown(0.125), shown(0.25), shown(0.5), waits[trials / 2], waits[trials * 99 / 100]);
+    }
+    return 0;
+}
