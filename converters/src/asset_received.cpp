@@ -21,6 +21,15 @@ std::string texture_missing(const ReceivedStream& stream, uint16_t index) {
     return t == stream.textures().end() ? std::string("none of it arrived") : texture_gap(t->second);
 }
 
+// A name as it can be shown and written (glTF is UTF-8 JSON): ill-formed UTF-8 replaced by U+FFFD
+// (spec 15.1), with a warning.
+std::string shown_name(const std::string& name, const std::string& what, std::vector<std::string>& warnings) {
+    if (is_valid_utf8(name)) return name;
+    std::string shown = replace_invalid_utf8(name);
+    warnings.push_back(what + ": its name is not valid UTF-8; shown as \"" + shown + "\"");
+    return shown;
+}
+
 }  // namespace
 
 Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
@@ -57,7 +66,8 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
     for (const auto& [index, m] : stream.materials()) {
         material_count = std::max(material_count, m.material_count);
         Material out = m;
-        const std::string what = "material " + std::to_string(index) + (m.name.empty() ? "" : " (" + m.name + ")");
+        out.name = shown_name(m.name, "material " + std::to_string(index), warnings);
+        const std::string what = "material " + std::to_string(index) + (out.name.empty() ? "" : " (" + out.name + ")");
         std::vector<std::string> waiting;
         const std::pair<TextureRef*, const char*> slots[] = {{&out.base_color_texture, "baseColorTexture"},
                                                              {&out.metallic_roughness_texture, "metallicRoughnessTexture"},
@@ -102,6 +112,7 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
     for (const auto& [index, m] : stream.scene_meshes()) {
         mesh_map[index] = uint16_t(asset.scene.meshes.size());
         SceneMesh out = m;
+        out.name = shown_name(m.name, "mesh " + std::to_string(out.index), warnings);
         out.index = uint16_t(asset.scene.meshes.size());
         for (auto& p : out.primitives) {
             if (p.material == kNone) continue;
@@ -148,6 +159,7 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
     for (const auto& [index, n] : nodes) {
         if (!reaches_root[index]) continue;
         SceneNode out = n;
+        out.name = shown_name(n.name, "node " + std::to_string(out.index), warnings);
         out.index = node_map[index];
         out.parent = n.parent == kNone ? kNone : node_map.at(n.parent);
         if (n.mesh != kNone) {

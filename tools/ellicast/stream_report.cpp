@@ -144,6 +144,17 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         if (!cyclic.empty())
             r.violations.push_back({std::nullopt, "scene: the parent chain of node(s) " + cyclic + " runs into a cycle and never reaches a root"});
     }
+    // Spec 15.1: names are UTF-8 (a decoder shows an ill-formed one with U+FFFD in place).
+    auto check_names = [&](const auto& table, const char* what) {
+        std::string bad;
+        for (const auto& [index, item] : table)
+            if (!is_valid_utf8(item.name)) bad += (bad.empty() ? "" : ", ") + std::to_string(index);
+        if (!bad.empty())
+            r.violations.push_back({std::nullopt, std::string("scene: the name of ") + what + " " + bad + " is not valid UTF-8"});
+    };
+    check_names(r.stream.scene_nodes(), "node(s)");
+    check_names(r.stream.scene_meshes(), "mesh(es)");
+    check_names(r.stream.materials(), "material(s)");
     if (!r.stream.materials().empty()) {
         std::string missing = missing_ranges(r.stream.materials(), r.stream.materials().begin()->second.material_count);
         if (!missing.empty()) r.violations.push_back({std::nullopt, "materials missing: " + missing});

@@ -15,6 +15,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace ellicast {
@@ -55,6 +56,14 @@ enum class PacketType : uint8_t {
     // 0x00 is invalid; 0x04..0x0F reserved for geometry; 0x13..0x1F reserved for the scene;
     // 0x20..0x7F future; 0x80..0xFF experimental.
 };
+
+// Names in the stream are UTF-8 (spec 15). True when `text` is well-formed UTF-8 (no overlong
+// forms, no surrogates, nothing above U+10FFFF).
+bool is_valid_utf8(std::string_view text);
+
+// `text` with every byte sequence that is not well-formed UTF-8 replaced by U+FFFD (one per
+// maximal ill-formed subpart, as Unicode recommends): what a decoder shows of a name (spec 15.1).
+std::string replace_invalid_utf8(std::string_view text);
 
 // Name of a packet type ("STREAM_INFO", ...), or "UNKNOWN(0xNN)".
 std::string packet_type_name(uint8_t type);
