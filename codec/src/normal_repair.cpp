@@ -384,21 +384,33 @@ size_t cut_tunnels(Reconstruction& r, NormalView& view) {
     }
     std::sort(corners.begin(), corners.end());
     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-    // Fill every rim the cut left (a boundary loop through a corner of a cut face).
+    // Fill every rim the cut left (a boundary loop through a corner of a cut face). Filling adds
+    // edges (their halfedges are numbered past the marks taken before) and changes the halfedges
+    // around a corner, so the rims through a corner are listed before any is filled.
     std::vector<char> done(mesh.n_halfedges(), 0);
+    auto is_done = [&](OpenMesh::HalfedgeHandle g) { return size_t(g.idx()) < done.size() && done[size_t(g.idx())]; };
+    auto mark = [&](OpenMesh::HalfedgeHandle g) {
+        if (size_t(g.idx()) >= done.size()) done.resize(mesh.n_halfedges(), 0);
+        done[size_t(g.idx())] = 1;
+    };
     std::vector<OpenMesh::VertexHandle> lonely;
+    std::vector<OpenMesh::HalfedgeHandle> rims;
     for (auto v : corners) {
         if (mesh.is_isolated(v)) {
             lonely.push_back(v);
             continue;
         }
-        for (auto h : mesh.voh_range(v)) {
-            if (!mesh.is_boundary(h) || done[h.idx()]) continue;
+        rims.clear();
+        for (auto h : mesh.voh_range(v))
+            if (mesh.is_boundary(h)) rims.push_back(h);
+        for (auto h : rims) {
+            if (!mesh.is_boundary(h) || is_done(h)) continue;  // filled or walked meanwhile
             auto g = h;
+            size_t steps = 0;
             do {
-                done[g.idx()] = 1;
+                mark(g);
                 g = mesh.next_halfedge_handle(g);
-            } while (g != h && !done[g.idx()]);
+            } while (g != h && !is_done(g) && ++steps < mesh.n_halfedges());
             for (auto f : fill_hole(r, h))
                 for (auto w : mesh.fv_range(f)) view.forget(w);
         }
