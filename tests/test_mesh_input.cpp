@@ -172,6 +172,30 @@ TEST_CASE("bad input files are refused with a message naming the file and the pr
         spit(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
         CHECK(!error_of((dir / "flat.obj").string()).empty());
     }
+    SUBCASE("an OFF face declaring two billion corners is refused at once (OpenMesh would reserve them)") {
+        spit(dir / "bomb.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2000000000 0 1 2\n");
+        std::string e = error_of((dir / "bomb.off").string());
+        CHECK(e.find("bomb.off: line 6: face 0 declares 2000000000 corners") != std::string::npos);
+        spit(dir / "short.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n4 0 1 2\n");
+        CHECK(error_of((dir / "short.off").string()).find("(3 given)") != std::string::npos);
+        spit(dir / "counts.off", "OFF\n9223372036854775807 9223372036854775807 0\n");
+        CHECK(error_of((dir / "counts.off").string()).find("more than the file can hold") != std::string::npos);
+        spit(dir / "ok.off", "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n"
+                             "3 0 3 2\n3 1 2 3 255 0 0\n");
+        LoadResult ok = load_meshes((dir / "ok.off").string());
+        REQUIRE(ok.meshes.size() == 1);
+        CHECK(ok.meshes[0].triangles.size() == 4);
+    }
+    SUBCASE("an error quotes at most 80 bytes of a huge line, with its length") {
+        std::string line = "v 0 0 " + std::string(5'000'000, 'x');
+        spit(dir / "huge.obj", line + "\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+        std::string e = error_of((dir / "huge.obj").string());
+        CHECK(e.find("line 1") != std::string::npos);
+        CHECK(e.find("(5000006 bytes)") != std::string::npos);
+        CHECK(e.size() < 400);
+        CHECK(quoted_input("short") == "\"short\"");
+        CHECK(quoted_input("\xC3\xA9\xC3\xA9", 3) == "\"\xC3\xA9...\" (4 bytes)");  // not cut inside a character
+    }
     SUBCASE("truncated glb") {
         if (!have_sample("gltf/Box-glb/Box.glb")) return;
         auto bytes = slurp(sample("gltf/Box-glb/Box.glb"));

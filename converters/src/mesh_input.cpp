@@ -28,6 +28,23 @@ bool starts_with_gltf_magic(const std::string& path) {
 
 }  // namespace
 
+std::string quoted_input(const std::string& text, size_t limit) {
+    size_t n = std::min(text.size(), limit);
+    while (n < text.size() && n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;
+    std::string out;
+    out.reserve(n + 32);
+    out += '"';
+    out.append(text, 0, n);
+    if (n < text.size()) {
+        out += "...\" (";
+        out += std::to_string(text.size());
+        out += " bytes)";
+    } else {
+        out += '"';
+    }
+    return out;
+}
+
 LoadResult load_meshes(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");

@@ -115,7 +115,7 @@ void check_obj(const std::string& path) {
                 fields >> value;
                 if (fields.fail() || !std::isfinite(value))
                     bad(path, number, std::string(kinds[kind]) + " value " + std::to_string(k + 1) +
-                                          " is not a finite number a float holds (\"" + line + "\")");
+                                          " is not a finite number a float holds (" + quoted_input(line) + ")");
             }
             continue;
         }
@@ -135,10 +135,10 @@ void check_obj(const std::string& path) {
                 long long index = std::strtoll(text.c_str(), &stop, 10);
                 if (text.empty() || *stop != '\0' || errno == ERANGE || index == 0 || index > INT32_MAX ||
                     index < -INT32_MAX)
-                    bad(path, number, "face corner \"" + corner + "\" is not a " + kinds[part] +
+                    bad(path, number, "face corner " + quoted_input(corner) + " is not a " + kinds[part] +
                                           " index (a nonzero whole number)");
                 if (index < 0 && -index > counts[part])
-                    bad(path, number, "face corner \"" + corner + "\" counts back " + std::to_string(-index) + " " +
+                    bad(path, number, "face corner " + quoted_input(corner) + " counts back " + std::to_string(-index) + " " +
                                           (-index == 1 ? kinds[part] : plural[part]) + " from line " +
                                           std::to_string(number) + ", but only " + std::to_string(counts[part]) +
                                           " are defined before it");
@@ -149,7 +149,7 @@ void check_obj(const std::string& path) {
     if (in.bad()) throw InputError(path + ": could not be read to the end");
     for (int part = 0; part < 3; ++part)
         if (largest[part].index > counts[part])
-            bad(path, largest[part].line, "face corner \"" + largest[part].corner + "\" refers to " + kinds[part] + " " +
+            bad(path, largest[part].line, "face corner " + quoted_input(largest[part].corner) + " refers to " + kinds[part] + " " +
                                               std::to_string(largest[part].index) + ", but the file defines " +
                                               std::to_string(counts[part]) + " " + plural[part]);
 }
@@ -197,7 +197,7 @@ void check_ply(const std::string& path) {
             Element e;
             long long count = -1;
             words >> e.name >> count;
-            if (!words || count < 0 || count > (1ll << 31)) bad(path, number, "bad element line \"" + line + "\"");
+            if (!words || count < 0 || count > (1ll << 31)) bad(path, number, "bad element line " + quoted_input(line));
             e.count = uint64_t(count);
             elements.push_back(e);
         } else if (word == "property") {
@@ -209,7 +209,7 @@ void check_ply(const std::string& path) {
                 p.list = true;
                 words >> p.count_type >> p.type >> p.name;
                 if (!type_size(p.count_type) || !type_size(p.type))
-                    bad(path, number, "unknown property type in \"" + line + "\"");
+                    bad(path, number, "unknown property type in " + quoted_input(line));
             } else {
                 p.type = type;
                 words >> p.name;
@@ -220,7 +220,7 @@ void check_ply(const std::string& path) {
             ended = true;
             break;
         } else if (word != "comment" && word != "obj_info" && !word.empty()) {
-            bad(path, number, "unexpected PLY header line \"" + line + "\"");
+            bad(path, number, "unexpected PLY header line " + quoted_input(line));
         }
     }
     if (!ended) bad(path, number, "the PLY header has no end_header line (the file is cut short?)");
@@ -306,10 +306,31 @@ void check_off(const std::string& path) {
         long long faces = -1;
         words >> faces;
         if (*end != '\0' || vertices < 0 || faces < 0)
-            bad(path, number, "the OFF counts line must hold vertex and face counts (\"" + line + "\")");
-        if (uint64_t(vertices + faces) * 2 > file_size(path))
+            bad(path, number, "the OFF counts line must hold vertex and face counts (" + quoted_input(line) + ")");
+        const uint64_t size = file_size(path);
+        if (uint64_t(vertices) > size / 2 || uint64_t(faces) > size / 2 || uint64_t(vertices + faces) * 2 > size)
             bad(path, number, "the OFF header declares " + std::to_string(vertices) + " vertices and " +
                                   std::to_string(faces) + " faces, more than the file can hold");
+        // Each face line starts with its corner count, which OpenMesh reserves before reading the
+        // corners (a 45-byte file declaring a 2,000,000,000-sided face took 46 s and 4.2 GB, then
+        // bad_alloc): at most as many corners as vertices, and the line must hold them.
+        long long seen = 0;
+        while (seen < vertices + faces && std::getline(in, line)) {
+            ++number;
+            if (auto h = line.find('#'); h != std::string::npos) line.resize(h);
+            std::istringstream fields(line);
+            std::string count;
+            if (!(fields >> count)) continue;
+            if (seen++ < vertices) continue;
+            char* stop = nullptr;
+            const long long corners = std::strtoll(count.c_str(), &stop, 10);
+            size_t given = 0;
+            for (std::string index; fields >> index;) ++given;
+            if (*stop != '\0' || corners < 3 || corners > vertices || uint64_t(corners) > given)
+                bad(path, number, "face " + std::to_string(seen - vertices - 1) + " declares " + count.substr(0, 20) +
+                                      " corners; a face needs 3 to " + std::to_string(vertices) +
+                                      " (the vertex count), all on its line (" + std::to_string(given) + " given)");
+        }
         return;
     }
     throw InputError(path + ": not an OFF file (no counts line)");

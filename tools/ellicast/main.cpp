@@ -5,6 +5,7 @@
 #include "ellicast/format.h"
 
 #include <algorithm>
+#include <new>
 #include <filesystem>
 #include <iostream>
 
@@ -62,6 +63,12 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         int code = app.exit(e);
         return code == 0 ? 0 : kExitUsage;
+    } catch (const std::bad_alloc&) {
+        // Every reader bounds what it allocates by the input's size; this is the last line, for
+        // what slipped through (or a machine without the memory for a legitimate input).
+        return fail(kExitFailure, "out of memory (the input asks for more than this machine can give)");
+    } catch (const std::exception& e) {
+        return fail(kExitFailure, std::string("internal error: ") + e.what());
     }
     return exit_code;
 }

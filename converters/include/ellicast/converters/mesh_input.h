@@ -21,6 +21,11 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// A piece of the user's input as an error message quotes it: in double quotes, cut after `limit`
+// bytes (at a UTF-8 boundary) with "..." and the whole length, so that a 50 MB line or a 300 MB
+// data: URI does not end up in a terminal.
+std::string quoted_input(const std::string& text, size_t limit = 80);
+
 struct LoadResult {
     std::vector<Mesh> meshes;           // in scene order; never empty on success
     std::vector<std::string> warnings;  // things dropped, repaired or ignored, one sentence each
