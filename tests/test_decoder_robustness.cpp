@@ -1,6 +1,9 @@
 // Streams a sender can make without breaking a checksum, which once crashed the decoder.
 #include "ellicast/converters/asset.h"
 #include "ellicast/converters/asset_stream.h"
+#include "ellicast/converters/mesh_input.h"
+#include "ellicast/codec/decoder.h"
+#include "ellicast/codec/encoder.h"
 #include "ellicast/format.h"
 #include "support.h"
 
@@ -44,5 +47,41 @@ TEST_CASE("the milk truck decodes on the coarsest grids, where cutting tunnels a
         for (const auto& o : decoded.objects)
             for (const auto& t : o.triangles)
                 for (uint32_t v : t) REQUIRE(v < o.positions.size());
+    }
+}
+
+TEST_CASE("ellipsoids whose stored rotations are all zero or all identity decode without touching memory they do not own") {
+    // A sender can set every stored quaternion component of every ellipsoid (CRCs recomputed): the
+    // rotations dequantize to valid ones (spec 6.1 normalizes), but the base they give is unlike any
+    // an encoder makes; decoding the milk truck this way once read and wrote past the end of the
+    // heap (tunnels cut at the end of the complete stream).
+    if (!have_sample("gltf/CesiumMilkTruck/CesiumMilkTruck.gltf")) return;
+    const std::vector<Mesh> meshes = load_meshes((shared_samples() / "gltf/CesiumMilkTruck/CesiumMilkTruck.gltf").string()).meshes;
+    EncodeOptions encode;
+    encode.max_ellipsoids = 40;
+    encode.max_samples = 5000;
+    const EncodeResult encoded = encode_meshes(meshes, encode);
+    for (uint16_t stored : {uint16_t(0), uint16_t(8192)}) {
+        CAPTURE(stored);
+        std::vector<ObjectContent> contents = encoded.contents;
+        for (auto& c : contents)
+            for (auto& e : c.ellipsoids) e.rotation = {stored, stored, stored};
+        StreamPackets packets;
+        REQUIRE(packetize_stream(encoded.info, contents, 1, packets) == Error::Ok);
+        ReceivedStream stream;
+        size_t where = 0;
+        for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.points})
+            for (const auto& p : *group) REQUIRE(stream.add_packet(p, where++) == Error::Ok);
+        std::vector<Mesh> out;
+        DecodeOptions options;
+        std::string error;
+        StreamDecodeReport report;
+        REQUIRE_MESSAGE(decode_stream(stream, options, out, report, error), error);
+        REQUIRE(out.size() == meshes.size());
+        for (const auto& o : out) {
+            CHECK(!o.triangles.empty());
+            for (const auto& t : o.triangles)
+                for (uint32_t v : t) REQUIRE(v < o.positions.size());
+        }
     }
 }
