@@ -53,3 +53,40 @@ TEST_CASE("a frame whose far corner overflows single precision is refused") {
     info.objects[0].texcoord_scale = {3e38f, 1};
     CHECK(check_stream_info(info) == Error::MalformedPayload);
 }
+
+TEST_CASE("every packet held before the stream info counts toward the hold, empty ones too, and the hold is released in one pass") {
+    StreamInfo info = one_object_stream();
+    std::vector<ObjectContent> contents(1);
+    contents[0].points.resize(10);
+    StreamPackets packets;
+    REQUIRE(packetize_stream(info, contents, 3, packets) == Error::Ok);
+    PacketView view;
+    REQUIRE(parse_packet(packets.points[0], view) == Error::Ok);
+    PacketHeader empty_header = view.header;
+    empty_header.payload_length = 0;
+    const auto empty = write_packet(empty_header, {});  // a POINTS packet with a 0-byte payload
+
+    // 10 packets' worth of bookkeeping: the 11th empty packet does not fit.
+    ReceivedStream::Limits small;
+    small.max_pending_bytes = 10 * kHeldPacketCost;
+    ReceivedStream few(small);
+    for (int i = 0; i < 10; ++i) REQUIRE(few.add_packet(empty, uint64_t(i)) == Error::Ok);
+    CHECK(few.add_packet(empty, 10) == Error::NoStreamInfo);
+    CHECK(few.counters().pending == 10);
+
+    // A flood of 200,000 held packets: at most the packet cap is held, the rest rejected; when the
+    // stream info comes, every held packet is decoded (the empty ones rejected as malformed) at once.
+    ReceivedStream flood;
+    const size_t cap = ReceivedStream::Limits{}.max_pending_packets;
+    size_t refused = 0;
+    for (uint64_t i = 0; i < 200'000; ++i) {
+        const bool real = i % 1000 == 0;
+        refused += flood.add_packet(real ? packets.points[0] : empty, i) == Error::NoStreamInfo;
+    }
+    CHECK(flood.counters().pending == cap);
+    CHECK(refused == 200'000 - cap);
+    REQUIRE(flood.add_packet(packets.stream_info[0], 200'000) == Error::Ok);
+    CHECK(flood.counters().pending == 0);
+    REQUIRE(flood.objects().size() == 1);
+    CHECK(flood.objects()[0].points.size() == 10);  // the real packets among the held ones
+}

@@ -80,19 +80,22 @@ Error ReceivedStream::take_stream_info(const PacketView& packet, uint64_t where)
         info_ = std::move(stream);
         object_count_ = part.object_count;
         objects_.assign(object_count_, ReceivedObject{});
-        // Packets held for objects the table turns out not to have will never be released.
-        for (auto it = pending_.begin(); it != pending_.end();) {
-            if (it->header.object_id < object_count_) {
-                ++it;
+        // Packets held for objects the table turns out not to have will never be released (one
+        // pass: a hold of many packets is not erased one at a time).
+        std::vector<Pending> keep;
+        keep.reserve(pending_.size());
+        for (Pending& p : pending_) {
+            if (p.header.object_id < object_count_) {
+                keep.push_back(std::move(p));
                 continue;
             }
-            pending_bytes_ -= it->payload.size();
+            pending_bytes_ -= p.payload.size() + kHeldPacketCost;
             --counters_.pending;
-            reject(it->where, Error::UnknownObject,
-                   packet_type_name(it->header.type) + " of object " + std::to_string(it->header.object_id) +
+            reject(p.where, Error::UnknownObject,
+                   packet_type_name(p.header.type) + " of object " + std::to_string(p.header.object_id) +
                        ", the stream has " + std::to_string(object_count_) + " objects");
-            it = pending_.erase(it);
         }
+        pending_ = std::move(keep);
     }
     bool news = false;
     uint64_t declared = 0;
@@ -116,8 +119,8 @@ Error ReceivedStream::take_stream_info(const PacketView& packet, uint64_t where)
         if (object.info) continue;
         object.info = part.info.objects[i];
         news = true;
-        release_pending(static_cast<uint16_t>(part.first_object + i));
     }
+    if (news) release_pending();
     if (news || part.info.objects.empty()) ++counters_.accepted;
     else ++counters_.duplicates;
     return Error::Ok;
@@ -129,10 +132,11 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
     if (info_ && id >= object_count_)
         return reject(where, Error::UnknownObject, name + ", the stream has " + std::to_string(object_count_) + " objects");
     if (!info_ || !objects_[id].info) {
-        if (pending_bytes_ + packet.payload.size() > limits_.max_pending_bytes)
+        if (pending_bytes_ + packet.payload.size() + kHeldPacketCost > limits_.max_pending_bytes ||
+            pending_.size() >= limits_.max_pending_packets)
             return reject(where, Error::NoStreamInfo, name + " arrived before its stream info and the hold is full");
         pending_.push_back({packet.header, {packet.payload.begin(), packet.payload.end()}, where});
-        pending_bytes_ += packet.payload.size();
+        pending_bytes_ += packet.payload.size() + kHeldPacketCost;
         ++counters_.pending;
         return Error::Ok;
     }
@@ -165,18 +169,18 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
     return Error::Ok;
 }
 
-void ReceivedStream::release_pending(uint16_t object_id) {
-    std::vector<Pending> held;
-    for (auto it = pending_.begin(); it != pending_.end();) {
-        if (it->header.object_id == object_id) {
-            held.push_back(std::move(*it));
-            it = pending_.erase(it);
-        } else {
-            ++it;
-        }
+void ReceivedStream::release_pending() {
+    // One pass over the hold for all objects whose entry arrived (linear: 100k held packets once
+    // took 8.4 s, erased one at a time and once per object).
+    std::vector<Pending> held, keep;
+    keep.reserve(pending_.size());
+    for (Pending& p : pending_) {
+        const bool ready = p.header.object_id < objects_.size() && objects_[p.header.object_id].info.has_value();
+        (ready ? held : keep).push_back(std::move(p));
     }
+    pending_ = std::move(keep);
     for (const Pending& p : held) {
-        pending_bytes_ -= p.payload.size();
+        pending_bytes_ -= p.payload.size() + kHeldPacketCost;
         --counters_.pending;
         PacketView view;
         view.header = p.header;

@@ -467,11 +467,17 @@ struct ReceiveCounters {
     uint64_t pending = 0;      // valid packets held until their stream info arrives
 };
 
+// What one held packet costs a receiver besides its payload (header, position, container slot).
+inline constexpr size_t kHeldPacketCost = 64;
+
 class ReceivedStream {
 public:
     // Limits that keep memory bounded whatever arrives.
     struct Limits {
-        size_t max_pending_bytes = 64u << 20;     // payloads held while waiting for stream info
+        // Packets held while waiting for stream info: each counts its payload plus kHeldPacketCost
+        // (its bookkeeping), so that empty payloads count too; and at most this many packets.
+        size_t max_pending_bytes = 64u << 20;
+        size_t max_pending_packets = 65536;
         // Ellipsoids + points a stream may declare. Each received one costs about 100 bytes of map
         // node, so the default bounds a hostile stream's held geometry near 800 MB.
         uint64_t max_elements = 8'000'000;
@@ -531,7 +537,7 @@ private:
     Error reject(uint64_t where, Error e, std::string detail);
     Error take_stream_info(const PacketView& packet, uint64_t where);
     Error take_object_packet(const PacketView& packet, uint64_t where);
-    void release_pending(uint16_t object_id);
+    void release_pending();  // decodes every held packet whose object entry has arrived
 
     Limits limits_;
     std::optional<uint32_t> stream_id_;
