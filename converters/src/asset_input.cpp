@@ -460,7 +460,7 @@ private:
                     declared = entry["mimeType"].get<std::string>();
             }
         }
-        const std::string where = path_ + ": image " + std::to_string(i) + (external ? " (" + quoted_input(image.uri) + ")" : "");
+        const std::string where = path_ + ": image " + std::to_string(i) + (external ? " (" + (image.uri.size() <= 80 ? image.uri : quoted_input(image.uri)) + ")" : "");
         const image_file::Check check = image_file::check(bytes);
         image_file::Format format = check.format;
         const std::string what = image_file::name(format);
