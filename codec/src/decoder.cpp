@@ -152,6 +152,11 @@ Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::ve
         return &r.vertex_points[s];
     };
 
+    // A vertex normally holds a few attribute sets (a seam's); a hostile stream can put every point
+    // at one position. The choice looks at the first kMaxSetsCompared sets of each corner only, so
+    // it costs at most that squared per corner rather than the square of the points there (all
+    // points of a small model at one position took 33 s).
+    constexpr size_t kMaxSetsCompared = 16;
     std::unordered_map<uint64_t, uint32_t> output_index;  // (vertex, point) -> output vertex
     output_index.reserve(nv * 2);
     for (auto f : mesh.faces()) {
@@ -166,14 +171,18 @@ Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::ve
                 chosen = (*sets)[0];
                 if (sets->size() > 1) {
                     double best = std::numeric_limits<double>::max();
-                    for (uint32_t s : *sets) {
+                    const size_t candidates = std::min(sets->size(), kMaxSetsCompared);
+                    for (size_t si = 0; si < candidates; ++si) {
+                        const uint32_t s = (*sets)[si];
                         double cost = 0;
                         for (int o = 0; o < 3; ++o) {
                             if (o == c) continue;
                             const auto* other = sets_of(corner[o]);
                             if (!other || other->empty()) continue;
                             double m = std::numeric_limits<double>::max();
-                            for (uint32_t t : *other) m = std::min(m, attribute_distance(points[s], points[t], info));
+                            const size_t compared = std::min(other->size(), kMaxSetsCompared);
+                            for (size_t ti = 0; ti < compared; ++ti)
+                                m = std::min(m, attribute_distance(points[s], points[(*other)[ti]], info));
                             cost += m;
                         }
                         if (cost < best) best = cost, chosen = s;
