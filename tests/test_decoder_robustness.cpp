@@ -10,6 +10,7 @@
 #include "support.h"
 
 #include <cmath>
+#include <fstream>
 
 #include <doctest/doctest.h>
 
@@ -120,4 +121,99 @@ TEST_CASE("a stream whose points all stand at one position decodes in bounded ti
     REQUIRE(out.size() == 1);
     for (const auto& t : out[0].triangles)
         for (uint32_t v : t) REQUIRE(v < out[0].positions.size());
+}
+
+namespace {
+
+// A stream of `objects` objects of one ellipsoid each, filling its frame, and no point, with the
+// given grid hint: a few hundred bytes that ask for a huge base per object.
+ReceivedStream one_ellipsoid_objects(size_t objects, uint16_t grid_hint, float radius = 0.5f) {
+    StreamInfo info;
+    info.grid_hint = grid_hint;
+    std::vector<ObjectContent> contents(objects);
+    for (size_t i = 0; i < objects; ++i) {
+        ObjectInfo o;
+        o.frame = {{float(i), 0, 0}, 1};
+        o.ellipsoid_count = 1;
+        info.objects.push_back(o);
+        Ellipsoid e;
+        e.center = {float(i) + 0.5f, 0.5f, 0.5f};
+        e.radii = {radius, radius, radius};
+        contents[i].ellipsoids.push_back(quantize_ellipsoid(e, o.frame));
+    }
+    StreamPackets packets;
+    REQUIRE(packetize_stream(info, contents, 1, packets) == Error::Ok);
+    ReceivedStream stream;
+    size_t where = 0;
+    std::vector<std::vector<uint8_t>> all;
+    for (auto* group : {&packets.stream_info, &packets.ellipsoids})
+        for (const auto& p : *group) {
+            REQUIRE(stream.add_packet(p, where++) == Error::Ok);
+            all.push_back(p);
+        }
+    // Kept for the command-line tools (build/test-scratch/one_ellipsoid_objects/N.ellc).
+    const auto bytes = write_container(all);
+    std::ofstream(scratch_dir("one_ellipsoid_objects_" + std::to_string(objects)) / "stream.ellc", std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    return stream;
+}
+
+}  // namespace
+
+TEST_CASE("a decoder's work follows what the stream carries: one-ellipsoid objects get small grids, however large the hint") {
+    for (size_t objects : {size_t(1), size_t(10), size_t(2000)}) {
+        CAPTURE(objects);
+        const ReceivedStream stream = one_ellipsoid_objects(objects, 1000);
+        std::vector<Mesh> out;
+        StreamDecodeReport report;
+        std::string error;
+        REQUIRE_MESSAGE(decode_stream(stream, DecodeOptions{}, out, report, error), error);
+        REQUIRE(out.size() == objects);
+        size_t faces = 0;
+        for (const auto& m : out) faces += m.triangles.size();
+        // One object: at most 2^18 + 2048 nodes, a sphere about 64 cells across: some 10^4 faces
+        // (at the hint of 1000 it would have been ~6 million). Many objects share 2^24 nodes, so the
+        // faces of all stay within a quarter of the nodes.
+        CHECK(faces <= objects * 60000);
+        CHECK(faces <= ((size_t(1) << 24) + 2048 * objects) / 4);
+        bool lowered = false;
+        for (const auto& note : report.objects[0].notes) lowered |= note.find("lowered to") != std::string::npos;
+        CHECK(lowered);
+    }
+}
+
+TEST_CASE("an object whose grid cannot be built is named and the others are still decoded") {
+    // The user asks for the finest grid: the object of radius 0.5 would exceed the grid node cap,
+    // the small one fits.
+    StreamInfo info;
+    std::vector<ObjectContent> contents(2);
+    for (int i = 0; i < 2; ++i) {
+        ObjectInfo o;
+        o.frame = {{float(2 * i), 0, 0}, 1};
+        o.ellipsoid_count = 1;
+        info.objects.push_back(o);
+        Ellipsoid e;
+        e.center = {float(2 * i) + 0.5f, 0.5f, 0.5f};
+        e.radii = {i == 0 ? 0.5f : 0.05f, i == 0 ? 0.5f : 0.05f, i == 0 ? 0.5f : 0.05f};
+        contents[size_t(i)].ellipsoids.push_back(quantize_ellipsoid(e, o.frame));
+    }
+    StreamPackets packets;
+    REQUIRE(packetize_stream(info, contents, 1, packets) == Error::Ok);
+    ReceivedStream stream;
+    size_t where = 0;
+    for (auto* group : {&packets.stream_info, &packets.ellipsoids})
+        for (const auto& p : *group) REQUIRE(stream.add_packet(p, where++) == Error::Ok);
+    DecodeOptions options;
+    options.grid_resolution = 1024;
+    std::vector<Mesh> out;
+    std::vector<size_t> which;
+    StreamDecodeReport report;
+    std::string error;
+    REQUIRE_MESSAGE(decode_stream(stream, options, out, report, error, &which), error);
+    CHECK(report.objects_failed == 1);
+    REQUIRE(which == std::vector<size_t>{1});
+    CHECK(!out[0].triangles.empty());
+    bool named = false;
+    for (const auto& note : report.objects[0].notes) named |= note.find("not decoded") != std::string::npos;
+    CHECK(named);
 }

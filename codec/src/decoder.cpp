@@ -244,6 +244,25 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
 
     int resolution = options.grid_resolution > 0 ? options.grid_resolution
                                                  : (grid_hint > 0 ? grid_hint : kDefaultGridResolution);
+    if (options.grid_resolution <= 0) {
+        // The work follows what arrived (spec 13): lower the resolution until the grid fits.
+        resolution = std::clamp(resolution, kMinGridResolution, kMaxGridResolution);
+        const double elements = double(ellipsoids.size()) + double(points.size());
+        const size_t budget = size_t(std::min<double>(double(kMaxGridNodes),
+                                                      double(options.base_grid_nodes) +
+                                                          double(options.grid_nodes_per_element) * elements));
+        const int wanted = resolution;
+        size_t nodes = ellipsoid_grid_nodes(ellipsoids, info.frame, resolution);
+        while (nodes > budget && resolution > kMinGridResolution) {
+            const int lower = int(std::floor(resolution * std::cbrt(double(budget) / double(nodes))));
+            resolution = std::max(kMinGridResolution, std::min(resolution - 1, lower));
+            nodes = ellipsoid_grid_nodes(ellipsoids, info.frame, resolution);
+        }
+        if (resolution != wanted)
+            report.notes.push_back("grid " + std::to_string(wanted) + " lowered to " + std::to_string(resolution) +
+                                   ": at most " + std::to_string(budget) + " grid nodes for the " +
+                                   std::to_string(size_t(elements)) + " ellipsoids and points received");
+    }
     EllipsoidGrid grid;
     progress("rasterize", 0);
     if (!rasterize_ellipsoids(ellipsoids, info.frame, resolution, grid, error, &report.skipped_ellipsoids))
@@ -334,6 +353,13 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
     return true;
 }
 
+size_t shared_base_grid_nodes(const ReceivedStream& stream, const DecodeOptions& options) {
+    size_t with_base = 0;
+    for (const auto& o : stream.objects()) with_base += o.info && !o.ellipsoids.empty();
+    if (with_base == 0) return options.base_grid_nodes;
+    return std::min(options.base_grid_nodes, std::max<size_t>(4096, kBaseGridNodesInAll / with_base));
+}
+
 bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, std::vector<Mesh>& meshes,
                    StreamDecodeReport& report, std::string& error, std::vector<size_t>* mesh_objects) {
     meshes.clear();
@@ -347,6 +373,9 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
     const StreamInfo& info = *stream.info();
     const auto& objects = stream.objects();
     report.objects.resize(objects.size());
+    DecodeOptions shared = options;
+    shared.base_grid_nodes = shared_base_grid_nodes(stream, options);
+    size_t decoded = 0, failed = 0;
     for (size_t i = 0; i < objects.size(); ++i) {
         if (!objects[i].info) {
             ++report.objects_without_info;
@@ -355,11 +384,15 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
         }
         Mesh mesh;
         std::string object_error;
-        if (!decode_object(*objects[i].info, stream.ellipsoids(i), stream.points(i), info.grid_hint, options, i, mesh,
+        if (!decode_object(*objects[i].info, stream.ellipsoids(i), stream.points(i), info.grid_hint, shared, i, mesh,
                            report.objects[i], object_error)) {
-            error = "object " + std::to_string(i) + ": " + object_error;
-            return false;
+            // One object that cannot be built does not cost the others theirs.
+            report.objects[i].notes.push_back("not decoded: " + object_error);
+            error += (error.empty() ? "" : "; ") + ("object " + std::to_string(i) + ": " + object_error);
+            ++failed;
+            continue;
         }
+        ++decoded;
         const auto& t = report.objects[i].timings;
         report.timings.rasterize += t.rasterize;
         report.timings.marching_cubes += t.marching_cubes;
@@ -371,6 +404,9 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
         meshes.push_back(std::move(mesh));
         if (mesh_objects) mesh_objects->push_back(i);
     }
+    report.objects_failed = failed;
+    if (failed > 0 && decoded == 0) return false;
+    error.clear();  // the failures are in the objects' notes
     return true;
 }
 

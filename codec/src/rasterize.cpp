@@ -43,7 +43,45 @@ bool prepare(const Ellipsoid& e, PreparedEllipsoid& p) {
     return true;
 }
 
+// Node index range of the grid: the union of the ellipsoids' boxes, one cell of margin, on the
+// frame's lattice.
+void node_range(const std::vector<PreparedEllipsoid>& prepared, const Frame& frame, int resolution, long lo[3],
+                long hi[3]) {
+    const double h = double(frame.scale) / resolution;
+    for (int k = 0; k < 3; ++k) {
+        double mn = std::numeric_limits<double>::max(), mx = -mn;
+        for (const auto& p : prepared) {
+            mn = std::min(mn, p.c[k] - p.half[k]);
+            mx = std::max(mx, p.c[k] + p.half[k]);
+        }
+        lo[k] = long(std::floor((mn - double(frame.origin[k])) / h)) - 1;
+        hi[k] = long(std::ceil((mx - double(frame.origin[k])) / h)) + 1;
+    }
+}
+
 }  // namespace
+
+size_t ellipsoid_grid_nodes(const std::vector<Ellipsoid>& ellipsoids, const Frame& frame, int resolution) {
+    if (resolution < kMinGridResolution || resolution > kMaxGridResolution || !std::isfinite(frame.scale) ||
+        !(frame.scale > 0))
+        return 0;
+    std::vector<PreparedEllipsoid> prepared;
+    prepared.reserve(ellipsoids.size());
+    for (const auto& e : ellipsoids) {
+        PreparedEllipsoid p;
+        if (prepare(e, p)) prepared.push_back(p);
+    }
+    if (prepared.empty()) return 0;
+    long lo[3], hi[3];
+    node_range(prepared, frame, resolution, lo, hi);
+    size_t total = 1;
+    for (int k = 0; k < 3; ++k) {
+        const size_t n = size_t(hi[k] - lo[k] + 1);
+        if (n != 0 && total > std::numeric_limits<size_t>::max() / n) return std::numeric_limits<size_t>::max();
+        total *= n;
+    }
+    return total;
+}
 
 bool rasterize_ellipsoids(const std::vector<Ellipsoid>& ellipsoids, const Frame& frame, int resolution,
                           EllipsoidGrid& out, std::string& error, size_t* skipped) {
@@ -70,17 +108,8 @@ bool rasterize_ellipsoids(const std::vector<Ellipsoid>& ellipsoids, const Frame&
 
     const double h = double(frame.scale) / resolution;
     const double o[3] = {frame.origin[0], frame.origin[1], frame.origin[2]};
-    // Node index range: the union of the boxes, one cell of margin, on the frame's lattice.
     long lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) {
-        double mn = std::numeric_limits<double>::max(), mx = -mn;
-        for (const auto& p : prepared) {
-            mn = std::min(mn, p.c[k] - p.half[k]);
-            mx = std::max(mx, p.c[k] + p.half[k]);
-        }
-        lo[k] = long(std::floor((mn - o[k]) / h)) - 1;
-        hi[k] = long(std::ceil((mx - o[k]) / h)) + 1;
-    }
+    node_range(prepared, frame, resolution, lo, hi);
     size_t total = 1;
     for (int k = 0; k < 3; ++k) {
         size_t n = size_t(hi[k] - lo[k] + 1);

@@ -283,6 +283,7 @@ int run_receive(const ReceiveArgs& a) {
     if (!stream.info()) return fail(kExitInvalid, "no STREAM_INFO packet arrived: nothing can be decoded");
     std::vector<Mesh> objects(stream.objects().size());
     size_t vertices = 0, faces = 0, built = 0;
+    options.base_grid_nodes = shared_base_grid_nodes(stream, options);
     for (size_t i = 0; i < objects.size(); ++i) {
         const auto& object = stream.objects()[i];
         if (!object.info) {
@@ -291,8 +292,12 @@ int run_receive(const ReceiveArgs& a) {
         }
         ObjectDecodeReport report;
         if (!decode_object(*object.info, stream.ellipsoids(i), stream.points(i), stream.info()->grid_hint, options, i,
-                           objects[i], report, error))
-            return fail(kExitInvalid, "decoding object " + std::to_string(i) + ": " + error);
+                           objects[i], report, error)) {
+            // One object that cannot be built does not cost the others theirs.
+            std::fprintf(stderr, "ellicast: warning: object %zu: not decoded: %s\n", i, error.c_str());
+            objects[i] = Mesh{};
+            continue;
+        }
         for (const auto& note : report.notes)
             std::fprintf(stderr, "ellicast: warning: object %zu: %s\n", i, note.c_str());
         objects[i].name = "object" + std::to_string(i);

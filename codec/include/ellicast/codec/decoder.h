@@ -43,6 +43,7 @@ inline constexpr int kDefaultGridResolution = 96;  // cells along the frame's ed
 inline constexpr int kMinGridResolution = 4;
 inline constexpr int kMaxGridResolution = 1024;
 inline constexpr size_t kMaxGridNodes = size_t(48) << 20;  // ~200 MB of floats: refuse larger grids
+inline constexpr size_t kBaseGridNodesInAll = size_t(1) << 24;  // the base allowance, over all objects
 
 // A grid of nodes over the part of an object's frame that its ellipsoids cover (plus one cell).
 // value > 0 inside the union of ellipsoids, <= 0 outside. Each value is the largest, over the
@@ -66,6 +67,10 @@ struct EllipsoidGrid {
 // (no usable ellipsoid) is not an error.
 bool rasterize_ellipsoids(const std::vector<Ellipsoid>& ellipsoids, const Frame& frame, int resolution,
                           EllipsoidGrid& out, std::string& error, size_t* skipped = nullptr);
+
+// The node count of the grid rasterize_ellipsoids would build (0 when no ellipsoid is usable,
+// SIZE_MAX when it would overflow), without building it.
+size_t ellipsoid_grid_nodes(const std::vector<Ellipsoid>& ellipsoids, const Frame& frame, int resolution);
 
 // ---------------------------------------------------------------------------------------------
 // Marching cubes (marching_cubes.cpp)
@@ -287,6 +292,13 @@ struct DecodeTimings {
 
 struct DecodeOptions {
     int grid_resolution = 0;     // cells along the frame edge; 0 = the stream's grid_hint, else default
+    // Work bound (spec 13): unless grid_resolution is given, an object's grid has at most
+    // base_grid_nodes + grid_nodes_per_element * (ellipsoids + points received) nodes, the
+    // resolution lowered until it fits, so that a stream's cost follows what it carries (ten
+    // one-ellipsoid objects once took 5 s, 381 MB and a 62 MB .glb at the stream's grid hint).
+    // decode_stream shares kBaseGridNodesInAll out over the objects for base_grid_nodes.
+    size_t base_grid_nodes = size_t(1) << 18;
+    size_t grid_nodes_per_element = 2048;
     size_t snapshot_every = 0;   // > 0: call `snapshot` for the base and after every N inserted points
     ReconstructionOptions reconstruction;
     // Progress of the current stage: (stage name, fraction 0..1). May be empty.
@@ -321,8 +333,14 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
 struct StreamDecodeReport {
     std::vector<ObjectDecodeReport> objects;  // one per object of the table (empty for absent ones)
     size_t objects_without_info = 0;          // object table entries that never arrived
+    size_t objects_failed = 0;                // objects that could not be built (why: their notes)
     DecodeTimings timings;                    // summed over objects
 };
+
+// The base allowance of grid nodes per object when decoding `stream` object by object:
+// kBaseGridNodesInAll shared by the objects that have ellipsoids (at least 4096, at most
+// options.base_grid_nodes). decode_stream applies it itself.
+size_t shared_base_grid_nodes(const ReceivedStream& stream, const DecodeOptions& options);
 
 // Reconstructs every object of a received stream whose info arrived. Fails with a clear `error`
 // when no STREAM_INFO arrived at all. Objects with no geometry at all are left out of `meshes`;
