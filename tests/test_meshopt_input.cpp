@@ -139,7 +139,7 @@ TEST_CASE("broken EXT_meshopt_compression data gives an error naming the buffer 
         {"unknown mode", [&](auto& d) { d["bufferViews"][view]["extensions"]["EXT_meshopt_compression"]["mode"] = "WAVELETS"; }, "unknown mode"},
         {"source past the buffer", [&](auto& d) { d["bufferViews"][view]["extensions"]["EXT_meshopt_compression"]["byteOffset"] = 100000; }, "run past"},
         {"cut short", [&](auto& d) { d["bufferViews"][view]["extensions"]["EXT_meshopt_compression"]["byteLength"] = 2; }, "does not decode"},
-        {"a buffer outside the folder", [&](auto& d) { d["buffers"][0]["uri"] = "..%2F..%2Fetc%2Fpasswd"; }, "leaves the asset's folder"},
+        {"a buffer outside the folder", [&](auto& d) { d["buffers"][0]["uri"] = "..%2F..%2Fetc%2Fpasswd"; }, "a file above the asset's folder"},
     };
     for (const auto& c : cases) {
         INFO(std::string(c.what));

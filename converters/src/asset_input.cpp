@@ -576,7 +576,7 @@ bool is_gltf_file(const std::string& path) {
     return glb;
 }
 
-Asset load_asset(const std::string& path) {
+Asset load_asset(const std::string& path, const InputOptions& options) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
     if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a model file");
@@ -601,7 +601,7 @@ Asset load_asset(const std::string& path) {
     if (std::filesystem::file_size(path, ec) == 0) throw InputError(path + ": the file is empty");
     tinygltf::Model model;
     CapturedImages images;
-    load_model(path, model, capture_image, &images, asset.warnings);
+    load_model(path, model, capture_image, &images, asset.warnings, options);
     GltfAssetReader reader(path, model, images, asset);
     reader.read();
     reader.warn_attributes();

@@ -403,8 +403,73 @@ nlohmann::json read_json(const std::string& path) {
     return nlohmann::json::parse(json_text(bytes, binary), nullptr, false);
 }
 
+std::string resource_file(const std::string& model_path, const std::string& uri, const std::string& what,
+                          const InputOptions& options) {
+    namespace fs = std::filesystem;
+    std::string name;
+    name.reserve(uri.size());
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) && std::isxdigit(uint8_t(uri[i + 2]))) {
+            name.push_back(char(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
+            i += 2;
+        } else {
+            name.push_back(uri[i]);
+        }
+    }
+    const fs::path folder = fs::path(model_path).parent_path();
+    const fs::path file = folder / fs::path(name);
+    if (options.allow_outside_folder) return file.string();
+    auto refuse = [&](const char* why) {
+        throw InputError(model_path + ": " + what + " names " + quoted_input(uri) + ", " + why +
+                         "; refused (a glTF's files must be in its folder; --allow-external-paths takes them anyway)");
+    };
+    const fs::path rel(name);
+    if (name.empty()) refuse("an empty file name");
+    if (rel.is_absolute() || rel.has_root_name() || rel.has_root_directory() || name.find('\\') != std::string::npos ||
+        name.find('\0') != std::string::npos)
+        refuse("an absolute path");
+    int depth = 0;
+    for (const auto& part : rel) {
+        if (part == "..") --depth;
+        else if (part != "." && !part.empty()) ++depth;
+        if (depth < 0) refuse("a file above the asset's folder");
+    }
+    // Symlinks: where the file really is must still be inside where the folder really is.
+    std::error_code ec;
+    const fs::path real_folder = fs::weakly_canonical(folder.empty() ? fs::path(".") : folder, ec);
+    const fs::path real_file = fs::weakly_canonical(file, ec);
+    if (!ec) {
+        auto f = real_file.begin();
+        for (auto d = real_folder.begin(); d != real_folder.end(); ++d, ++f)
+            if (f == real_file.end() || *f != *d) refuse("a link to a file outside the asset's folder");
+    }
+    return file.string();
+}
+
+namespace {
+
+// Every buffer and image URI (other than data:) checked by resource_file before tinygltf follows it.
+void check_resource_uris(const std::string& path, const std::vector<uint8_t>& bytes, bool binary,
+                         const InputOptions& options) {
+    if (options.allow_outside_folder) return;
+    const nlohmann::json doc = nlohmann::json::parse(json_text(bytes, binary), nullptr, false);
+    if (doc.is_discarded() || !doc.is_object()) return;  // tinygltf names the JSON error
+    for (const char* list : {"buffers", "images"}) {
+        if (!doc.contains(list) || !doc[list].is_array()) continue;
+        for (size_t i = 0; i < doc[list].size(); ++i) {
+            const auto& item = doc[list][i];
+            if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+            const std::string uri = item["uri"].get<std::string>();
+            if (uri.rfind("data:", 0) == 0) continue;
+            resource_file(path, uri, std::string(list) + "[" + std::to_string(i) + "]", options);
+        }
+    }
+}
+
+}  // namespace
+
 void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadImageDataFunction image_loader,
-                void* image_user_data, std::vector<std::string>& warnings) {
+                void* image_user_data, std::vector<std::string>& warnings, const InputOptions& options) {
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(image_loader, image_user_data);
     std::string err, warn;
@@ -420,7 +485,9 @@ void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadI
     std::vector<uint8_t> decoded;
     {
         std::ifstream in(path, std::ios::binary);
-        decoded = decode_meshopt(path, std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {}), binary);
+        const std::vector<uint8_t> bytes(std::istreambuf_iterator<char>(in), {});
+        check_resource_uris(path, bytes, binary, options);
+        decoded = decode_meshopt(path, bytes, binary, options);
     }
     const std::string base_dir = std::filesystem::path(path).parent_path().string();
     bool ok = !decoded.empty()
@@ -524,10 +591,10 @@ uint64_t model_files_size(const std::string& path) {
     return total;
 }
 
-LoadResult load_gltf(const std::string& path) {
+LoadResult load_gltf(const std::string& path, const InputOptions& options) {
     tinygltf::Model model;
     LoadResult result;
-    gltf_read::load_model(path, model, skip_image, nullptr, result.warnings);
+    gltf_read::load_model(path, model, skip_image, nullptr, result.warnings, options);
 
     Traversal tr{model, path, result};
     if (!model.scenes.empty()) {

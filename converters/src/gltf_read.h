@@ -30,7 +30,13 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
 // `image_loader`. Throws InputError when the file cannot be read, is not glTF 2.x, or requires an
 // extension that is neither a geometry extension above nor appearance-only (those give a warning).
 void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadImageDataFunction image_loader,
-                void* image_user_data, std::vector<std::string>& warnings);
+                void* image_user_data, std::vector<std::string>& warnings, const InputOptions& options);
+
+// The file a glTF's relative URI names, percent-decoded, relative to the folder of `model_path`.
+// Unless `options` allow it, throws InputError (naming `what` and the URI) when it leaves that
+// folder: absolute, a drive or root name, ".." above the folder, or a symlink out of it.
+std::string resource_file(const std::string& model_path, const std::string& uri, const std::string& what,
+                          const InputOptions& options);
 
 // The JSON text of a .gltf file, or the JSON chunk of a GLB (12-byte header, then chunks of length,
 // type, data); "" when a GLB is too short to hold it.
@@ -40,7 +46,8 @@ std::string json_text(const std::vector<uint8_t>& bytes, bool binary);
 // GLB with every buffer view decoded into one buffer and the extension removed, for tinygltf (which
 // does not know it). Empty when the file does not use it. Throws InputError naming the buffer view
 // and what is wrong when the compressed data or its description is bad. (meshopt_input.cpp)
-std::vector<uint8_t> decode_meshopt(const std::string& path, const std::vector<uint8_t>& bytes, bool binary);
+std::vector<uint8_t> decode_meshopt(const std::string& path, const std::vector<uint8_t>& bytes, bool binary,
+                                    const InputOptions& options);
 
 // The JSON of the glTF file at `path` (a .gltf file's text or a GLB's JSON chunk), for what tinygltf
 // does not keep (e.g. the mimeType of an image given by URI); discarded when it cannot be parsed.

@@ -45,7 +45,7 @@ std::string quoted_input(const std::string& text, size_t limit) {
     return out;
 }
 
-LoadResult load_meshes(const std::string& path) {
+LoadResult load_meshes(const std::string& path, const InputOptions& options) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
     if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a model file");
@@ -56,7 +56,7 @@ LoadResult load_meshes(const std::string& path) {
     probe.close();
 
     std::string ext = lower_extension(path);
-    if (ext == ".gltf" || ext == ".glb" || starts_with_gltf_magic(path)) return load_gltf(path);
+    if (ext == ".gltf" || ext == ".glb" || starts_with_gltf_magic(path)) return load_gltf(path, options);
     if (ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl") return load_openmesh(path);
     throw InputError(path + ": unsupported file type '" + ext +
                      "' (ellicast reads .gltf, .glb, .obj, .ply, .off and .stl)");

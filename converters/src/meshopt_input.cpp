@@ -53,26 +53,6 @@ std::vector<uint8_t> base64_decode(const std::string& text, size_t from) {
     return out;
 }
 
-// A buffer URI as a file name: percent-decoded, inside the asset's folder.
-std::filesystem::path local_file(const std::string& path, const std::string& uri, size_t index) {
-    std::string name;
-    for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) && std::isxdigit(uint8_t(uri[i + 2]))) {
-            name.push_back(char(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
-            i += 2;
-        } else {
-            name.push_back(uri[i]);
-        }
-    }
-    const std::filesystem::path rel(name);
-    bool leaves = rel.is_absolute() || rel.has_root_name() || name.find('\\') != std::string::npos ||
-                  name.find(':') != std::string::npos;
-    for (const auto& part : rel) leaves |= part == "..";
-    if (leaves || name.empty())
-        fail(path, "buffers[" + std::to_string(index) + "] has a URI that leaves the asset's folder; not read");
-    return std::filesystem::path(path).parent_path() / rel;
-}
-
 size_t natural(const nlohmann::json& o, const char* key, const std::string& path, const std::string& where,
                bool required, size_t fallback = 0) {
     if (!o.contains(key)) {
@@ -89,7 +69,7 @@ size_t natural(const nlohmann::json& o, const char* key, const std::string& path
 
 // The data of every buffer that has some (a GLB's BIN chunk, a data: URI, a file), or empty.
 std::vector<std::vector<uint8_t>> buffer_data(const std::string& path, const nlohmann::json& doc,
-                                              const std::vector<uint8_t>& bin, bool has_bin) {
+                                              const std::vector<uint8_t>& bin, bool has_bin, const InputOptions& options) {
     std::vector<std::vector<uint8_t>> data;
     const auto& buffers = doc["buffers"];
     for (size_t b = 0; b < buffers.size(); ++b) {
@@ -105,9 +85,9 @@ std::vector<std::vector<uint8_t>> buffer_data(const std::string& path, const nlo
                 if (comma == std::string::npos) fail(path, where + " has a data: URI that is not base64");
                 bytes = base64_decode(uri, comma + 8);
             } else {
-                const auto file = local_file(path, uri, b);
+                const std::filesystem::path file = resource_file(path, uri, where, options);
                 std::ifstream in(file, std::ios::binary);
-                if (!in) fail(path, where + " refers to " + file.filename().string() + ", which cannot be read");
+                if (!in) fail(path, where + " refers to " + quoted_input(file.filename().string()) + ", which cannot be read");
                 bytes.assign(std::istreambuf_iterator<char>(in), {});
             }
             if (bytes.size() < length)
@@ -182,7 +162,8 @@ void put32(std::vector<uint8_t>& out, uint32_t v) {
 
 }  // namespace
 
-std::vector<uint8_t> decode_meshopt(const std::string& path, const std::vector<uint8_t>& bytes, bool binary) {
+std::vector<uint8_t> decode_meshopt(const std::string& path, const std::vector<uint8_t>& bytes, bool binary,
+                                    const InputOptions& options) {
     const std::string text = json_text(bytes, binary);
     if (text.find(kMeshopt) == std::string::npos) return {};
     nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
@@ -210,7 +191,7 @@ std::vector<uint8_t> decode_meshopt(const std::string& path, const std::vector<u
             }
         }
     }
-    const auto buffers = buffer_data(path, doc, bin, has_bin);
+    const auto buffers = buffer_data(path, doc, bin, has_bin, options);
 
     // Every view copied (or decoded) into one buffer, 4-byte aligned.
     std::vector<uint8_t> merged;

@@ -39,6 +39,7 @@ struct CompareArgs {
     double hole_threshold = 0.5;
     unsigned threads = 2;
     bool quiet = false;
+    bool allow_external_paths = false;
 };
 
 std::string list(const std::vector<double>& v) {
@@ -105,7 +106,7 @@ int run_compare(const CompareArgs& a) {
 
     std::vector<Mesh> meshes;
     std::string error;
-    if (!load_model(a.model, meshes, error)) return fail(kExitFailure, error);
+    if (!load_model(a.model, meshes, error, InputOptions{a.allow_external_paths})) return fail(kExitFailure, error);
     Mesh mesh = merge_meshes(meshes);
     if (mesh.triangles.empty()) return fail(kExitFailure, a.model + ": no triangle mesh to compare");
 
@@ -263,6 +264,8 @@ RegisterCommand reg{{80, [](CLI::App& app, int& exit_code) {
         ->capture_default_str();
     cmd->add_option("--threads", args->threads, "Threads for the encoder and the trials")->capture_default_str();
     cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
+    cmd->add_flag("--allow-external-paths", args->allow_external_paths,
+                  "read glTF buffers and images outside the model's folder (refused by default)");
     cmd->callback([args, &exit_code]() { exit_code = run_compare(*args); });
 }}};
 

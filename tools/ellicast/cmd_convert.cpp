@@ -28,6 +28,7 @@ struct ConvertArgs {
     unsigned threads = 2;
     int grid = 0;
     bool quiet = false;
+    bool allow_external_paths = false;
     AssetWriteOptions write;
 };
 
@@ -58,7 +59,7 @@ int run_convert(const ConvertArgs& a) {
 
     Asset asset;
     try {
-        asset = load_asset(a.input);
+        asset = load_asset(a.input, InputOptions{a.allow_external_paths});
     } catch (const InputError& e) {
         return fail(kExitFailure, e.what());
     }
@@ -139,6 +140,8 @@ const RegisterCommand registered({45, [](CLI::App& app, int& exit_code) {
     cmd->add_flag("--draco", args->write.draco, "glTF output: compress triangle meshes with KHR_draco_mesh_compression");
     cmd->add_flag("--quantize", args->write.quantize, "glTF output: quantize attributes with KHR_mesh_quantization");
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
+    cmd->add_flag("--allow-external-paths", args->allow_external_paths,
+                  "read glTF buffers and images outside the model's folder (refused by default)");
     cmd->callback([args, &exit_code] { exit_code = run_convert(*args); });
 }});
 

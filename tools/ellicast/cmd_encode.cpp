@@ -31,6 +31,7 @@ struct EncodeArgs {
     uint32_t stream_id = 1;
     unsigned threads = 2;
     bool quiet = false;
+    bool allow_external_paths = false;
 };
 
 int run_encode(const EncodeArgs& a) {
@@ -62,7 +63,7 @@ int run_encode(const EncodeArgs& a) {
     // MATERIAL and TEXTURE_FRAGMENT packets. Other formats are one object per mesh, no scene.
     Asset asset;
     try {
-        asset = load_asset(a.input);
+        asset = load_asset(a.input, InputOptions{a.allow_external_paths});
     } catch (const InputError& e) {
         return fail(kExitFailure, e.what());
     }
@@ -146,6 +147,8 @@ const RegisterCommand registered({10, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--threads", args->threads, "worker threads (1..256; the result does not depend on it)")
         ->capture_default_str();
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
+    cmd->add_flag("--allow-external-paths", args->allow_external_paths,
+                  "read glTF buffers and images outside the model's folder (refused by default)");
     cmd->callback([args, &exit_code] { exit_code = run_encode(*args); });
 }});
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "ellicast/codec/mesh.h"
+#include "ellicast/converters/mesh_input.h"
 
 #include <CLI/CLI.hpp>
 
@@ -35,7 +36,7 @@ int fail(int code, const std::string& message);
 
 // Reads any model ellicast reads (load_meshes), printing its warnings on stderr as
 // "ellicast: warning: PATH: ...". Returns false with `error` naming the file and the problem.
-bool load_model(const std::string& path, std::vector<Mesh>& meshes, std::string& error);
+bool load_model(const std::string& path, std::vector<Mesh>& meshes, std::string& error, const InputOptions& options = {});
 
 // Refuses to overwrite an input: true (and an error printed) when `output` is the same file as one
 // of `inputs`.

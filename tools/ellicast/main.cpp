@@ -21,9 +21,9 @@ int fail(int code, const std::string& message) {
     return code;
 }
 
-bool load_model(const std::string& path, std::vector<Mesh>& meshes, std::string& error) {
+bool load_model(const std::string& path, std::vector<Mesh>& meshes, std::string& error, const InputOptions& options) {
     try {
-        LoadResult result = load_meshes(path);
+        LoadResult result = load_meshes(path, options);
         for (const auto& w : result.warnings) std::cerr << "ellicast: warning: " << path << ": " << w << "\n";
         meshes = std::move(result.meshes);
         return true;

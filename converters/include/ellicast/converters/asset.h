@@ -42,7 +42,7 @@ struct Asset {
 // with it (same accessors under another transform: another object); a texture whose transform
 // differs from the material's first texture is not sent. OBJ / PLY / OFF / STL: one node with one mesh, no material.
 // Throws InputError when the file cannot be read or holds nothing to send.
-Asset load_asset(const std::string& path);
+Asset load_asset(const std::string& path, const InputOptions& options = {});
 
 // True when `path` names a glTF file: a .gltf or .glb extension (any case), or the GLB magic.
 bool is_gltf_file(const std::string& path);

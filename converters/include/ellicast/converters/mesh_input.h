@@ -26,6 +26,14 @@ public:
 // data: URI does not end up in a terminal.
 std::string quoted_input(const std::string& text, size_t limit = 80);
 
+// How far a reader may go for the files a model names.
+struct InputOptions {
+    // glTF buffers and images given by URI must lie in the model's folder or below it (after
+    // percent-decoding and following symlinks), as glTF tools require: "../../etc/passwd" is
+    // refused. true: any readable file is taken (a user's own, trusted assets).
+    bool allow_outside_folder = false;
+};
+
 struct LoadResult {
     std::vector<Mesh> meshes;           // in scene order; never empty on success
     std::vector<std::string> warnings;  // things dropped, repaired or ignored, one sentence each
@@ -34,7 +42,7 @@ struct LoadResult {
 // Reads any supported model, choosing the reader by the file's extension (and, for glTF, its
 // magic). Throws InputError when the file cannot be read, holds no triangles or points, has
 // non-finite coordinates, or needs an unsupported glTF extension.
-LoadResult load_meshes(const std::string& path);
+LoadResult load_meshes(const std::string& path, const InputOptions& options = {});
 
 // Bytes a user copies to move the model at `path`: the file, plus for a .gltf the external buffers
 // and images it names inside its folder (data: URIs are in the file already). Files that cannot be
@@ -42,7 +50,7 @@ LoadResult load_meshes(const std::string& path);
 uint64_t model_files_size(const std::string& path);
 
 // Reads a glTF 2.0 file (.gltf or .glb). Same contract as load_meshes.
-LoadResult load_gltf(const std::string& path);
+LoadResult load_gltf(const std::string& path, const InputOptions& options = {});
 
 // Reads OBJ, PLY, OFF or STL through OpenMesh. Same contract as load_meshes. Per-corner texture
 // coordinates (OBJ) split vertices at seams, as glTF does.
