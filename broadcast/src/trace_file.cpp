@@ -1,5 +1,6 @@
 // Loss traces as text files, so that the same losses can be applied again, elsewhere, later.
 #include <ellicast/broadcast/channel.h>
+#include <ellicast/format.h>
 
 #include <charconv>
 #include <fstream>
@@ -21,13 +22,8 @@ bool parse_number(const std::string& text, T& value) {
 }  // namespace
 
 bool write_trace(const std::string& path, const LossTrace& trace, std::string& error) {
-    std::string tmp = path + ".tmp";
+    std::ostringstream out;
     {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) {
-            error = "cannot write the trace " + path;
-            return false;
-        }
         out << kTraceMagic << "\n";
         out << "slots " << trace.slots() << "\n";
         out << "packet_bytes " << trace.packet_bytes() << "\n";
@@ -49,15 +45,12 @@ bool write_trace(const std::string& path, const LossTrace& trace, std::string& e
             }
             out << "\n";
         }
-        out.flush();
-        if (!out) {
-            error = "writing the trace " + path + " failed";
-            return false;
-        }
     }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        error = "cannot move the trace into place at " + path;
+    const std::string text = out.str();
+    std::string message;
+    if (write_file(path, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()), message) !=
+        Error::Ok) {
+        error = "cannot write the trace: " + message;
         return false;
     }
     return true;

@@ -566,27 +566,46 @@ void visit_node(Traversal& tr, int index, const Eigen::Matrix4d& parent, int dep
 
 }  // namespace
 
-uint64_t model_files_size(const std::string& path) {
+std::vector<std::string> model_files(const std::string& path) {
     namespace fs = std::filesystem;
-    std::error_code ec;
-    uint64_t total = 0;
-    if (auto n = fs::file_size(path, ec); !ec) total += n;
+    std::vector<std::string> files{path};
     const std::string ext = fs::path(path).extension().string();
-    if (ext != ".gltf" && ext != ".GLTF") return total;
+    if (ext != ".gltf" && ext != ".GLTF") return files;
     const nlohmann::json doc = gltf_read::read_json(path);
-    if (!doc.is_object()) return total;
-    std::set<fs::path> counted;
+    if (!doc.is_object()) return files;
+    std::set<fs::path> seen;
     for (const char* list : {"buffers", "images"}) {
         if (!doc.contains(list) || !doc[list].is_array()) continue;
         for (const auto& item : doc[list]) {
             if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
             const std::string uri = item["uri"].get<std::string>();
-            const fs::path rel(uri);
-            if (uri.rfind("data:", 0) == 0 || rel.is_absolute() || uri.find("..") != std::string::npos) continue;
-            const fs::path file = fs::path(path).parent_path() / rel;
-            if (!counted.insert(file).second) continue;
-            if (auto n = fs::file_size(file, ec); !ec) total += n;
+            if (uri.rfind("data:", 0) == 0) continue;
+            try {
+                const fs::path file = gltf_read::resource_file(path, uri, list, InputOptions{true});
+                if (seen.insert(file).second) files.push_back(file.string());
+            } catch (const InputError&) {
+            }
         }
+    }
+    return files;
+}
+
+uint64_t model_files_size(const std::string& path) {
+    namespace fs = std::filesystem;
+    const auto files = model_files(path);
+    uint64_t total = 0;
+    for (size_t i = 0; i < files.size(); ++i) {
+        std::error_code ec;
+        // Outside the folder does not count (a model's own files are in it).
+        if (i > 0) {
+            try {
+                gltf_read::resource_file(path, fs::relative(files[i], fs::path(path).parent_path(), ec).string(), "",
+                                         InputOptions{});
+            } catch (const InputError&) {
+                continue;
+            }
+        }
+        if (auto n = fs::file_size(files[i], ec); !ec) total += n;
     }
     return total;
 }

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 namespace ellicast::gltf_write {
 
 int add_buffer_view(tinygltf::Model& model, const void* data, size_t bytes, int target) {
@@ -132,18 +134,35 @@ bool save_model(const std::string& path, tinygltf::Model& model, bool binary, st
         }
         return true;
     }
-    // .gltf: the buffer goes to <stem>.bin beside it (tinygltf writes it), the JSON via a temporary.
-    std::string tmp = path + ".tmp";
-    if (!writer.WriteGltfSceneToFile(&model, tmp, false, false, true, false)) {
-        std::filesystem::remove(tmp);
-        error = "cannot write " + path + " (or its .bin)";
+    // .gltf: the buffer goes to <stem>.bin beside it and the JSON to `path`, both through
+    // write_file (private temporaries, no symlink followed). tinygltf serializes the JSON with the
+    // buffer embedded; the embedded copy is replaced by the .bin's name.
+    std::vector<uint8_t> bin;
+    if (!model.buffers.empty()) bin = model.buffers[0].data;
+    std::ostringstream stream;
+    if (!writer.WriteGltfSceneToStream(&model, stream, true, false)) {
+        error = path + ": tinygltf could not serialize the model";
         return false;
     }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp);
-        error = "cannot write " + path + ": " + ec.message();
+    nlohmann::json doc = nlohmann::json::parse(stream.str(), nullptr, false);
+    if (doc.is_discarded()) {
+        error = path + ": tinygltf wrote JSON that does not parse";
+        return false;
+    }
+    std::string message;
+    if (!model.buffers.empty()) {
+        const std::string bin_name = std::filesystem::path(path).stem().string() + ".bin";
+        doc["buffers"][0]["uri"] = bin_name;
+        const std::string bin_path = (std::filesystem::path(path).parent_path() / bin_name).string();
+        if (write_file(bin_path, bin, message) != Error::Ok) {
+            error = "cannot write " + message;
+            return false;
+        }
+    }
+    const std::string text = doc.dump(2) + "\n";
+    if (write_file(path, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()), message) !=
+        Error::Ok) {
+        error = "cannot write " + message;
         return false;
     }
     return true;

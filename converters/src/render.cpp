@@ -1,5 +1,6 @@
 // Software rasterizer for PNG pictures of meshes (see render.h).
 #include "ellicast/converters/render.h"
+#include "ellicast/format.h"
 
 #include <stb_image_write.h>
 
@@ -172,12 +173,16 @@ Image side_by_side(const std::vector<Image>& panels) {
 
 void write_png(const std::string& path, const Image& image) {
     if (image.width <= 0 || image.height <= 0) throw std::runtime_error(path + ": empty image");
-    const std::string temp = path + ".partial";
-    if (!stbi_write_png(temp.c_str(), image.width, image.height, 3, image.rgb.data(), image.width * 3))
-        throw std::runtime_error(path + ": cannot write the PNG file");
-    std::error_code ec;
-    std::filesystem::rename(temp, path, ec);
-    if (ec) throw std::runtime_error(path + ": cannot move the finished file into place (" + ec.message() + ")");
+    // Encoded in memory, written through write_file (a private temporary, then a rename).
+    std::vector<uint8_t> png;
+    auto append = [](void* context, void* data, int size) {
+        auto* out = static_cast<std::vector<uint8_t>*>(context);
+        out->insert(out->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
+    };
+    if (!stbi_write_png_to_func(append, &png, image.width, image.height, 3, image.rgb.data(), image.width * 3))
+        throw std::runtime_error(path + ": cannot encode the PNG file");
+    std::string message;
+    if (write_file(path, png, message) != Error::Ok) throw std::runtime_error("cannot write " + message);
 }
 
 }  // namespace ellicast

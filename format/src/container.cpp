@@ -7,6 +7,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <random>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace ellicast {
 
@@ -97,21 +101,44 @@ Error read_file(const std::string& path, std::vector<uint8_t>& out, std::string&
 }
 
 Error write_file(const std::string& path, std::span<const uint8_t> bytes, std::string& message) {
-    const std::string temp = path + ".partial";
-    {
-        std::ofstream f(temp, std::ios::binary | std::ios::trunc);
-        if (!f) {
-            message = path + ": cannot create (" + std::strerror(errno) + ")";
-            return Error::IoError;
-        }
-        f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-        f.flush();
-        if (!f) {
+    namespace fs = std::filesystem;
+    const fs::path target(path);
+    const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    std::random_device random;
+    std::string temp;
+    int fd = -1;
+    for (int attempt = 0; attempt < 16 && fd < 0; ++attempt) {
+        char suffix[16];
+        std::snprintf(suffix, sizeof suffix, "%08x%04x", random(), random() & 0xFFFFu);
+        std::string name = ".";
+        name += target.filename().string();
+        name += '.';
+        name += suffix;
+        name += ".partial";
+        temp = (folder / name).string();
+        fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+        if (fd < 0 && errno != EEXIST) break;
+    }
+    if (fd < 0) {
+        message = path + ": cannot create a temporary file in " + folder.string() + " (" + std::strerror(errno) + ")";
+        return Error::IoError;
+    }
+    size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
             message = path + ": write failed (" + std::strerror(errno) + ")";
-            std::error_code ec;
-            std::filesystem::remove(temp, ec);
+            ::close(fd);
+            ::unlink(temp.c_str());
             return Error::IoError;
         }
+        done += size_t(n);
+    }
+    if (::close(fd) != 0) {
+        message = path + ": write failed (" + std::strerror(errno) + ")";
+        ::unlink(temp.c_str());
+        return Error::IoError;
     }
     std::error_code ec;
     std::filesystem::rename(temp, path, ec);

@@ -37,10 +37,15 @@ bool load_model(const std::string& path, std::vector<Mesh>& meshes, std::string&
 
 bool output_clobbers_input(const std::string& output, const std::vector<std::string>& inputs) {
     std::error_code ec;
+    if (!std::filesystem::exists(output, ec)) return false;
     for (const auto& input : inputs) {
-        if (std::filesystem::exists(output, ec) && std::filesystem::equivalent(output, input, ec)) {
-            fail(kExitUsage, "refusing to overwrite the input " + input + " with the output");
-            return true;
+        // A model's own buffers and images are inputs too (encode model.gltf -o model.bin).
+        for (const auto& file : model_files(input)) {
+            if (std::filesystem::equivalent(output, file, ec)) {
+                fail(kExitUsage, std::string("refusing to overwrite ") + (file == input ? "the input " : "a file of the input, ") +
+                                     file + ", with the output");
+                return true;
+            }
         }
     }
     return false;

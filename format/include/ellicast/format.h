@@ -593,7 +593,10 @@ ContainerContents read_container(std::span<const uint8_t> bytes);
 
 // Reads a whole file into memory. Returns IoError (with the reason in `message`) when it cannot.
 Error read_file(const std::string& path, std::vector<uint8_t>& out, std::string& message);
-// Writes a file through a temporary name and a rename, so a failed write leaves no partial file.
+// Writes a file through a temporary file and a rename, so a failed write leaves no partial file.
+// The temporary is created in the output's folder under an unpredictable name (".NAME.XXXXXXXXXXXX
+// .partial"), exclusively and without following a symlink planted there; the rename replaces
+// `path` itself (a symlink at `path` is replaced, its target is not written).
 Error write_file(const std::string& path, std::span<const uint8_t> bytes, std::string& message);
 
 }  // namespace ellicast

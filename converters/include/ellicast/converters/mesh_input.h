@@ -49,6 +49,10 @@ LoadResult load_meshes(const std::string& path, const InputOptions& options = {}
 // read count 0.
 uint64_t model_files_size(const std::string& path);
 
+// The files of the model at `path`: the file itself, plus for a .gltf the external buffers and
+// images it names inside its folder. What an output must never overwrite.
+std::vector<std::string> model_files(const std::string& path);
+
 // Reads a glTF 2.0 file (.gltf or .glb). Same contract as load_meshes.
 LoadResult load_gltf(const std::string& path, const InputOptions& options = {});
 
