@@ -217,3 +217,36 @@ TEST_CASE("an object whose grid cannot be built is named and the others are stil
     for (const auto& note : report.objects[0].notes) named |= note.find("not decoded") != std::string::npos;
     CHECK(named);
 }
+
+TEST_CASE("when every STREAM_INFO was rejected, the decoder says why instead of 'none arrived'") {
+    StreamInfo info;
+    ObjectInfo o;
+    o.ellipsoid_count = 1;
+    info.objects.push_back(o);
+    std::vector<ObjectContent> contents(1);
+    Ellipsoid e;
+    e.center = {0.5f, 0.5f, 0.5f};
+    e.radii = {0.3f, 0.3f, 0.3f};
+    contents[0].ellipsoids.push_back(quantize_ellipsoid(e, o.frame));
+    StreamPackets packets;
+    REQUIRE(packetize_stream(info, contents, 1, packets) == Error::Ok);
+    // The same stream info addressed to object 7 (valid CRC, wrong object id): rejected.
+    PacketView view;
+    REQUIRE(parse_packet(packets.stream_info[0], view) == Error::Ok);
+    PacketHeader h = view.header;
+    h.object_id = 7;
+    ReceivedStream stream;
+    CHECK(stream.add_packet(write_packet(h, view.payload), 0) == Error::MalformedPayload);
+    CHECK(stream.add_packet(write_packet(h, view.payload), 1) == Error::MalformedPayload);
+    REQUIRE(stream.add_packet(packets.ellipsoids[0], 2) == Error::Ok);  // held
+    std::vector<Mesh> out;
+    StreamDecodeReport report;
+    std::string error;
+    CHECK_FALSE(decode_stream(stream, DecodeOptions{}, out, report, error));
+    CHECK_MESSAGE(error.find("2 STREAM_INFO packets were rejected; the first (at 0) as malformed payload: STREAM_INFO with "
+                             "object id 7") != std::string::npos,
+                  error);
+    ReceivedStream nothing;
+    CHECK_FALSE(decode_stream(nothing, DecodeOptions{}, out, report, error));
+    CHECK(error.find("no STREAM_INFO packet arrived") != std::string::npos);
+}

@@ -366,6 +366,11 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
     if (mesh_objects) mesh_objects->clear();
     report = StreamDecodeReport{};
     if (!stream.info()) {
+        const std::string why = stream.stream_info_problem();
+        if (!why.empty()) {
+            error = "no STREAM_INFO packet was accepted (" + why + "): nothing can be decoded";
+            return false;
+        }
         error = "no STREAM_INFO packet arrived: the object table and quantization frames are unknown, so "
                 "nothing can be decoded";
         return false;

@@ -25,6 +25,13 @@ Error ReceivedStream::reject(uint64_t where, Error e, std::string detail) {
     return e;
 }
 
+std::string ReceivedStream::stream_info_problem() const {
+    if (info_ || !first_stream_info_rejection_) return {};
+    const Rejection& r = *first_stream_info_rejection_;
+    return std::to_string(stream_info_rejected_) + " STREAM_INFO packet" + (stream_info_rejected_ == 1 ? " was" : "s were") +
+           " rejected; the first (at " + std::to_string(r.where) + ") as " + error_name(r.error) + ": " + r.detail;
+}
+
 Error ReceivedStream::add_packet(std::span<const uint8_t> bytes, uint64_t where) {
     PacketView view;
     Error e = parse_packet(bytes, view);
@@ -47,7 +54,13 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
     }
     Error e;
     switch (static_cast<PacketType>(h.type)) {
-    case PacketType::StreamInfo: e = take_stream_info(packet, where); break;
+    case PacketType::StreamInfo:
+        e = take_stream_info(packet, where);
+        if (e != Error::Ok && !rejections_.empty() && rejections_.back().where == where) {
+            ++stream_info_rejected_;
+            if (!first_stream_info_rejection_) first_stream_info_rejection_ = rejections_.back();
+        }
+        break;
     case PacketType::Scene: e = take_scene(packet, where); break;
     case PacketType::Material: e = take_material(packet, where); break;
     case PacketType::TextureFragment: e = take_texture_fragment(packet, where); break;

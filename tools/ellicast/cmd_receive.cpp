@@ -280,7 +280,11 @@ int run_receive(const ReceiveArgs& a) {
     DecodeOptions options;
     options.grid_resolution = a.grid;
     options.progress = [&](const std::string& stage, double fraction) { bar.update(stage, fraction); };
-    if (!stream.info()) return fail(kExitInvalid, "no STREAM_INFO packet arrived: nothing can be decoded");
+    if (!stream.info()) {
+        const std::string why = stream.stream_info_problem();
+        return fail(kExitInvalid, why.empty() ? "no STREAM_INFO packet arrived: nothing can be decoded"
+                                              : "no STREAM_INFO packet was accepted (" + why + "): nothing can be decoded");
+    }
     std::vector<Mesh> objects(stream.objects().size());
     size_t vertices = 0, faces = 0, built = 0;
     options.base_grid_nodes = shared_base_grid_nodes(stream, options);

@@ -503,6 +503,9 @@ public:
     const std::vector<ReceivedObject>& objects() const { return objects_; }
     const ReceiveCounters& counters() const { return counters_; }
     const std::vector<Rejection>& rejections() const { return rejections_; }
+    // Why no stream info is known (for a message): "" when one was accepted or none arrived intact;
+    // otherwise how many STREAM_INFO packets were rejected and why the first was.
+    std::string stream_info_problem() const;
     // Highest minor version seen among accepted packets.
     uint8_t newest_minor() const { return newest_minor_; }
 
@@ -536,6 +539,8 @@ private:
 
     Error reject(uint64_t where, Error e, std::string detail);
     Error take_stream_info(const PacketView& packet, uint64_t where);
+    uint64_t stream_info_rejected_ = 0;
+    std::optional<Rejection> first_stream_info_rejection_;
     Error take_object_packet(const PacketView& packet, uint64_t where);
     void release_pending();  // decodes every held packet whose object entry has arrived
 
