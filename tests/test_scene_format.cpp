@@ -140,6 +140,36 @@ TEST_CASE("texture bytes beyond the receiver's limit are rejected, and an announ
     CHECK(rs.textures().at(0).received_bytes == 0);
 }
 
+TEST_CASE("one-byte texture fragments count their bookkeeping toward the texture memory cap") {
+    // 1-byte fragments of a 5,000-byte image, every other byte (so that none merge): each costs 1 +
+    // 64 bytes; a 65,000-byte cap holds 1,000 of them, not 65,000.
+    auto scene = sample_scene(5000);
+    ScenePackets whole;
+    REQUIRE(packetize_scene(scene, 1200, 1, 0, whole) == Error::Ok);
+    PacketView view;
+    REQUIRE(parse_packet(whole.textures[0], view) == Error::Ok);
+    TextureFragment first;
+    REQUIRE(decode_texture_fragment_payload(view.payload, first) == Error::Ok);
+    ReceivedStream::Limits limits;
+    limits.max_texture_bytes = 1000 * (1 + kHeldPacketCost);
+    ReceivedStream rs(limits);
+    size_t accepted = 0, refused = 0;
+    for (uint32_t offset = 0; offset < 4000; offset += 2) {
+        TextureFragment f = first;
+        f.offset = offset;
+        f.data = {scene.textures[0].image[offset]};
+        PacketHeader h = view.header;
+        const auto payload = encode_texture_fragment_payload(f);
+        h.payload_length = uint16_t(payload.size());
+        const Error e = rs.add_packet(write_packet(h, payload), offset);
+        (e == Error::Ok ? accepted : refused) += 1;
+        if (e != Error::Ok) CHECK(e == Error::MalformedPayload);
+    }
+    CHECK(accepted == 1000);
+    CHECK(refused == 1000);
+    CHECK(rs.textures().at(0).pieces.size() == 1000);
+}
+
 TEST_CASE("overlapping fragments of a texture keep only the bytes that are new") {
     auto scene = sample_scene(3000);
     ScenePackets a, b;

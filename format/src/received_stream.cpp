@@ -286,19 +286,24 @@ Error ReceivedStream::take_texture_fragment(const PacketView& packet, uint64_t w
         ++counters_.duplicates;
         return Error::Ok;
     }
-    if (texture_bytes_ + fresh > limits_.max_texture_bytes)
+    // Memory, not just bytes: each run kept costs its bytes plus its bookkeeping, so that 1-byte
+    // fragments (about 110 bytes of memory per byte counted before) meet the same cap.
+    const uint64_t memory = fresh + gaps.size() * kHeldPacketCost;
+    if (texture_bytes_ + memory > limits_.max_texture_bytes)
         return reject(where, Error::MalformedPayload,
                       "texture " + std::to_string(f.info.index) + ": the stream's textures exceed this receiver's " +
-                          std::to_string(limits_.max_texture_bytes) + "-byte texture limit");
+                          std::to_string(limits_.max_texture_bytes) + "-byte texture memory limit");
     for (auto [a, b] : gaps)
         t.pieces.emplace(a, std::vector<uint8_t>(f.data.begin() + (a - begin), f.data.begin() + (b - begin)));
     t.received_bytes += fresh;
-    texture_bytes_ += fresh;
+    t.memory += memory;
+    texture_bytes_ += memory;
     if (t.received_bytes == t.info.image_size) {
         std::vector<uint8_t> image;
         image.reserve(t.info.image_size);
         for (const auto& [offset, bytes] : t.pieces) image.insert(image.end(), bytes.begin(), bytes.end());
-        texture_bytes_ -= t.received_bytes;
+        texture_bytes_ -= t.memory;
+        t.memory = 0;
         t.pieces.clear();
         t.received_bytes = 0;
         if (crc32c(image.data(), image.size()) != t.info.image_crc) {

@@ -482,7 +482,9 @@ public:
         // node, so the default bounds a hostile stream's held geometry near 800 MB.
         uint64_t max_elements = 8'000'000;
         size_t max_rejections_kept = 10'000;      // detailed rejection records kept
-        size_t max_texture_bytes = 256u << 20;    // texture bytes received, all textures together
+        // Memory for textures being received, all together: each run of bytes kept counts its
+        // length plus kHeldPacketCost.
+        size_t max_texture_bytes = 256u << 20;
     };
 
     ReceivedStream();
@@ -521,6 +523,7 @@ public:
         // with the size a fragment announces. Emptied once the image is complete.
         std::map<uint32_t, std::vector<uint8_t>> pieces;
         uint64_t received_bytes = 0;
+        uint64_t memory = 0;         // what the pieces cost: their bytes plus kHeldPacketCost per piece
         bool complete = false;       // every byte arrived and the image CRC matches
         std::vector<uint8_t> image;  // the whole image file, once complete
     };
