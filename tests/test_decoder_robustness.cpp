@@ -68,15 +68,10 @@ TEST_CASE("ellipsoids whose stored rotations are all zero or all identity decode
     const EncodeResult encoded = encode_meshes(meshes, encode);
     for (uint16_t stored : {uint16_t(0), uint16_t(8192)}) {
         CAPTURE(stored);
-        std::vector<ObjectContent> contents = encoded.contents;
-        for (auto& c : contents)
+        EncodeResult tampered = encoded;
+        for (auto& c : tampered.contents)
             for (auto& e : c.ellipsoids) e.rotation = {stored, stored, stored};
-        StreamPackets packets;
-        REQUIRE(packetize_stream(encoded.info, contents, 1, packets) == Error::Ok);
-        ReceivedStream stream;
-        size_t where = 0;
-        for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.points})
-            for (const auto& p : *group) REQUIRE(stream.add_packet(p, where++) == Error::Ok);
+        const ReceivedStream stream = test::receive_every_packet(tampered);
         std::vector<Mesh> out;
         DecodeOptions options;
         std::string error;
@@ -102,16 +97,11 @@ TEST_CASE("a stream whose points all stand at one position decodes in bounded ti
     }
     EncodeOptions encode = test::fast_options();
     encode.sample_spacing = 0;
-    const EncodeResult encoded = encode_meshes({ball}, encode);
-    std::vector<ObjectContent> contents = encoded.contents;
-    REQUIRE(contents[0].points.size() > 15000);
-    for (auto& q : contents[0].points) q.position = contents[0].points[0].position;
-    StreamPackets packets;
-    REQUIRE(packetize_stream(encoded.info, contents, 1, packets) == Error::Ok);
-    ReceivedStream stream;
-    size_t where = 0;
-    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.points})
-        for (const auto& p : *group) REQUIRE(stream.add_packet(p, where++) == Error::Ok);
+    EncodeResult encoded = encode_meshes({ball}, encode);
+    auto& points = encoded.contents[0].points;
+    REQUIRE(points.size() > 15000);
+    for (auto& q : points) q.position = points[0].position;
+    const ReceivedStream stream = test::receive_every_packet(encoded);
     std::vector<Mesh> out;
     StreamDecodeReport report;
     std::string error;
@@ -197,12 +187,10 @@ TEST_CASE("an object whose grid cannot be built is named and the others are stil
         e.radii = {i == 0 ? 0.5f : 0.05f, i == 0 ? 0.5f : 0.05f, i == 0 ? 0.5f : 0.05f};
         contents[size_t(i)].ellipsoids.push_back(quantize_ellipsoid(e, o.frame));
     }
-    StreamPackets packets;
-    REQUIRE(packetize_stream(info, contents, 1, packets) == Error::Ok);
-    ReceivedStream stream;
-    size_t where = 0;
-    for (auto* group : {&packets.stream_info, &packets.ellipsoids})
-        for (const auto& p : *group) REQUIRE(stream.add_packet(p, where++) == Error::Ok);
+    EncodeResult encoded;
+    encoded.info = info;
+    encoded.contents = contents;
+    const ReceivedStream stream = test::receive_every_packet(encoded);
     DecodeOptions options;
     options.grid_resolution = 1024;
     std::vector<Mesh> out;

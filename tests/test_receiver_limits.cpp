@@ -18,14 +18,19 @@ StreamInfo one_object_stream() {
     return info;
 }
 
-}  // namespace
-
-TEST_CASE("packets held for an object the stream turns out not to have are rejected when its info arrives") {
-    StreamInfo info = one_object_stream();
+// The packets of a one-object stream of 10 points (stream id 3).
+StreamPackets one_object_packets() {
     std::vector<ObjectContent> contents(1);
     contents[0].points.resize(10);
     StreamPackets packets;
-    REQUIRE(packetize_stream(info, contents, 3, packets) == Error::Ok);
+    REQUIRE(packetize_stream(one_object_stream(), contents, 3, packets) == Error::Ok);
+    return packets;
+}
+
+}  // namespace
+
+TEST_CASE("packets held for an object the stream turns out not to have are rejected when its info arrives") {
+    const StreamPackets packets = one_object_packets();
     // A POINTS packet of object 0 re-addressed to object 5: valid on its own, held without stream info.
     PacketView view;
     REQUIRE(parse_packet(packets.points[0], view) == Error::Ok);
@@ -55,11 +60,7 @@ TEST_CASE("a frame whose far corner overflows single precision is refused") {
 }
 
 TEST_CASE("every packet held before the stream info counts toward the hold, empty ones too, and the hold is released in one pass") {
-    StreamInfo info = one_object_stream();
-    std::vector<ObjectContent> contents(1);
-    contents[0].points.resize(10);
-    StreamPackets packets;
-    REQUIRE(packetize_stream(info, contents, 3, packets) == Error::Ok);
+    const StreamPackets packets = one_object_packets();
     PacketView view;
     REQUIRE(parse_packet(packets.points[0], view) == Error::Ok);
     PacketHeader empty_header = view.header;
