@@ -448,12 +448,11 @@ std::string resource_file(const std::string& model_path, const std::string& uri,
 
 namespace {
 
-// Every buffer and image URI (other than data:) checked by resource_file before tinygltf follows it.
-void check_resource_uris(const std::string& path, const std::vector<uint8_t>& bytes, bool binary,
-                         const InputOptions& options) {
-    if (options.allow_outside_folder) return;
-    const nlohmann::json doc = nlohmann::json::parse(json_text(bytes, binary), nullptr, false);
-    if (doc.is_discarded() || !doc.is_object()) return;  // tinygltf names the JSON error
+// Calls visit(what, uri) for every buffer and image of `doc` given by a URI other than data:,
+// `what` naming it ("buffers[2]").
+template <typename Visit>
+void for_each_resource_uri(const nlohmann::json& doc, Visit visit) {
+    if (!doc.is_object()) return;
     for (const char* list : {"buffers", "images"}) {
         if (!doc.contains(list) || !doc[list].is_array()) continue;
         for (size_t i = 0; i < doc[list].size(); ++i) {
@@ -461,9 +460,20 @@ void check_resource_uris(const std::string& path, const std::vector<uint8_t>& by
             if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
             const std::string uri = item["uri"].get<std::string>();
             if (uri.rfind("data:", 0) == 0) continue;
-            resource_file(path, uri, std::string(list) + "[" + std::to_string(i) + "]", options);
+            visit(std::string(list) + "[" + std::to_string(i) + "]", uri);
         }
     }
+}
+
+// Every buffer and image URI (other than data:) checked by resource_file before tinygltf follows it.
+void check_resource_uris(const std::string& path, const std::vector<uint8_t>& bytes, bool binary,
+                         const InputOptions& options) {
+    if (options.allow_outside_folder) return;
+    const nlohmann::json doc = nlohmann::json::parse(json_text(bytes, binary), nullptr, false);
+    if (doc.is_discarded()) return;  // tinygltf names the JSON error
+    for_each_resource_uri(doc, [&](const std::string& what, const std::string& uri) {
+        resource_file(path, uri, what, options);
+    });
 }
 
 }  // namespace
@@ -566,46 +576,34 @@ void visit_node(Traversal& tr, int index, const Eigen::Matrix4d& parent, int dep
 
 }  // namespace
 
-std::vector<std::string> model_files(const std::string& path) {
+namespace {
+
+// The model file and the files its URIs name that `options` let it read (others are skipped).
+std::vector<std::string> referenced_files(const std::string& path, const InputOptions& options) {
     namespace fs = std::filesystem;
     std::vector<std::string> files{path};
     const std::string ext = fs::path(path).extension().string();
     if (ext != ".gltf" && ext != ".GLTF") return files;
-    const nlohmann::json doc = gltf_read::read_json(path);
-    if (!doc.is_object()) return files;
     std::set<fs::path> seen;
-    for (const char* list : {"buffers", "images"}) {
-        if (!doc.contains(list) || !doc[list].is_array()) continue;
-        for (const auto& item : doc[list]) {
-            if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
-            const std::string uri = item["uri"].get<std::string>();
-            if (uri.rfind("data:", 0) == 0) continue;
-            try {
-                const fs::path file = gltf_read::resource_file(path, uri, list, InputOptions{true});
-                if (seen.insert(file).second) files.push_back(file.string());
-            } catch (const InputError&) {
-            }
+    gltf_read::for_each_resource_uri(gltf_read::read_json(path), [&](const std::string& what, const std::string& uri) {
+        try {
+            const fs::path file = gltf_read::resource_file(path, uri, what, options);
+            if (seen.insert(file).second) files.push_back(file.string());
+        } catch (const InputError&) {
         }
-    }
+    });
     return files;
 }
 
+}  // namespace
+
+std::vector<std::string> model_files(const std::string& path) { return referenced_files(path, InputOptions{true}); }
+
 uint64_t model_files_size(const std::string& path) {
-    namespace fs = std::filesystem;
-    const auto files = model_files(path);
     uint64_t total = 0;
-    for (size_t i = 0; i < files.size(); ++i) {
+    for (const auto& file : referenced_files(path, InputOptions{})) {  // a model's own files are in its folder
         std::error_code ec;
-        // Outside the folder does not count (a model's own files are in it).
-        if (i > 0) {
-            try {
-                gltf_read::resource_file(path, fs::relative(files[i], fs::path(path).parent_path(), ec).string(), "",
-                                         InputOptions{});
-            } catch (const InputError&) {
-                continue;
-            }
-        }
-        if (auto n = fs::file_size(files[i], ec); !ec) total += n;
+        if (auto n = std::filesystem::file_size(file, ec); !ec) total += n;
     }
     return total;
 }
