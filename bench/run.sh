@@ -78,10 +78,10 @@ for what in "$@"; do
       "$build/bench/bench_broadcast" "$samples/meshes/bunny.ply" --trials 20 --loss 0,0.05,0.1,0.2,0.3,0.5,0.7 --out "$results/broadcast" 2>&1 |
         tee "$results/broadcast/broadcast.txt" ;;
     compare)
-      echo "== ellicast against Draco baselines (bunny and spot, 20 trials per setting)" >&2
-      "$build/ellicast" compare "$samples/meshes/bunny.ply" --times 0.25,0.5,1,2 --time-loss 0.1,0.5 --samples 50000 \
-        -o "$results/bunny"
-      "$build/ellicast" compare "$samples/meshes/spot.obj" --burst 0,8 -o "$results/spot" ;;
+      echo "== ellicast against Draco baselines (bunny and spot; independent loss and bursts of 8 and 32 slots)" >&2
+      rm -rf "$results/bunny" "$results/spot" && mkdir -p "$results/bunny" "$results/spot"
+      "$build/ellicast" compare "$samples/meshes/bunny.ply" -o "$results/bunny" | tee "$results/bunny/stdout.txt"
+      "$build/ellicast" compare "$samples/meshes/spot.obj" -o "$results/spot" | tee "$results/spot/stdout.txt" ;;
     *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, first-picture, broadcast, compare)" >&2; exit 2 ;;
   esac
 done

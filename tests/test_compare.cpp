@@ -88,10 +88,10 @@ TEST_CASE("Draco whole decodes only once every packet is held, in any order") {
     CHECK_FALSE(whole.reconstruct({}, out));
 }
 
-TEST_CASE("Draco + erasure code decodes from any k of its packets and not from fewer") {
+TEST_CASE("Draco + a repeated erasure code decodes from any k of its packets and not from fewer") {
     if (!test::have_sample("meshes/spot.obj")) return;
     Mesh spot = load_sample("meshes/spot.obj");
-    DracoFec fec(spot, DracoSettings{}, 1200, 0.5);
+    DracoRsRepeat fec(spot, DracoSettings{}, 1200, 0.5);
     REQUIRE(fec.blocks().size() == 1);
     const size_t k = fec.data_shards(), m = fec.parity_shards();
     CHECK(m == (k + 1) / 2);
@@ -108,9 +108,63 @@ TEST_CASE("Draco + erasure code decodes from any k of its packets and not from f
         std::sort(held.begin(), held.end());
         REQUIRE(fec.reconstruct(held, out));
         CHECK(out.triangles.size() == spot.triangles.size());
+        CHECK(fec.decodable(held));
         held.pop_back();
         CHECK_FALSE(fec.reconstruct(held, out));
+        CHECK_FALSE(fec.decodable(held));
     }
+}
+
+TEST_CASE("Draco MDS: every block is 255 symbols, decodes from any k of each block and not from k - 1") {
+    if (!test::have_sample("meshes/spot.obj")) return;
+    Mesh spot = load_sample("meshes/spot.obj");
+    DracoWhole whole(spot, DracoSettings{}, 1200);
+    for (int max_data : {DracoMds::kDefaultBlockData, 4}) {
+        CAPTURE(max_data);
+        DracoMds mds(spot, DracoSettings{}, 1200, max_data);
+        CHECK(mds.draco_bytes() == whole.draco_bytes());
+        const auto& blocks = mds.blocks();
+        REQUIRE(!blocks.empty());
+        if (max_data == 4) CHECK(blocks.size() == (mds.data_shards() + 3) / 4);
+        else CHECK(blocks.size() == 1);
+        for (const auto& b : blocks) {
+            CHECK(b.data + b.parity == 255);
+            CHECK(b.data <= max_data);
+        }
+        CHECK(mds.packets().size() == 255 * blocks.size());
+        for (const auto& p : mds.packets()) CHECK(p.size() <= 1200);
+        // The schedule: no symbol of a block comes twice before all 255 have come once.
+        std::vector<std::vector<int>> seen(blocks.size(), std::vector<int>(255, 0));
+        for (uint64_t n = 0; n < mds.period(); ++n) {
+            auto [b, s] = mds.shard_of(mds.packet_at(n));
+            REQUIRE(b >= 0);
+            CHECK(++seen[size_t(b)][size_t(s)] == 1);
+        }
+        // Any k of each block decode; k - 1 of one block do not.
+        std::mt19937 rng(5 + max_data);
+        Mesh out;
+        for (int trial = 0; trial < 6; ++trial) {
+            std::vector<std::vector<uint32_t>> by_block(blocks.size());
+            for (uint32_t i = 0; i < mds.packets().size(); ++i) by_block[size_t(mds.shard_of(i).first)].push_back(i);
+            std::vector<uint32_t> held;
+            for (size_t b = 0; b < blocks.size(); ++b) {
+                std::shuffle(by_block[b].begin(), by_block[b].end(), rng);
+                held.insert(held.end(), by_block[b].begin(), by_block[b].begin() + blocks[b].data);
+            }
+            std::sort(held.begin(), held.end());
+            REQUIRE(mds.reconstruct(held, out));
+            CHECK(out.triangles.size() == spot.triangles.size());
+            CHECK(mds.can_show(held));
+            CHECK(mds.complete(held));
+            const size_t drop = size_t(rng()) % blocks.size();
+            held.erase(std::find(held.begin(), held.end(), by_block[drop][0]));
+            CHECK_FALSE(mds.reconstruct(held, out));
+            CHECK_FALSE(mds.can_show(held));
+            CHECK(mds.outcome_key(held) != mds.outcome_key(all_but(mds.packets().size(), {})));
+        }
+    }
+    CHECK_THROWS_AS(DracoMds(spot, DracoSettings{}, 1200, 255), CompareError);
+    CHECK_THROWS_AS(DracoMds(spot, DracoSettings{}, 1200, 0), CompareError);
 }
 
 TEST_CASE("Draco clusters each fit one packet, decode alone, and together give back every triangle") {
@@ -173,9 +227,12 @@ TEST_CASE("the experiment gives the same CSV for the same seed, whatever the thr
     std::vector<const Scheme*> schemes{&whole, &clusters};
     ExperimentOptions options;
     options.loss_rates = {0, 0.3};
-    options.time_loss_rates = {0.3};
-    options.times = {0.5, 1, 2};
-    options.trials = 3;
+    options.bursts = {0};
+    options.steps_per_cycle = 4;
+    options.horizon = 2;
+    options.long_horizon = 3;
+    options.trials = 6;
+    options.curve_trials = 3;
     options.cycle_bytes = 2 * clusters.period_bytes();
     options.slot_bytes = 600;
     options.seed = 11;
@@ -185,11 +242,20 @@ TEST_CASE("the experiment gives the same CSV for the same seed, whatever the thr
     auto b = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(600), options);
     write_trials_csv(a, (dir / "a.csv").string());
     write_trials_csv(b, (dir / "b.csv").string());
+    write_summary_csv(a, (dir / "a_summary.csv").string());
+    write_summary_csv(b, (dir / "b_summary.csv").string());
     CHECK(read_text(dir / "a.csv") == read_text(dir / "b.csv"));
+    CHECK(read_text(dir / "a_summary.csv") == read_text(dir / "b_summary.csv"));
     options.seed = 12;
     auto c = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(600), options);
     write_trials_csv(c, (dir / "c.csv").string());
     CHECK(read_text(dir / "a.csv") != read_text(dir / "c.csv"));
+    // Every trial has its events for every scheme; the curve trials have every grid time, and Draco
+    // whole (two outcomes: decodable or not) is on the grid in every trial.
+    CHECK(a.events.size() == 2 * 2 * 6);
+    CHECK(a.trials.size() == 2 * (6 + 3) * 8);
+    CHECK(summarize(a, 0, 0.3, 0, 1.0).trials == 6);
+    CHECK(summarize(a, 1, 0.3, 0, 1.0).trials == 3);
 
     // Every scheme sends the same bytes per cycle (up to the packet that straddles the cycle's end).
     for (const auto& s : a.schemes) {
@@ -197,12 +263,13 @@ TEST_CASE("the experiment gives the same CSV for the same seed, whatever the thr
         CHECK(s.cycle_bytes < options.cycle_bytes + 600);
     }
     // Every scheme of a trial loses the very same slots; without loss every scheme shows everything.
-    for (const auto& r : a.trials) {
-        for (const auto& s : a.trials)
-            if (s.trial == r.trial && s.loss == r.loss && s.time == r.time) {
-                CHECK(s.trace_loss == r.trace_loss);
-                CHECK(s.tune_in == r.tune_in);
+    for (const auto& e : a.events)
+        for (const auto& f : a.events)
+            if (f.trial == e.trial && f.loss == e.loss) {
+                CHECK(f.trace_loss == e.trace_loss);
+                CHECK(f.tune_in == e.tune_in);
             }
+    for (const auto& r : a.trials) {
         if (r.loss == 0 && r.time >= 1) {
             CHECK(r.shown);
             CHECK(r.distance.holes == doctest::Approx(0));
@@ -219,34 +286,42 @@ TEST_CASE("the report writes the CSVs, SVG and PNG plots and a Markdown report t
     if (!test::have_sample("meshes/spot.obj")) return;
     Mesh spot = load_sample("meshes/spot.obj");
     DracoWhole whole(spot, DracoSettings{}, 1200);
-    DracoFec fec(spot, DracoSettings{}, 1200, 0.2);
+    DracoRsRepeat fec(spot, DracoSettings{}, 1200, 0.2);
     std::vector<const Scheme*> schemes{&whole, &fec};
     ExperimentOptions options;
     options.loss_rates = {0, 0.1};
-    options.time_loss_rates = {0.1};
-    options.times = {1, 2};
+    options.bursts = {0};
+    options.horizon = 2;
     options.trials = 2;
+    options.curve_trials = 2;
     options.cycle_bytes = fec.period_bytes() + 2400;
     auto result = run_experiment(schemes, triangle_share_metric(spot.triangles.size()), channel_trace(1200), options);
     auto dir = test::scratch_dir("compare_report");
     write_trials_csv(result, (dir / "trials.csv").string());
     write_summary_csv(result, (dir / "summary.csv").string());
+    write_overview_csv(result, (dir / "overview.csv").string());
     auto plots = write_plots(result, dir.string());
     ReportSetup setup;
     setup.command = "ellicast compare spot.obj --trials 2 -o out";
     setup.model = "spot.obj";
     write_report(result, setup, plots, dir.string());
-    REQUIRE(plots.size() == 2);
+    CHECK(plots == std::vector<std::string>{"loss_one_cycle", "error_time", "first_picture", "lead_map"});
     for (const auto& p : plots) {
         CHECK(std::filesystem::file_size(dir / (p + ".svg")) > 1000);
         CHECK(std::filesystem::file_size(dir / (p + ".png")) > 1000);
     }
     const std::string md = read_text(dir / "report.md");
     CHECK(md.find("ellicast compare spot.obj --trials 2 -o out") < 200);
-    CHECK(md.find("| draco-fec |") != std::string::npos);
-    // 1 header + 2 schemes x (2 losses at one cycle + 1 extra time at 10%) lines... counted exactly:
+    CHECK(md.find("| draco-rs-repeat |") != std::string::npos);
+    CHECK(md.find("### Which scheme leads") != std::string::npos);
+    for (const auto& p : plots) CHECK(md.find("(" + p + ".png)") != std::string::npos);
+    // 1 header + 2 schemes x 2 losses x 2 trials; the curves: 2 schemes x 2 losses x 32 grid times.
     const std::string csv = read_text(dir / "trials.csv");
-    CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 2 * 2 * (1 + 2));
+    CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 2 * 2 * 2);
+    const std::string summary = read_text(dir / "summary.csv");
+    CHECK(std::count(summary.begin(), summary.end(), '\n') == 1 + 2 * 2 * 32);
+    const std::string overview = read_text(dir / "overview.csv");
+    CHECK(std::count(overview.begin(), overview.end(), '\n') == 1 + 2 * 2);
 }
 
 TEST_CASE("the experiment's metric counts the surface of lost clusters as holes") {
@@ -327,18 +402,23 @@ TEST_CASE("every scheme gets the same bytes per cycle: ellicast's carousel cycle
     settings.encode.threads = 1;
     EllicastScheme ellicast(spot, settings);
     DracoWhole whole(spot, DracoSettings{}, 1200);
-    DracoFec fec(spot, DracoSettings{}, 1200, ellicast.repetition_overhead());
+    DracoRsRepeat fec(spot, DracoSettings{}, 1200, ellicast.repetition_overhead());
+    DracoMds mds(spot, DracoSettings{}, 1200);
     DracoClusters clusters(spot, DracoSettings{}, 1200);
     ExperimentOptions options;
     options.loss_rates = {0.2};
-    options.times = {1};
+    options.bursts = {0};
+    options.horizon = 1;
+    options.steps_per_cycle = 2;
     options.trials = 1;
+    options.curve_trials = 1;
     options.cycle_bytes = ellicast.period_bytes();
     SurfaceDistanceOptions metric;
     metric.samples = 2000;
     metric.threads = 1;
-    auto result = run_experiment({&ellicast, &whole, &fec, &clusters}, surface_metric(spot, metric), channel_trace(1200), options);
-    REQUIRE(result.schemes.size() == 4);
+    auto result = run_experiment({&ellicast, &whole, &fec, &mds, &clusters}, surface_metric(spot, metric),
+                                 channel_trace(1200), options);
+    REQUIRE(result.schemes.size() == 5);
     CHECK(result.schemes[0].cycle_bytes == options.cycle_bytes);
     for (const auto& s : result.schemes) {
         CHECK(s.cycle_bytes >= options.cycle_bytes);
@@ -354,17 +434,19 @@ TEST_CASE("ellicast compare writes a report, CSVs and plots, and refuses absurd 
     auto dir = test::scratch_dir("compare_cli");
     const std::string model = (test::shared_samples() / "meshes/spot.obj").string();
     const std::string exe = test::ellicast_exe().string();
-    std::string cmd = exe + " compare " + model + " --trials 1 --loss 0,0.5 --times 1 --time-loss 0.5 --samples 2000 --threads 1 -q -o " +
+    std::string cmd = exe + " compare " + model +
+                      " --trials 3 --curve-trials 1 --loss 0,0.5 --burst 0 --horizon 1 --long-horizon 2 --steps-per-cycle 4"
+                      " --samples 2000 --threads 1 -q -o " +
                       (dir / "out").string() + " > " + (dir / "stdout.txt").string() + " 2>&1";
     REQUIRE(std::system(cmd.c_str()) == 0);
-    for (const char* f : {"report.md", "trials.csv", "summary.csv", "loss_one_cycle.svg", "loss_one_cycle.png",
-                          "time_loss50.svg", "time_loss50.png"})
+    for (const char* f : {"report.md", "trials.csv", "summary.csv", "overview.csv", "loss_one_cycle.svg",
+                          "loss_one_cycle.png", "error_time.svg", "error_time.png", "first_picture.png", "lead_map.png"})
         CHECK_MESSAGE(std::filesystem::exists(dir / "out" / f), f);
     const std::string md = read_text(dir / "out" / "report.md");
     CHECK(md.find("ellicast compare " + model) != std::string::npos);
     CHECK(md.find("| ellicast |") != std::string::npos);
     CHECK(md.find("| draco-clusters |") != std::string::npos);
-    CHECK(read_text(dir / "stdout.txt").find("draco-fec") != std::string::npos);
+    for (const char* scheme : {"draco-rs-repeat", "draco-mds"}) CHECK(read_text(dir / "stdout.txt").find(scheme) != std::string::npos);
 
     auto code = [&](const std::string& args) {
         int rc = std::system((exe + " compare " + args + " > /dev/null 2>&1").c_str());
@@ -373,7 +455,99 @@ TEST_CASE("ellicast compare writes a report, CSVs and plots, and refuses absurd 
     CHECK(code(model + " --loss 1.5 -o " + (dir / "bad").string()) == 2);
     CHECK(code(model + " --trials 0 -o " + (dir / "bad").string()) == 2);
     CHECK(code(model + " --packet-size 20 -o " + (dir / "bad").string()) == 2);
-    CHECK(code(model + " --fec-redundancy lots -o " + (dir / "bad").string()) == 2);
+    CHECK(code(model + " --rs-redundancy lots -o " + (dir / "bad").string()) == 2);
+    CHECK(code(model + " --trials 2 --curve-trials 3 -o " + (dir / "bad").string()) == 2);
+    CHECK(code(model + " --mds-block-data 255 -o " + (dir / "bad").string()) == 2);
+    CHECK(code(model + " --horizon 0 -o " + (dir / "bad").string()) == 2);
+    CHECK(code(model + " --steps-per-cycle 0 -o " + (dir / "bad").string()) == 2);
     CHECK(code((dir / "missing.obj").string() + " -o " + (dir / "bad").string()) == 3);
     CHECK_FALSE(std::filesystem::exists(dir / "bad"));
+}
+
+TEST_CASE("without loss, draco-mds shows the exact model after k slots whenever the receiver tunes in") {
+    if (!test::have_sample("meshes/spot.obj")) return;
+    Mesh spot = load_sample("meshes/spot.obj");
+    DracoMds mds(spot, DracoSettings{}, 1200);
+    DracoMds blocks(spot, DracoSettings{}, 1200, 4);  // several blocks of at most 4 data symbols, interleaved
+    DracoWhole whole(spot, DracoSettings{}, 1200);
+    ExperimentOptions options;
+    options.loss_rates = {0};
+    options.bursts = {0};
+    options.trials = 40;
+    options.curve_trials = 0;
+    options.horizon = 2;
+    options.cycle_bytes = 40 * 1200;
+    auto result = run_experiment({&mds, &blocks, &whole}, triangle_share_metric(spot.triangles.size()),
+                                 channel_trace(1200), options);
+    // A time t means t * cycle + one slot of air time after tune-in (the packet on the air then is missed).
+    auto slots = [&](double t) { return t * double(options.cycle_bytes) / 1200.0; };
+    const double k = double(mds.data_shards());
+    size_t blocks_max = 0;
+    for (const auto& b : blocks.blocks()) blocks_max = std::max<size_t>(blocks_max, size_t(b.data));
+    REQUIRE(result.events.size() == 3 * 40);
+    for (const auto& e : result.events) {
+        REQUIRE_FALSE(std::isnan(e.first_picture));
+        CHECK(e.first_picture == e.full_quality);
+        if (e.scheme == 0) {
+            CHECK(slots(e.first_picture) >= k - 1);
+            CHECK(slots(e.first_picture) < k);
+        } else if (e.scheme == 1) {
+            // Equal blocks decode after k slots; unequal ones after at most the largest block's share.
+            CHECK(slots(e.first_picture) >= k - 1);
+            CHECK(slots(e.first_picture) < double(blocks_max * blocks.blocks().size()));
+        } else {
+            // Draco whole needs its n packets in sequence: n slots after the first one starts.
+            CHECK(slots(e.first_picture) < double(whole.packets().size()) + 1);
+        }
+    }
+    const EventSummary f = summarize_events(result, 0, 0, 0, false);
+    CHECK(f.trials == 40);
+    CHECK(f.never_share == 0);
+    CHECK(f.median <= f.p90);
+    CHECK(f.p90 <= f.p99);
+}
+
+TEST_CASE("at heavy loss the events summary says 'never' for what did not happen within the horizon") {
+    if (!test::have_sample("meshes/spot.obj")) return;
+    Mesh spot = load_sample("meshes/spot.obj");
+    DracoWhole whole(spot, DracoSettings{}, 1200);
+    ExperimentOptions options;
+    options.loss_rates = {0.9};
+    options.bursts = {0};
+    options.trials = 20;
+    options.curve_trials = 2;
+    options.long_horizon = 1;
+    options.steps_per_cycle = 4;
+    options.cycle_bytes = whole.period_bytes();
+    auto result = run_experiment({&whole}, triangle_share_metric(spot.triangles.size()), channel_trace(1200), options);
+    const EventSummary f = summarize_events(result, 0, 0.9, 0, false);
+    CHECK(f.never_share == 1.0);  // 15 packets each through a 10% channel in one period: practically never
+    CHECK(std::isnan(f.median));
+    const Cell c = summarize(result, 0, 0.9, 0, 1.0);
+    CHECK(c.trials == 20);  // two outcomes only: measured on the grid in every trial
+    CHECK(c.error_median == 100);  // nothing shown counts as the whole diagonal
+    CHECK(std::isnan(time_to_error(result, 0, 0.9, 0, 0.5)));
+}
+
+TEST_CASE("ellicast's can_show agrees with its decoder on random sets of packets") {
+    if (!test::have_sample("meshes/spot.obj")) return;
+    Mesh spot = load_sample("meshes/spot.obj");
+    EllicastSettings settings;
+    settings.encode.threads = 1;
+    EllicastScheme ellicast(spot, settings);
+    std::mt19937 rng(17);
+    const size_t n = ellicast.packets().size();
+    size_t shown = 0;
+    for (int trial = 0; trial < 30; ++trial) {
+        std::vector<uint32_t> held;
+        const double keep = 0.05 + 0.03 * trial;
+        for (uint32_t i = 0; i < n; ++i)
+            if (std::uniform_real_distribution<double>(0, 1)(rng) < keep) held.push_back(i);
+        Mesh out;
+        const bool decoded = ellicast.reconstruct(held, out);
+        CHECK(ellicast.can_show(held) == decoded);
+        shown += decoded ? 1 : 0;
+    }
+    CHECK(shown > 5);
+    CHECK(shown < 30);
 }

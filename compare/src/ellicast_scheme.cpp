@@ -14,6 +14,7 @@ struct EllicastScheme::State {
     broadcast::CarouselStats stats;
     EllicastSettings settings;
     std::vector<uint32_t> points_in_packet;  // surface points each packet carries (0 for the base)
+    size_t info_packets = 0, ellipsoid_packets = 0;  // packets_ starts with these, in that order
 };
 
 EllicastScheme::EllicastScheme(const Mesh& mesh, const EllicastSettings& settings) : state_(std::make_unique<State>()) {
@@ -29,6 +30,8 @@ EllicastScheme::EllicastScheme(const Mesh& mesh, const EllicastSettings& setting
     StreamPackets stream;
     if (Error e = packetize_stream(encoded.info, encoded.contents, 1, stream); e != Error::Ok)
         throw CompareError(std::string("ellicast packetizer: ") + error_name(e));
+    state_->info_packets = stream.stream_info.size();
+    state_->ellipsoid_packets = stream.ellipsoids.size();
     for (auto* group : {&stream.stream_info, &stream.ellipsoids})
         for (auto& p : *group) {
             packets_.push_back(std::move(p));
@@ -96,6 +99,15 @@ bool EllicastScheme::reconstruct(const std::vector<uint32_t>& held, Mesh& out) c
             return true;
         }
     return false;
+}
+
+bool EllicastScheme::can_show(const std::vector<uint32_t>& held) const {
+    bool info = false, ellipsoids = false;
+    for (uint32_t i : held) {
+        if (i < state_->info_packets) info = true;
+        else if (i < state_->info_packets + state_->ellipsoid_packets) ellipsoids = true;
+    }
+    return info && ellipsoids;
 }
 
 double EllicastScheme::data_fraction(const std::vector<uint32_t>& held) const {

@@ -40,10 +40,14 @@ std::string burst_words(double burst) {
     return burst <= 1 ? "independent loss" : "bursty loss (Gilbert, mean burst " + num(burst, "%g") + " packets)";
 }
 
-bool is_time_loss(const ExperimentResult& r, double loss) {
-    for (double l : r.options.time_loss_rates)
-        if (std::abs(l - loss) < 1e-9) return true;
-    return false;
+const char* const kColors[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+
+// The bottom of the error axis: a little below the smallest median error any scheme reaches.
+double error_floor(const ExperimentResult& r) {
+    double low = 100;
+    for (const auto& s : r.schemes)
+        if (s.complete.rms > 0) low = std::min(low, s.complete.rms);
+    return std::pow(10.0, std::floor(std::log10(low * 0.8)));
 }
 
 // A gnuplot data block: one line per x, columns per scheme (value, low, high).
@@ -82,6 +86,16 @@ std::string plot_block(const std::string& name, const ExperimentResult& r, bool 
     return p.str();
 }
 
+// plot command for a block: one line per scheme, no points (a dense grid).
+std::string plot_lines(const std::string& name, const ExperimentResult& r) {
+    std::ostringstream p;
+    p << "plot ";
+    for (size_t s = 0; s < r.schemes.size(); ++s)
+        p << (s ? ", " : "") << "$" << name << " using 1:" << 2 + 3 * s << " with lines ls " << s + 1 << " title '"
+          << r.schemes[s].name << "'";
+    return p.str();
+}
+
 // The RMS panel: log scale when every value is positive; a note instead of a curve when no trial
 // showed anything (gnuplot refuses a plot without any defined point).
 std::string rms_panel(const std::string& name, const Series& s, const ExperimentResult& r, double step) {
@@ -108,44 +122,78 @@ std::string rms_panel(const std::string& name, const Series& s, const Experiment
 
 void write_trials_csv(const ExperimentResult& result, const std::string& path) {
     auto out = open_out(path);
-    out << "scheme,burst,loss,trial,tune_in_byte,tune_in_phase,time_cycles,air_bytes,trace_loss,packets_received,"
-           "bytes_received,distinct_packets,distinct_fraction,data_fraction,shown,triangles,rms_pct,rms_back_pct,"
-           "hausdorff_pct,holes_pct\n";
-    for (const auto& t : result.trials) {
-        out << result.schemes[t.scheme].name << "," << num(t.burst, "%g") << "," << num(t.loss, "%g") << "," << t.trial
-            << "," << t.tune_in << "," << num(t.tune_in_phase, "%.6f") << "," << num(t.time, "%g") << "," << t.air_bytes
-            << "," << num(t.trace_loss, "%.6f") << "," << t.packets_received << "," << t.bytes_received << ","
-            << t.distinct_packets << "," << num(t.distinct_fraction, "%.6f") << "," << num(t.data_fraction, "%.6f")
-            << "," << (t.shown ? 1 : 0) << "," << t.triangles << ",";
-        if (t.shown)
-            out << num(t.distance.rms, "%.6g") << "," << num(t.distance.rms_back, "%.6g") << ","
-                << num(t.distance.hausdorff, "%.6g") << "," << num(t.distance.holes, "%.6g") << "\n";
-        else
-            out << ",,," << 100 << "\n";
-    }
+    out << "scheme,burst,loss,trial,tune_in_byte,tune_in_phase,trace_loss,horizon_cycles,first_picture_cycles,"
+           "full_quality_cycles,distinct_packets\n";
+    for (const auto& e : result.events)
+        out << result.schemes[e.scheme].name << "," << num(e.burst, "%g") << "," << num(e.loss, "%g") << "," << e.trial
+            << "," << e.tune_in << "," << num(e.tune_in_phase, "%.6f") << "," << num(e.trace_loss, "%.6f") << ","
+            << num(e.horizon, "%g") << "," << (std::isnan(e.first_picture) ? "" : num(e.first_picture, "%.6f")) << ","
+            << (std::isnan(e.full_quality) ? "" : num(e.full_quality, "%.6f")) << "," << e.distinct_packets << "\n";
     close_out(out, path);
 }
 
 void write_summary_csv(const ExperimentResult& result, const std::string& path) {
     auto out = open_out(path);
-    out << "scheme,burst,loss,time_cycles,trials,shown_share,rms_median_pct,rms_p25_pct,rms_p75_pct,"
-           "hausdorff_median_pct,holes_median_pct,holes_p25_pct,holes_p75_pct,bytes_received_median,"
+    out << "scheme,burst,loss,time_cycles,trials,shown_share,error_median_pct,error_p90_pct,rms_median_pct,rms_p25_pct,"
+           "rms_p75_pct,hausdorff_median_pct,holes_median_pct,holes_p25_pct,holes_p75_pct,bytes_received_median,"
            "data_fraction_median\n";
     for (double burst : result.options.bursts)
-        for (double loss : result.options.loss_rates)
-            for (double time : result.options.times) {
-                if (time != 1.0 && !is_time_loss(result, loss)) continue;
-                for (size_t s = 0; s < result.schemes.size(); ++s) {
-                    Cell c = summarize(result, s, loss, burst, time);
+        for (double loss : result.options.loss_rates) {
+            const std::vector<double> times = result.options.times_at(loss);
+            for (size_t s = 0; s < result.schemes.size(); ++s) {
+                const std::vector<Cell> cells = summarize_curve(result, s, loss, burst);
+                for (size_t i = 0; i < times.size(); ++i) {
+                    const Cell& c = cells[i];
                     out << result.schemes[s].name << "," << num(burst, "%g") << "," << num(loss, "%g") << ","
-                        << num(time, "%g") << "," << c.trials << "," << num(c.shown_share, "%.4f") << ","
-                        << num(c.rms_median, "%.6g") << "," << num(c.rms_p25, "%.6g") << "," << num(c.rms_p75, "%.6g")
-                        << "," << num(c.hausdorff_median, "%.6g") << "," << num(c.holes_median, "%.6g") << ","
-                        << num(c.holes_p25, "%.6g") << "," << num(c.holes_p75, "%.6g") << ","
+                        << num(times[i], "%g") << "," << c.trials << "," << num(c.shown_share, "%.4f") << ","
+                        << num(c.error_median, "%.5g") << "," << num(c.error_p90, "%.5g") << ","
+                        << num(c.rms_median, "%.5g") << "," << num(c.rms_p25, "%.5g") << "," << num(c.rms_p75, "%.5g")
+                        << "," << num(c.hausdorff_median, "%.5g") << "," << num(c.holes_median, "%.5g") << ","
+                        << num(c.holes_p25, "%.5g") << "," << num(c.holes_p75, "%.5g") << ","
                         << num(c.bytes_median, "%.0f") << "," << num(c.data_fraction_median, "%.4f") << "\n";
                 }
             }
+        }
     close_out(out, path);
+}
+
+void write_overview_csv(const ExperimentResult& result, const std::string& path) {
+    auto out = open_out(path);
+    out << "scheme,burst,loss,trials,first_picture_median,first_picture_p90,first_picture_p99,first_picture_never,"
+           "full_quality_median,full_quality_p90,full_quality_p99,full_quality_never";
+    for (double level : kErrorLevels) out << ",below_" << num(level, "%g") << "pct";
+    out << ",horizon_cycles\n";
+    for (double burst : result.options.bursts)
+        for (double loss : result.options.loss_rates)
+            for (size_t s = 0; s < result.schemes.size(); ++s) {
+                const EventSummary f = summarize_events(result, s, loss, burst, false);
+                const EventSummary q = summarize_events(result, s, loss, burst, true);
+                out << result.schemes[s].name << "," << num(burst, "%g") << "," << num(loss, "%g") << "," << f.trials;
+                for (const EventSummary* e : {&f, &q})
+                    out << "," << num(e->median, "%.4f") << "," << num(e->p90, "%.4f") << "," << num(e->p99, "%.4f")
+                        << "," << num(e->never_share, "%.4f");
+                for (double level : kErrorLevels) out << "," << num(time_to_error(result, s, loss, burst, level), "%.4f");
+                out << "," << num(result.options.horizon_at(loss), "%g") << "\n";
+            }
+    close_out(out, path);
+}
+
+std::vector<Leader> leaders(const ExperimentResult& result, double loss, double burst) {
+    const std::vector<double> times = result.options.times_at(loss);
+    std::vector<std::vector<Cell>> curves;
+    for (size_t s = 0; s < result.schemes.size(); ++s) curves.push_back(summarize_curve(result, s, loss, burst));
+    std::vector<Leader> out;
+    for (size_t i = 0; i < times.size(); ++i) {
+        Leader l;
+        l.time = times[i];
+        l.error = std::numeric_limits<double>::infinity();
+        for (size_t s = 0; s < curves.size(); ++s) l.error = std::min(l.error, curves[s][i].error_median);
+        for (size_t s = 0; s < curves.size(); ++s)
+            if (curves[s][i].trials > 0 && curves[s][i].error_median <= l.error * 1.1) l.schemes.push_back(s);
+        if (l.error >= 100) l.schemes.clear();  // nobody shows anything yet
+        out.push_back(l);
+    }
+    return out;
 }
 
 std::vector<std::string> write_plots(const ExperimentResult& result, const std::string& dir) {
@@ -155,12 +203,15 @@ std::vector<std::string> write_plots(const ExperimentResult& result, const std::
     std::vector<std::string> names;
     gp << "# Written by `ellicast compare`: run `gnuplot plots.gp` in this folder to redraw the plots.\n";
     gp << "set datafile missing 'NaN'\nset key outside bottom center horizontal maxrows 1\nset bmargin 6\nset grid\n";
-    const char* colors[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
     for (size_t s = 0; s < result.schemes.size(); ++s)
         gp << "set style line " << s + 1 << " lw 2 dt " << (s % 4 + 1) << " pt " << (5 + 2 * s) << " ps 0.8 lc rgb '"
-           << colors[s % 6] << "'\n";
+           << kColors[s % 6] << "'\n";
 
-    std::vector<std::pair<std::string, std::string>> plots;  // (name, commands)
+    struct Plot {
+        std::string name, commands;
+        int height;
+    };
+    std::vector<Plot> plots;
     for (double burst : result.options.bursts) {
         const std::string suffix = burst_suffix(result, burst);
         // Against the loss rate, after one cycle.
@@ -191,45 +242,110 @@ std::vector<std::string> write_plots(const ExperimentResult& result, const std::
             << "set ylabel 'original surface missing (%)'\n" << plot_block(id + "_holes", result, true, 0.5) << "\n"
             << rms_panel(id + "_rms", rms, result, 0.5) << "unset multiplot\n";
         names.push_back("loss_one_cycle" + suffix);
-        plots.push_back({names.back(), cmd.str()});
+        plots.push_back({names.back(), cmd.str(), 480});
 
-        // Against the time after tune-in, at the loss rates where every time was measured.
-        for (double loss : result.options.time_loss_rates) {
-            bool present = false;
-            for (double l : result.options.loss_rates) present = present || std::abs(l - loss) < 1e-9;
-            if (!present) continue;
-            Series t_shown, t_holes, t_rms;
-            t_shown.x = t_holes.x = t_rms.x = result.options.times;
-            t_shown.y.resize(result.schemes.size());
-            t_holes.y.resize(result.schemes.size());
-            t_rms.y.resize(result.schemes.size());
-            for (size_t s = 0; s < result.schemes.size(); ++s)
-                for (double time : result.options.times) {
-                    Cell c = summarize(result, s, loss, burst, time);
-                    t_shown.y[s].push_back({100 * c.shown_share, 0, 0});
-                    t_holes.y[s].push_back({c.holes_median, c.holes_p25, c.holes_p75});
-                    t_rms.y[s].push_back({c.rms_median, c.rms_p25, c.rms_p75});
-                }
-            const std::string tid = "time" + std::to_string(names.size());
-            emit_block(gp, tid + "_shown", t_shown);
-            emit_block(gp, tid + "_holes", t_holes);
-            emit_block(gp, tid + "_rms", t_rms);
-            const double tstep = 0.01 * result.options.times.back();
+        // Error against time after tune-in, one panel per loss rate, every scheme on each.
+        {
+            const size_t panels = result.options.loss_rates.size();
+            const size_t columns = std::min<size_t>(4, panels), rows_n = (panels + columns - 1) / columns;
             std::ostringstream tc;
-            tc << "set multiplot layout 1,3 title '" << num(100 * loss, "%g") << "% of packets lost, "
-               << burst_words(burst) << " (median, bars: quartiles)'\n"
-               << "set xlabel 'cycles after tune-in'\nunset logscale y\nset yrange [0:105]\n"
-               << "set ylabel 'trials showing anything (%)'\n" << plot_block(tid + "_shown", result, false, tstep) << "\n"
-               << "set ylabel 'original surface missing (%)'\n" << plot_block(tid + "_holes", result, true, tstep) << "\n"
-               << rms_panel(tid + "_rms", t_rms, result, tstep) << "unset multiplot\n";
-            names.push_back("time_loss" + num(100 * loss, "%g") + suffix);
-            plots.push_back({names.back(), tc.str()});
+            tc << "set multiplot layout " << rows_n << "," << columns << " title 'Error a viewer sees against time after tune-in, "
+               << burst_words(burst) << " (median over the trials; nothing shown counts as 100%)'\n"
+               << "set xlabel 'cycles after tune-in'\nset ylabel 'RMS (% of diagonal)'\nset logscale y\n"
+               << "set yrange [" << num(error_floor(result), "%g") << ":150]\nset format y '%g'\n";
+            for (size_t li = 0; li < panels; ++li) {
+                const double loss = result.options.loss_rates[li];
+                const std::vector<double> times = result.options.times_at(loss);
+                Series e;
+                e.x = times;
+                e.y.resize(result.schemes.size());
+                for (size_t s = 0; s < result.schemes.size(); ++s)
+                    for (const Cell& c : summarize_curve(result, s, loss, burst))
+                        e.y[s].push_back({c.error_median, c.error_median, c.error_p90});
+                const std::string eid = "err" + std::to_string(names.size()) + "_" + std::to_string(li);
+                emit_block(gp, eid, e);
+                tc << "set title '" << num(100 * loss, "%g") << "% lost'\nset xrange [0:" << num(times.back(), "%g")
+                   << "]\n" << (li + 1 == panels ? "set key outside bottom center horizontal maxrows 1\n" : "unset key\n")
+                   << plot_lines(eid, result) << "\n";
+            }
+            tc << "unset title\nset key outside bottom center horizontal maxrows 1\nset xrange [*:*]\nset yrange [*:*]\n"
+                  "unset logscale y\nset format y '% h'\nunset multiplot\n";
+            names.push_back("error_time" + suffix);
+            plots.push_back({names.back(), tc.str(), rows_n > 1 ? 860 : 480});
+        }
+
+        // Time to first picture and to full quality against the loss rate.
+        {
+            Series first, full, never;
+            for (double loss : result.options.loss_rates) {
+                first.x.push_back(100 * loss);
+                full.x.push_back(100 * loss);
+                never.x.push_back(100 * loss);
+            }
+            first.y.resize(result.schemes.size());
+            full.y.resize(result.schemes.size());
+            never.y.resize(result.schemes.size());
+            for (size_t s = 0; s < result.schemes.size(); ++s)
+                for (double loss : result.options.loss_rates) {
+                    const EventSummary f = summarize_events(result, s, loss, burst, false);
+                    const EventSummary q = summarize_events(result, s, loss, burst, true);
+                    first.y[s].push_back({f.median, f.median, f.p90});
+                    full.y[s].push_back({q.median, q.median, q.p90});
+                    never.y[s].push_back({100 * f.never_share, 0, 0});
+                }
+            const std::string fid = "events" + std::to_string(names.size());
+            emit_block(gp, fid + "_first", first);
+            emit_block(gp, fid + "_full", full);
+            emit_block(gp, fid + "_never", never);
+            std::ostringstream fc;
+            fc << "set multiplot layout 1,3 title 'When a receiver has a picture, and the full model, " << burst_words(burst)
+               << " (median over the trials, bars up to the 90th percentile)'\n"
+               << "set xlabel 'packets lost (%)'\nset logscale y\nset yrange [*:*]\nset format y '%g'\n"
+               << "set ylabel 'cycles after tune-in to a first picture'\n" << plot_block(fid + "_first", result, true, 0.5)
+               << "\nset ylabel 'cycles after tune-in to full quality'\n" << plot_block(fid + "_full", result, true, 0.5)
+               << "\nunset logscale y\nset format y '% h'\nset yrange [0:105]\n"
+               << "set ylabel 'trials with no picture within the horizon (%)'\n"
+               << plot_block(fid + "_never", result, false, 0.5) << "\nunset multiplot\n";
+            names.push_back("first_picture" + suffix);
+            plots.push_back({names.back(), fc.str(), 480});
+        }
+
+        // Which scheme leads over (loss rate, time).
+        {
+            std::vector<std::ostringstream> blocks(result.schemes.size());
+            for (double loss : result.options.loss_rates)
+                for (const Leader& l : leaders(result, loss, burst))
+                    for (size_t k = 0; k < l.schemes.size(); ++k)
+                        blocks[l.schemes[k]] << num(l.time, "%g") << " "
+                                             << num(100 * loss + 1.2 * (double(k) - 0.5 * double(l.schemes.size() - 1)), "%g")
+                                             << "\n";
+            const std::string mid = "lead" + std::to_string(names.size());
+            std::ostringstream mc;
+            mc << "set title 'Which scheme shows the lowest median error, " << burst_words(burst)
+               << " (ties within 10% side by side; blank: nothing shown yet)'\n"
+               << "set xlabel 'cycles after tune-in'\nset ylabel 'packets lost (%)'\nset logscale x 2\nset format x '%g'\n"
+               << "set xrange [" << num(0.7 / double(result.options.steps_per_cycle), "%g") << ":"
+               << num(1.3 * std::max(result.options.horizon, result.options.long_horizon), "%g") << "]\nset yrange [-4:"
+               << num(100 * result.options.loss_rates.back() + 4, "%g") << "]\nplot ";
+            bool any = false;
+            for (size_t s = 0; s < result.schemes.size(); ++s) {
+                const std::string d = blocks[s].str();
+                gp << "$" << mid << "_" << s << " << EOD\n" << (d.empty() ? "NaN NaN\n" : d) << "EOD\n";
+                mc << (s ? ", " : "") << "$" << mid << "_" << s << " using 1:2 with points pt 5 ps 0.9 lc rgb '"
+                   << kColors[s % 6] << "' title '" << result.schemes[s].name << "'";
+                any = any || !d.empty();
+            }
+            if (!any) mc << ", 0 with lines lc rgb 'white' notitle";
+            mc << "\nunset title\nunset logscale x\nset format x '% h'\nset xrange [*:*]\nset yrange [*:*]\n";
+            names.push_back("lead_map" + suffix);
+            plots.push_back({names.back(), mc.str(), 560});
         }
     }
-    for (const auto& [name, commands] : plots) {
-        gp << "set terminal svg size 1500,480 dynamic font 'Helvetica,13'\nset output '" << name << ".svg'\n"
+    for (const auto& [name, commands, height] : plots) {
+        gp << "set terminal svg size 1500," << height << " dynamic font 'Helvetica,13'\nset output '" << name << ".svg'\n"
            << commands;
-        gp << "set terminal pngcairo size 1500,480 font 'Helvetica,11'\nset output '" << name << ".png'\n" << commands;
+        gp << "set terminal pngcairo size 1500," << height << " font 'Helvetica,11'\nset output '" << name << ".png'\n"
+           << commands;
     }
     gp << "set output\n";
     {
@@ -263,8 +379,11 @@ void write_report(const ExperimentResult& result, const ReportSetup& setup, cons
     md << "- Channel: every scheme sends at the same byte rate, its packets (at most " << setup.packet_size
        << " bytes each, with the same 24-byte header and CRC-32C) back to back, repeating its own schedule; one cycle = "
        << o.cycle_bytes << " bytes of air time (ellicast's carousel cycle) for every scheme. " << setup.channel << "\n";
-    md << "- Trials: " << o.trials << " per setting (seed " << o.seed
-       << "). Each trial draws one loss trace (slots of " << o.slot_bytes
+    md << "- Trials: " << o.trials << " per setting (seed " << o.seed << "), the first " << o.curve_trials
+       << " of them also measured on the time grid (" << o.steps_per_cycle << " points per cycle, out to "
+       << num(o.horizon, "%g") << " cycles below " << num(100 * o.long_from, "%g") << "% loss and "
+       << num(o.long_horizon, "%g") << " from there; each distinct reconstruction measured once; schemes whose "
+          "outcome is the exact model or nothing are on the grid in every trial). Each trial draws one loss trace (slots of " << o.slot_bytes
        << " bytes of air time) and one tune-in moment (uniform phase in every scheme's cycle) and applies them to every "
           "scheme by packet position in time: a packet is lost when the slot in which it starts is lost, so all schemes "
           "lose the very same stretches of time. A receiver keeps every distinct packet it gets, across cycles. "
@@ -299,35 +418,102 @@ void write_report(const ExperimentResult& result, const ReportSetup& setup, cons
     const char* header =
         "| shown | RMS % median [quartiles] | Hausdorff % | holes % median [quartiles] | bytes received | data held |\n";
 
-    size_t plot = 0;
+    std::string few_list;  // "every trial for draco-whole, draco-mds and "
+    {
+        std::vector<std::string> few;
+        for (size_t s = 0; s < result.schemes.size(); ++s)
+            if (result.schemes[s].few_outcomes) few.push_back(result.schemes[s].name);
+        if (!few.empty()) {
+            few_list = "every trial for ";
+            for (size_t i = 0; i < few.size(); ++i)
+                few_list += (i == 0 ? "" : i + 1 == few.size() ? " and " : ", ") + few[i];
+            few_list += " (their outcome is the exact model or nothing) and ";
+        }
+    }
+    auto image = [&](const std::string& name) {
+        for (const auto& p : plots)
+            if (p == name) md << "![" << p << "](" << p << ".png) ([SVG](" << p << ".svg))\n\n";
+    };
+    auto cycles = [](double t) { return std::isnan(t) ? std::string("never") : num(t, "%.2f"); };
+    const std::vector<double> glance_times{0.25, 1, 4};
     for (double burst : o.bursts) {
-        md << "## After one cycle, " << burst_words(burst) << "\n\n";
+        const std::string suffix = burst_suffix(result, burst);
+        std::string title = burst_words(burst);
+        title[0] = char(std::toupper(static_cast<unsigned char>(title[0])));
+        md << "## " << title << "\n\n";
+        md << "### At a glance\n\n";
+        md << "Times in cycles after tune-in over " << o.trials << " trials per setting (\"never\": not within the "
+              "horizon of " << num(o.horizon, "%g") << " cycles below " << num(100 * o.long_from, "%g") << "% loss, "
+           << num(o.long_horizon, "%g") << " from there); errors are the median RMS in % of the diagonal, a receiver "
+              "with nothing to show counting as 100, over " << few_list << o.curve_trials
+           << " trials for the others. \"Full\" is every point held for ellicast and the exact model for the Draco "
+              "schemes.\n\n";
+        md << "| loss | scheme | first picture median / p90 / p99 | no picture | full median / p90 | not full | below 0.5% | "
+              "below 0.1% | below 0.03% |";
+        for (double t : glance_times) md << " error at " << num(t, "%g") << " |";
+        md << "\n|---:|---|---|---:|---|---:|---:|---:|---:|";
+        for (size_t i = 0; i < glance_times.size(); ++i) md << "---:|";
+        md << "\n";
+        for (double loss : o.loss_rates)
+            for (size_t s = 0; s < result.schemes.size(); ++s) {
+                const EventSummary f = summarize_events(result, s, loss, burst, false);
+                const EventSummary q = summarize_events(result, s, loss, burst, true);
+                md << "| " << num(100 * loss, "%g") << "% | " << result.schemes[s].name << " | " << cycles(f.median)
+                   << " / " << cycles(f.p90) << " / " << cycles(f.p99) << " | " << pct(f.never_share) << " | "
+                   << cycles(q.median) << " / " << cycles(q.p90) << " | " << pct(q.never_share) << " |";
+                for (double level : kErrorLevels) md << " " << cycles(time_to_error(result, s, loss, burst, level)) << " |";
+                for (double t : glance_times) {
+                    if (t > o.horizon_at(loss) + 1e-9) {
+                        md << " - |";
+                        continue;
+                    }
+                    const Cell c = summarize(result, s, loss, burst, t);
+                    md << " " << (c.error_median >= 100 ? std::string("nothing") : num(c.error_median, "%.3f")) << " |";
+                }
+                md << "\n";
+            }
+        md << "\n";
+        image("first_picture" + suffix);
+        image("error_time" + suffix);
+
+        md << "### Which scheme leads\n\nThe scheme with the lowest median error at each time (schemes within 10% of it "
+              "share the lead; \"-\": nobody shows anything yet).\n\n";
+        std::vector<double> lead_times;
+        for (double t = 1.0 / double(o.steps_per_cycle); t <= std::max(o.horizon, o.long_horizon) + 1e-9; t *= 2)
+            lead_times.push_back(t);
+        md << "| loss |";
+        for (double t : lead_times) md << " " << num(t, "%g") << " |";
+        md << "\n|---:|";
+        for (size_t i = 0; i < lead_times.size(); ++i) md << "---|";
+        md << "\n";
+        for (double loss : o.loss_rates) {
+            md << "| " << num(100 * loss, "%g") << "% |";
+            const std::vector<Leader> lead = leaders(result, loss, burst);
+            for (double t : lead_times) {
+                const Leader* at = nullptr;
+                for (const auto& l : lead)
+                    if (std::abs(l.time - t) < 1e-9) at = &l;
+                if (at == nullptr) {
+                    md << " |";
+                    continue;
+                }
+                std::string names;
+                for (size_t k = 0; k < at->schemes.size(); ++k) names += (k ? " = " : "") + result.schemes[at->schemes[k]].name;
+                md << " " << (names.empty() ? "-" : names) << " |";
+            }
+            md << "\n";
+        }
+        md << "\n";
+        image("lead_map" + suffix);
+
+        md << "### After one cycle\n\n";
         md << "| loss | scheme " << header << "|---:|---|---:|---|---:|---|---:|---:|\n";
         for (double loss : o.loss_rates)
             for (size_t s = 0; s < result.schemes.size(); ++s)
                 md << "| " << num(100 * loss, "%g") << "% | " << result.schemes[s].name << " | "
                    << cell_row(summarize(result, s, loss, burst, 1.0)) << " |\n";
         md << "\n";
-        if (plot < plots.size()) {
-            md << "![" << plots[plot] << "](" << plots[plot] << ".png) ([SVG](" << plots[plot] << ".svg))\n\n";
-            ++plot;
-        }
-        for (double loss : o.time_loss_rates) {
-            bool present = false;
-            for (double l : o.loss_rates) present = present || std::abs(l - loss) < 1e-9;
-            if (!present) continue;
-            md << "### Over time after tune-in, " << num(100 * loss, "%g") << "% loss, " << burst_words(burst) << "\n\n";
-            md << "| cycles | scheme " << header << "|---:|---|---:|---|---:|---|---:|---:|\n";
-            for (double time : o.times)
-                for (size_t s = 0; s < result.schemes.size(); ++s)
-                    md << "| " << num(time, "%g") << " | " << result.schemes[s].name << " | "
-                       << cell_row(summarize(result, s, loss, burst, time)) << " |\n";
-            md << "\n";
-            if (plot < plots.size()) {
-                md << "![" << plots[plot] << "](" << plots[plot] << ".png) ([SVG](" << plots[plot] << ".svg))\n\n";
-                ++plot;
-            }
-        }
+        image("loss_one_cycle" + suffix);
     }
 
     // The paper's claim: with more than half of the point data lost, the shape stays right.
@@ -351,8 +537,13 @@ void write_report(const ExperimentResult& result, const ReportSetup& setup, cons
         md << "\nWith every packet: RMS " << num(result.schemes[s].complete.rms, "%.4f") << "%, holes "
            << num(result.schemes[s].complete.holes, "%.2f") << "%.\n\n";
     }
-    md << "## Files\n\n- `trials.csv`: every trial (one line per scheme, setting, trial and time).\n"
-          "- `summary.csv`: medians and quartiles per scheme, setting and time.\n"
+    md << "## Files\n\n- `trials.csv`: every trial's tune-in, loss, first picture and full quality (one line per scheme, "
+          "setting and trial).\n"
+          "- `summary.csv`: the error curves: medians, quartiles and 90th percentiles per scheme, setting and grid time "
+          "(over the curve trials).\n"
+          "- `overview.csv`: per scheme and setting, the first-picture and full-quality quantiles and the times to get "
+          "below " + num(kErrorLevels[0], "%g") + "%, " + num(kErrorLevels[1], "%g") + "% and " +
+              num(kErrorLevels[2], "%g") + "%.\n"
           "- `plots.gp`: the gnuplot script that drew the plots (data inline).\n";
     auto out = open_out(path);
     out << md.str();

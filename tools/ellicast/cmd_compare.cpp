@@ -26,16 +26,18 @@ namespace {
 struct CompareArgs {
     std::string model, output;
     std::vector<double> loss{0, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7};
-    std::vector<double> burst{0};
-    std::vector<double> times{0.25, 0.5, 0.75, 1, 1.5, 2, 3};
-    std::vector<double> time_loss{0.1, 0.3, 0.5};
-    size_t trials = 20;
+    std::vector<double> burst{0, 8, 32};
+    size_t trials = 200;
+    size_t curve_trials = 3;
+    size_t steps = 16;
+    double horizon = 4, long_horizon = 8, long_from = 0.4;
+    int mds_block_data = compare::DracoMds::kDefaultBlockData;
     uint64_t seed = 1;
     int packet_size = 1200;
     uint32_t ellipsoids = 400;
     double base_share = 0.15;
     std::string fec_redundancy = "auto";
-    size_t samples = 100000;
+    size_t samples = 20000;
     double hole_threshold = 0.5;
     unsigned threads = 2;
     bool quiet = false;
@@ -58,9 +60,10 @@ std::string text(double v) {
 std::string reproduce_command(const CompareArgs& a) {
     std::ostringstream s;
     s << "ellicast compare " << a.model << " --loss " << list(a.loss) << " --burst " << list(a.burst) << " --trials "
-      << a.trials << " --seed " << a.seed << " --times " << list(a.times) << " --time-loss " << list(a.time_loss)
+      << a.trials << " --curve-trials " << a.curve_trials << " --seed " << a.seed << " --steps-per-cycle " << a.steps
+      << " --horizon " << a.horizon << " --long-horizon " << a.long_horizon << " --long-from " << a.long_from
       << " --packet-size " << a.packet_size << " --ellipsoids " << a.ellipsoids << " --base-share " << a.base_share
-      << " --fec-redundancy " << a.fec_redundancy << " --samples " << a.samples << " --hole-threshold "
+      << " --rs-redundancy " << a.fec_redundancy << " --mds-block-data " << a.mds_block_data << " --samples " << a.samples << " --hole-threshold "
       << a.hole_threshold << " -o " << a.output;
     return s.str();
 }
@@ -80,12 +83,17 @@ int run_compare(const CompareArgs& a) {
     if (a.packet_size < int(kMinPacketSize) || a.packet_size > 65000)
         return fail(kExitUsage, "--packet-size " + std::to_string(a.packet_size) + " is outside [128, 65000]");
     if (a.trials < 1 || a.trials > 100000) return fail(kExitUsage, "--trials must be in [1, 100000]");
+    if (a.curve_trials > a.trials)
+        return fail(kExitUsage, "--curve-trials " + std::to_string(a.curve_trials) + " exceeds --trials " + std::to_string(a.trials));
+    if (a.steps < 1 || a.steps > 1024) return fail(kExitUsage, "--steps-per-cycle must be in [1, 1024]");
+    for (double h : {a.horizon, a.long_horizon})
+        if (!(h >= 1 && h <= 100)) return fail(kExitUsage, "--horizon and --long-horizon must be in [1, 100] cycles, not " + text(h));
+    if (!(a.long_from >= 0 && a.long_from <= 1)) return fail(kExitUsage, "--long-from must be in [0, 1]");
+    if (a.mds_block_data < 1 || a.mds_block_data > 254) return fail(kExitUsage, "--mds-block-data must be in [1, 254]");
     for (double p : a.loss)
         if (!(p >= 0 && p < 1)) return fail(kExitUsage, "--loss " + text(p) + " is outside [0, 1)");
     for (double b : a.burst)
         if (!(b >= 0 && b <= 1e6)) return fail(kExitUsage, "--burst " + text(b) + " is outside [0, 1e6]");
-    for (double t : a.times)
-        if (!(t > 0 && t <= 100)) return fail(kExitUsage, "--times " + text(t) + " is outside (0, 100] cycles");
     if (!(a.base_share > 0 && a.base_share < 1)) return fail(kExitUsage, "--base-share must be in (0, 1)");
     if (a.samples < 1000 || a.samples > 5000000) return fail(kExitUsage, "--samples must be in [1000, 5000000]");
     if (!(a.hole_threshold > 0 && a.hole_threshold < 100)) return fail(kExitUsage, "--hole-threshold must be in (0, 100)");
@@ -96,7 +104,7 @@ int run_compare(const CompareArgs& a) {
             fec_redundancy = std::stod(a.fec_redundancy, &used);
             if (used != a.fec_redundancy.size() || !(fec_redundancy >= 0 && fec_redundancy <= 10)) throw 0;
         } catch (...) {
-            return fail(kExitUsage, "--fec-redundancy must be 'auto' or a number in [0, 10], not '" + a.fec_redundancy + "'");
+            return fail(kExitUsage, "--rs-redundancy must be 'auto' or a number in [0, 10], not '" + a.fec_redundancy + "'");
         }
     }
     std::error_code ec;
@@ -113,7 +121,8 @@ int run_compare(const CompareArgs& a) {
     auto bar = std::make_shared<ProgressBar>(!a.quiet);
     std::unique_ptr<EllicastScheme> ellicast;
     std::unique_ptr<DracoWhole> whole;
-    std::unique_ptr<DracoFec> fec;
+    std::unique_ptr<DracoRsRepeat> fec;
+    std::unique_ptr<DracoMds> mds;
     std::unique_ptr<DracoClusters> clusters;
     try {
         EllicastSettings es;
@@ -129,8 +138,10 @@ int run_compare(const CompareArgs& a) {
         if (fec_redundancy < 0) fec_redundancy = ellicast->repetition_overhead();
         whole = std::make_unique<DracoWhole>(mesh, ds, size_t(a.packet_size));
         bar->update("Draco baselines", 0.3);
-        fec = std::make_unique<DracoFec>(mesh, ds, size_t(a.packet_size), fec_redundancy);
-        bar->update("Draco baselines", 0.5);
+        fec = std::make_unique<DracoRsRepeat>(mesh, ds, size_t(a.packet_size), fec_redundancy);
+        bar->update("Draco baselines", 0.4);
+        mds = std::make_unique<DracoMds>(mesh, ds, size_t(a.packet_size), a.mds_block_data);
+        bar->update("Draco baselines", 0.6);
         clusters = std::make_unique<DracoClusters>(mesh, ds, size_t(a.packet_size));
         bar->update("Draco baselines", 1);
     } catch (const std::exception& e) {
@@ -143,8 +154,11 @@ int run_compare(const CompareArgs& a) {
     options.bursts = a.burst;
     options.trials = a.trials;
     options.seed = a.seed;
-    options.times = a.times;
-    options.time_loss_rates = a.time_loss;
+    options.curve_trials = a.curve_trials;
+    options.steps_per_cycle = a.steps;
+    options.horizon = a.horizon;
+    options.long_horizon = a.long_horizon;
+    options.long_from = a.long_from;
     options.cycle_bytes = ellicast->period_bytes();
     options.slot_bytes = uint64_t(a.packet_size);
     options.threads = a.threads;  // trials in parallel; each decode and metric on one thread
@@ -154,7 +168,7 @@ int run_compare(const CompareArgs& a) {
     metric.threshold_percent = a.hole_threshold;
     metric.threads = 1;
 
-    std::vector<const Scheme*> schemes{ellicast.get(), whole.get(), fec.get(), clusters.get()};
+    std::vector<const Scheme*> schemes{ellicast.get(), whole.get(), fec.get(), mds.get(), clusters.get()};
     ExperimentResult result;
     std::vector<std::string> plots;
     try {
@@ -163,6 +177,7 @@ int run_compare(const CompareArgs& a) {
         std::filesystem::create_directories(a.output);
         write_trials_csv(result, (std::filesystem::path(a.output) / "trials.csv").string());
         write_summary_csv(result, (std::filesystem::path(a.output) / "summary.csv").string());
+        write_overview_csv(result, (std::filesystem::path(a.output) / "overview.csv").string());
         plots = write_plots(result, a.output);
         ReportSetup setup;
         setup.command = reproduce_command(a);
@@ -180,8 +195,7 @@ int run_compare(const CompareArgs& a) {
         std::ostringstream channel;
         channel << "Loss models: ";
         for (size_t i = 0; i < a.burst.size(); ++i) channel << (i ? "; " : "") << describe_loss_model(a.burst[i]);
-        channel << ". Loss rates " << list(a.loss) << "; every time after tune-in (" << list(a.times)
-                << " cycles) measured at loss " << list(a.time_loss) << ", one cycle at the others.";
+        channel << ". Loss rates " << list(a.loss) << ".";
         setup.channel = channel.str();
         std::ostringstream m;
         m << "the project's surface distance (`ellicast diff`): " << a.samples
@@ -193,10 +207,14 @@ int run_compare(const CompareArgs& a) {
         setup.notes.push_back("Draco settings: glTF-Transform's defaults (Edgebreaker, 14-bit positions, 10-bit normals, "
                               "12-bit texture coordinates, 8-bit colours, speed 5/5), the same attributes as ellicast.");
         std::ostringstream fecnote;
-        fecnote << "draco-fec redundancy " << fec->redundancy() << " parity per data packet"
+        fecnote << "draco-rs-repeat redundancy " << fec->redundancy() << " parity per data packet"
                 << (a.fec_redundancy == "auto" ? ": ellicast's repetition overhead (the bytes it spends repeating its base)" : "")
                 << "; like every scheme it repeats its packets to fill the cycle.";
         setup.notes.push_back(fecnote.str());
+        setup.notes.push_back("draco-mds: blocks of at most " + std::to_string(a.mds_block_data) +
+                              " data symbols, each filled with parity to the 255 symbols of GF(2^8), so that a receiver "
+                              "gets a new symbol in every slot for " + std::to_string(mds->packets().size()) +
+                              " slots; the strongest carousel of the Draco file short of a rateless code.");
         setup.notes.push_back("ellicast: " + std::to_string(a.ellipsoids) + " ellipsoids at most, encoder seed 1, carousel base share " +
                               text(a.base_share) + ", decoder at its default grid.");
         write_report(result, setup, plots, a.output);
@@ -213,6 +231,21 @@ int run_compare(const CompareArgs& a) {
         std::printf("%-16s %9zu %12llu %14llu  RMS %.4f%%, holes %.2f%%\n", s.name.c_str(), s.packets,
                     (unsigned long long)s.packet_bytes, (unsigned long long)s.cycle_bytes, s.complete.rms, s.complete.holes);
     for (double burst : result.options.bursts) {
+        std::printf("%s: cycles to a first picture (median / p90) and to full quality (median)\n",
+                    burst <= 1 ? "independent loss" : ("burst " + text(burst)).c_str());
+        std::printf("%6s", "loss");
+        for (const auto& s : result.schemes) std::printf(" | %-24s", s.name.c_str());
+        std::printf("\n");
+        for (double loss : result.options.loss_rates) {
+            std::printf("%5.0f%%", 100 * loss);
+            for (size_t s = 0; s < result.schemes.size(); ++s) {
+                const EventSummary f = summarize_events(result, s, loss, burst, false);
+                const EventSummary q = summarize_events(result, s, loss, burst, true);
+                auto c = [](double t) { return std::isnan(t) ? std::string("never") : text(std::round(t * 100) / 100); };
+                std::printf(" | %-24s", (c(f.median) + " / " + c(f.p90) + " -> " + c(q.median)).c_str());
+            }
+            std::printf("\n");
+        }
         std::printf("after one cycle, %s: shown share / median RMS %% / median holes %%\n",
                     burst <= 1 ? "independent loss" : ("burst " + std::to_string(burst)).c_str());
         std::printf("%6s", "loss");
@@ -247,16 +280,23 @@ RegisterCommand reg{{80, [](CLI::App& app, int& exit_code) {
         ->capture_default_str();
     cmd->add_option("--trials", args->trials, "Trials per setting")->capture_default_str();
     cmd->add_option("--seed", args->seed, "Seed of the loss traces and tune-in times")->capture_default_str();
-    cmd->add_option("--times", args->times, "Times after tune-in to measure, in cycles")->delimiter(',')->capture_default_str();
-    cmd->add_option("--time-loss", args->time_loss, "Loss rates at which every time is measured")
-        ->delimiter(',')
+    cmd->add_option("--curve-trials", args->curve_trials,
+                    "Of the trials, how many also measure the error on the time grid (the costly part)")
+        ->capture_default_str();
+    cmd->add_option("--steps-per-cycle", args->steps, "Points of the time grid per cycle")->capture_default_str();
+    cmd->add_option("--horizon", args->horizon, "Cycles after tune-in simulated below --long-from loss")->capture_default_str();
+    cmd->add_option("--long-horizon", args->long_horizon, "Cycles after tune-in simulated from --long-from loss on")
+        ->capture_default_str();
+    cmd->add_option("--long-from", args->long_from, "Loss rate from which the long horizon applies")->capture_default_str();
+    cmd->add_option("--mds-block-data", args->mds_block_data,
+                    "draco-mds: data symbols per block at most (each block has 255 symbols)")
         ->capture_default_str();
     cmd->add_option("--packet-size", args->packet_size, "Packet size in bytes, the same for every scheme")->capture_default_str();
     cmd->add_option("--ellipsoids", args->ellipsoids, "ellicast: ellipsoids at most")->capture_default_str();
     cmd->add_option("--base-share", args->base_share, "ellicast carousel: share of the cycle spent on the base")
         ->capture_default_str();
-    cmd->add_option("--fec-redundancy", args->fec_redundancy,
-                    "draco-fec: parity packets per data packet, or 'auto' (ellicast's repetition overhead)")
+    cmd->add_option("--rs-redundancy", args->fec_redundancy,
+                    "draco-rs-repeat: parity packets per data packet, or 'auto' (ellicast's repetition overhead)")
         ->capture_default_str();
     cmd->add_option("--samples", args->samples, "Metric: surface samples per direction")->capture_default_str();
     cmd->add_option("--hole-threshold", args->hole_threshold,

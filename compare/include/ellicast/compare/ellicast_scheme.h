@@ -31,6 +31,9 @@ public:
     // Feeds the held packets to a ReceivedStream and decodes it: true when the decoder builds a
     // surface (it needs the stream info and at least one ellipsoid).
     bool reconstruct(const std::vector<uint32_t>& held, Mesh& out) const override;
+    // The decoder shows a surface as soon as it holds the stream info and one ellipsoid packet: true
+    // exactly then, without decoding.
+    bool can_show(const std::vector<uint32_t>& held) const override;
     // Share of the surface points that the held packets carry.
     double data_fraction(const std::vector<uint32_t>& held) const override;
 

@@ -22,11 +22,28 @@ struct ReportSetup {
     std::vector<std::string> notes;  // anything else the reader should know, one sentence each
 };
 
-// Writes every trial, one line each (the columns are named in the header line).
+// The error levels (% of the diagonal) whose crossing times the overview gives.
+inline constexpr double kErrorLevels[] = {0.5, 0.1, 0.03};
+
+// Writes every trial's events (first picture, full quality), one line per scheme, setting and trial
+// (the columns are named in the header line).
 void write_trials_csv(const ExperimentResult& result, const std::string& path);
 
-// Writes the summary: one line per scheme, burst, loss rate and time measured.
+// Writes the error curves: one line per scheme, burst, loss rate and grid time.
 void write_summary_csv(const ExperimentResult& result, const std::string& path);
+
+// Writes the overview: one line per scheme, burst and loss rate, with the first-picture and
+// full-quality time distributions and the times to get below each of kErrorLevels.
+void write_overview_csv(const ExperimentResult& result, const std::string& path);
+
+// Which schemes lead at each grid time of (loss, burst): the lowest median error (Cell::error_median)
+// and every scheme within 10% of it; no scheme when nobody shows anything yet.
+struct Leader {
+    double time = 0;
+    double error = 0;
+    std::vector<size_t> schemes;
+};
+std::vector<Leader> leaders(const ExperimentResult& result, double loss, double burst);
 
 // Writes `plots.gp` into `dir` and runs gnuplot on it, which writes the plots as SVG and PNG:
 // loss_one_cycle[_burstB] (shown share, holes, RMS against the loss rate after one cycle) and

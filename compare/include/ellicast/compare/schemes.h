@@ -5,7 +5,8 @@
 // show from the packets held.
 //
 //   draco_whole.cpp     the Draco file cut into packets, repeated; decodable once every packet is held
-//   draco_fec.cpp       the same bytes plus Reed-Solomon parity (ISA-L); decodable from any k of each block
+//   draco_erasure.cpp   the same bytes plus Reed-Solomon parity (ISA-L); decodable from any k of each block:
+//                       draco-rs-repeat (a little parity, repeated) and draco-mds (every slot a new symbol)
 //   draco_clusters.cpp  spatial clusters that each compress into one packet and decode alone
 //   ellicast_scheme.cpp ellicast's stream, scheduled by its carousel, rebuilt by its decoder
 #pragma once
@@ -15,6 +16,7 @@
 #include "ellicast/converters/draco_mesh.h"
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -56,6 +58,22 @@ public:
         return packets_.empty() ? 0 : double(held.size()) / double(packets_.size());
     }
 
+    // A key of what `held` shows: two held sets with the same key show the same thing and measure
+    // the same (the experiment measures once per key). By default the set itself.
+    virtual std::vector<uint32_t> outcome_key(const std::vector<uint32_t>& held) const { return held; }
+    // Whether `held` gives something to show, at less cost than reconstruct() where a scheme can
+    // tell (it must agree with reconstruct()). By default reconstruct() itself.
+    virtual bool can_show(const std::vector<uint32_t>& held) const {
+        Mesh mesh;
+        return reconstruct(held, mesh);
+    }
+    // True when outcome_key() takes only a couple of values, so that measuring the scheme on the time
+    // grid costs next to nothing: the experiment then does it in every trial, not only the curve trials.
+    virtual bool few_outcomes() const { return false; }
+    // Whether `held` gives the scheme's full quality: every packet (the default), the exact model
+    // for the erasure-coded schemes.
+    virtual bool complete(const std::vector<uint32_t>& held) const { return held.size() == packets_.size(); }
+
     // Bytes of one period of the schedule.
     uint64_t period_bytes() const;
 
@@ -80,6 +98,12 @@ public:
     std::string name() const override { return "draco-whole"; }
     std::string describe() const override;
     bool reconstruct(const std::vector<uint32_t>& held, Mesh& out) const override;
+    // Decodable exactly when every packet is held: the key is that one bit.
+    std::vector<uint32_t> outcome_key(const std::vector<uint32_t>& held) const override {
+        return {complete(held) ? 1u : 0u};
+    }
+    bool can_show(const std::vector<uint32_t>& held) const override { return complete(held); }
+    bool few_outcomes() const override { return true; }
     const std::vector<uint8_t>& draco_bytes() const { return draco_; }
 
 private:
@@ -91,34 +115,73 @@ private:
 std::vector<std::vector<uint8_t>> fragment_payloads(std::span<const uint8_t> bytes, size_t capacity);
 
 // ---------------------------------------------------------------------------------------------
-// Draco + erasure code: the Draco file in k data shards of one packet each, plus m = ceil(k * r)
-// Reed-Solomon parity shards (ISA-L), in blocks of at most 255 shards; data and parity interleaved
-// block by block and sent round robin. Decodable once every block holds any k of its shards.
-class DracoFec : public Scheme {
+// Draco + erasure code: the Draco file in k data shards of one packet each (the systematic source
+// symbols), plus Reed-Solomon parity shards (ISA-L), in blocks of at most 255 shards, interleaved in
+// time block by block: shard 0 of every block, then shard 1 of every block, ... A receiver decodes a
+// block from any k of its shards and the file once every block is decoded. The two schemes below
+// differ only in how many parity shards each block gets.
+class DracoErasure : public Scheme {
 public:
-    // `redundancy` r >= 0: parity shards per data shard.
-    DracoFec(const Mesh& mesh, const DracoSettings& settings, size_t packet_size, double redundancy);
-    std::string name() const override { return "draco-fec"; }
-    std::string describe() const override;
-    bool reconstruct(const std::vector<uint32_t>& held, Mesh& out) const override;
-
     struct Block {
         int data = 0;    // k
         int parity = 0;  // m
     };
+    bool reconstruct(const std::vector<uint32_t>& held, Mesh& out) const override;
+    // Decodable exactly when every block holds k distinct shards: the key is that one bit.
+    std::vector<uint32_t> outcome_key(const std::vector<uint32_t>& held) const override;
+    bool can_show(const std::vector<uint32_t>& held) const override { return decodable(held); }
+    bool complete(const std::vector<uint32_t>& held) const override { return decodable(held); }
+    bool few_outcomes() const override { return true; }
+
+    // True when every block holds at least k distinct shards (read from the packets' headers).
+    bool decodable(const std::vector<uint32_t>& held) const;
     const std::vector<Block>& blocks() const { return blocks_; }
     size_t data_shards() const;
     size_t parity_shards() const;
-    double redundancy() const { return redundancy_; }
     const std::vector<uint8_t>& draco_bytes() const { return draco_; }
     // The block and the shard index inside it of packet `packet`.
     std::pair<int, int> shard_of(uint32_t packet) const;
 
-private:
+protected:
+    // Encodes `mesh` and cuts it into data shards; `plan` gives the blocks for k_total data shards
+    // (each k + m <= 255, the k summing to k_total).
+    DracoErasure(const Mesh& mesh, const DracoSettings& settings, size_t packet_size,
+                 const std::function<std::vector<Block>(size_t k_total)>& plan);
+    std::string layout() const;  // "82 data + 13 parity packets in 1 block"
+
     std::vector<uint8_t> draco_;
-    double redundancy_;
     size_t shard_bytes_ = 0;
     std::vector<Block> blocks_;
+};
+
+// The Draco file with m = ceil(k * redundancy) parity shards per block, its k + m packets repeated
+// round robin: a receiver that misses more than m shards of a block waits for their repetition.
+class DracoRsRepeat : public DracoErasure {
+public:
+    DracoRsRepeat(const Mesh& mesh, const DracoSettings& settings, size_t packet_size, double redundancy);
+    std::string name() const override { return "draco-rs-repeat"; }
+    std::string describe() const override;
+    double redundancy() const { return redundancy_; }
+
+private:
+    double redundancy_;
+};
+
+// The strongest Draco carousel: a maximum-distance-separable code with every block as long as the
+// field allows (k data + 255 - k parity shards, k <= max_block_data), so that every slot of a cycle
+// carries a symbol not sent before (no symbol goes out twice before every symbol of its block has
+// gone out once). With no loss a receiver decodes after exactly k_total slots (plus the interleaving
+// of unequal blocks), whenever it tunes in.
+class DracoMds : public DracoErasure {
+public:
+    static constexpr int kDefaultBlockData = 85;  // code rate 1/3: a block survives 2/3 loss in one period
+    DracoMds(const Mesh& mesh, const DracoSettings& settings, size_t packet_size, int max_block_data = kDefaultBlockData);
+    std::string name() const override { return "draco-mds"; }
+    std::string describe() const override;
+    int max_block_data() const { return max_block_data_; }
+
+private:
+    int max_block_data_;
 };
 
 // ---------------------------------------------------------------------------------------------
