@@ -56,6 +56,14 @@ struct Series {
     std::vector<std::vector<std::array<double, 3>>> y;  // [scheme][x]
 };
 
+// A series against the loss rate (in %), with no value yet for any scheme.
+Series over_loss(const ExperimentResult& r) {
+    Series s;
+    for (double loss : r.options.loss_rates) s.x.push_back(100 * loss);
+    s.y.resize(r.schemes.size());
+    return s;
+}
+
 void emit_block(std::ostream& gp, const std::string& name, const Series& s) {
     gp << "$" << name << " << EOD\n";
     for (size_t i = 0; i < s.x.size(); ++i) {
@@ -215,15 +223,8 @@ std::vector<std::string> write_plots(const ExperimentResult& result, const std::
     for (double burst : result.options.bursts) {
         const std::string suffix = burst_suffix(result, burst);
         // Against the loss rate, after one cycle.
-        Series shown, holes, rms;
-        for (double loss : result.options.loss_rates) {
-            shown.x.push_back(100 * loss);
-            holes.x.push_back(100 * loss);
-            rms.x.push_back(100 * loss);
-        }
-        shown.y.resize(result.schemes.size());
-        holes.y.resize(result.schemes.size());
-        rms.y.resize(result.schemes.size());
+        const Series empty = over_loss(result);
+        Series shown = empty, holes = empty, rms = empty;
         for (size_t s = 0; s < result.schemes.size(); ++s)
             for (double loss : result.options.loss_rates) {
                 Cell c = summarize(result, s, loss, burst, 1.0);
@@ -265,7 +266,13 @@ std::vector<std::string> write_plots(const ExperimentResult& result, const std::
                 const std::string eid = "err" + std::to_string(names.size()) + "_" + std::to_string(li);
                 emit_block(gp, eid, e);
                 tc << "set title '" << num(100 * loss, "%g") << "% lost'\nset xrange [0:" << num(times.back(), "%g")
-                   << "]\n" << (li + 1 == panels ? "set key outside bottom center horizontal maxrows 1\n" : "unset key\n")
+                   << "]\n"
+                   << (li + 1 < panels ? "unset key\n"
+                       : panels < rows_n * columns
+                           // the empty slot of the grid holds the key
+                           ? "set key at screen " + num(1.0 - 0.5 / double(columns), "%.3f") + "," +
+                                 num(0.5 / double(rows_n), "%.3f") + " center center vertical maxrows 10\n"
+                           : "set key outside bottom center horizontal maxrows 1\n")
                    << plot_lines(eid, result) << "\n";
             }
             tc << "unset title\nset key outside bottom center horizontal maxrows 1\nset xrange [*:*]\nset yrange [*:*]\n"
@@ -276,15 +283,8 @@ std::vector<std::string> write_plots(const ExperimentResult& result, const std::
 
         // Time to first picture and to full quality against the loss rate.
         {
-            Series first, full, never;
-            for (double loss : result.options.loss_rates) {
-                first.x.push_back(100 * loss);
-                full.x.push_back(100 * loss);
-                never.x.push_back(100 * loss);
-            }
-            first.y.resize(result.schemes.size());
-            full.y.resize(result.schemes.size());
-            never.y.resize(result.schemes.size());
+            const Series empty = over_loss(result);
+            Series first = empty, full = empty, never = empty;
             for (size_t s = 0; s < result.schemes.size(); ++s)
                 for (double loss : result.options.loss_rates) {
                     const EventSummary f = summarize_events(result, s, loss, burst, false);
