@@ -229,7 +229,6 @@ TEST_CASE("a receiver counts and drops datagrams that are not ellicast, damaged,
     UdpSender sender;
     REQUIRE(sender.open(endpoint("127.0.0.1:" + std::to_string(port)), SenderOptions{}, error));
 
-    // The real stream's first packet first, so the receiver locks on its stream id.
     REQUIRE(sender.send(packets[0], error));
     std::vector<uint8_t> junk(300, 0x42);
     REQUIRE(sender.send(junk, error));                                         // not ellicast
@@ -250,7 +249,11 @@ TEST_CASE("a receiver counts and drops datagrams that are not ellicast, damaged,
         REQUIRE(sender.send(packets[i], error));
         if (i % 32 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
-    Reception reception;
+    // The stream id given, as `receive --stream-id` does: the stranger's packets are counted and
+    // dropped (without it they would be a candidate of their own: test_reception.cpp).
+    Reception::Options options;
+    options.stream_id = 0xAAAA;
+    Reception reception(options);
     receive_until_complete(receiver, reception, Clock::now() + std::chrono::seconds(10));
     const auto& c = reception.counters();
     CHECK(reception.complete());

@@ -59,11 +59,29 @@ double LossEstimator::loss() const {
 
 Reception::Reception() : Reception(Options{}) {}
 
-Reception::Reception(Options options) : options_(options), stream_(options.limits) {}
+Reception::Reception(Options options) : options_(options) {
+    options_.max_candidates = std::clamp<size_t>(options_.max_candidates, 1, 64);
+}
+
+const ReceivedStream& Reception::stream() const {
+    return chosen_ < candidates_.size() ? candidates_[chosen_].stream : empty_;
+}
+
+ReceptionCounters Reception::counters() const {
+    ReceptionCounters c = counters_;
+    if (chosen_ >= candidates_.size()) return c;
+    const Candidate& k = candidates_[chosen_];
+    c.accepted = k.accepted;
+    c.duplicates = k.duplicates;
+    c.invalid += k.invalid;
+    c.other_stream += valid_ - k.routed;
+    return c;
+}
 
 Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
     ++counters_.datagrams;
     counters_.bytes += datagram.size();
+    last_accepted_by_ = 0;
     if (truncated || datagram.size() > kMaxPacketSize) {
         ++counters_.oversized;
         return Error::Oversized;
@@ -72,15 +90,71 @@ Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
     Error e = parse_packet(datagram, view);
     if (e == Error::Ok && options_.stream_id && view.header.stream_id != *options_.stream_id) e = Error::StreamMismatch;
     if (e == Error::Ok) {
-        uint64_t before_accepted = stream_.counters().accepted;
-        e = stream_.add_parsed(view, counters_.datagrams - 1);
-        if (e == Error::Ok) {
-            if (stream_.counters().accepted > before_accepted)
-                ++counters_.accepted;
-            else
-                ++counters_.duplicates;
-            loss_.add(view.header.sequence);
-            return Error::Ok;
+        const uint32_t id = view.header.stream_id;
+        bool any = false, taken = false, contradicted = true;
+        std::vector<char> ok(candidates_.size() + 1, 0);  // which candidates took the packet (new or not)
+        Error first_error = Error::Ok;
+        for (size_t i = 0; i < candidates_.size(); ++i) {
+            Candidate& k = candidates_[i];
+            if (k.stream_id != id) continue;
+            any = true;
+            ++k.routed;
+            const uint64_t before = k.stream.counters().accepted;
+            const Error r = k.stream.add_parsed(view, counters_.datagrams - 1);
+            if (r == Error::Ok) {
+                taken = true;
+                ok[i] = 1;
+                contradicted = false;
+                if (k.stream.counters().accepted > before) {
+                    ++k.accepted;
+                    if (i < 64) last_accepted_by_ |= uint64_t(1) << i;
+                } else {
+                    ++k.duplicates;
+                }
+            } else {
+                ++k.invalid;
+                if (first_error == Error::Ok) first_error = r;
+                if (!(r == Error::StreamMismatch && view.header.type == static_cast<uint8_t>(PacketType::StreamInfo))) contradicted = false;
+            }
+        }
+        // A stream id not heard before, or a STREAM_INFO every candidate of its id contradicts:
+        // a new candidate, while there is room.
+        if (!any || (!taken && contradicted)) {
+            if (candidates_.size() < options_.max_candidates) {
+                candidates_.emplace_back(id, options_.limits);
+                Candidate& k = candidates_.back();
+                ++k.routed;
+                const Error r = k.stream.add_parsed(view, counters_.datagrams - 1);
+                if (r == Error::Ok) {
+                    taken = true;
+                    ok[candidates_.size() - 1] = 1;
+                    if (k.stream.counters().accepted > 0) {
+                        ++k.accepted;
+                        if (candidates_.size() <= 64) last_accepted_by_ |= uint64_t(1) << (candidates_.size() - 1);
+                    } else {
+                        ++k.duplicates;
+                    }
+                } else {
+                    ++k.invalid;
+                    if (first_error == Error::Ok) first_error = r;
+                }
+                any = true;
+            } else if (!any) {
+                e = Error::StreamMismatch;  // no room for another stream: counted as another stream's
+            }
+        }
+        if (any) {
+            ++valid_;
+            // The candidate with the most packets accepted; the first on a tie.
+            size_t best = 0;
+            for (size_t i = 1; i < candidates_.size(); ++i)
+                if (candidates_[i].accepted > candidates_[best].accepted) best = i;
+            chosen_ = best;
+            if (taken) {
+                if (ok[chosen_]) loss_.add(view.header.sequence);
+                return Error::Ok;
+            }
+            return first_error;
         }
     }
     switch (e) {
@@ -97,28 +171,28 @@ Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
 }
 
 bool Reception::base_complete() const {
-    if (!stream_.info()) return false;
-    const auto& objects = stream_.objects();
+    if (!stream().info()) return false;
+    const auto& objects = stream().objects();
     for (const auto& object : objects) {
         if (!object.info) return false;
         if (object.info->kind == ObjectKind::Surface && object.ellipsoids.size() < object.info->ellipsoid_count)
             return false;
     }
     // Format 1.1: the scene tables and the materials travel with the base.
-    if (stream_.has_scene()) {
-        if (stream_.scene_nodes().size() < stream_.scene_node_count()) return false;
-        if (stream_.scene_meshes().size() < stream_.scene_mesh_count()) return false;
+    if (stream().has_scene()) {
+        if (stream().scene_nodes().size() < stream().scene_node_count()) return false;
+        if (stream().scene_meshes().size() < stream().scene_mesh_count()) return false;
     }
-    const auto& materials = stream_.materials();
+    const auto& materials = stream().materials();
     if (!materials.empty() && materials.size() < materials.begin()->second.material_count) return false;
     return true;
 }
 
 bool Reception::complete() const {
     if (!base_complete()) return false;
-    for (const auto& object : stream_.objects())
+    for (const auto& object : stream().objects())
         if (object.points.size() < object.info->point_count) return false;
-    const auto& textures = stream_.textures();
+    const auto& textures = stream().textures();
     if (!textures.empty() && textures.size() < textures.begin()->second.info.texture_count) return false;
     for (const auto& [index, texture] : textures)
         if (!texture.complete) return false;
@@ -127,26 +201,26 @@ bool Reception::complete() const {
 
 uint64_t Reception::points_received() const {
     uint64_t n = 0;
-    for (const auto& object : stream_.objects()) n += object.points.size();
+    for (const auto& object : stream().objects()) n += object.points.size();
     return n;
 }
 
 uint64_t Reception::points_declared() const {
     uint64_t n = 0;
-    for (const auto& object : stream_.objects())
+    for (const auto& object : stream().objects())
         if (object.info) n += object.info->point_count;
     return n;
 }
 
 uint64_t Reception::ellipsoids_received() const {
     uint64_t n = 0;
-    for (const auto& object : stream_.objects()) n += object.ellipsoids.size();
+    for (const auto& object : stream().objects()) n += object.ellipsoids.size();
     return n;
 }
 
 uint64_t Reception::ellipsoids_declared() const {
     uint64_t n = 0;
-    for (const auto& object : stream_.objects())
+    for (const auto& object : stream().objects())
         if (object.info) n += object.info->ellipsoid_count;
     return n;
 }

@@ -155,8 +155,18 @@ int run_receive(const ReceiveArgs& a) {
     reception_options.limits.max_pending_bytes = a.max_pending_mb << 20;
     if (a.stream_id >= 0) reception_options.stream_id = static_cast<uint32_t>(a.stream_id);
     broadcast::Reception reception(reception_options);
-    const ReceivedStream& stream = reception.stream();
-    std::vector<std::vector<uint8_t>> kept;  // packets that brought new content (only for .ellc output)
+    // The stream shown and written: the candidate with the most packets (broadcast/reception.h);
+    // it may change while packets arrive.
+    auto stream = [&]() -> const ReceivedStream& { return reception.stream(); };
+    // Packets that brought new content, with the candidates that took them (only for .ellc output).
+    std::vector<std::pair<uint64_t, std::vector<uint8_t>>> kept;
+    auto kept_of_chosen = [&]() {
+        std::vector<std::vector<uint8_t>> packets;
+        for (const auto& [by, bytes] : kept)
+            if (reception.chosen() < 64 && (by >> reception.chosen() & 1)) packets.push_back(bytes);
+        return packets;
+    };
+    size_t live_candidate = SIZE_MAX;  // the candidate the live reconstruction is built on
     std::vector<uint8_t> buffer(kMaxPacketSize + 1);
     LiveReconstruction live(a.grid);
 
@@ -190,8 +200,8 @@ int run_receive(const ReceiveArgs& a) {
         std::string path = snapshot_path(a.output, s.label);
         std::string e;
         std::vector<std::string> warnings;
-        bool ok = stream_output ? write_received(path, kept, e)
-                                : write_model(path, stream, live.objects(), gltf_output, warnings, e);
+        bool ok = stream_output ? write_received(path, kept_of_chosen(), e)
+                                : write_model(path, stream(), live.objects(), gltf_output, warnings, e);
         if (ok)
             std::fprintf(stderr, "%swrote snapshot %s (%s points %s)\n", tty && !a.quiet ? "\n" : "", path.c_str(),
                          with_commas(stream_output ? reception.points_received() : live.inserted()).c_str(),
@@ -206,7 +216,7 @@ int run_receive(const ReceiveArgs& a) {
         if (deadline_seconds > 0 && elapsed >= deadline_seconds) break;
         // Wait for datagrams only when there is no reconstruction work to do; then read every
         // datagram that is waiting before working again.
-        const bool busy = live.started() && !live.caught_up(stream);
+        const bool busy = live.started() && !live.caught_up(stream());
         double wait = busy ? 0.0 : 0.2;
         if (deadline_seconds > 0) wait = std::min(wait, deadline_seconds - elapsed);
         for (int n = 0; n < 1024; ++n) {
@@ -215,18 +225,18 @@ int run_receive(const ReceiveArgs& a) {
             int got = receiver.receive(buffer, timeout, datagram, error);
             if (got < 0) return fail(kExitFailure, error);
             if (got == 0) break;
-            uint64_t accepted_before = reception.counters().accepted;
             std::span<const uint8_t> bytes(buffer.data(), datagram.size);
             if (reception.take(bytes, datagram.truncated) != Error::Ok) continue;
             if (first_packet_at < 0) first_packet_at = seconds_since(std::chrono::steady_clock::now());
-            if (stream_output && reception.counters().accepted > accepted_before)
-                kept.emplace_back(bytes.begin(), bytes.end());
+            if (stream_output && reception.last_accepted_by() != 0)
+                kept.emplace_back(reception.last_accepted_by(), std::vector<uint8_t>(bytes.begin(), bytes.end()));
             if (reception.complete()) break;
         }
         if (base_at < 0 && reception.base_complete()) {
             base_at = seconds_since(std::chrono::steady_clock::now());
             if (!stream_output) {
-                if (!live.start(stream, error)) return fail(kExitFailure, "building the base mesh: " + error);
+                if (!live.start(stream(), error)) return fail(kExitFailure, "building the base mesh: " + error);
+                live_candidate = reception.chosen();
                 shown_at = seconds_since(std::chrono::steady_clock::now());
                 if (!a.quiet)
                     std::fprintf(stderr, "%sbase mesh ready after %s (base complete after %s)\n", tty ? "\n" : "",
@@ -240,7 +250,15 @@ int run_receive(const ReceiveArgs& a) {
             complete_at = seconds_since(std::chrono::steady_clock::now());
             break;
         }
-        if (!stream_output && live.started()) live.work(stream, std::chrono::milliseconds(20));
+        if (!stream_output && live.started() && reception.chosen() != live_candidate && reception.base_complete()) {
+            // Another candidate has overtaken the one shown: show that one from its base.
+            if (!live.start(stream(), error)) return fail(kExitFailure, "building the base mesh: " + error);
+            live_candidate = reception.chosen();
+            if (!a.quiet)
+                std::fprintf(stderr, "%sswitched to stream id 0x%X (the candidate with the most packets)\n", tty ? "\n" : "",
+                             stream().stream_id());
+        }
+        if (!stream_output && live.started()) live.work(stream(), std::chrono::milliseconds(20));
         now = std::chrono::steady_clock::now();
         const uint64_t shown_points = stream_output ? reception.points_received() : live.inserted();
         const double share = reception.points_declared() ? 100.0 * double(shown_points) / double(reception.points_declared()) : 0.0;
@@ -266,11 +284,29 @@ int run_receive(const ReceiveArgs& a) {
                  base_at >= 0 ? ("complete after " + seconds_text(base_at)).c_str() : "incomplete",
                  complete_at >= 0 ? ("complete after " + seconds_text(complete_at)).c_str()
                                   : (g_stop.load() ? "not complete (interrupted)" : "not complete at the deadline"));
+    if (reception.candidate_count() > 1) {
+        std::string heard;
+        for (size_t i = 0; i < reception.candidate_count(); ++i) {
+            char line[96];
+            std::snprintf(line, sizeof line, "%sstream id 0x%X with %llu packets accepted", i ? ", " : "",
+                          reception.candidate(i).stream_id(),
+                          (unsigned long long)reception.candidate(i).counters().accepted);
+            heard += line;
+        }
+        char kept_id[32];
+        std::snprintf(kept_id, sizeof kept_id, "0x%X", stream().stream_id());
+        std::fprintf(stderr,
+                     "ellicast: warning: %zu candidate streams were heard (%s; a stream id can appear twice when its "
+                     "stream info was contradicted); kept stream id %s, the one with the most packets. Another sender "
+                     "may be on this address: --stream-id picks a stream\n",
+                     reception.candidate_count(), heard.c_str(), kept_id);
+    }
     if (stream_output) {
         for (auto& s : snapshots)
             if (!s.done && base_at >= 0) take_snapshot(s);
-        if (!write_received(a.output, kept, error)) return fail(kExitFailure, error);
-        std::fprintf(stderr, "wrote %s: %s packets\n", a.output.c_str(), with_commas(kept.size()).c_str());
+        const auto packets = kept_of_chosen();
+        if (!write_received(a.output, packets, error)) return fail(kExitFailure, error);
+        std::fprintf(stderr, "wrote %s: %s packets\n", a.output.c_str(), with_commas(packets.size()).c_str());
         return kExitOk;
     }
     // The final model: everything received, decoded in stream order (deterministic: the same as
@@ -280,22 +316,23 @@ int run_receive(const ReceiveArgs& a) {
     DecodeOptions options;
     options.grid_resolution = a.grid;
     options.progress = [&](const std::string& stage, double fraction) { bar.update(stage, fraction); };
-    if (!stream.info()) {
-        const std::string why = stream.stream_info_problem();
+    const ReceivedStream& chosen = stream();
+    if (!chosen.info()) {
+        const std::string why = chosen.stream_info_problem();
         return fail(kExitInvalid, why.empty() ? "no STREAM_INFO packet arrived: nothing can be decoded"
                                               : "no STREAM_INFO packet was accepted (" + why + "): nothing can be decoded");
     }
-    std::vector<Mesh> objects(stream.objects().size());
+    std::vector<Mesh> objects(chosen.objects().size());
     size_t vertices = 0, faces = 0, built = 0;
-    options.base_grid_nodes = shared_base_grid_nodes(stream, options);
+    options.base_grid_nodes = shared_base_grid_nodes(chosen, options);
     for (size_t i = 0; i < objects.size(); ++i) {
-        const auto& object = stream.objects()[i];
+        const auto& object = chosen.objects()[i];
         if (!object.info) {
             std::fprintf(stderr, "ellicast: warning: object %zu: its stream info entry never arrived\n", i);
             continue;
         }
         ObjectDecodeReport report;
-        if (!decode_object(*object.info, stream.ellipsoids(i), stream.points(i), stream.info()->grid_hint, options, i,
+        if (!decode_object(*object.info, chosen.ellipsoids(i), chosen.points(i), chosen.info()->grid_hint, options, i,
                            objects[i], report, error)) {
             // One object that cannot be built does not cost the others theirs.
             std::fprintf(stderr, "ellicast: warning: object %zu: not decoded: %s\n", i, error.c_str());
@@ -315,10 +352,10 @@ int run_receive(const ReceiveArgs& a) {
     for (auto& s : snapshots) {
         if (s.done || base_at < 0) continue;
         std::string path = snapshot_path(a.output, s.label), e;
-        if (write_model(path, stream, objects, gltf_output, warnings, e))
+        if (write_model(path, chosen, objects, gltf_output, warnings, e))
             std::fprintf(stderr, "wrote snapshot %s (final model)\n", path.c_str());
     }
-    if (!write_model(a.output, stream, std::move(objects), gltf_output, warnings, error))
+    if (!write_model(a.output, chosen, std::move(objects), gltf_output, warnings, error))
         return fail(kExitFailure, error);
     for (const auto& w : warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
     std::fprintf(stderr, "decoded in %s; wrote %s: %zu object(s), %s vertices, %s triangles\n",
@@ -342,7 +379,7 @@ const RegisterCommand registered{{63, [](CLI::App& app, int& exit_code) {
                     "comma-separated moments to write OUT-<moment> too: base, a share of the points (50%), a time (2.5s)");
     cmd->add_option("--until", args->until, "stop when \"complete\" (default) or after this many seconds");
     cmd->add_option("--interface", args->interface, "network interface to join a multicast group on, e.g. lo");
-    cmd->add_option("--stream-id", args->stream_id, "keep only this stream id (default: the first stream heard)")
+    cmd->add_option("--stream-id", args->stream_id, "keep only this stream id (default: every stream heard, as candidates; the one with the most packets is written)")
         ->check(CLI::Range(int64_t(0), int64_t(0xFFFFFFFF)));
     cmd->add_option("--max-elements", args->max_elements,
                     "refuse a stream that declares more ellipsoids + points than this (memory cap)")

@@ -1,4 +1,4 @@
-// `ellicast validate FILE.ellc`: exit 0 only for a conforming recorded stream (spec/format.md 11.4);
+// `ellicast validate FILE.ellc`: exit 0 only for a conforming recorded stream (spec/format.md 11.5);
 // otherwise every violation is listed with its byte offset and the exit code is 1.
 #include "commands.h"
 #include "stream_report.h"

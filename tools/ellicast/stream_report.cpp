@@ -1,5 +1,5 @@
 // Reads a recorded stream like a decoder and lists every way it departs from a conforming file
-// (spec/format.md section 11.4).
+// (spec/format.md section 11.5).
 #include "stream_report.h"
 
 #include "ellicast/converters/image_file.h"

@@ -50,11 +50,20 @@ private:
     uint64_t received_ = 0;
 };
 
+// A receiver cannot tell a sender from a forger without a key, so it does not let the first packet
+// decide: each stream id it hears, and each STREAM_INFO that contradicts the one a candidate holds
+// for its stream id, starts a candidate stream of its own (at most Options::max_candidates; packets
+// of further ones are counted as another stream's). Every packet goes to every candidate of its
+// stream id. The stream shown and written is the candidate that has accepted the most packets (the
+// first one on a tie): a real carousel repeats its stream info and base every cycle, so one early
+// forged STREAM_INFO cannot lock it out (spec 11.4). A key is the only defence against a forger
+// that sends more.
 class Reception {
 public:
     struct Options {
-        ReceivedStream::Limits limits;
-        std::optional<uint32_t> stream_id;  // keep only this stream; default: the first valid one
+        ReceivedStream::Limits limits;      // for each candidate
+        std::optional<uint32_t> stream_id;  // keep only this stream id; default: every one, as candidates
+        size_t max_candidates = 4;          // memory is at most this many times the limits
     };
     Reception();
     explicit Reception(Options options);
@@ -63,9 +72,19 @@ public:
     // the datagram was dropped for, or Ok.
     Error take(std::span<const uint8_t> datagram, bool truncated = false);
 
-    const ReceivedStream& stream() const { return stream_; }
-    const ReceptionCounters& counters() const { return counters_; }
+    // The chosen candidate (an empty stream before any valid packet).
+    const ReceivedStream& stream() const;
+    // Counters as seen from the chosen candidate: packets that went to other candidates count as
+    // another stream's.
+    ReceptionCounters counters() const;
     const LossEstimator& loss() const { return loss_; }
+
+    // The candidates, in the order they started; which one is chosen (SIZE_MAX before any); and
+    // which candidates took new content from the last datagram (bit i: candidate i).
+    size_t candidate_count() const { return candidates_.size(); }
+    const ReceivedStream& candidate(size_t i) const { return candidates_.at(i).stream; }
+    size_t chosen() const { return chosen_; }
+    uint64_t last_accepted_by() const { return last_accepted_by_; }
 
     // Every STREAM_INFO entry, every ellipsoid of every surface object, and (format 1.1) the
     // whole scene graph and every material have arrived: a receiver can show the base mesh.
@@ -79,9 +98,22 @@ public:
     uint64_t ellipsoids_declared() const;
 
 private:
+    struct Candidate {
+        uint32_t stream_id = 0;
+        ReceivedStream stream;
+        uint64_t routed = 0;      // valid datagrams of its stream id
+        uint64_t accepted = 0;    // of those, brought new content
+        uint64_t duplicates = 0;  // of those, brought nothing new
+        uint64_t invalid = 0;     // of those, rejected (a contradicting STREAM_INFO included)
+        explicit Candidate(uint32_t id, const ReceivedStream::Limits& limits) : stream_id(id), stream(limits) {}
+    };
     Options options_;
-    ReceivedStream stream_;
-    ReceptionCounters counters_;
+    std::vector<Candidate> candidates_;
+    size_t chosen_ = SIZE_MAX;
+    uint64_t last_accepted_by_ = 0;
+    ReceptionCounters counters_;  // datagrams dropped before reaching any candidate
+    uint64_t valid_ = 0;          // datagrams that reached a candidate
+    ReceivedStream empty_;
     LossEstimator loss_;
 };
 

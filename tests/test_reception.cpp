@@ -1,0 +1,85 @@
+// A receiver that hears more than one sender: no first packet and no early forged STREAM_INFO may
+// take the stream from the real sender (issue 15, "the receiver must not be hijacked").
+#include "broadcast_support.h"
+
+#include <ellicast/broadcast/reception.h>
+
+using namespace ellicast;
+using namespace ellicast::broadcast;
+
+namespace {
+
+// Two cycles of a carousel-like repetition: every packet of the stream, twice.
+void take_twice(Reception& reception, const std::vector<std::vector<uint8_t>>& packets) {
+    for (int cycle = 0; cycle < 2; ++cycle)
+        for (const auto& p : packets) reception.take(p);
+}
+
+}  // namespace
+
+TEST_CASE("a second sender heard first does not take the receiver: the stream with the most packets is kept") {
+    const auto real = test::synthetic_stream(40, 3000, 0xAAAA);
+    const auto stranger = test::synthetic_stream(5, 100, 0xBBBB, 1200, 99);
+    Reception reception;
+    for (const auto& p : stranger) reception.take(p);  // the stranger's whole stream first
+    CHECK(reception.stream().stream_id() == 0xBBBB);  // all there is so far
+    take_twice(reception, real);
+    CHECK(reception.candidate_count() == 2);
+    CHECK(reception.stream().stream_id() == 0xAAAA);
+    CHECK(reception.complete());
+    const auto c = reception.counters();
+    CHECK(c.accepted == real.size());
+    CHECK(c.duplicates == real.size());
+    CHECK(c.other_stream == stranger.size());
+    REQUIRE(reception.stream().info());
+    CHECK(reception.stream().info()->objects[0].point_count == 3000);
+}
+
+TEST_CASE("one early forged STREAM_INFO with the real stream id does not lock the real stream out") {
+    const auto real = test::synthetic_stream(40, 3000, 0xAAAA);
+    // A forger's STREAM_INFO for the same stream id, declaring another object (CRC valid).
+    const auto forged = test::synthetic_stream(7, 50, 0xAAAA, 1200, 3);
+    for (bool with_id : {false, true}) {
+        CAPTURE(with_id);
+        Reception::Options options;
+        if (with_id) options.stream_id = 0xAAAA;
+        Reception reception(options);
+        CHECK(reception.take(forged[0]) == Error::Ok);
+        REQUIRE(reception.stream().info());
+        CHECK(reception.stream().info()->objects[0].ellipsoid_count == 7);
+        take_twice(reception, real);
+        CHECK(reception.candidate_count() == 2);
+        REQUIRE(reception.stream().info());
+        CHECK(reception.stream().info()->objects[0].ellipsoid_count == 40);
+        CHECK(reception.complete());
+        CHECK(reception.points_received() == 3000);
+        // The forged candidate took only what fits its own stream info; the real one took everything.
+        CHECK(reception.candidate(0).counters().accepted < reception.candidate(1).counters().accepted);
+    }
+}
+
+TEST_CASE("the candidates are bounded: packets of further streams count as another stream's") {
+    Reception::Options options;
+    options.max_candidates = 3;
+    Reception reception(options);
+    size_t strangers = 0;
+    for (uint32_t id = 1; id <= 10; ++id)
+        for (const auto& p : test::synthetic_stream(2, 20, id, 1200, id)) {
+            reception.take(p);
+            if (id > 3) ++strangers;
+        }
+    CHECK(reception.candidate_count() == 3);
+    const auto real = test::synthetic_stream(40, 3000, 0xAAAA);
+    for (const auto& p : real) CHECK(reception.take(p) == Error::StreamMismatch);  // no room left
+    CHECK(reception.counters().other_stream >= strangers + real.size());
+    // With the stream id given, only that stream is heard at all.
+    Reception::Options only;
+    only.stream_id = 0xAAAA;
+    only.max_candidates = 3;
+    Reception chosen(only);
+    for (uint32_t id = 1; id <= 10; ++id)
+        for (const auto& p : test::synthetic_stream(2, 20, id, 1200, id)) chosen.take(p);
+    take_twice(chosen, real);
+    CHECK(chosen.candidate_count() == 1);
+    CHECK(chosen.complete());
+}
