@@ -254,7 +254,8 @@ class Body:
         if self.failed or self.pos + n > len(self.data):
             self.failed = True
             return ""
-        v = self.data[self.pos:self.pos + n].decode("utf-8")
+        # Names that are not UTF-8 are shown with U+FFFD for each maximal ill-formed subpart (spec 15.1).
+        v = self.data[self.pos:self.pos + n].decode("utf-8", errors="replace")
         self.pos += n
         return v
 
@@ -317,7 +318,7 @@ def decode_material(p):
     if index >= count or alpha > 2 or not finite(list(factors) + [r[2] for r in refs]):
         return None
     return dict(index=index, material_count=count, alpha=alpha, double_sided=double != 0, factors=list(factors),
-                refs=refs, name=p[88:].decode("utf-8"))
+                refs=refs, name=p[88:].decode("utf-8", errors="replace"))
 
 
 def node_json(n):

@@ -203,7 +203,7 @@ inline std::array<const TextureRef*, 5> texture_refs(const Material& m) {
 }
 
 inline nlohmann::json node_json(const SceneNode& n) {
-    nlohmann::json j = {{"index", n.index}, {"parent", none_or(n.parent)}, {"mesh", none_or(n.mesh)}, {"name", n.name}};
+    nlohmann::json j = {{"index", n.index}, {"parent", none_or(n.parent)}, {"mesh", none_or(n.mesh)}, {"name", replace_invalid_utf8(n.name)}};
     if (n.has_matrix) {
         j["matrix"] = floats(n.matrix.data(), 16);
     } else {
@@ -225,7 +225,7 @@ inline nlohmann::json material_json(const Material& m) {
                                                           {"texcoord", refs[i]->texcoord},
                                                           {"scale", shortest(refs[i]->scale)}};
     return {{"index", m.index},
-            {"name", m.name},
+            {"name", replace_invalid_utf8(m.name)},
             {"alpha_mode", modes[static_cast<int>(m.alpha_mode)]},
             {"alpha_cutoff", shortest(m.alpha_cutoff)},
             {"double_sided", m.double_sided},
@@ -317,7 +317,7 @@ inline nlohmann::json scene_json(const ReceivedStream& s) {
     for (const auto& [index, m] : s.scene_meshes()) {
         json prims = json::array();
         for (const auto& p : m.primitives) prims.push_back({{"object", p.object}, {"material", none_or(p.material)}});
-        meshes.push_back({{"index", m.index}, {"name", m.name}, {"primitives", prims}});
+        meshes.push_back({{"index", m.index}, {"name", replace_invalid_utf8(m.name)}, {"primitives", prims}});
     }
     for (const auto& [index, m] : s.materials()) materials.push_back(material_json(m));
     for (const auto& [index, t] : s.textures()) textures.push_back(texture_json(t));

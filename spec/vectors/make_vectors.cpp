@@ -979,6 +979,13 @@ void scene_vectors(Writer& w) {
                 edit_node(4, [](SceneNode& n) { n.parent = 4; }));
     }
     {
+        w.write("faulty", "scene_name_not_utf8",
+                "node 1's name holds bytes that are not UTF-8 (a lone 0xFF, a cut two-byte sequence 0xC3, an encoded "
+                "surrogate 0xED 0xA0 0x80): nothing is rejected; a decoder shows the name with each maximal ill-formed "
+                "subsequence replaced by U+FFFD (spec 15.1), and the stream does not conform",
+                edit_node(1, [](SceneNode& n) { n.name = std::string("bad\xFF name \xC3 and \xED\xA0\x80"); }));
+    }
+    {
         w.write("faulty", "scene_parent_cycle",
                 "nodes 2 and 3 name each other as parent: no packet can be rejected for it (spec 15.1: the links may "
                 "arrive in different packets); neither node reaches a root, so both are left out like nodes whose "
