@@ -172,6 +172,24 @@ TEST_CASE("bad input files are refused with a message naming the file and the pr
         spit(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
         CHECK(!error_of((dir / "flat.obj").string()).empty());
     }
+    SUBCASE("a PLY header OpenMesh would misread is refused before it sees it (fuzz_readers found a crash)") {
+        // The fuzzer's input: a NUL in the format line, after which OpenMesh read "property" before any
+        // element and wrote through an empty list (SEGV in _PLYReader_::can_u_read).
+        const char crash[] = "ply\nformat ascii 1.0ce \0\tproperty lis\x1b ucpersh\x99r int vertex_indices\nend_header\n"
+                             "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        spit(dir / "crash.ply", std::string(crash, sizeof crash - 1));
+        CHECK(error_of((dir / "crash.ply").string()).find("crash.ply: line 2: the PLY header holds the control byte 0x00") !=
+              std::string::npos);
+        // The same without the NUL: the words after the version would still be read as keywords.
+        spit(dir / "words.ply", "ply\nformat ascii 1.0 property float x\nend_header\n");
+        CHECK(error_of((dir / "words.ply").string()).find("line 2: a word more than the format line holds") !=
+              std::string::npos);
+        spit(dir / "version.ply", "ply\nformat ascii 2.0\nend_header\n");
+        CHECK(error_of((dir / "version.ply").string()).find("line 2: PLY version") != std::string::npos);
+        spit(dir / "element.ply", "ply\nformat ascii 1.0\nelement vertex 3 property float x\nend_header\n");
+        CHECK(error_of((dir / "element.ply").string()).find("line 3: a word more than an element line holds") !=
+              std::string::npos);
+    }
     SUBCASE("an OFF face declaring two billion corners is refused at once (OpenMesh would reserve them)") {
         spit(dir / "bomb.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2000000000 0 1 2\n");
         std::string e = error_of((dir / "bomb.off").string());

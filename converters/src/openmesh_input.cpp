@@ -221,21 +221,34 @@ void check_ply(const std::string& path) {
         header_bytes += line.size() + 1;
         if (header_bytes > (1u << 20)) bad(path, number, "the PLY header does not end within 1 MB");
         if (!line.empty() && line.back() == '\r') line.pop_back();
+        // OpenMesh reads the header word by word across lines: a control byte or a word more than a
+        // line holds would be read as the next keyword (a NUL-separated "property" before any
+        // element crashed its reader), so the header must be plain lines of exactly their words.
+        for (unsigned char c : line)
+            if ((c < 0x20 && c != '\t') || c == 0x7F) {
+                char hex[8];
+                std::snprintf(hex, sizeof hex, "0x%02X", c);
+                bad(path, number, std::string("the PLY header holds the control byte ") + hex);
+            }
         std::istringstream words(line);
-        std::string word;
+        std::string word, extra;
         words >> word;
         if (number == 1) {
-            if (word != "ply") bad(path, 1, "not a PLY file (it must start with \"ply\")");
+            if (word != "ply" || (words >> extra)) bad(path, 1, "not a PLY file (it must start with a line \"ply\")");
         } else if (word == "format") {
-            words >> format;
+            std::string version;
+            words >> format >> version;
             if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
                 bad(path, number, "unknown PLY format \"" + format + "\"");
+            if (version != "1.0") bad(path, number, "PLY version " + quoted_input(version) + " (1.0 is the only one)");
+            if (words >> extra) bad(path, number, "a word more than the format line holds: " + quoted_input(line));
         } else if (word == "element") {
             Element e;
             long long count = -1;
             words >> e.name >> count;
             if (!words || count < 0 || count > (1ll << 31)) bad(path, number, "bad element line " + quoted_input(line));
             e.count = uint64_t(count);
+            if (words >> extra) bad(path, number, "a word more than an element line holds: " + quoted_input(line));
             elements.push_back(e);
         } else if (word == "property") {
             if (elements.empty()) bad(path, number, "a property before any element");
@@ -252,8 +265,10 @@ void check_ply(const std::string& path) {
                 words >> p.name;
                 if (!type_size(p.type)) bad(path, number, "unknown property type \"" + type + "\"");
             }
+            if (words >> extra) bad(path, number, "a word more than a property line holds: " + quoted_input(line));
             elements.back().properties.push_back(p);
         } else if (word == "end_header") {
+            if (words >> extra) bad(path, number, "words after end_header: " + quoted_input(line));
             ended = true;
             break;
         } else if (word != "comment" && word != "obj_info" && !word.empty()) {
