@@ -5,7 +5,10 @@
 #      ELLICAST_SANITIZE_FULL=1 builds and runs the whole suite under the sanitizers instead (slow: the
 #      codec, converters and tinygltf are rebuilt instrumented);
 #   2. builds the libFuzzer targets with clang in build-fuzz/ and runs each for ELLICAST_FUZZ_SECONDS
-#      (default 60) seconds, seeded from spec/vectors. A crash leaves its input in build-fuzz/crashes/.
+#      (default 60) seconds, seeded from spec/vectors. A crash leaves its input in build-fuzz/crashes/;
+#   3. builds every library instrumented with clang in build-fuzz-pipeline/ and runs fuzz_decode (received
+#      packets through the decoder and the glTF writer) and fuzz_readers (glTF/GLB, OBJ, PLY, OFF, STL)
+#      for as long, seeded from spec/vectors and ../shared/samples (ELLICAST_FUZZ_PIPELINE=0 skips it).
 # Usage: bash scripts/check-sanitizers.sh        (from anywhere; exits non-zero on any finding)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -51,18 +54,54 @@ for f in "$root"/spec/vectors/*/*.ellc; do
   cp "$f" "$corpus/container/$name"
   { printf '\001'; tail -c +13 "$f"; } > "$corpus/packet/$name"
 done
-for target in packet container; do
+# Runs one fuzz target for fuzz_seconds on its corpus; exits on a finding.
+run_target() {  # build dir, target, corpus dir, extra libFuzzer options...
+  local build=$1 target=$2 dir=$3
+  shift 3
   echo "== fuzzing: fuzz_$target" >&2
-  log="$root/build-fuzz/fuzz_$target.log"
-  status=0
-  "$root/build-fuzz/fuzz/fuzz_$target" -max_total_time="$fuzz_seconds" -rss_limit_mb=2048 -max_len=70000 \
-    -print_final_stats=1 -artifact_prefix="$root/build-fuzz/crashes/$target-" "$corpus/$target" > "$log" 2>&1 || status=$?
+  local log="$build/fuzz_$target.log" status=0
+  mkdir -p "$build/crashes"
+  "$build/$(cd "$build" && find . -name "fuzz_$target" -type f -perm -u+x | head -1)" -max_total_time="$fuzz_seconds" \
+    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build/crashes/$target-" "$@" "$dir" > "$log" 2>&1 || status=$?
   grep -E "^(stat::number_of_executed_runs|stat::peak_rss_mb|Done |SUMMARY)" "$log" >&2 || true
   if [ "$status" -ne 0 ]; then
     tail -40 "$log" >&2
-    echo "== fuzzing: fuzz_$target found a problem (exit $status); the input is in build-fuzz/crashes/" >&2
+    echo "== fuzzing: fuzz_$target found a problem (exit $status); the input is in $build/crashes/" >&2
     exit 1
   fi
+}
+for target in packet container; do
+  run_target "$root/build-fuzz" "$target" "$corpus/$target" -max_len=70000
 done
 t4=$(date +%s)
-echo "== sanitizers and fuzzing passed: fuzz build $((t3 - t2)) s, fuzzing $((t4 - t3)) s, total $((t4 - t0)) s" >&2
+echo "== fuzzing the format layer: fuzz build $((t3 - t2)) s, fuzzing $((t4 - t3)) s" >&2
+
+# The decoder with the glTF writer, and the input readers: every library instrumented, in
+# build-fuzz-pipeline/ (ELLICAST_FUZZ_PIPELINE=0 skips this stage).
+if [ "${ELLICAST_FUZZ_PIPELINE:-1}" = 1 ]; then
+  pipeline="$root/build-fuzz-pipeline"
+  cmake -S "$root" -B "$pipeline" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DELLICAST_FUZZ_PIPELINE=ON \
+    -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang "${launcher[@]}" >/dev/null
+  cmake --build "$pipeline" -j "$jobs" --target fuzz_decode fuzz_readers
+  t5=$(date +%s)
+  mkdir -p "$pipeline/corpus/decode" "$pipeline/corpus/readers"
+  cp "$corpus/packet/"* "$pipeline/corpus/decode/"
+  # Reader seeds: small sample files, the type byte first (0 glb, 1 gltf, 2 obj, 3 ply, 4 off, 5 stl).
+  samples="$root/../shared/samples"
+  [ -d "$samples" ] || samples="$root/samples"
+  n=0
+  while IFS= read -r f; do
+    case "${f,,}" in
+      *.glb) t='\000' ;; *.gltf) t='\001' ;; *.obj) t='\002' ;; *.ply) t='\003' ;; *.off) t='\004' ;; *.stl) t='\005' ;;
+      *) continue ;;
+    esac
+    { printf "$t"; cat "$f"; } > "$pipeline/corpus/readers/seed$n"
+    n=$((n + 1))
+  done < <(find "$samples" -type f -size -200k \( -iname '*.glb' -o -iname '*.gltf' -o -iname '*.obj' -o -iname '*.ply' -o -iname '*.off' -o -iname '*.stl' \) 2>/dev/null | sort)
+  printf '\003ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > "$pipeline/corpus/readers/triangle"
+  run_target "$pipeline" decode "$pipeline/corpus/decode" -max_len=70000
+  run_target "$pipeline" readers "$pipeline/corpus/readers" -max_len=300000 -timeout=30
+  t6=$(date +%s)
+  echo "== fuzzing the decoder and readers: build $((t5 - t4)) s, fuzzing $((t6 - t5)) s" >&2
+fi
+echo "== sanitizers and fuzzing passed in $(($(date +%s) - t0)) s" >&2

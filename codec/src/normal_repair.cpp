@@ -286,7 +286,8 @@ std::vector<OpenMesh::VertexHandle> reinsert(Reconstruction& r, NormalView& view
         view.forget(target);
     }
     std::vector<OpenMesh::VertexHandle> inserted;
-    for (const auto& [p, list] : removed) {
+    for (const auto& entry : removed) {
+        const auto& list = entry.second;  // a plain reference: clang 14 cannot capture structured bindings
         const std::array<float, 3>& position = (*r.normals)[list[0]].position;
         // The point's own normals, read as the view reads them (its vertex is gone).
         auto agrees_with_point = [&](OpenMesh::FaceHandle g) {
@@ -302,7 +303,7 @@ std::vector<OpenMesh::VertexHandle> reinsert(Reconstruction& r, NormalView& view
             return false;
         };
         OpenMesh::VertexHandle back;
-        const auto g = r.faces.nearest(mesh, p, closest, bary, agrees_with_point, reach);
+        const auto g = r.faces.nearest(mesh, entry.first, closest, bary, agrees_with_point, reach);
         const Insertion kind = g.is_valid() ? insert_into_face(r, list[0], position, g, bary, back)
                                             : insert_point(r, list[0], position, back);
         if (kind == Insertion::NoMesh) break;

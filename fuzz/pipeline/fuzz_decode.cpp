@@ -1,0 +1,67 @@
+// Fuzzes what a receiver does with the packets it holds: the decoder (rasterizing, marching cubes,
+// point insertion, flips, collapses, normal repair) and the glTF writer, on streams whose payloads the
+// fuzzer mutates with valid checksums.
+//
+// Input: as fuzz_packet (one mode byte, then packets back to back; mode bit 0 reseals each packet's
+// CRC-32C so that mutated fields reach the decoders). The receiver's limits and the decoder's grid
+// budget are small so that one input stays fast; mode bit 2 writes .gltf + .bin instead of .glb.
+#include "fuzz_common.h"
+
+#include <ellicast/codec/decoder.h>
+#include <ellicast/converters/asset.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    using namespace ellicast;
+    if (size < 1) return 0;
+    const uint8_t mode = data[0];
+    const uint8_t* p = data + 1;
+    size_t left = size - 1;
+    ReceivedStream::Limits limits = fuzz::small_limits();
+    limits.max_elements = 20000;  // the decoder's work follows what arrived: keep one input quick
+    ReceivedStream stream(limits);
+    uint64_t ordinal = 0;
+    while (left > 0) {
+        size_t n = left;
+        if (left >= kHeaderSize) n = std::min(left, kPacketOverhead + (p[18] | (p[19] << 8)));
+        std::vector<uint8_t> datagram(p, p + n);
+        if ((mode & 1) && n >= kPacketOverhead) {
+            const size_t body = n - kChecksumSize;
+            const uint32_t crc = crc32c(datagram.data(), body);
+            std::memcpy(datagram.data() + body, &crc, 4);
+        }
+        stream.add_packet(datagram, ordinal++);
+        p += n;
+        left -= n;
+    }
+    if (!stream.info()) return 0;
+    DecodeOptions options;
+    options.base_grid_nodes = size_t(1) << 12;
+    options.grid_nodes_per_element = 64;
+    std::vector<Mesh> meshes;
+    StreamDecodeReport report;
+    std::string error;
+    decode_stream(stream, options, meshes, report, error);
+    for (const Mesh& m : meshes)
+        for (const auto& t : m.triangles)
+            for (uint32_t v : t)
+                if (v >= m.positions.size()) std::abort();  // a face pointing past its vertices
+    Asset asset = received_asset(stream, std::move(meshes));
+    static const std::string dir = [] {
+        const char* shm = access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp";
+        return std::string(shm) + "/ellicast_fuzz_decode_" + std::to_string(getpid());
+    }();
+    const std::string path = dir + ((mode & 4) ? ".gltf" : ".glb");
+    std::vector<std::string> warnings;
+    if (write_asset(path, asset, AssetWriteOptions{}, warnings, error)) {
+        std::remove(path.c_str());
+        std::remove((dir + ".bin").c_str());
+    }
+    return 0;
+}
