@@ -186,6 +186,9 @@ TEST_CASE("bad input files are refused with a message naming the file and the pr
               std::string::npos);
         spit(dir / "version.ply", "ply\nformat ascii 2.0\nend_header\n");
         CHECK(error_of((dir / "version.ply").string()).find("line 2: PLY version") != std::string::npos);
+        // A property without a name: OpenMesh's reader looped, writing errors, until the fuzzer's timeout.
+        spit(dir / "unnamed.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float \nend_header\n0 0 0\n");
+        CHECK(error_of((dir / "unnamed.ply").string()).find("line 4: a property without a name") != std::string::npos);
         spit(dir / "element.ply", "ply\nformat ascii 1.0\nelement vertex 3 property float x\nend_header\n");
         CHECK(error_of((dir / "element.ply").string()).find("line 3: a word more than an element line holds") !=
               std::string::npos);

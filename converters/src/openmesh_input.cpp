@@ -265,6 +265,7 @@ void check_ply(const std::string& path) {
                 words >> p.name;
                 if (!type_size(p.type)) bad(path, number, "unknown property type \"" + type + "\"");
             }
+            if (p.name.empty()) bad(path, number, "a property without a name: " + quoted_input(line));
             if (words >> extra) bad(path, number, "a word more than a property line holds: " + quoted_input(line));
             elements.back().properties.push_back(p);
         } else if (word == "end_header") {
