@@ -54,7 +54,9 @@ for f in "$root"/spec/vectors/*/*.ellc; do
   cp "$f" "$corpus/container/$name"
   { printf '\001'; tail -c +13 "$f"; } > "$corpus/packet/$name"
 done
-# Runs one fuzz target for fuzz_seconds on its corpus; exits on a finding.
+# Runs one fuzz target for fuzz_seconds on its corpus; exits on a finding. A fixed seed (-seed=1)
+# makes a run repeatable: a longer local run with the same seed, binary and corpus covers what CI's
+# shorter one does.
 run_target() {  # build dir, target, corpus dir, extra libFuzzer options...
   local build=$1 target=$2 dir=$3
   shift 3
@@ -62,7 +64,7 @@ run_target() {  # build dir, target, corpus dir, extra libFuzzer options...
   local log="$build/fuzz_$target.log" status=0
   mkdir -p "$build/crashes"
   "$build/$(cd "$build" && find . -name "fuzz_$target" -type f -perm -u+x | head -1)" -max_total_time="$fuzz_seconds" \
-    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build/crashes/$target-" "$@" "$dir" > "$log" 2>&1 || status=$?
+    -seed=1 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build/crashes/$target-" "$@" "$dir" > "$log" 2>&1 || status=$?
   grep -E "^(stat::number_of_executed_runs|stat::peak_rss_mb|Done |SUMMARY)" "$log" >&2 || true
   if [ "$status" -ne 0 ]; then
     tail -40 "$log" >&2
