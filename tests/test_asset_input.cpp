@@ -192,6 +192,48 @@ TEST_CASE("a Draco-compressed glTF gives the same object as the plain one") {
     CHECK(plain.scene.materials.size() == draco.scene.materials.size());
 }
 
+TEST_CASE("a Draco glTF whose extension disagrees with its Draco data or accessors is refused, not a crash") {
+    if (!have_sample("gltf/Box-glb/Box_Draco.glb")) return;
+    // tinygltf's Draco path dereferenced a missing attribute as a null pointer (found by fuzz_readers).
+    const auto raw = slurp(shared_samples() / "gltf/Box-glb/Box_Draco.glb");
+    const std::string original(raw.begin(), raw.end());
+    uint32_t json_length = 0;
+    std::memcpy(&json_length, original.data() + 12, 4);
+    const auto doc = nlohmann::json::parse(original.substr(20, json_length));
+    const std::string rest = original.substr(20 + json_length);
+    auto dir = test::scratch_dir("draco_checks");
+    auto with = [&](const std::string& name, const std::function<void(nlohmann::json&)>& edit) {
+        nlohmann::json j = doc;
+        edit(j);
+        std::string text = j.dump();
+        while (text.size() % 4) text.push_back(' ');
+        std::string glb = original.substr(0, 12);
+        const uint32_t length = uint32_t(text.size()), type = 0x4E4F534Au;
+        glb.append(reinterpret_cast<const char*>(&length), 4).append(reinterpret_cast<const char*>(&type), 4);
+        glb += text + rest;
+        const uint32_t total = uint32_t(glb.size());
+        std::memcpy(glb.data() + 8, &total, 4);
+        const auto path = dir / (name + ".glb");
+        std::ofstream(path, std::ios::binary) << glb;
+        try {
+            load_asset(path.string());
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK(with("same", [](nlohmann::json&) {}).empty());
+    CHECK(with("missing_id", [](nlohmann::json& j) {
+              j["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"]["NORMAL"] = 5;
+          }).find("Draco attribute \"NORMAL\" (id 5): its Draco data has no attribute with that id") != std::string::npos);
+    CHECK(with("no_accessor", [](nlohmann::json& j) { j["meshes"][0]["primitives"][0]["attributes"].erase("NORMAL"); })
+              .find("\"NORMAL\": the primitive has no accessor for it") != std::string::npos);
+    CHECK(with("bad_indices", [](nlohmann::json& j) { j["meshes"][0]["primitives"][0]["indices"] = 40; })
+              .find("its indices are not an accessor") != std::string::npos);
+    CHECK(with("bad_type", [](nlohmann::json& j) { j["accessors"][1]["componentType"] = 1234; })
+              .find("its accessor has no valid componentType") != std::string::npos);
+}
+
 TEST_CASE("an OBJ becomes one node with one mesh and no material") {
     if (!have_sample("meshes/woody.obj")) return;
     Asset a = load_asset(sample("meshes/woody.obj"));

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <set>
 
+#include <draco/compression/decode.h>
 #include <nlohmann/json.hpp>
 
 // GCC 12 warns falsely (-Wrestrict) inside std::string concatenation of error messages (GCC bug 105651).
@@ -394,6 +395,97 @@ void check_buffer_views(const std::string& path, bool binary) {
     }
 }
 
+// tinygltf's Draco path also trusts the accessors and the Draco data: an attribute id the Draco
+// mesh does not have was dereferenced as a null pointer, an accessor index or component type out of
+// range indexed past its arrays, and more than 4 components overran a 4-value array (found by
+// fuzz_readers). Check them here, decoding each Draco buffer view once, before tinygltf does.
+void check_draco_primitives(const std::string& path, const std::vector<uint8_t>& bytes, bool binary,
+                            const InputOptions& options) {
+    const std::string text = json_text(bytes, binary);
+    if (text.find("KHR_draco_mesh_compression") == std::string::npos) return;
+    nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+    if (doc.is_discarded() || !doc.is_object() || !doc.contains("meshes") || !doc["meshes"].is_array()) return;
+    const nlohmann::json no_array = nlohmann::json::array();
+    const auto& accessors = doc.contains("accessors") && doc["accessors"].is_array() ? doc["accessors"] : no_array;
+    const auto& views = doc.contains("bufferViews") && doc["bufferViews"].is_array() ? doc["bufferViews"] : no_array;
+    std::vector<std::vector<uint8_t>> buffers;
+    bool buffers_read = false;
+    auto index_of = [](const nlohmann::json& v, size_t size) -> long long {
+        if (!v.is_number_integer() && !v.is_number_unsigned()) return -1;
+        const long long i = v.get<long long>();
+        return i >= 0 && size_t(i) < size ? i : -1;
+    };
+    auto component_type = [&](long long accessor) -> int {
+        const auto& a = accessors[size_t(accessor)];
+        return a.is_object() && a.contains("componentType") && a["componentType"].is_number_integer()
+                   ? a["componentType"].get<int>()
+                   : 0;
+    };
+    for (size_t m = 0; m < doc["meshes"].size(); ++m) {
+        const auto& mesh = doc["meshes"][m];
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+        for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
+            const auto& prim = mesh["primitives"][p];
+            if (!prim.is_object() || !prim.contains("extensions") || !prim["extensions"].is_object() ||
+                !prim["extensions"].contains("KHR_draco_mesh_compression"))
+                continue;
+            std::string where = path;
+            where += ": meshes[" + std::to_string(m) + "] primitive " + std::to_string(p) + ": ";
+            const auto& ext = prim["extensions"]["KHR_draco_mesh_compression"];
+            if (!ext.is_object() || !ext.contains("attributes") || !ext["attributes"].is_object())
+                throw InputError(where + "its KHR_draco_mesh_compression has no attributes object");
+            if (prim.contains("indices")) {
+                const long long i = index_of(prim["indices"], accessors.size());
+                const int type = i < 0 ? 0 : component_type(i);
+                if (type != 5121 && type != 5123 && type != 5125)
+                    throw InputError(where + "its indices are not an accessor of unsigned bytes, shorts or ints");
+            }
+            const auto& own = prim.contains("attributes") && prim["attributes"].is_object() ? prim["attributes"]
+                                                                                            : nlohmann::json::object();
+            for (const auto& [name, id] : ext["attributes"].items()) {
+                std::string attribute = where;
+                attribute += "Draco attribute " + quoted_input(name) + ": ";
+                if (!id.is_number_integer() || id.get<long long>() < 0 || id.get<long long>() > 0xFFFFFF)
+                    throw InputError(attribute + "its id is not a non-negative integer");
+                const long long a = own.contains(name) ? index_of(own[name], accessors.size()) : -1;
+                if (a < 0) throw InputError(attribute + "the primitive has no accessor for it");
+                const int type = component_type(a);
+                if (type != 5120 && type != 5121 && type != 5122 && type != 5123 && type != 5125 && type != 5126)
+                    throw InputError(attribute + "its accessor has no valid componentType");
+            }
+            // The Draco data itself.
+            const long long v = index_of(ext.contains("bufferView") ? ext["bufferView"] : nlohmann::json(), views.size());
+            if (v < 0) continue;  // check_buffer_views named it
+            const auto& view = views[size_t(v)];
+            if (!buffers_read) {
+                buffers = gltf_buffers(path, bytes, binary, doc, options);
+                buffers_read = true;
+            }
+            const long long b = view.contains("buffer") ? index_of(view["buffer"], buffers.size()) : -1;
+            const size_t offset = view.value("byteOffset", size_t(0)), length = view.value("byteLength", size_t(0));
+            if (b < 0 || offset > buffers[size_t(b)].size() || length > buffers[size_t(b)].size() - offset)
+                throw InputError(where + "its Draco buffer view lies outside its buffer's data");
+            draco::DecoderBuffer input;
+            input.Init(reinterpret_cast<const char*>(buffers[size_t(b)].data() + offset), length);
+            draco::Decoder decoder;
+            auto decoded = decoder.DecodeMeshFromBuffer(&input);
+            if (!decoded.ok())
+                throw InputError(where + "its KHR_draco_mesh_compression data could not be decoded (" +
+                                 decoded.status().error_msg_string() + ")");
+            const auto& draco_mesh = decoded.value();
+            for (const auto& [name, id] : ext["attributes"].items()) {
+                const draco::PointAttribute* attribute = draco_mesh->GetAttributeByUniqueId(id.get<uint32_t>());
+                std::string what = where;
+                what += "Draco attribute " + quoted_input(name) + " (id " + std::to_string(id.get<long long>()) + "): ";
+                if (attribute == nullptr) throw InputError(what + "its Draco data has no attribute with that id");
+                if (attribute->num_components() < 1 || attribute->num_components() > 4)
+                    throw InputError(what + "it has " + std::to_string(int(attribute->num_components())) +
+                                     " components (glTF attributes have 1 to 4)");
+            }
+        }
+    }
+}
+
 }  // namespace
 
 nlohmann::json read_json(const std::string& path) {
@@ -497,6 +589,7 @@ void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadI
         std::ifstream in(path, std::ios::binary);
         const std::vector<uint8_t> bytes(std::istreambuf_iterator<char>(in), {});
         check_resource_uris(path, bytes, binary, options);
+        check_draco_primitives(path, bytes, binary, options);
         decoded = decode_meshopt(path, bytes, binary, options);
     }
     const std::string base_dir = std::filesystem::path(path).parent_path().string();

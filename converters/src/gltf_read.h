@@ -38,6 +38,12 @@ void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadI
 std::string resource_file(const std::string& model_path, const std::string& uri, const std::string& what,
                           const InputOptions& options);
 
+// The bytes of every buffer of the glTF `doc` (parsed from the file `bytes` read from `path`): a
+// GLB's BIN chunk, a base64 data: URI, or a file that resource_file allows; empty for a buffer
+// without data. Throws InputError when a buffer holds less than its byteLength or cannot be read.
+std::vector<std::vector<uint8_t>> gltf_buffers(const std::string& path, const std::vector<uint8_t>& bytes, bool binary,
+                                               const nlohmann::json& doc, const InputOptions& options);
+
 // The JSON text of a .gltf file, or the JSON chunk of a GLB (12-byte header, then chunks of length,
 // type, data); "" when a GLB is too short to hold it.
 std::string json_text(const std::vector<uint8_t>& bytes, bool binary);

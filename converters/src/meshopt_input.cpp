@@ -162,6 +162,26 @@ void put32(std::vector<uint8_t>& out, uint32_t v) {
 
 }  // namespace
 
+std::vector<std::vector<uint8_t>> gltf_buffers(const std::string& path, const std::vector<uint8_t>& bytes, bool binary,
+                                               const nlohmann::json& doc, const InputOptions& options) {
+    std::vector<uint8_t> bin;
+    bool has_bin = false;
+    if (binary) {
+        const uint64_t next = 20 + uint64_t(json_text(bytes, binary).size());
+        if (next + 8 <= bytes.size()) {
+            uint32_t length, type;
+            std::memcpy(&length, bytes.data() + next, 4);
+            std::memcpy(&type, bytes.data() + next + 4, 4);
+            if (type == 0x004E4942u) {
+                has_bin = true;
+                bin.assign(bytes.begin() + long(next + 8), bytes.begin() + long(std::min<uint64_t>(next + 8 + length, bytes.size())));
+            }
+        }
+    }
+    if (!doc.contains("buffers") || !doc["buffers"].is_array()) return {};
+    return buffer_data(path, doc, bin, has_bin, options);
+}
+
 std::vector<uint8_t> decode_meshopt(const std::string& path, const std::vector<uint8_t>& bytes, bool binary,
                                     const InputOptions& options) {
     const std::string text = json_text(bytes, binary);
@@ -177,21 +197,7 @@ std::vector<uint8_t> decode_meshopt(const std::string& path, const std::vector<u
         !doc["bufferViews"].is_array())
         fail(path, std::string("uses ") + kMeshopt + " but has no buffers or buffer views");
 
-    std::vector<uint8_t> bin;
-    bool has_bin = false;
-    if (binary) {
-        const uint64_t next = 20 + uint64_t(text.size());
-        if (next + 8 <= bytes.size()) {
-            uint32_t length, type;
-            std::memcpy(&length, bytes.data() + next, 4);
-            std::memcpy(&type, bytes.data() + next + 4, 4);
-            if (type == 0x004E4942u) {
-                has_bin = true;
-                bin.assign(bytes.begin() + long(next + 8), bytes.begin() + long(std::min<uint64_t>(next + 8 + length, bytes.size())));
-            }
-        }
-    }
-    const auto buffers = buffer_data(path, doc, bin, has_bin, options);
+    const auto buffers = gltf_buffers(path, bytes, binary, doc, options);
 
     // Every view copied (or decoded) into one buffer, 4-byte aligned.
     std::vector<uint8_t> merged;
