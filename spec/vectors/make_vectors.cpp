@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <cstring>
 #include <functional>
 #include <fstream>
 #include <iostream>
@@ -292,6 +293,33 @@ void valid_vectors(Writer& w) {
 }
 
 void unusual_vectors(Writer& w) {
+    {
+        // Batches of count 0 (spec 6 and 7: a decoder takes them as packets that bring nothing new),
+        // and padding bits set to 1 after the last point record (spec 7: not required to be zero).
+        StreamInfo info = default_info({make_object({-1, -1, -1}, 2, 12, 40, kAttrNormal)}, 200);
+        const Stream s = make_stream(info, kStreamId, 20);
+        Packets p = s.all();
+        size_t ell = 0, pts = 0;
+        for (size_t i = p.size(); i-- > 0;) {
+            if (p[i][6] == uint8_t(PacketType::Ellipsoids)) ell = i;
+            if (p[i][6] == uint8_t(PacketType::Points)) pts = i;
+        }
+        std::vector<uint8_t> empty(8, 0);  // first_index 5, count 0, reserved 0
+        empty[0] = 5;
+        p.push_back(with_payload(p[ell], empty));
+        p.push_back(with_payload(p[pts], empty));
+        // Padding: records of 3 x 12 + 2 x 10 = 56 bits pack whole bytes, so the padding is
+        // checked on the packet itself: set every bit past count x B.
+        const size_t bits = size_t(get16(p[pts], kHeaderSize + 4)) * (3 * info.position_bits + 2 * info.normal_bits);
+        if (bits % 8) {
+            p[pts][kHeaderSize + 8 + bits / 8] |= uint8_t(0xFF << (bits % 8));
+            reseal(p[pts]);
+        }
+        w.write("unusual", "count_zero_and_padding",
+                std::string("an ELLIPSOIDS and a POINTS batch of count 0 at the end (duplicates: nothing new, spec 6, 7)") +
+                    (bits % 8 ? "; the first POINTS packet's padding bits after its last record set to 1 (ignored, spec 7)" : ""),
+                p);
+    }
     {
         StreamInfo info = default_info({make_object({-1, -1, -1}, 2, 20, 60, 0), make_object({2, 2, 2}, 1, 3, 10, kAttrNormal)},
                                        kMinPacketSize);
@@ -579,6 +607,96 @@ void faulty_vectors(Writer& w) {
         garbage[5] = 0xE1;  // a false start of a packet inside the garbage
         p.insert(p.begin() + long(pts), garbage);
         w.write("faulty", "garbage_between_packets", "37 bytes of noise (with a stray E1) between two packets: a damaged region; every packet is kept", p);
+    }
+
+    // Every MUST-reject rule of spec 5.3 for STREAM_INFO, one vector each: the one STREAM_INFO packet
+    // edited (checksum resealed), so it is rejected as malformed payload and every object packet
+    // stays held. Offsets are into the payload: stream-level fields at 0, the entry at 32 (5.1, 5.2).
+    struct InfoEdit {
+        const char* name;
+        const char* what;
+        std::function<void(Packet&)> edit;
+    };
+    auto f32_bits = [](float f) {
+        uint32_t u;
+        std::memcpy(&u, &f, 4);
+        return u;
+    };
+    const size_t H = kHeaderSize, E = kHeaderSize + 32;
+    const std::vector<InfoEdit> info_edits = {
+        {"stream_info_info_size_31", "info_size 31 (below 32)", [&](Packet& q) { put16(q, H + 0, 31); }},
+        {"stream_info_entry_size_43", "entry_size 43 (below 44)", [&](Packet& q) { put16(q, H + 2, 43); }},
+        {"stream_info_length_mismatch", "info_size 33: payload_length 76 is not info_size + entry_count x entry_size = 77",
+         [&](Packet& q) { put16(q, H + 0, 33); }},
+        {"stream_info_packet_size_127", "packet_size 127 (below 128)", [&](Packet& q) { put16(q, H + 4, 127); }},
+        {"stream_info_packet_size_65001", "packet_size 65001 (above 65000)", [&](Packet& q) { put16(q, H + 4, 65001); }},
+        {"stream_info_normal_bits_3", "normal_bits 3 (below 4)", [&](Packet& q) { q[H + 7] = 3; }},
+        {"stream_info_encoding_1", "ellipsoid_encoding 1 (only 0 is defined)", [&](Packet& q) { q[H + 10] = 1; }},
+        {"stream_info_coverage_nan", "coverage_target a quiet NaN (7FC00000)", [&](Packet& q) { put32(q, H + 24, 0x7FC00000u); }},
+        {"stream_info_entries_past_table", "first_object 1 with entry_count 1 in a table of 1 object",
+         [&](Packet& q) { put16(q, H + 18, 1); }},
+        {"stream_info_frame_scale_0", "the entry's frame_scale 0", [&](Packet& q) { put32(q, E + 12, 0); }},
+        {"stream_info_frame_scale_negative", "the entry's frame_scale -2",
+         [&](Packet& q) { put32(q, E + 12, f32_bits(-2.0f)); }},
+        {"stream_info_origin_infinite", "the entry's frame_origin x is +infinity",
+         [&](Packet& q) { put32(q, E + 0, 0x7F800000u); }},
+        {"stream_info_texcoord_scale_negative", "the entry's texcoord_scale u is -1",
+         [&](Packet& q) { put32(q, E + 36, f32_bits(-1.0f)); }},
+        {"stream_info_kind_2", "the entry's kind 2 (0 and 1 are defined)", [&](Packet& q) { q[E + 24] = 2; }},
+        {"stream_info_attribute_bit_4", "the entry's attributes with bit 4 set (unknown: the record size is unknown)",
+         [&](Packet& q) { q[E + 25] |= 0x10; }},
+        {"stream_info_alpha_without_colour", "the entry's attributes normal + alpha (bit 3) without colour (bit 2)",
+         [&](Packet& q) { q[E + 25] = uint8_t(kAttrNormal | kAttrColorAlpha); }},
+        {"stream_info_point_set_with_ellipsoids", "the entry's kind 1 (point set) with ellipsoid_count 12",
+         [&](Packet& q) { q[E + 24] = 1; }},
+    };
+    for (const InfoEdit& e : info_edits) {
+        Packets p = base;
+        e.edit(p[0]);
+        reseal(p[0]);
+        std::string description = "STREAM_INFO with ";
+        description += e.what;
+        description += " (checksum valid): rejected (malformed payload, spec 5.3); with no stream info every object packet stays held";
+        w.write("faulty", e.name, description, p);
+    }
+    {
+        Packets p = base;
+        Packet info2 = p[0];
+        put32(info2, E + 20, get32(info2, E + 20) + 1);  // point_count 41
+        reseal(info2);
+        p.insert(p.begin() + long(pts), info2);
+        w.write("faulty", "contradicting_object_entry",
+                "a second STREAM_INFO with the same stream-level fields but the entry's point_count 41 instead of 40 "
+                "(checksum valid): rejected (stream mismatch, spec 5.4); the first one stays",
+                p);
+    }
+    {
+        Packets p = base;
+        put32(p[ell], kHeaderSize, 0xFFFFFFFFu);  // first_index + count > 2^32 - 1
+        reseal(p[ell]);
+        w.write("faulty", "index_overflow",
+                "the first ELLIPSOIDS packet's first_index is 4294967295, so first_index + count exceeds 2^32 - 1 "
+                "(checksum valid): rejected (malformed payload, spec 6)",
+                p);
+    }
+    {
+        Packets p = base;
+        put32(p[ell], kHeaderSize, 10);  // ellipsoids 10.. of 12
+        reseal(p[ell]);
+        w.write("faulty", "ellipsoid_index_out_of_range",
+                "the first ELLIPSOIDS packet starts at index 10 of 12 ellipsoids and runs past the end (checksum valid): "
+                "rejected (index out of range, spec 6)",
+                p);
+    }
+    {
+        Packets p = base;
+        std::vector<uint8_t> payload = payload_of(p[pts]);
+        payload.push_back(0);
+        p[pts] = with_payload(p[pts], payload);
+        w.write("faulty", "points_length_mismatch",
+                "the first POINTS packet carries one byte more than 8 + ceil(count x B / 8) (checksum valid): rejected "
+                "(malformed payload, spec 7)",
+                p);
     }
 }
 
