@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -1148,6 +1149,104 @@ void scene_vectors(Writer& w) {
         w.write("faulty", "scene_contradicting_node",
                 "a later SCENE packet repeats node 0 with another translation: rejected, stream mismatch (spec 15.1: "
                 "'a record received twice is identical; otherwise stream mismatch'); the first node 0 stays",
+                sent);
+    }
+    // The other rejections of spec 15, one vector each: a MATERIAL or TEXTURE_FRAGMENT payload field
+    // edited (offsets into the payload as in 15.2 / 15.3), or a SCENE record, resealed.
+    auto edit_packets = [&](PacketType type, const std::function<bool(Packet&)>& edit) {
+        Packets sent = base.all();
+        bool done = false;
+        for (Packet& p : sent)
+            if (!done && p[6] == uint8_t(type) && edit(p)) {
+                reseal(p);
+                done = true;
+            }
+        if (!done) std::exit(1);
+        return sent;
+    };
+    const size_t H = kHeaderSize;
+    auto material = [&](uint16_t index, const std::function<void(Packet&)>& edit) {
+        return edit_packets(PacketType::Material, [&](Packet& p) {
+            if (get16(p, H) != index) return false;
+            edit(p);
+            return true;
+        });
+    };
+    auto first_fragment = [&](const std::function<void(Packet&)>& edit) {
+        return edit_packets(PacketType::TextureFragment, [&](Packet& p) {
+            edit(p);
+            return true;
+        });
+    };
+    w.write("faulty", "scene_node_mesh_out_of_range",
+            "node 4 names mesh 9 in a table of 2 meshes: its SCENE packet is rejected, malformed payload (spec 15.1: "
+            "'a node's parent or mesh is not 0xFFFF and not below node_count or mesh_count')",
+            edit_node(4, [](SceneNode& n) { n.mesh = 9; }));
+    w.write("faulty", "scene_transform_infinite",
+            "node 1's transform holds +infinity (its translation x, or the matrix's when it has one): its SCENE packet "
+            "is rejected, malformed payload (spec 15.1: 'a float is not finite')",
+            edit_node(1, [](SceneNode& n) {
+                const float inf = std::numeric_limits<float>::infinity();
+                if (n.has_matrix) n.matrix[12] = inf;
+                else n.translation[0] = inf;
+            }));
+    {
+        Packets sent = base.all();
+        SceneBatch b = whole_scene(scene);
+        b.node_count = uint16_t(b.node_count + 1);
+        b.nodes.resize(1);
+        b.meshes.clear();
+        sent.push_back(scene_packet(b, 998));
+        w.write("faulty", "scene_table_size_contradicts",
+                "a later SCENE packet says node_count 6 where the others say 5: rejected, stream mismatch (spec 15.1: "
+                "'All SCENE packets of a stream carry the same table sizes')",
+                sent);
+    }
+    w.write("faulty", "scene_material_index_out_of_range",
+            "material 1 says index 2 in a table of 2 materials: rejected, malformed payload (spec 15.2: 'index >= "
+            "material_count'); material 1 never arrives, its primitives get the default material",
+            material(1, [&](Packet& p) { put16(p, H, 2); }));
+    w.write("faulty", "scene_material_factor_nan",
+            "material 1's metallic factor is NaN: rejected, malformed payload (spec 15.2: 'a float is not finite')",
+            material(1, [&](Packet& p) { put32(p, H + 24, 0x7FC00000u); }));
+    w.write("faulty", "scene_material_count_contradicts",
+            "material 1 says material_count 3 where material 0 says 2: rejected, stream mismatch (spec 15.2: 'All "
+            "MATERIAL packets of a stream carry the same material_count')",
+            material(1, [&](Packet& p) { put16(p, H + 2, 3); }));
+    w.write("faulty", "scene_texture_index_out_of_range",
+            "the first texture fragment says index 2 in a table of 2 textures: rejected, malformed payload (spec 15.3: "
+            "'index >= texture_count')",
+            first_fragment([&](Packet& p) { put16(p, H, 2); }));
+    w.write("faulty", "scene_texture_image_type_3",
+            "the first texture fragment says image_type 3 (1 PNG, 2 JPEG): rejected, malformed payload (spec 15.3: "
+            "'the image type is unknown')",
+            first_fragment([&](Packet& p) { p[H + 4] = 3; }));
+    {
+        Packets sent = base.all();
+        for (auto it = sent.rbegin(); it != sent.rend(); ++it)
+            if ((*it)[6] == uint8_t(PacketType::TextureFragment)) {
+                put16(*it, H + 2, 3);
+                reseal(*it);
+                break;
+            }
+        w.write("faulty", "scene_texture_count_contradicts",
+                "the last texture fragment (texture 1's only one) says texture_count 3 where the others say 2: "
+                "rejected, stream mismatch (spec 15.3: 'All fragments of a stream carry the same texture_count'); "
+                "texture 1 never arrives and material 1 waits for it (spec 15.4)",
+                sent);
+    }
+    {
+        Packets sent = base.all();
+        for (Packet& p : sent)
+            if (p[6] == uint8_t(PacketType::TextureFragment)) {
+                std::vector<uint8_t> payload = payload_of(p);
+                payload.resize(28);  // the description without a data byte
+                p = with_payload(p, payload);
+                break;
+            }
+        w.write("faulty", "scene_texture_no_data",
+                "the first texture fragment carries its 28-byte description and no image byte: rejected, malformed "
+                "payload (spec 15.3: 'there is no data byte')",
                 sent);
     }
 }
