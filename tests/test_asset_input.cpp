@@ -427,6 +427,26 @@ Asset edited_duck(const std::filesystem::path& dir, const std::string& name,
     return load_asset((dir / (name + ".gltf")).string());
 }
 
+TEST_CASE("indices that are negative or not integers are refused, not cast (found by fuzz_readers)") {
+    if (!have_sample("gltf/Duck/Duck.gltf")) return;
+    auto dir = test::scratch_dir("signed_indices");
+    // The indices read as signed shorts from the positions' bytes: float bit patterns, many negative.
+    std::string error;
+    try {
+        edited_duck(dir, "signed", [](nlohmann::json& j) {
+            auto& prim = j["meshes"][0]["primitives"][0];
+            const int indices = prim["indices"], position = prim["attributes"]["POSITION"];
+            j["accessors"][indices]["bufferView"] = j["accessors"][position]["bufferView"];
+            j["accessors"][indices]["byteOffset"] = 0;
+            j["accessors"][indices]["componentType"] = 5122;
+            j["accessors"][indices]["count"] = 300;
+        });
+    } catch (const InputError& e) {
+        error = e.what();
+    }
+    CHECK(error.find("is not a vertex number (indices must be unsigned integers)") != std::string::npos);
+}
+
 // What a receiver writes of `a` (write_asset), checked by the Khronos validator, read back.
 Asset written_and_read(const Asset& a, const std::filesystem::path& path) {
     std::vector<std::string> warnings;

@@ -294,6 +294,11 @@ bool primitive_to_mesh(const tinygltf::Model& model, const tinygltf::Primitive& 
         if (comps != 1) throw InputError(where + ": its indices accessor is not SCALAR");
         idx.resize(raw.size());
         for (size_t i = 0; i < raw.size(); ++i) {
+            // Indices are unsigned integers (glTF: unsigned byte, short or int); a signed or float
+            // accessor can hold values below 0 or between integers (-16640 was cast to unsigned).
+            if (!(raw[i] >= 0) || raw[i] != std::floor(raw[i]))
+                throw InputError(where + ": index " + std::to_string(raw[i]) + " at position " + std::to_string(i) +
+                                 " is not a vertex number (indices must be unsigned integers)");
             if (raw[i] >= double(n))
                 throw InputError(where + ": index " + std::to_string(size_t(raw[i])) + " at position " +
                                  std::to_string(i) + " is beyond the " + std::to_string(n) + " vertices");
