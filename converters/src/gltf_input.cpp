@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <set>
 
 #include <draco/compression/decode.h>
@@ -343,6 +344,24 @@ std::string json_text(const std::vector<uint8_t>& bytes, bool binary) {
 
 namespace {
 
+// Calls visit(mesh, primitive, the primitive, its KHR_draco_mesh_compression object) for every
+// primitive of `doc` that uses the extension.
+void for_each_draco_primitive(
+    const nlohmann::json& doc,
+    const std::function<void(size_t, size_t, const nlohmann::json&, const nlohmann::json&)>& visit) {
+    if (!doc.contains("meshes") || !doc["meshes"].is_array()) return;
+    for (size_t m = 0; m < doc["meshes"].size(); ++m) {
+        const auto& mesh = doc["meshes"][m];
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+        for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
+            const auto& prim = mesh["primitives"][p];
+            if (prim.is_object() && prim.contains("extensions") && prim["extensions"].is_object() &&
+                prim["extensions"].contains("KHR_draco_mesh_compression"))
+                visit(m, p, prim, prim["extensions"]["KHR_draco_mesh_compression"]);
+        }
+    }
+}
+
 // tinygltf's Draco path indexes buffers and buffer views without checking them (a wrong "buffer"
 // number crashed inside Draco). Check them here, on the JSON, before tinygltf sees the file.
 void check_buffer_views(const std::string& path, bool binary) {
@@ -383,21 +402,12 @@ void check_buffer_views(const std::string& path, bool binary) {
             throw InputError(path + ": bufferViews[" + std::to_string(v) + "] runs past the end of buffer " +
                              std::to_string(size_t(b)));
     }
-    if (!doc.contains("meshes") || !doc["meshes"].is_array()) return;
-    for (size_t m = 0; m < doc["meshes"].size(); ++m) {
-        const auto& mesh = doc["meshes"][m];
-        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
-        for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
-            const auto& prim = mesh["primitives"][p];
-            if (!prim.is_object() || !prim.contains("extensions") || !prim["extensions"].is_object() ||
-                !prim["extensions"].contains("KHR_draco_mesh_compression"))
-                continue;
-            double v = number(prim["extensions"]["KHR_draco_mesh_compression"], "bufferView", -1);
-            if (!(v >= 0 && v < double(views)))
-                throw InputError(path + ": meshes[" + std::to_string(m) + "] primitive " + std::to_string(p) +
-                                 ": its KHR_draco_mesh_compression bufferView does not exist");
-        }
-    }
+    for_each_draco_primitive(doc, [&](size_t m, size_t p, const nlohmann::json&, const nlohmann::json& ext) {
+        double v = number(ext, "bufferView", -1);
+        if (!(v >= 0 && v < double(views)))
+            throw InputError(path + ": meshes[" + std::to_string(m) + "] primitive " + std::to_string(p) +
+                             ": its KHR_draco_mesh_compression bufferView does not exist");
+    });
 }
 
 // tinygltf's Draco path also trusts the accessors and the Draco data: an attribute id the Draco
@@ -426,69 +436,60 @@ void check_draco_primitives(const std::string& path, const std::vector<uint8_t>&
                    ? a["componentType"].get<int>()
                    : 0;
     };
-    for (size_t m = 0; m < doc["meshes"].size(); ++m) {
-        const auto& mesh = doc["meshes"][m];
-        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
-        for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
-            const auto& prim = mesh["primitives"][p];
-            if (!prim.is_object() || !prim.contains("extensions") || !prim["extensions"].is_object() ||
-                !prim["extensions"].contains("KHR_draco_mesh_compression"))
-                continue;
-            std::string where = path;
-            where += ": meshes[" + std::to_string(m) + "] primitive " + std::to_string(p) + ": ";
-            const auto& ext = prim["extensions"]["KHR_draco_mesh_compression"];
-            if (!ext.is_object() || !ext.contains("attributes") || !ext["attributes"].is_object())
-                throw InputError(where + "its KHR_draco_mesh_compression has no attributes object");
-            if (prim.contains("indices")) {
-                const long long i = index_of(prim["indices"], accessors.size());
-                const int type = i < 0 ? 0 : component_type(i);
-                if (type != 5121 && type != 5123 && type != 5125)
-                    throw InputError(where + "its indices are not an accessor of unsigned bytes, shorts or ints");
-            }
-            const auto& own = prim.contains("attributes") && prim["attributes"].is_object() ? prim["attributes"]
-                                                                                            : nlohmann::json::object();
-            for (const auto& [name, id] : ext["attributes"].items()) {
-                std::string attribute = where;
-                attribute += "Draco attribute " + quoted_input(name) + ": ";
-                if (!id.is_number_integer() || id.get<long long>() < 0 || id.get<long long>() > 0xFFFFFF)
-                    throw InputError(attribute + "its id is not a non-negative integer");
-                const long long a = own.contains(name) ? index_of(own[name], accessors.size()) : -1;
-                if (a < 0) throw InputError(attribute + "the primitive has no accessor for it");
-                const int type = component_type(a);
-                if (type != 5120 && type != 5121 && type != 5122 && type != 5123 && type != 5125 && type != 5126)
-                    throw InputError(attribute + "its accessor has no valid componentType");
-            }
-            // The Draco data itself.
-            const long long v = index_of(ext.contains("bufferView") ? ext["bufferView"] : nlohmann::json(), views.size());
-            if (v < 0) continue;  // check_buffer_views named it
-            const auto& view = views[size_t(v)];
-            if (!buffers_read) {
-                buffers = gltf_buffers(path, bytes, binary, doc, options);
-                buffers_read = true;
-            }
-            const long long b = view.contains("buffer") ? index_of(view["buffer"], buffers.size()) : -1;
-            const size_t offset = view.value("byteOffset", size_t(0)), length = view.value("byteLength", size_t(0));
-            if (b < 0 || offset > buffers[size_t(b)].size() || length > buffers[size_t(b)].size() - offset)
-                throw InputError(where + "its Draco buffer view lies outside its buffer's data");
-            draco::DecoderBuffer input;
-            input.Init(reinterpret_cast<const char*>(buffers[size_t(b)].data() + offset), length);
-            draco::Decoder decoder;
-            auto decoded = decoder.DecodeMeshFromBuffer(&input);
-            if (!decoded.ok())
-                throw InputError(where + "its KHR_draco_mesh_compression data could not be decoded (" +
-                                 decoded.status().error_msg_string() + ")");
-            const auto& draco_mesh = decoded.value();
-            for (const auto& [name, id] : ext["attributes"].items()) {
-                const draco::PointAttribute* attribute = draco_mesh->GetAttributeByUniqueId(id.get<uint32_t>());
-                std::string what = where;
-                what += "Draco attribute " + quoted_input(name) + " (id " + std::to_string(id.get<long long>()) + "): ";
-                if (attribute == nullptr) throw InputError(what + "its Draco data has no attribute with that id");
-                if (attribute->num_components() < 1 || attribute->num_components() > 4)
-                    throw InputError(what + "it has " + std::to_string(int(attribute->num_components())) +
-                                     " components (glTF attributes have 1 to 4)");
-            }
+    for_each_draco_primitive(doc, [&](size_t m, size_t p, const nlohmann::json& prim, const nlohmann::json& ext) {
+        std::string where = path;
+        where += ": meshes[" + std::to_string(m) + "] primitive " + std::to_string(p) + ": ";
+        if (!ext.is_object() || !ext.contains("attributes") || !ext["attributes"].is_object())
+            throw InputError(where + "its KHR_draco_mesh_compression has no attributes object");
+        if (prim.contains("indices")) {
+            const long long i = index_of(prim["indices"], accessors.size());
+            const int type = i < 0 ? 0 : component_type(i);
+            if (type != 5121 && type != 5123 && type != 5125)
+                throw InputError(where + "its indices are not an accessor of unsigned bytes, shorts or ints");
         }
-    }
+        const auto& own = prim.contains("attributes") && prim["attributes"].is_object() ? prim["attributes"]
+                                                                                        : nlohmann::json::object();
+        for (const auto& [name, id] : ext["attributes"].items()) {
+            std::string attribute = where;
+            attribute += "Draco attribute " + quoted_input(name) + ": ";
+            if (!id.is_number_integer() || id.get<long long>() < 0 || id.get<long long>() > 0xFFFFFF)
+                throw InputError(attribute + "its id is not a non-negative integer");
+            const long long a = own.contains(name) ? index_of(own[name], accessors.size()) : -1;
+            if (a < 0) throw InputError(attribute + "the primitive has no accessor for it");
+            const int type = component_type(a);
+            if (type != 5120 && type != 5121 && type != 5122 && type != 5123 && type != 5125 && type != 5126)
+                throw InputError(attribute + "its accessor has no valid componentType");
+        }
+        // The Draco data itself.
+        const long long v = index_of(ext.contains("bufferView") ? ext["bufferView"] : nlohmann::json(), views.size());
+        if (v < 0) return;  // check_buffer_views named it
+        const auto& view = views[size_t(v)];
+        if (!buffers_read) {
+            buffers = gltf_buffers(path, bytes, binary, doc, options);
+            buffers_read = true;
+        }
+        const long long b = view.contains("buffer") ? index_of(view["buffer"], buffers.size()) : -1;
+        const size_t offset = view.value("byteOffset", size_t(0)), length = view.value("byteLength", size_t(0));
+        if (b < 0 || offset > buffers[size_t(b)].size() || length > buffers[size_t(b)].size() - offset)
+            throw InputError(where + "its Draco buffer view lies outside its buffer's data");
+        draco::DecoderBuffer input;
+        input.Init(reinterpret_cast<const char*>(buffers[size_t(b)].data() + offset), length);
+        draco::Decoder decoder;
+        auto decoded = decoder.DecodeMeshFromBuffer(&input);
+        if (!decoded.ok())
+            throw InputError(where + "its KHR_draco_mesh_compression data could not be decoded (" +
+                             decoded.status().error_msg_string() + ")");
+        const auto& draco_mesh = decoded.value();
+        for (const auto& [name, id] : ext["attributes"].items()) {
+            const draco::PointAttribute* attribute = draco_mesh->GetAttributeByUniqueId(id.get<uint32_t>());
+            std::string what = where;
+            what += "Draco attribute " + quoted_input(name) + " (id " + std::to_string(id.get<long long>()) + "): ";
+            if (attribute == nullptr) throw InputError(what + "its Draco data has no attribute with that id");
+            if (attribute->num_components() < 1 || attribute->num_components() > 4)
+                throw InputError(what + "it has " + std::to_string(int(attribute->num_components())) +
+                                 " components (glTF attributes have 1 to 4)");
+        }
+    });
 }
 
 }  // namespace
