@@ -5,8 +5,12 @@
 
 #include <ellicast/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
+#include <vector>
 
 namespace ellicast::fuzz {
 
@@ -35,6 +39,30 @@ inline void touch_everything(const ReceivedStream& stream) {
                 if (std::isnan(c)) std::abort();
     }
     if (stream.rejections().size() > 64) std::abort();
+}
+
+// Cuts the input after its mode byte into datagrams (packets back to back, each cut at the length its
+// own header declares, or what is left) and calls take(datagram) for each, a vector of exactly its
+// bytes so that ASan sees any overread. Mode bit 0: reseal each datagram's CRC-32C first, so that
+// mutated fields reach the payload decoders. Mode bit 1: give each datagram one byte more than its
+// packet (the datagram length check).
+template <class Take>
+void for_each_datagram(uint8_t mode, const uint8_t* p, size_t left, Take take) {
+    while (left > 0) {
+        size_t n = left;
+        if (left >= kHeaderSize) n = std::min(left, kPacketOverhead + (p[18] | (p[19] << 8)));
+        const bool extra = (mode & 2) && n < left;
+        if (extra) ++n;
+        std::vector<uint8_t> datagram(p, p + n);
+        if ((mode & 1) && n >= kPacketOverhead + (extra ? 1 : 0)) {
+            const size_t body = n - kChecksumSize - (extra ? 1 : 0);
+            const uint32_t crc = crc32c(datagram.data(), body);
+            std::memcpy(datagram.data() + body, &crc, 4);
+        }
+        take(datagram);
+        p += n;
+        left -= n;
+    }
 }
 
 }  // namespace ellicast::fuzz

@@ -15,28 +15,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace ellicast;
     if (size < 1) return 0;
     const uint8_t mode = data[0];
-    const uint8_t* p = data + 1;
-    size_t left = size - 1;
     ReceivedStream stream(fuzz::small_limits());
     uint64_t ordinal = 0;
-    while (left > 0) {
-        size_t n = left;
-        if (left >= kHeaderSize) n = std::min(left, kPacketOverhead + (p[18] | (p[19] << 8)));
-        const bool extra = (mode & 2) && n < left;
-        if (extra) ++n;
-        std::vector<uint8_t> datagram(p, p + n);  // exactly n bytes: ASan sees any overread
-        if ((mode & 1) && n >= kPacketOverhead + (extra ? 1 : 0)) {
-            const size_t body = n - kChecksumSize - (extra ? 1 : 0);
-            const uint32_t crc = crc32c(datagram.data(), body);
-            std::memcpy(datagram.data() + body, &crc, 4);
-        }
+    fuzz::for_each_datagram(mode, data + 1, size - 1, [&](const std::vector<uint8_t>& datagram) {
         PacketView view;
         Error e = parse_packet(datagram, view);
-        if (e == Error::Ok && (view.size != datagram.size() || view.payload.size() != view.header.payload_length)) std::abort();
+        if (e == Error::Ok && (view.size != datagram.size() || view.payload.size() != view.header.payload_length))
+            std::abort();
         stream.add_packet(datagram, ordinal++);
-        p += n;
-        left -= n;
-    }
+    });
     fuzz::touch_everything(stream);
     return 0;
 }
