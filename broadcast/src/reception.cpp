@@ -92,7 +92,7 @@ Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
     if (e == Error::Ok) {
         const uint32_t id = view.header.stream_id;
         bool any = false, taken = false, contradicted = true;
-        std::vector<char> ok(candidates_.size() + 1, 0);  // which candidates took the packet (new or not)
+        uint64_t ok = 0;  // bit i: candidate i took the packet, new or not (at most 64 candidates)
         Error first_error = Error::Ok;
         for (size_t i = 0; i < candidates_.size(); ++i) {
             Candidate& k = candidates_[i];
@@ -103,11 +103,11 @@ Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
             const Error r = k.stream.add_parsed(view, counters_.datagrams - 1);
             if (r == Error::Ok) {
                 taken = true;
-                ok[i] = 1;
+                ok |= uint64_t(1) << i;
                 contradicted = false;
                 if (k.stream.counters().accepted > before) {
                     ++k.accepted;
-                    if (i < 64) last_accepted_by_ |= uint64_t(1) << i;
+                    last_accepted_by_ |= uint64_t(1) << i;
                 } else {
                     ++k.duplicates;
                 }
@@ -127,10 +127,10 @@ Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
                 const Error r = k.stream.add_parsed(view, counters_.datagrams - 1);
                 if (r == Error::Ok) {
                     taken = true;
-                    ok[candidates_.size() - 1] = 1;
+                    ok |= uint64_t(1) << (candidates_.size() - 1);
                     if (k.stream.counters().accepted > 0) {
                         ++k.accepted;
-                        if (candidates_.size() <= 64) last_accepted_by_ |= uint64_t(1) << (candidates_.size() - 1);
+                        last_accepted_by_ |= uint64_t(1) << (candidates_.size() - 1);
                     } else {
                         ++k.duplicates;
                     }
@@ -151,7 +151,7 @@ Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
                 if (candidates_[i].accepted > candidates_[best].accepted) best = i;
             chosen_ = best;
             if (taken) {
-                if (ok[chosen_]) loss_.add(view.header.sequence);
+                if (ok >> chosen_ & 1) loss_.add(view.header.sequence);
                 return Error::Ok;
             }
             return first_error;
