@@ -400,19 +400,23 @@ EventSummary summarize_events(const ExperimentResult& result, size_t scheme, dou
     return e;
 }
 
-double time_to_error(const ExperimentResult& result, size_t scheme, double loss, double burst, double level) {
+std::vector<double> times_to_errors(const ExperimentResult& result, size_t scheme, double loss, double burst,
+                                    std::span<const double> levels) {
     const std::vector<double> times = result.options.times_at(loss);
     const std::vector<Cell> cells = summarize_curve(result, scheme, loss, burst);
-    double reached = std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> reached(levels.size(), std::numeric_limits<double>::quiet_NaN());
     for (size_t i = 0; i < times.size(); ++i) {
-        if (cells[i].trials == 0) return std::numeric_limits<double>::quiet_NaN();
-        if (cells[i].error_median <= level) {
-            if (std::isnan(reached)) reached = times[i];
-        } else {
-            reached = std::numeric_limits<double>::quiet_NaN();
+        if (cells[i].trials == 0) return std::vector<double>(levels.size(), std::numeric_limits<double>::quiet_NaN());
+        for (size_t k = 0; k < levels.size(); ++k) {
+            if (cells[i].error_median > levels[k]) reached[k] = std::numeric_limits<double>::quiet_NaN();
+            else if (std::isnan(reached[k])) reached[k] = times[i];
         }
     }
     return reached;
+}
+
+double time_to_error(const ExperimentResult& result, size_t scheme, double loss, double burst, double level) {
+    return times_to_errors(result, scheme, loss, burst, std::span<const double>(&level, 1))[0];
 }
 
 }  // namespace ellicast::compare

@@ -180,7 +180,7 @@ void write_overview_csv(const ExperimentResult& result, const std::string& path)
                 for (const EventSummary* e : {&f, &q})
                     out << "," << num(e->median, "%.4f") << "," << num(e->p90, "%.4f") << "," << num(e->p99, "%.4f")
                         << "," << num(e->never_share, "%.4f");
-                for (double level : kErrorLevels) out << "," << num(time_to_error(result, s, loss, burst, level), "%.4f");
+                for (double t : times_to_errors(result, s, loss, burst, kErrorLevels)) out << "," << num(t, "%.4f");
                 out << "," << num(result.options.horizon_at(loss), "%g") << "\n";
             }
     close_out(out, path);
@@ -461,7 +461,7 @@ void write_report(const ExperimentResult& result, const ReportSetup& setup, cons
                 md << "| " << num(100 * loss, "%g") << "% | " << result.schemes[s].name << " | " << cycles(f.median)
                    << " / " << cycles(f.p90) << " / " << cycles(f.p99) << " | " << pct(f.never_share) << " | "
                    << cycles(q.median) << " / " << cycles(q.p90) << " | " << pct(q.never_share) << " |";
-                for (double level : kErrorLevels) md << " " << cycles(time_to_error(result, s, loss, burst, level)) << " |";
+                for (double t : times_to_errors(result, s, loss, burst, kErrorLevels)) md << " " << cycles(t) << " |";
                 for (double t : glance_times) {
                     if (t > o.horizon_at(loss) + 1e-9) {
                         md << " - |";

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -165,5 +166,8 @@ EventSummary summarize_events(const ExperimentResult& result, size_t scheme, dou
 // The first grid time at which the median error (Cell::error_median) of `scheme` at (loss, burst)
 // is at most `level` percent and stays so until the horizon; NaN when it never gets there.
 double time_to_error(const ExperimentResult& result, size_t scheme, double loss, double burst, double level);
+// The same for several levels at once, from one pass over the curve.
+std::vector<double> times_to_errors(const ExperimentResult& result, size_t scheme, double loss, double burst,
+                                    std::span<const double> levels);
 
 }  // namespace ellicast::compare
