@@ -20,6 +20,7 @@ std::string packet_type_name(uint8_t type) {
     case 0x10: return "SCENE";
     case 0x11: return "MATERIAL";
     case 0x12: return "TEXTURE_FRAGMENT";
+    case 0x20: return "MANIFEST";
     default: {
         char buf[24];
         std::snprintf(buf, sizeof buf, "UNKNOWN(0x%02X)", type);
@@ -28,7 +29,9 @@ std::string packet_type_name(uint8_t type) {
     }
 }
 
-bool is_known_packet_type(uint8_t type) { return (type >= 0x01 && type <= 0x03) || (type >= 0x10 && type <= 0x12); }
+bool is_known_packet_type(uint8_t type) {
+    return (type >= 0x01 && type <= 0x03) || (type >= 0x10 && type <= 0x12) || type == 0x20;
+}
 
 const char* error_name(Error e) {
     switch (e) {
@@ -50,6 +53,8 @@ const char* error_name(Error e) {
     case Error::BadSignature: return "not an ellicast container (bad signature)";
     case Error::UnsupportedContainer: return "unsupported container version";
     case Error::IoError: return "I/O error";
+    case Error::ManifestSignature: return "bad manifest signature";
+    case Error::NotAuthenticated: return "not authenticated";
     }
     return "unknown error";
 }

@@ -64,6 +64,17 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
     case PacketType::Scene: e = take_scene(packet, where); break;
     case PacketType::Material: e = take_material(packet, where); break;
     case PacketType::TextureFragment: e = take_texture_fragment(packet, where); break;
+    case PacketType::Manifest: {
+        // A decoder checks its layout and takes nothing from it: verifying signatures is the
+        // job of the filter in front of it (spec 16.3), which needs the sender's key.
+        ManifestPart part;
+        if (decode_manifest_payload(packet.payload, part) != Error::Ok)
+            return reject(where, Error::MalformedPayload, "MANIFEST of " + std::to_string(packet.payload.size()) +
+                                                              " bytes: its length, part or digest range is inconsistent");
+        ++counters_.skipped;
+        e = Error::Ok;
+        break;
+    }
     default: e = take_object_packet(packet, where); break;
     }
     if (e == Error::Ok) {

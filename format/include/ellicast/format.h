@@ -1,4 +1,4 @@
-// ellicast format v1.1: packets, their payloads, quantization, container files.
+// ellicast format v1.2: packets, their payloads, quantization, container files.
 //
 // The normative description is spec/format.md; this header is its reference implementation.
 // Depends on nothing but the standard library: no geometry algorithms, no glTF.
@@ -25,6 +25,9 @@ namespace ellicast {
 
 inline constexpr uint8_t kFormatMajor = 1;
 inline constexpr uint8_t kFormatMinor = 1;  // 1.1 added SCENE, MATERIAL, TEXTURE_FRAGMENT
+// 1.2 added MANIFEST (signed streams). Only MANIFEST packets say 1.2: every other packet keeps the
+// minor version whose layout it follows, so a 1.1 decoder reads a signed stream as it always did.
+inline constexpr uint8_t kManifestMinor = 2;
 
 inline constexpr std::array<uint8_t, 4> kPacketMagic = {0xE1, 'L', 'C', 'S'};
 inline constexpr size_t kHeaderSize = 20;                       // bytes before the payload
@@ -53,8 +56,9 @@ enum class PacketType : uint8_t {
     Scene = 0x10,       // 1.1, skippable: nodes (hierarchy, names, transforms) and meshes (object + material)
     Material = 0x11,    // 1.1, skippable: one PBR material
     TextureFragment = 0x12,  // 1.1, skippable: a piece of one texture image, at its byte offset
+    Manifest = 0x20,    // 1.2, skippable: signed digests of the stream's other packets
     // 0x00 is invalid; 0x04..0x0F reserved for geometry; 0x13..0x1F reserved for the scene;
-    // 0x20..0x7F future; 0x80..0xFF experimental.
+    // 0x21..0x7F future; 0x80..0xFF experimental.
 };
 
 // Names in the stream are UTF-8 (spec 15). True when `text` is well-formed UTF-8 (no overlong
@@ -68,7 +72,7 @@ std::string replace_invalid_utf8(std::string_view text);
 // Name of a packet type ("STREAM_INFO", ...), or "UNKNOWN(0xNN)".
 std::string packet_type_name(uint8_t type);
 
-// True for the types this implementation decodes (format 1.0).
+// True for the types this implementation decodes (format 1.2).
 bool is_known_packet_type(uint8_t type);
 
 // ---------------------------------------------------------------------------------------------
@@ -93,6 +97,8 @@ enum class Error : uint8_t {
     BadSignature,         // a container file that does not start with the ellicast signature
     UnsupportedContainer, // container version other than 1
     IoError,              // a file could not be read or written
+    ManifestSignature,    // with a key: a MANIFEST whose key id or Ed25519 signature does not match it
+    NotAuthenticated,     // with a key: a packet that no verified MANIFEST lists
 };
 
 // A short readable name for an error ("bad checksum", ...).
@@ -443,6 +449,55 @@ struct ScenePackets {
 // empty or over 4 GiB.
 Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_t stream_id, uint32_t first_sequence,
                       ScenePackets& out);
+
+// ---------------------------------------------------------------------------------------------
+// Signed streams (format 1.2, spec section 16). A MANIFEST packet lists 16-byte digests of other
+// packets (SHA-256 of the packet without its checksum and with its sequence number zeroed,
+// truncated) and an Ed25519 signature over itself. This library lays the bytes out and computes
+// digests; signing and verifying are in the auth library (libsodium).
+
+inline constexpr size_t kPacketDigestSize = 16;
+inline constexpr size_t kManifestFixedSize = 24;
+inline constexpr size_t kManifestSignatureSize = 64;
+inline constexpr size_t kKeyIdSize = 8;
+inline constexpr uint8_t kManifestSchemeEd25519 = 1;
+// What a signature signs: this ASCII context, then the packet without signature and checksum.
+inline constexpr std::string_view kManifestContext = "ellicast manifest";
+
+using PacketDigest = std::array<uint8_t, kPacketDigestSize>;
+
+struct ManifestPart {
+    uint8_t scheme = kManifestSchemeEd25519;
+    uint16_t part = 0;
+    uint16_t part_count = 1;
+    uint32_t packet_count = 0;  // digests in all parts together
+    uint32_t first = 0;         // index of digests[0] in the whole list
+    std::array<uint8_t, kKeyIdSize> key_id{};
+    std::vector<PacketDigest> digests;
+    std::array<uint8_t, kManifestSignatureSize> signature{};
+};
+
+std::vector<uint8_t> encode_manifest_payload(const ManifestPart& part);
+// MalformedPayload when the payload is empty, or (scheme 1) the length does not match digest_count,
+// part_count is 0, part is not below it, or the digests run past packet_count. A scheme other than 1
+// is not an error: only `scheme` is set, and the caller skips such a packet (its layout is a later
+// version's).
+Error decode_manifest_payload(std::span<const uint8_t> payload, ManifestPart& out);
+// Digests one MANIFEST packet of `packet_size` bytes can carry.
+size_t digests_per_manifest_packet(size_t packet_size);
+// The bytes a packet's digest hashes: header and payload with the sequence bytes zeroed (empty
+// when `packet` is shorter than its header says).
+std::vector<uint8_t> packet_digest_input(std::span<const uint8_t> packet);
+// SHA-256 (FIPS 180-4) of `data`.
+std::array<uint8_t, 32> sha256(std::span<const uint8_t> data);
+// A packet's digest (spec 16.1): the first 16 bytes of SHA-256 of packet_digest_input(packet).
+// `packet` must hold a whole packet (its header's length is trusted: parse it first).
+PacketDigest packet_digest(std::span<const uint8_t> packet);
+// A public key's id (spec 16.2): the first 8 bytes of SHA-256 of its 32 bytes.
+std::array<uint8_t, kKeyIdSize> key_id_of(std::span<const uint8_t, 32> public_key);
+// The message a MANIFEST packet's signature signs: kManifestContext, then the packet's digest
+// input without the trailing signature (empty when the packet is too short to be a MANIFEST).
+std::vector<uint8_t> manifest_signed_message(std::span<const uint8_t> packet);
 
 // ---------------------------------------------------------------------------------------------
 // Receiving: collects whatever packets arrive, in any order, with duplicates and damage
