@@ -6,7 +6,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${ELLICAST_BUILD_DIR:-$root/build}
 
 packages=(build-essential cmake pkg-config libtinygltf-dev libdraco-dev libopenmesh-dev libeigen3-dev
-          libcli11-dev doctest-dev nlohmann-json3-dev libstb-dev libisal-dev libmeshoptimizer-dev draco gnuplot-nox nodejs npm)
+          libcli11-dev doctest-dev nlohmann-json3-dev libstb-dev libisal-dev libmeshoptimizer-dev libsodium-dev draco gnuplot-nox nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
