@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <set>
 
 namespace ellicast::broadcast {
 
@@ -58,6 +60,7 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
         error = "the base share must lie strictly between 0 and 1 (got " + std::to_string(options.base_share) + ")";
         return false;
     }
+    std::vector<uint32_t> manifests;
     for (size_t i = 0; i < packets.size(); ++i) {
         PacketView view;
         Error e = parse_packet(packets[i], view);
@@ -66,6 +69,10 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
             return false;
         }
         out.sizes.push_back(static_cast<uint32_t>(packets[i].size()));
+        if (view.header.type == static_cast<uint8_t>(PacketType::Manifest)) {
+            manifests.push_back(static_cast<uint32_t>(i));
+            continue;
+        }
         if (is_base_packet(view.header)) {
             out.base.push_back(static_cast<uint32_t>(i));
             if (view.header.type == static_cast<uint8_t>(PacketType::StreamInfo))
@@ -75,6 +82,43 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
             out.data.push_back(static_cast<uint32_t>(i));
             out.data_bytes += packets[i].size();
         }
+    }
+    // MANIFEST parts (signed streams, spec 16.4): a part that lists only POINTS / TEXTURE_FRAGMENT
+    // packets goes just before the first of them in the cycle and again half-way through them; any
+    // other part (it lists base packets, or none of this stream's) goes with the base.
+    std::vector<std::vector<uint32_t>> manifests_before(out.data.size());
+    if (!manifests.empty()) {
+        std::map<PacketDigest, size_t> data_position;  // digest -> position in out.data
+        std::set<PacketDigest> base_digests;
+        for (size_t k = 0; k < out.data.size(); ++k) data_position[packet_digest(packets[out.data[k]])] = k;
+        for (uint32_t b : out.base) base_digests.insert(packet_digest(packets[b]));
+        std::vector<uint32_t> base_manifests;
+        for (uint32_t m : manifests) {
+            PacketView view;
+            ManifestPart part;
+            parse_packet(packets[m], view);
+            std::vector<size_t> listed;
+            bool lists_base = false;
+            if (decode_manifest_payload(view.payload, part) == Error::Ok)
+                for (const PacketDigest& d : part.digests) {
+                    if (auto it = data_position.find(d); it != data_position.end()) listed.push_back(it->second);
+                    else if (base_digests.count(d)) lists_base = true;
+                }
+            if (lists_base || listed.empty()) {
+                base_manifests.push_back(m);
+                continue;
+            }
+            std::sort(listed.begin(), listed.end());
+            manifests_before[listed.front()].push_back(m);
+            if (listed.size() > 1) manifests_before[listed[listed.size() / 2]].push_back(m);
+            out.detail_manifests.push_back(m);
+        }
+        // Base order: the input order, MANIFEST parts included.
+        for (uint32_t m : base_manifests) {
+            out.base.push_back(m);
+            out.base_bytes += packets[m].size();
+        }
+        std::sort(out.base.begin(), out.base.end());
     }
     size_t chunks;
     if (options.chunk_packets > 0) {
@@ -92,6 +136,11 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
         size_t end = out.data.size() * (c + 1) / chunks;
         uint64_t chunk_bytes = 0;
         for (size_t in_chunk = 1; next < end; ++next, ++in_chunk) {
+            for (uint32_t m : manifests_before[next]) {
+                out.cycle.push_back({m, false, false, static_cast<uint32_t>(c)});
+                chunk_bytes += packets[m].size();
+                out.repeat_bytes += packets[m].size();
+            }
             out.cycle.push_back({out.data[next], false, false, static_cast<uint32_t>(c)});
             chunk_bytes += packets[out.data[next]].size();
             // A stream info part after every k-th packet, unless the base comes next anyway.

@@ -61,6 +61,7 @@ Reception::Reception() : Reception(Options{}) {}
 
 Reception::Reception(Options options) : options_(options) {
     options_.max_candidates = std::clamp<size_t>(options_.max_candidates, 1, 64);
+    if (options_.key) authenticator_.emplace(*options_.key, options_.auth_limits);
 }
 
 const ReceivedStream& Reception::stream() const {
@@ -69,6 +70,11 @@ const ReceivedStream& Reception::stream() const {
 
 ReceptionCounters Reception::counters() const {
     ReceptionCounters c = counters_;
+    if (authenticator_) {
+        const auth::Authenticator::Counters& a = authenticator_->counters();
+        c.unauthenticated = a.not_authenticated + a.manifests_failed + a.malformed;
+        c.awaiting_manifest = a.held;
+    }
     if (chosen_ >= candidates_.size()) return c;
     const Candidate& k = candidates_[chosen_];
     c.accepted = k.accepted;
@@ -86,76 +92,29 @@ Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
         ++counters_.oversized;
         return Error::Oversized;
     }
+    const uint64_t where = counters_.datagrams - 1;
     PacketView view;
     Error e = parse_packet(datagram, view);
     if (e == Error::Ok && options_.stream_id && view.header.stream_id != *options_.stream_id) e = Error::StreamMismatch;
+    if (e == Error::Ok && authenticator_) {
+        // Signed stream: only packets a verified MANIFEST lists reach the candidates (spec 16.3).
+        const auth::Authenticator::Verdict v = authenticator_->take(view, datagram, where);
+        Error result = Error::Ok;
+        if (v == auth::Authenticator::Verdict::Rejected) result = authenticator_->last_error();
+        else if (v != auth::Authenticator::Verdict::Held) {
+            std::optional<Error> r = route(view, where);
+            if (!r) ++counters_.other_stream;
+            result = r.value_or(Error::StreamMismatch);
+        }
+        for (const auth::Authenticator::Released& held : authenticator_->take_released()) {
+            PacketView released;
+            if (parse_packet(held.bytes, released) == Error::Ok && !route(released, held.where)) ++counters_.other_stream;
+        }
+        return result;
+    }
     if (e == Error::Ok) {
-        const uint32_t id = view.header.stream_id;
-        bool any = false, taken = false, contradicted = true;
-        uint64_t ok = 0;  // bit i: candidate i took the packet, new or not (at most 64 candidates)
-        Error first_error = Error::Ok;
-        for (size_t i = 0; i < candidates_.size(); ++i) {
-            Candidate& k = candidates_[i];
-            if (k.stream_id != id) continue;
-            any = true;
-            ++k.routed;
-            const uint64_t before = k.stream.counters().accepted;
-            const Error r = k.stream.add_parsed(view, counters_.datagrams - 1);
-            if (r == Error::Ok) {
-                taken = true;
-                ok |= uint64_t(1) << i;
-                contradicted = false;
-                if (k.stream.counters().accepted > before) {
-                    ++k.accepted;
-                    last_accepted_by_ |= uint64_t(1) << i;
-                } else {
-                    ++k.duplicates;
-                }
-            } else {
-                ++k.invalid;
-                if (first_error == Error::Ok) first_error = r;
-                if (!(r == Error::StreamMismatch && view.header.type == static_cast<uint8_t>(PacketType::StreamInfo))) contradicted = false;
-            }
-        }
-        // A stream id not heard before, or a STREAM_INFO every candidate of its id contradicts:
-        // a new candidate, while there is room.
-        if (!any || (!taken && contradicted)) {
-            if (candidates_.size() < options_.max_candidates) {
-                candidates_.emplace_back(id, options_.limits);
-                Candidate& k = candidates_.back();
-                ++k.routed;
-                const Error r = k.stream.add_parsed(view, counters_.datagrams - 1);
-                if (r == Error::Ok) {
-                    taken = true;
-                    ok |= uint64_t(1) << (candidates_.size() - 1);
-                    if (k.stream.counters().accepted > 0) {
-                        ++k.accepted;
-                        last_accepted_by_ |= uint64_t(1) << (candidates_.size() - 1);
-                    } else {
-                        ++k.duplicates;
-                    }
-                } else {
-                    ++k.invalid;
-                    if (first_error == Error::Ok) first_error = r;
-                }
-                any = true;
-            } else if (!any) {
-                e = Error::StreamMismatch;  // no room for another stream: counted as another stream's
-            }
-        }
-        if (any) {
-            ++valid_;
-            // The candidate with the most packets accepted; the first on a tie.
-            size_t best = 0;
-            for (size_t i = 1; i < candidates_.size(); ++i)
-                if (candidates_[i].accepted > candidates_[best].accepted) best = i;
-            chosen_ = best;
-            if (taken) {
-                if (ok >> chosen_ & 1) loss_.add(view.header.sequence);
-                return Error::Ok;
-            }
-            return first_error;
-        }
+        if (std::optional<Error> r = route(view, where)) return *r;
+        e = Error::StreamMismatch;  // no room for another stream: counted as another stream's
     }
     switch (e) {
         case Error::TooShort:
@@ -168,6 +127,73 @@ Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
         default: ++counters_.invalid; break;
     }
     return e;
+}
+
+std::optional<Error> Reception::route(const PacketView& view, uint64_t where) {
+    const uint32_t id = view.header.stream_id;
+    bool any = false, taken = false, contradicted = true;
+    uint64_t ok = 0;  // bit i: candidate i took the packet, new or not (at most 64 candidates)
+    Error first_error = Error::Ok;
+    for (size_t i = 0; i < candidates_.size(); ++i) {
+        Candidate& k = candidates_[i];
+        if (k.stream_id != id) continue;
+        any = true;
+        ++k.routed;
+        const uint64_t before = k.stream.counters().accepted;
+        const Error r = k.stream.add_parsed(view, where);
+        if (r == Error::Ok) {
+            taken = true;
+            ok |= uint64_t(1) << i;
+            contradicted = false;
+            if (k.stream.counters().accepted > before) {
+                ++k.accepted;
+                last_accepted_by_ |= uint64_t(1) << i;
+            } else {
+                ++k.duplicates;
+            }
+        } else {
+            ++k.invalid;
+            if (first_error == Error::Ok) first_error = r;
+            if (!(r == Error::StreamMismatch && view.header.type == static_cast<uint8_t>(PacketType::StreamInfo))) contradicted = false;
+        }
+    }
+    // A stream id not heard before, or a STREAM_INFO every candidate of its id contradicts:
+    // a new candidate, while there is room.
+    if (!any || (!taken && contradicted)) {
+        if (candidates_.size() < options_.max_candidates) {
+            candidates_.emplace_back(id, options_.limits);
+            Candidate& k = candidates_.back();
+            ++k.routed;
+            const Error r = k.stream.add_parsed(view, where);
+            if (r == Error::Ok) {
+                taken = true;
+                ok |= uint64_t(1) << (candidates_.size() - 1);
+                if (k.stream.counters().accepted > 0) {
+                    ++k.accepted;
+                    last_accepted_by_ |= uint64_t(1) << (candidates_.size() - 1);
+                } else {
+                    ++k.duplicates;
+                }
+            } else {
+                ++k.invalid;
+                if (first_error == Error::Ok) first_error = r;
+            }
+            any = true;
+        } else if (!any) {
+            return std::nullopt;
+        }
+    }
+    ++valid_;
+    // The candidate with the most packets accepted; the first on a tie.
+    size_t best = 0;
+    for (size_t i = 1; i < candidates_.size(); ++i)
+        if (candidates_[i].accepted > candidates_[best].accepted) best = i;
+    chosen_ = best;
+    if (taken) {
+        if (ok >> chosen_ & 1) loss_.add(view.header.sequence);
+        return Error::Ok;
+    }
+    return first_error;
 }
 
 bool Reception::base_complete() const {

@@ -60,6 +60,10 @@ struct Carousel {
     std::vector<uint32_t> base;      // input indices of the base packets, in input order
     std::vector<uint32_t> stream_info;  // input indices of the STREAM_INFO parts (also in `base`)
     std::vector<uint32_t> data;      // input indices of the POINTS packets, in input order
+    // Signed streams: input indices of the MANIFEST parts that list only detail packets; each goes
+    // just before the first packet it lists and again half-way through them (its bytes count in
+    // repeat_bytes). MANIFEST parts that list base packets are in `base`.
+    std::vector<uint32_t> detail_manifests;
     std::vector<uint32_t> sizes;     // byte size of every input packet
     size_t chunk_packets = 0;        // POINTS packets per chunk (the last chunk may hold fewer)
     size_t chunk_count = 0;          // n: number of base repetitions per cycle
@@ -69,7 +73,7 @@ struct Carousel {
 
     uint64_t base_bytes = 0;         // B: one copy of the base
     uint64_t data_bytes = 0;         // D: every POINTS packet once
-    uint64_t repeat_bytes = 0;       // R: the STREAM_INFO parts sent inside chunks
+    uint64_t repeat_bytes = 0;       // R: the STREAM_INFO parts (and detail MANIFEST parts) sent inside chunks
     uint64_t cycle_bytes = 0;        // n * B + D + R
     uint64_t max_chunk_bytes = 0;    // the largest chunk
 

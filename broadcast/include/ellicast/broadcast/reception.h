@@ -7,6 +7,7 @@
 // sequence numbers.
 #pragma once
 
+#include <ellicast/auth.h>
 #include <ellicast/format.h>
 
 #include <cstddef>
@@ -27,7 +28,11 @@ struct ReceptionCounters {
     uint64_t oversized = 0;      // larger than the format's largest packet
     uint64_t other_stream = 0;   // an ellicast packet of another stream id
     uint64_t invalid = 0;        // any other rejection (unsupported version, malformed payload, ...)
-    uint64_t rejected() const { return not_ellicast + damaged + oversized + other_stream + invalid; }
+    // With a key (signed streams, spec 16.3): packets no verified MANIFEST lists, and MANIFESTs that
+    // fail verification or are malformed; and packets held now for the MANIFEST that lists them.
+    uint64_t unauthenticated = 0;
+    uint64_t awaiting_manifest = 0;
+    uint64_t rejected() const { return not_ellicast + damaged + oversized + other_stream + invalid + unauthenticated; }
 };
 
 // Estimates the loss from the sequence numbers the carousel stamps on each slot: the share of
@@ -57,13 +62,16 @@ private:
 // stream id. The stream shown and written is the candidate that has accepted the most packets (the
 // first one on a tie): a real carousel repeats its stream info and base every cycle, so one early
 // forged STREAM_INFO cannot lock it out (spec 11.4). A key is the only defence against a forger
-// that sends more.
+// that sends more: with Options::key, every packet goes through an auth::Authenticator first and
+// only packets a MANIFEST signed with that key lists reach the candidates (spec 16).
 class Reception {
 public:
     struct Options {
         ReceivedStream::Limits limits;      // for each candidate
         std::optional<uint32_t> stream_id;  // keep only this stream id; default: every one, as candidates
         size_t max_candidates = 4;          // memory is at most this many times the limits
+        std::optional<auth::PublicKey> key;  // accept only the stream this key signs
+        auth::Authenticator::Limits auth_limits;
     };
     Reception();
     explicit Reception(Options options);
@@ -85,6 +93,8 @@ public:
     const ReceivedStream& candidate(size_t i) const { return candidates_.at(i).stream; }
     size_t chosen() const { return chosen_; }
     uint64_t last_accepted_by() const { return last_accepted_by_; }
+    // The signature filter, when Options::key was given.
+    const auth::Authenticator* authenticator() const { return authenticator_ ? &*authenticator_ : nullptr; }
 
     // Every STREAM_INFO entry, every ellipsoid of every surface object, and (format 1.1) the
     // whole scene graph and every material have arrived: a receiver can show the base mesh.
@@ -107,7 +117,12 @@ private:
         uint64_t invalid = 0;     // of those, rejected (a contradicting STREAM_INFO included)
         explicit Candidate(uint32_t id, const ReceivedStream::Limits& limits) : stream_id(id), stream(limits) {}
     };
+    // Gives an intact packet to the candidates of its stream id (starting one if there is room).
+    // nullopt when there was none and no room: the caller counts it as another stream's.
+    std::optional<Error> route(const PacketView& view, uint64_t where);
+
     Options options_;
+    std::optional<auth::Authenticator> authenticator_;
     std::vector<Candidate> candidates_;
     size_t chosen_ = SIZE_MAX;
     uint64_t last_accepted_by_ = 0;
