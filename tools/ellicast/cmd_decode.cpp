@@ -24,6 +24,7 @@ struct DecodeArgs {
     size_t snapshots = 0;
     int grid = 0;
     bool quiet = false;
+    std::string key;          // --key: decode only what this sender signed
     AssetWriteOptions write;  // --draco, --quantize
 };
 
@@ -72,12 +73,9 @@ int run_decode(const DecodeArgs& args) {
     }
 
     auto t0 = std::chrono::steady_clock::now();
-    std::vector<uint8_t> bytes;
-    std::string message;
-    if (read_file(args.input, bytes, message) != Error::Ok) return fail(kExitFailure, message);
-    ContainerContents contents = read_container(bytes);
-    if (contents.header_error != Error::Ok)
-        return fail(kExitInvalid, args.input + ": not an ellicast container (" + error_name(contents.header_error) + ")");
+    RecordingPackets recording;
+    if (int code = read_recording(args.input, args.key, recording); code != kExitOk) return code;
+    const ContainerContents& contents = recording.contents;
     ReceivedStream stream;
     for (const auto& packet : contents.packets) stream.add_parsed(packet.view, packet.offset);
     double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -178,6 +176,8 @@ const RegisterCommand kRegister{{40, [](CLI::App& app, int& exit_code) {
         ->check(CLI::Range(kMinGridResolution, kMaxGridResolution));
     cmd->add_flag("--draco", args->write.draco, "glTF output: compress triangle meshes with KHR_draco_mesh_compression");
     cmd->add_flag("--quantize", args->write.quantize, "glTF output: quantize attributes with KHR_mesh_quantization");
+    cmd->add_option("--key", args->key,
+                    "public key (NAME.pub or 64 hex digits): decode only the packets a MANIFEST signed with it lists");
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
     cmd->callback([args, &exit_code] { exit_code = run_decode(*args); });
 }}};

@@ -32,6 +32,7 @@ struct EncodeArgs {
     unsigned threads = 2;
     bool quiet = false;
     bool allow_external_paths = false;
+    std::string sign;  // secret key file: sign the stream (spec 16)
 };
 
 int run_encode(const EncodeArgs& a) {
@@ -80,6 +81,9 @@ int run_encode(const EncodeArgs& a) {
     const EncodeResult& encoded = out.encoded;
     for (const auto& w : encoded.warnings) std::cerr << "ellicast: warning: " << w << "\n";
 
+    size_t manifest_parts = 0;
+    if (!a.sign.empty())
+        if (int code = sign_packets_with_key(a.sign, out.packets, manifest_parts); code != kExitOk) return code;
     std::vector<uint8_t> file = write_container(out.packets);
     std::string message;
     if (write_file(a.output, file, message) != Error::Ok) return fail(kExitFailure, message);
@@ -110,6 +114,11 @@ int run_encode(const EncodeArgs& a) {
                 "detail %zu (%zu packets), file %zu\n",
                 out.stream_info_bytes, out.stream_info_packets, out.ellipsoid_bytes, out.ellipsoid_packets,
                 out.scene_bytes, out.scene_packets, out.point_bytes, out.point_packets, file.size());
+    if (manifest_parts) {
+        size_t manifest_bytes = 0;  // sign_stream puts the MANIFEST parts first
+        for (size_t i = 0; i < manifest_parts; ++i) manifest_bytes += out.packets[i].size();
+        std::printf("signed: %zu MANIFEST part(s), %zu bytes\n", manifest_parts, manifest_bytes);
+    }
     std::printf("bytes per ellipsoid %.2f, bytes per point %.2f (packet overhead included)\n",
                 ellipsoids ? double(out.ellipsoid_bytes) / double(ellipsoids) : 0.0,
                 points ? double(out.point_bytes) / double(points) : 0.0);
@@ -147,6 +156,7 @@ const RegisterCommand registered({10, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--threads", args->threads, "worker threads (1..256; the result does not depend on it)")
         ->capture_default_str();
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
+    cmd->add_option("--sign", args->sign, "sign the stream with this secret key (NAME.key from `ellicast keygen`)");
     cmd->add_flag("--allow-external-paths", args->allow_external_paths,
                   "read glTF buffers and images outside the model's folder (refused by default)");
     cmd->callback([args, &exit_code] { exit_code = run_encode(*args); });

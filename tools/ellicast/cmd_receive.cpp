@@ -41,6 +41,7 @@ struct ReceiveArgs {
     uint64_t max_elements = ReceivedStream::Limits{}.max_elements;
     size_t max_pending_mb = ReceivedStream::Limits{}.max_pending_bytes >> 20;
     bool quiet = false;
+    std::string key;  // accept only the stream this public key signs (spec 16.3)
 };
 
 // A moment at which to write a snapshot: when the base is complete, at a share of the points, or
@@ -154,6 +155,11 @@ int run_receive(const ReceiveArgs& a) {
     reception_options.limits.max_elements = a.max_elements;
     reception_options.limits.max_pending_bytes = a.max_pending_mb << 20;
     if (a.stream_id >= 0) reception_options.stream_id = static_cast<uint32_t>(a.stream_id);
+    if (!a.key.empty()) {
+        auth::PublicKey key;
+        if (!auth::read_public_key(a.key, key, error)) return fail(kExitUsage, "--key: " + error);
+        reception_options.key = key;
+    }
     broadcast::Reception reception(reception_options);
     // The stream shown and written: the candidate with the most packets (broadcast/reception.h);
     // it may change while packets arrive.
@@ -185,11 +191,16 @@ int run_receive(const ReceiveArgs& a) {
         uint64_t declared = reception.points_declared();
         std::fprintf(stderr,
                      "%s%.1f s: %s packets received, %s rejected (%s damaged, %s not ellicast, %s other stream, %s "
-                     "oversized), est. loss %.1f%%, base %s, points %s/%s received, %s inserted%s",
+                     "oversized%s), est. loss %.1f%%, base %s, points %s/%s received, %s inserted%s",
                      tty && !final_line ? "\r" : "", seconds_since(std::chrono::steady_clock::now()),
                      with_commas(c.accepted + c.duplicates).c_str(), with_commas(c.rejected()).c_str(),
                      with_commas(c.damaged).c_str(), with_commas(c.not_ellicast).c_str(),
                      with_commas(c.other_stream).c_str(), with_commas(c.oversized).c_str(),
+                     reception.authenticator()
+                         ? (", " + with_commas(c.unauthenticated) + " not authenticated, " +
+                            with_commas(c.awaiting_manifest) + " waiting for their MANIFEST")
+                               .c_str()
+                         : "",
                      100.0 * reception.loss().loss(), reception.base_complete() ? "complete" : "incomplete",
                      with_commas(reception.points_received()).c_str(), declared ? with_commas(declared).c_str() : "?",
                      with_commas(live.inserted()).c_str(), tty && !final_line ? "  " : "\n");
@@ -277,9 +288,21 @@ int run_receive(const ReceiveArgs& a) {
     std::signal(SIGTERM, SIG_DFL);
     if (tty && !a.quiet) std::fprintf(stderr, "\n");
     print_progress(true);
+    if (const auth::Authenticator* authenticator = reception.authenticator()) {
+        const auto& ac = authenticator->counters();
+        if (std::string problem = authenticator->problem(); !problem.empty())
+            std::fprintf(stderr, "ellicast: warning: %s\n", problem.c_str());
+        else
+            std::fprintf(stderr,
+                         "signed stream: %s MANIFEST part(s) verified, %s packet(s) authenticated, %s rejected as not "
+                         "authenticated, %s MANIFEST(s) failed verification\n",
+                         with_commas(ac.manifests_verified).c_str(), with_commas(ac.passed).c_str(),
+                         with_commas(ac.not_authenticated).c_str(), with_commas(ac.manifests_failed).c_str());
+    }
     if (first_packet_at < 0)
         return fail(kExitFailure, "no packet of an ellicast stream arrived on " + a.from + " (" +
-                                      with_commas(reception.counters().datagrams) + " datagrams dropped)");
+                                      with_commas(reception.counters().datagrams) + " datagrams dropped" +
+                                      (reception.authenticator() ? ", none authenticated with the key given" : "") + ")");
     std::fprintf(stderr, "first packet after %s; base %s; everything %s\n", seconds_text(first_packet_at).c_str(),
                  base_at >= 0 ? ("complete after " + seconds_text(base_at)).c_str() : "incomplete",
                  complete_at >= 0 ? ("complete after " + seconds_text(complete_at)).c_str()
@@ -387,6 +410,8 @@ const RegisterCommand registered{{63, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--max-pending-mb", args->max_pending_mb,
                     "megabytes of packets held while waiting for the stream info (memory cap, default 64)")
         ->check(CLI::Range(size_t(1), size_t(4096)));
+    cmd->add_option("--key", args->key,
+                    "public key (NAME.pub or 64 hex digits): accept only packets a MANIFEST signed with it lists");
     cmd->add_flag("-q,--quiet", args->quiet, "no progress on stderr");
     cmd->callback([args, &exit_code] { exit_code = run_receive(*args); });
 }}};

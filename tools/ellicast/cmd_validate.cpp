@@ -15,13 +15,14 @@ namespace {
 struct ValidateArgs {
     std::vector<std::string> inputs;
     bool quiet = false;
+    std::string key;
 };
 
-int validate_one(const std::string& path, bool quiet) {
+int validate_one(const std::string& path, bool quiet, const auth::PublicKey* key) {
     std::vector<uint8_t> bytes;
     std::string message;
     if (read_file(path, bytes, message) != Error::Ok) return fail(kExitFailure, message);
-    StreamReport report = analyze_stream(path, bytes);
+    StreamReport report = analyze_stream(path, bytes, key);
     auto violations = report.violations;
     std::stable_sort(violations.begin(), violations.end(), [](const Violation& a, const Violation& b) {
         if (a.offset.has_value() != b.offset.has_value()) return a.offset.has_value();
@@ -37,6 +38,10 @@ int validate_one(const std::string& path, bool quiet) {
                       << report.stream.objects().size() << " object" << (report.stream.objects().size() == 1 ? "" : "s")
                       << ", " << ellipsoids << " ellipsoids, " << points << " points, packet size " << info.packet_size
                       << ")\n";
+            if (report.signing.is_signed)
+                std::cout << path << ": signed: " << report.signing.parts << " MANIFEST part(s), key id "
+                          << report.signing.key_id
+                          << (key ? ", every signature verified" : "; signatures not checked (give --key)") << "\n";
         }
         return kExitOk;
     }
@@ -51,9 +56,14 @@ int validate_one(const std::string& path, bool quiet) {
 }
 
 int run_validate(const ValidateArgs& args) {
+    auth::PublicKey key;
+    if (!args.key.empty()) {
+        std::string error;
+        if (!auth::read_public_key(args.key, key, error)) return fail(kExitUsage, "--key: " + error);
+    }
     int code = kExitOk;
     for (const auto& input : args.inputs) {
-        int c = validate_one(input, args.quiet);
+        int c = validate_one(input, args.quiet, args.key.empty() ? nullptr : &key);
         code = std::max(code, c);
     }
     return code;
@@ -66,6 +76,8 @@ const RegisterCommand kRegister{{60, [](CLI::App& app, int& exit_code) {
                                    "file does; every violation is listed with its byte offset");
     cmd->add_option("files", args->inputs, "recorded streams (.ellc)")->required();
     cmd->add_flag("-q,--quiet", args->quiet, "print nothing for a conforming file");
+    cmd->add_option("--key", args->key,
+                    "public key (NAME.pub or 64 hex digits): the stream must be signed with it, every signature checked");
     cmd->callback([args, &exit_code] { exit_code = run_validate(*args); });
 }}};
 

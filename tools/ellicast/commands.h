@@ -4,6 +4,7 @@
 
 #include "ellicast/codec/mesh.h"
 #include "ellicast/converters/mesh_input.h"
+#include "ellicast/format.h"
 
 #include <CLI/CLI.hpp>
 
@@ -41,5 +42,18 @@ bool load_model(const std::string& path, std::vector<Mesh>& meshes, std::string&
 // Refuses to overwrite an input: true (and an error printed) when `output` is the same file as one
 // of `inputs`.
 bool output_clobbers_input(const std::string& output, const std::vector<std::string>& inputs);
+
+// Signs whole packets of one stream with the secret key in `key_path` (spec 16; cmd_sign.cpp):
+// MANIFEST parts first, then the distinct packets, renumbered. Returns an exit code, the error printed.
+int sign_packets_with_key(const std::string& key_path, std::vector<std::vector<uint8_t>>& packets, size_t& parts);
+
+// Reads a recorded stream's packets for decoding. With a public key (--key, spec 16.3) only the
+// packets a MANIFEST signed with it lists are kept, and a summary goes to stderr; a recording with
+// nothing authenticated is an error. Returns an exit code, the error printed.
+struct RecordingPackets {
+    std::vector<uint8_t> bytes;
+    ContainerContents contents;
+};
+int read_recording(const std::string& path, const std::string& key, RecordingPackets& out);
 
 }  // namespace ellicast::cli

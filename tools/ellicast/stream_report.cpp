@@ -28,7 +28,7 @@ std::string attribute_names(uint8_t a) {
     return out;
 }
 
-StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>& bytes) {
+StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>& bytes, const auth::PublicKey* key) {
     StreamReport r;
     r.path = path;
     r.file_size = bytes.size();
@@ -73,6 +73,10 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         if (h.type <= uint8_t(PacketType::Points) && h.skippable())
             r.violations.push_back({p.offset, packet_type_name(h.type) + " packet marked skippable (flags bit 0 must be 0 for a format 1.0 type)"});
     }
+    r.signing = auth::check_signed_recording(contents.packets, bytes, key);
+    for (const auto& problem : r.signing.problems) r.violations.push_back({problem.offset, problem.message});
+    if (key && !r.signing.is_signed)
+        r.violations.push_back({std::nullopt, "not signed: no MANIFEST packet, but a key was given"});
     for (const DamagedRegion& d : r.damaged)
         r.violations.push_back({d.offset, std::to_string(d.length) + " damaged byte" + (d.length == 1 ? "" : "s") +
                                               " hold no valid packet (" + error_name(d.first_error) + ")"});

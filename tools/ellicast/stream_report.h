@@ -5,6 +5,8 @@
 
 #include "ellicast/format.h"
 
+#include <ellicast/auth.h>
+
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -46,12 +48,16 @@ struct StreamReport {
     std::map<uint32_t, uint64_t> stream_ids;    // every stream id seen in an intact packet
     uint64_t stream_info_parts = 0;             // STREAM_INFO packets taken (accepted or duplicate)
     std::vector<Violation> violations;
+    // Signed streams (spec 16.4): the manifest's structure, and its signatures when a key was given.
+    auth::SignedRecordingCheck signing;
 
     bool conforms() const { return violations.empty(); }
 };
 
-// Reads and checks the container held in `bytes` (read from `path`, used in messages only).
-StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>& bytes);
+// Reads and checks the container held in `bytes` (read from `path`, used in messages only). With
+// `key`, the stream must be signed with it (every MANIFEST signature is checked).
+StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>& bytes,
+                            const auth::PublicKey* key = nullptr);
 
 // Index ranges in [0, count) that are not keys of `received`: "0..9, 21..39" (at most `max_ranges`
 // ranges, then "and N more ranges"). Empty when nothing is missing.
