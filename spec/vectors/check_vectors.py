@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent format 1.1 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.2 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
@@ -8,12 +8,15 @@ checked against the expected decodes of the conformance vectors.
 It re-derives everything the JSON states (container errors, damaged regions, packet results,
 rejections, counters, stream info, every element's integers and dequantized values, digests; for
 format 1.1 the scene graph, materials, textures and what a receiver shows of them, spec section 15, and
-a 1.0 decoder's view of the same file) so that a disagreement between the spec text and the reference
+a 1.0 decoder's view of the same file; for format 1.2 the MANIFEST layout, every packet digest, and the
+authentication of a signed recording with the vectors' key, spec section 16, with SHA-256 from hashlib
+and Ed25519 verification written here from RFC 8032) so that a disagreement between the spec text and the reference
 library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
 EOI at the end).
 """
+import hashlib
 import json
 import math
 import os
@@ -27,6 +30,8 @@ SIGNATURE = b"\x89ELC\r\n\x1a\n"
 KNOWN_10 = {1: "STREAM_INFO", 2: "ELLIPSOIDS", 3: "POINTS"}
 # Format 1.1 types (spec sections 4 and 15).
 KNOWN_11 = {0x10: "SCENE", 0x11: "MATERIAL", 0x12: "TEXTURE_FRAGMENT"}
+# Format 1.2 (spec sections 4 and 16).
+KNOWN_12 = {0x20: "MANIFEST"}
 NONE = 0xFFFF
 SLOTS = ("base_color", "metallic_roughness", "normal", "occlusion", "emissive")
 
@@ -452,6 +457,178 @@ def jpeg_problem(data):
         # APPn, COM, DRI, DAC and the like: skipped by their length
 
 
+# ------------------------------------------------------------------------------------------------
+# Format 1.2: signed streams (spec 16). Ed25519 verification after RFC 8032 section 5.1.7.
+
+ED_P = 2 ** 255 - 19
+ED_L = 2 ** 252 + 27742317777372353535851937790883648493
+ED_D = (-121665 * pow(121666, ED_P - 2, ED_P)) % ED_P
+ED_SQRT_M1 = pow(2, (ED_P - 1) // 4, ED_P)
+
+
+def ed_add(a, b):
+    """Points in extended coordinates (X, Y, Z, T), x = X/Z, y = Y/Z, x*y = T/Z."""
+    x1, y1, z1, t1 = a
+    x2, y2, z2, t2 = b
+    A = (y1 - x1) * (y2 - x2) % ED_P
+    B = (y1 + x1) * (y2 + x2) % ED_P
+    C = 2 * t1 * t2 * ED_D % ED_P
+    D = 2 * z1 * z2 % ED_P
+    E, F, G, H = B - A, D - C, D + C, B + A
+    return (E * F % ED_P, G * H % ED_P, F * G % ED_P, E * H % ED_P)
+
+
+def ed_mul(k, point):
+    result = (0, 1, 1, 0)
+    while k:
+        if k & 1:
+            result = ed_add(result, point)
+        point = ed_add(point, point)
+        k >>= 1
+    return result
+
+
+def ed_decode(b):
+    """A 32-byte point encoding to extended coordinates, or None (RFC 8032 5.1.3)."""
+    y = int.from_bytes(b, "little")
+    sign = y >> 255
+    y &= (1 << 255) - 1
+    if y >= ED_P:
+        return None
+    u, v = (y * y - 1) % ED_P, (ED_D * y * y + 1) % ED_P
+    x = u * pow(v, 3, ED_P) * pow(u * pow(v, 7, ED_P), (ED_P - 5) // 8, ED_P) % ED_P
+    if (v * x * x - u) % ED_P != 0:
+        x = x * ED_SQRT_M1 % ED_P
+        if (v * x * x - u) % ED_P != 0:
+            return None
+    if x == 0 and sign:
+        return None
+    if x & 1 != sign:
+        x = ED_P - x
+    return (x, y, 1, x * y % ED_P)
+
+
+def ed_equal(a, b):
+    return (a[0] * b[2] - b[0] * a[2]) % ED_P == 0 and (a[1] * b[2] - b[1] * a[2]) % ED_P == 0
+
+
+ED_B = ed_decode(bytes.fromhex("5866666666666666666666666666666666666666666666666666666666666666"))
+
+
+def ed25519_verify(public, message, signature):
+    A, R = ed_decode(public), ed_decode(signature[:32])
+    S = int.from_bytes(signature[32:], "little")
+    if A is None or R is None or S >= ED_L:
+        return False
+    h = int.from_bytes(hashlib.sha512(signature[:32] + public + message).digest(), "little") % ED_L
+    # [8][S]B = [8]R + [8][h]A (the cofactored check; equal to the plain one for honest signatures).
+    left = ed_mul(8 * S, ED_B)
+    right = ed_mul(8, ed_add(R, ed_mul(h, A)))
+    return ed_equal(left, right)
+
+
+def ed25519_public_key(seed):
+    """The public key of a 32-byte seed (RFC 8032 5.1.5), for the vectors' key."""
+    h = hashlib.sha512(seed).digest()
+    a = int.from_bytes(h[:32], "little")
+    a &= (1 << 254) - 8
+    a |= 1 << 254
+    X, Y, Z, _ = ed_mul(a, ED_B)
+    zi = pow(Z, ED_P - 2, ED_P)
+    x, y = X * zi % ED_P, Y * zi % ED_P
+    return (y | (x & 1) << 255).to_bytes(32, "little")
+
+
+VECTORS_KEY = ed25519_public_key(bytes(range(32)))
+MANIFEST_CONTEXT = b"ellicast manifest"
+
+
+def digest_input(h):
+    """Spec 16.1: header and payload with the sequence bytes zeroed."""
+    header = MAGIC + bytes([h["major"], h["minor"], h["type"], h["flags"]]) + struct.pack(
+        "<IIHH", h["stream_id"], 0, h["object_id"], h["payload_length"])
+    return header + h["payload"]
+
+
+def packet_digest(h):
+    return hashlib.sha256(digest_input(h)).digest()[:16]
+
+
+def decode_manifest(payload):
+    """Spec 16.2: None when malformed, dict(scheme=...) alone for a later scheme, else every field."""
+    if len(payload) == 0:
+        return None
+    if payload[0] != 1:
+        return dict(scheme=payload[0])
+    if len(payload) < 88:
+        return None
+    part, part_count, n, packet_count, first = struct.unpack_from("<HHHII", payload, 2)
+    if len(payload) != 88 + 16 * n or part_count == 0 or part >= part_count or first + n > packet_count:
+        return None
+    return dict(scheme=1, part=part, part_count=part_count, packet_count=packet_count, first=first,
+                key_id=payload[16:24], digests=[payload[24 + 16 * i:40 + 16 * i] for i in range(n)],
+                signature=payload[24 + 16 * n:])
+
+
+def authenticate(packets):
+    """Spec 16.3 for a recording: every MANIFEST first, then every other packet in file order."""
+    key_id = hashlib.sha256(VECTORS_KEY).digest()[:8]
+    counters = dict(passed=0, manifests_verified=0, manifests_repeated=0, manifests_failed=0, malformed=0,
+                    unknown_scheme=0, not_authenticated=0)
+    verdicts, manifests = {}, []
+    listed, verified = set(), set()
+    for offset, size, h in packets:
+        if h["type"] != 0x20:
+            continue
+        m = decode_manifest(h["payload"])
+        entry = dict(offset=offset)
+        if m is None:
+            entry["malformed"] = True
+            counters["malformed"] += 1
+            verdicts[offset] = "malformed payload"
+        elif m["scheme"] != 1:
+            entry.update(malformed=False, scheme=m["scheme"])
+            counters["unknown_scheme"] += 1
+            verdicts[offset] = "manifest"
+        else:
+            message = MANIFEST_CONTEXT + digest_input(h)[:-64]
+            ok = m["key_id"] == key_id and ed25519_verify(VECTORS_KEY, message, m["signature"])
+            entry.update(malformed=False, scheme=1, part=m["part"], part_count=m["part_count"],
+                         packet_count=m["packet_count"], first=m["first"], key_id=m["key_id"].hex(),
+                         digests=[d.hex() for d in m["digests"]],
+                         signed_message_sha256=hashlib.sha256(message).hexdigest(),
+                         signature=m["signature"].hex(), verified=ok)
+            digest = packet_digest(h)
+            if digest in verified:
+                counters["manifests_repeated"] += 1
+                verdicts[offset] = "repeat"
+            elif not ok:
+                counters["manifests_failed"] += 1
+                verdicts[offset] = "bad manifest signature"
+            else:
+                verified.add(digest)
+                counters["manifests_verified"] += 1
+                listed.update(m["digests"])
+                verdicts[offset] = "manifest"
+        manifests.append(entry)
+    plist = []
+    passed = Receiver()
+    for offset, size, h in packets:
+        digest = packet_digest(h)
+        if h["type"] != 0x20:
+            if digest in listed:
+                verdicts[offset] = "pass"
+                counters["passed"] += 1
+                passed.add(h, offset)
+            else:
+                verdicts[offset] = "not authenticated"
+                counters["not_authenticated"] += 1
+        plist.append(dict(offset=offset, digest=digest.hex(), verdict=verdicts[offset]))
+    info = dict(passed.info, object_count=passed.object_count) if passed.info is not None else None
+    return dict(key=VECTORS_KEY.hex(), key_id=key_id.hex(), manifests=manifests, packets=plist, counters=counters,
+                authenticated=dict(counters=passed.counters, stream_info=info, objects=objects_json(passed)))
+
+
 class Receiver:
     """Spec 11.1 steps 9..14 and 11.2."""
 
@@ -478,7 +655,7 @@ class Receiver:
         if self.stream_id is not None and h["stream_id"] != self.stream_id:
             return self.reject(offset, "stream mismatch")
         t = h["type"]
-        if t not in KNOWN_10 and (t not in KNOWN_11 or not self.know_11):
+        if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12) or not self.know_11):
             if not h["flags"] & 1:
                 return self.reject(offset, "unknown critical type")
             self.stream_id = h["stream_id"]
@@ -493,9 +670,15 @@ class Receiver:
             result = self.material(h, offset)
         elif t == 0x12:
             result = self.fragment(h, offset)
+        elif t == 0x20:
+            # A decoder checks the layout and takes nothing (spec 16.2); verifying needs a key.
+            if decode_manifest(h["payload"]) is None:
+                return self.reject(offset, "malformed payload")
+            self.counters["skipped"] += 1
+            result = "skipped"
         else:
             result = self.object_packet(h, offset)
-        if result in ("accepted", "duplicate", "held"):
+        if result in ("accepted", "duplicate", "held", "skipped"):
             self.stream_id = h["stream_id"]
             self.newest_minor = max(self.newest_minor, h["minor"])
         return result
@@ -734,7 +917,8 @@ def decode(buf):
     for offset, size, h in packets:
         result = r.add(h, offset)
         old.add(h, offset)
-        name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or "UNKNOWN(0x%02X)" % h["type"]
+        name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or KNOWN_12.get(h["type"]) or \
+            "UNKNOWN(0x%02X)" % h["type"]
         plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
                           flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
                           object_id=h["object_id"], payload_length=h["payload_length"], result=result))
@@ -748,6 +932,7 @@ def decode(buf):
     if any_scene:
         out["as_1_0"] = dict(counters=old.counters, newest_minor=old.newest_minor,
                              same_objects=info(old) == out["stream_info"] and objects_json(old) == out["objects"])
+    out["signed"] = authenticate(packets) if any(h["type"] == 0x20 for _, _, h in packets) else None
     return out, r
 
 

@@ -4,9 +4,11 @@
 // is described in spec/vectors/README.md.
 #pragma once
 
+#include <ellicast/auth.h>
 #include <ellicast/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -40,6 +42,8 @@ inline const char* reason_name(Error e) {
     case Error::BadSignature: return "bad container signature";
     case Error::UnsupportedContainer: return "unsupported container version";
     case Error::IoError: return "i/o error";
+    case Error::ManifestSignature: return "bad manifest signature";
+    case Error::NotAuthenticated: return "not authenticated";
     }
     return "unknown";
 }
@@ -334,6 +338,85 @@ inline nlohmann::json scene_json(const ReceivedStream& s) {
             {"shown", shown_json(s)}};
 }
 
+// The key every signed vector is checked with (spec/vectors/README.md): the Ed25519 key pair whose
+// 32-byte seed is 00 01 02 .. 1F.
+inline auth::KeyPair vectors_key() {
+    auth::Seed seed;
+    for (size_t i = 0; i < seed.size(); ++i) seed[i] = static_cast<uint8_t>(i);
+    return auth::key_pair_from_seed(seed);
+}
+
+inline std::string hex(std::span<const uint8_t> bytes) { return auth::to_hex(bytes); }
+
+// Format 1.2, present when the file holds any MANIFEST packet: the recording authenticated with
+// vectors_key() as spec 16.3 says for recordings (every MANIFEST first, then the other packets in
+// file order), and what a decoder makes of the packets that pass.
+inline nlohmann::json signed_json(const ContainerContents& contents, const std::vector<uint8_t>& bytes) {
+    using nlohmann::json;
+    const auth::PublicKey key = vectors_key().public_key;
+    const auth::RecordingAuthentication a = auth::authenticate_recording(contents.packets, bytes, key);
+    auto bytes_of = [&](const ContainerPacket& p) {
+        return std::span<const uint8_t>(bytes).subspan(p.offset, p.view.size);
+    };
+    json manifests = json::array(), packets = json::array();
+    ReceivedStream passed;
+    for (size_t i = 0; i < contents.packets.size(); ++i) {
+        const ContainerPacket& p = contents.packets[i];
+        const PacketDigest digest = packet_digest(bytes_of(p));
+        std::string verdict;
+        switch (a.verdicts[i]) {
+        case auth::Authenticator::Verdict::Pass: verdict = "pass"; break;
+        case auth::Authenticator::Verdict::Manifest: verdict = "manifest"; break;
+        case auth::Authenticator::Verdict::Repeat: verdict = "repeat"; break;
+        default: verdict = reason_name(a.errors[i]); break;
+        }
+        packets.push_back({{"offset", p.offset}, {"digest", hex(digest)}, {"verdict", verdict}});
+        if (a.verdicts[i] == auth::Authenticator::Verdict::Pass) passed.add_parsed(p.view, p.offset);
+        if (p.view.header.type != static_cast<uint8_t>(PacketType::Manifest)) continue;
+        ManifestPart part;
+        json m = {{"offset", p.offset}};
+        if (decode_manifest_payload(p.view.payload, part) != Error::Ok) {
+            m["malformed"] = true;
+        } else if (part.scheme != kManifestSchemeEd25519) {
+            m["malformed"] = false;
+            m["scheme"] = part.scheme;
+        } else {
+            json digests = json::array();
+            for (const PacketDigest& d : part.digests) digests.push_back(hex(d));
+            const std::vector<uint8_t> message = manifest_signed_message(bytes_of(p));
+            m["malformed"] = false;
+            m["scheme"] = part.scheme;
+            m["part"] = part.part;
+            m["part_count"] = part.part_count;
+            m["packet_count"] = part.packet_count;
+            m["first"] = part.first;
+            m["key_id"] = hex(part.key_id);
+            m["digests"] = digests;
+            m["signed_message_sha256"] = hex(sha256(message));
+            m["signature"] = hex(part.signature);
+            m["verified"] = auth::verify_manifest(bytes_of(p), part, key);
+        }
+        manifests.push_back(m);
+    }
+    const auto& c = a.counters;
+    return {{"key", hex(key)},
+            {"key_id", hex(key_id_of(std::span<const uint8_t, 32>(key)))},
+            {"manifests", manifests},
+            {"packets", packets},
+            {"counters",
+             {{"passed", c.passed},
+              {"manifests_verified", c.manifests_verified},
+              {"manifests_repeated", c.manifests_repeated},
+              {"manifests_failed", c.manifests_failed},
+              {"malformed", c.malformed},
+              {"unknown_scheme", c.unknown_scheme},
+              {"not_authenticated", c.not_authenticated}}},
+            {"authenticated",
+             {{"counters", counters_json(passed.counters())},
+              {"stream_info", passed.info() ? stream_info_json(*passed.info(), passed.objects().size()) : json(nullptr)},
+              {"objects", objects_json(passed)}}}};
+}
+
 // Decodes a container held in memory the way spec/format.md describes and returns the result.
 inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     using nlohmann::json;
@@ -403,6 +486,11 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
                          {"newest_minor", as_1_0.newest_minor()},
                          {"same_objects", info_1_0 == out["stream_info"] && objects_json(as_1_0) == out["objects"]}};
     }
+    // Format 1.2: present when the file holds any MANIFEST packet.
+    const bool any_manifest = std::any_of(contents.packets.begin(), contents.packets.end(), [](const ContainerPacket& p) {
+        return p.view.header.type == static_cast<uint8_t>(PacketType::Manifest);
+    });
+    out["signed"] = any_manifest ? signed_json(contents, bytes) : json(nullptr);
     return out;
 }
 

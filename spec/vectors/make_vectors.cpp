@@ -9,6 +9,7 @@
 #include "expected_decode.h"
 #include "../../samples/jpeg_images.h"
 
+#include <ellicast/auth.h>
 #include <ellicast/format.h>
 
 #include <algorithm>
@@ -1251,6 +1252,195 @@ void scene_vectors(Writer& w) {
     }
 }
 
+// ------------------------------------------------------------------------------------------------
+// Format 1.2: signed streams (spec 16). Every signed vector is signed with vectors_key() (seed 00..1F)
+// unless it says otherwise; the expected decode authenticates with that key.
+
+// A small stream of 1.0 packets, and its MANIFEST parts at `packet_size` (several parts when small).
+struct SignedStream {
+    Packets manifests;  // MANIFEST parts, in part order
+    Packets listed;     // the packets they list, in listed order
+};
+
+SignedStream signed_stream(uint64_t seed, uint16_t packet_size, const auth::KeyPair& key) {
+    StreamInfo info = default_info({make_object({-1, -1, -1}, 2, 6, 48, kAttrNormal)}, packet_size);
+    Stream s = make_stream(info, kStreamId, seed);
+    SignedStream out;
+    out.listed = s.all();
+    std::string error;
+    if (auth::sign_packets(out.listed, key, packet_size, 0, out.manifests, error) != Error::Ok) {
+        std::cerr << "make_vectors: signing failed: " << error << "\n";
+        std::exit(1);
+    }
+    return out;
+}
+
+// MANIFEST parts first, then the listed packets, numbered in file order.
+Packets signed_file(const SignedStream& s) {
+    Packets out = s.manifests;
+    out.insert(out.end(), s.listed.begin(), s.listed.end());
+    for (uint32_t i = 0; i < out.size(); ++i) restamp_packet(out[i], i);
+    return out;
+}
+
+// Offsets in a MANIFEST packet (header included).
+constexpr size_t kManifestPart = kHeaderSize + 2, kManifestPartCount = kHeaderSize + 4,
+                 kManifestDigestCount = kHeaderSize + 6, kManifestFirst = kHeaderSize + 12,
+                 kManifestDigests = kHeaderSize + 24;
+
+void signed_vectors(Writer& w) {
+    const auth::KeyPair key = conformance::vectors_key();
+    {
+        // 300-byte packets: 10 digests per part, so the stream's 10 packets take two parts (the base
+        // part lists the STREAM_INFO and ELLIPSOIDS packets, the detail part the POINTS packets).
+        SignedStream s = signed_stream(41, 300, key);
+        w.write("valid", "signed",
+                "a signed stream (format 1.2): two MANIFEST parts (base, detail) before the 1.0 packets they list; "
+                "every part verifies with the vectors' key and every packet passes",
+                signed_file(s));
+    }
+    {
+        // A carousel of a signed stream: each part goes before the packets it lists and comes again
+        // later, packets repeat, sequence numbers count transmissions.
+        SignedStream s = signed_stream(42, 300, key);
+        Packets sent;
+        for (int cycle = 0; cycle < 2; ++cycle)
+            for (size_t m = 0; m < s.manifests.size(); ++m) {
+                sent.push_back(s.manifests[m]);
+                PacketView view;
+                ManifestPart part;
+                parse_packet(s.manifests[m], view);
+                decode_manifest_payload(view.payload, part);
+                for (size_t i = part.first; i < part.first + part.digests.size(); ++i) sent.push_back(s.listed[i]);
+            }
+        for (uint32_t i = 0; i < sent.size(); ++i) restamp_packet(sent[i], i);
+        w.write("valid", "signed_carousel",
+                "a signed stream sent twice as a carousel: every MANIFEST part before the packets it lists; the "
+                "second copies are repeats (same digest whatever the sequence number)",
+                sent);
+    }
+    {
+        // The MANIFEST parts at the end of the file: a recording is authenticated as a whole.
+        SignedStream s = signed_stream(43, 300, key);
+        Packets out = s.listed;
+        out.insert(out.end(), s.manifests.begin(), s.manifests.end());
+        for (uint32_t i = 0; i < out.size(); ++i) restamp_packet(out[i], i);
+        w.write("unusual", "signed_manifest_last",
+                "a signed stream whose MANIFEST parts come after every packet they list: a recording is "
+                "authenticated as a whole (spec 16.3), so every packet passes",
+                out);
+    }
+    {
+        SignedStream s = signed_stream(44, 300, key);
+        Packets out = signed_file(s);
+        // A MANIFEST of a later scheme (2) with a layout of its own: skipped, whatever its length.
+        Packet later = s.manifests[0];
+        std::vector<uint8_t> payload = {2, 0, 0xAB, 0xCD, 0xEF};
+        out.insert(out.begin() + 1, with_payload(later, payload));
+        for (uint32_t i = 0; i < out.size(); ++i) restamp_packet(out[i], i);
+        w.write("unusual", "signed_unknown_scheme",
+                "a signed stream plus a 5-byte MANIFEST of scheme 2: a 1.2 decoder skips it (spec 16.2), with or "
+                "without a key; the scheme-1 parts verify",
+                out);
+    }
+    {
+        const auth::KeyPair other = [] {
+            auth::Seed seed;
+            for (size_t i = 0; i < seed.size(); ++i) seed[i] = static_cast<uint8_t>(0x20 + i);
+            return auth::key_pair_from_seed(seed);
+        }();
+        SignedStream s = signed_stream(45, 300, other);
+        w.write("faulty", "signed_wrong_key",
+                "a stream signed with another key (seed 20..3F): both MANIFEST parts are rejected with the vectors' "
+                "key (bad manifest signature: another key id) and no packet is authenticated",
+                signed_file(s));
+    }
+    {
+        SignedStream s = signed_stream(46, 300, key);
+        Packets out = signed_file(s);
+        out[0][kManifestDigests] ^= 0x01;  // one bit of part 0's first digest, checksum resealed
+        reseal(out[0]);
+        w.write("faulty", "signed_tampered_manifest",
+                "part 0 of the manifest has one bit of a digest flipped (checksum valid): its signature fails (bad "
+                "manifest signature) and the packets only it listed are not authenticated",
+                out);
+    }
+    {
+        SignedStream s = signed_stream(47, 300, key);
+        Packets out = signed_file(s);
+        // A forged POINTS packet: the last one with one coordinate byte changed, checksum resealed.
+        Packet& points = out.back();
+        points[kHeaderSize + 12] ^= 0x5A;
+        reseal(points);
+        w.write("faulty", "signed_forged_points",
+                "the last POINTS packet altered after signing (checksum valid): without a key it is accepted; with "
+                "the key its digest is listed nowhere and it is rejected (not authenticated)",
+                out);
+    }
+    {
+        SignedStream s = signed_stream(48, 300, key);
+        Packets out = signed_file(s);
+        // A packet the manifest does not list: a forger's copy of the first POINTS packet with other
+        // positions, sent before the real stream info (so a decoder without a key holds it, then takes
+        // it, and the real packet with the same point indices comes too late).
+        Packet forged = s.listed[2];
+        for (size_t i = kHeaderSize + 8; i < kHeaderSize + 40; ++i) forged[i] ^= 0x5A;
+        reseal(forged);
+        out.insert(out.begin() + 2, forged);
+        for (uint32_t i = 0; i < out.size(); ++i) restamp_packet(out[i], i);
+        w.write("faulty", "signed_unlisted_packet",
+                "a signed stream with a CRC-valid POINTS packet no MANIFEST lists, before the stream info: without a key "
+                "its points are taken and the real ones with the same indices are duplicates; with the key it is "
+                "rejected (not authenticated) and every real point is taken",
+                out);
+    }
+    // Malformed MANIFEST payloads (spec 16.2): each rejected as malformed payload, with or without a key.
+    struct Malformed {
+        const char* name;
+        const char* description;
+        std::function<void(Packet&)> edit;
+    };
+    const std::vector<Malformed> malformed = {
+        {"signed_manifest_empty", "a MANIFEST with payload_length 0: malformed payload",
+         [](Packet& p) { p = with_payload(p, {}); }},
+        {"signed_manifest_short", "a scheme-1 MANIFEST of 87 bytes (less than 88): malformed payload",
+         [](Packet& p) {
+             std::vector<uint8_t> payload = payload_of(p);
+             payload.resize(87);
+             p = with_payload(p, payload);
+         }},
+        {"signed_manifest_count_mismatch",
+         "a MANIFEST whose digest_count is one more than its length holds: malformed payload",
+         [](Packet& p) {
+             put16(p, kManifestDigestCount, uint16_t(get16(p, kManifestDigestCount) + 1));
+             reseal(p);
+         }},
+        {"signed_manifest_part_count_zero", "a MANIFEST with part_count 0: malformed payload",
+         [](Packet& p) {
+             put16(p, kManifestPartCount, 0);
+             reseal(p);
+         }},
+        {"signed_manifest_part_past_count", "a MANIFEST whose part equals its part_count: malformed payload",
+         [](Packet& p) {
+             put16(p, kManifestPart, get16(p, kManifestPartCount));
+             reseal(p);
+         }},
+        {"signed_manifest_range_past_count",
+         "a MANIFEST whose first + digest_count exceeds packet_count (first = 2^32 - 1, no overflow): malformed payload",
+         [](Packet& p) {
+             put32(p, kManifestFirst, 0xFFFFFFFFu);
+             reseal(p);
+         }},
+    };
+    uint64_t seed = 50;
+    for (const Malformed& m : malformed) {
+        SignedStream s = signed_stream(seed++, 300, key);
+        Packets out = signed_file(s);
+        m.edit(out[0]);
+        w.write("faulty", m.name, m.description, out);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -1264,6 +1454,7 @@ int main(int argc, char** argv) {
     unusual_vectors(w);
     faulty_vectors(w);
     scene_vectors(w);
+    signed_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
