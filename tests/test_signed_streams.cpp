@@ -226,6 +226,7 @@ TEST_CASE("the carousel of a signed stream sends base parts with the base and de
     const auth::KeyPair key = key_from(1);
     const Packets packets = signed_stream(key, 0x5EED, 20000);
     CarouselOptions options;
+    options.chunk_packets = 20;  // room for STREAM_INFO repeats inside a chunk
     Carousel carousel;
     std::string error;
     REQUIRE(build_carousel(packets, options, carousel, error));
@@ -249,6 +250,21 @@ TEST_CASE("the carousel of a signed stream sends base parts with the base and de
         CHECK(first_manifest < first_listed);
         CHECK(copies == (part.digests.size() > 1 ? 2 : 1));
     }
+    // Every STREAM_INFO repeat inside a chunk is followed by the part that lists it (a small part of
+    // its own), so that a receiver with the key can show a model as early as one without.
+    size_t info_repeats = 0;
+    for (size_t slot = 0; slot + 1 < carousel.cycle.size(); ++slot) {
+        const CarouselEntry& e = carousel.cycle[slot];
+        if (!e.stream_info_repeat || packets[e.packet][6] != uint8_t(PacketType::StreamInfo)) continue;
+        ++info_repeats;
+        const auto& next = packets[carousel.cycle[slot + 1].packet];
+        REQUIRE(is_manifest(next));
+        ManifestPart part;
+        REQUIRE(decode_manifest_payload(view_of(next).payload, part) == Error::Ok);
+        CHECK(part.digests.size() == 1);
+        CHECK(part.digests[0] == packet_digest(packets[e.packet]));
+    }
+    CHECK(info_repeats > 0);
     // A receiver with the key that tunes in anywhere authenticates every packet within two cycles.
     for (uint64_t tune_in : {uint64_t(0), uint64_t(carousel.cycle.size() / 3), uint64_t(carousel.cycle.size() - 1)}) {
         CAPTURE(tune_in);

@@ -12,6 +12,15 @@ bool is_detail_type(uint8_t type) {
     return type == static_cast<uint8_t>(PacketType::Points) || type == static_cast<uint8_t>(PacketType::TextureFragment);
 }
 
+namespace {
+// Parts never mix these: the stream info (a carousel repeats its part with every STREAM_INFO
+// repeat, so it is small), the rest of the base, and the detail.
+int part_class(uint8_t type) {
+    if (type == static_cast<uint8_t>(PacketType::StreamInfo)) return 0;
+    return is_detail_type(type) ? 2 : 1;
+}
+}  // namespace
+
 Error sign_packets(const std::vector<std::vector<uint8_t>>& packets, const KeyPair& key, size_t packet_size,
                    uint32_t first_sequence, std::vector<std::vector<uint8_t>>& manifests, std::string& error) {
     manifests.clear();
@@ -49,9 +58,8 @@ Error sign_packets(const std::vector<std::vector<uint8_t>>& packets, const KeyPa
                     ", the first had " + std::to_string(stream_id) + ": a manifest signs one stream";
             return Error::MalformedPayload;
         }
-        const bool detail = is_detail_type(view.header.type);
-        const bool same_class =
-            !runs.empty() && is_detail_type(packets[runs.back().first][6]) == detail;
+        const int kind = part_class(view.header.type);
+        const bool same_class = !runs.empty() && part_class(packets[runs.back().first][6]) == kind;
         if (same_class && runs.back().second - runs.back().first < capacity) runs.back().second = i + 1;
         else runs.push_back({i, i + 1});
     }
