@@ -83,3 +83,17 @@ TEST_CASE("the candidates are bounded: packets of further streams count as anoth
     CHECK(chosen.candidate_count() == 1);
     CHECK(chosen.complete());
 }
+
+TEST_CASE("a small stream that completes first does not end a receiver that heard another one still arriving") {
+    const auto small = test::synthetic_stream(2, 30, 0xBBBB, 1200, 5);
+    const auto real = test::synthetic_stream(40, 3000, 0xAAAA);
+    Reception reception;
+    for (const auto& p : small) reception.take(p);
+    reception.take(real[0]);  // the real sender's stream info: a second candidate, far from complete
+    CHECK(reception.stream().stream_id() == 0xBBBB);
+    CHECK(reception.complete());  // the stream shown is complete...
+    CHECK_FALSE(reception.every_candidate_complete());  // ...but the other is not: `receive` keeps going
+    for (const auto& p : real) reception.take(p);
+    CHECK(reception.stream().stream_id() == 0xAAAA);
+    CHECK(reception.every_candidate_complete());
+}

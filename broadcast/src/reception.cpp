@@ -196,32 +196,46 @@ std::optional<Error> Reception::route(const PacketView& view, uint64_t where) {
     return first_error;
 }
 
-bool Reception::base_complete() const {
-    if (!stream().info()) return false;
-    const auto& objects = stream().objects();
-    for (const auto& object : objects) {
+namespace {
+
+bool stream_base_complete(const ReceivedStream& stream) {
+    if (!stream.info()) return false;
+    for (const auto& object : stream.objects()) {
         if (!object.info) return false;
         if (object.info->kind == ObjectKind::Surface && object.ellipsoids.size() < object.info->ellipsoid_count)
             return false;
     }
     // Format 1.1: the scene tables and the materials travel with the base.
-    if (stream().has_scene()) {
-        if (stream().scene_nodes().size() < stream().scene_node_count()) return false;
-        if (stream().scene_meshes().size() < stream().scene_mesh_count()) return false;
+    if (stream.has_scene()) {
+        if (stream.scene_nodes().size() < stream.scene_node_count()) return false;
+        if (stream.scene_meshes().size() < stream.scene_mesh_count()) return false;
     }
-    const auto& materials = stream().materials();
+    const auto& materials = stream.materials();
     if (!materials.empty() && materials.size() < materials.begin()->second.material_count) return false;
     return true;
 }
 
-bool Reception::complete() const {
-    if (!base_complete()) return false;
-    for (const auto& object : stream().objects())
+bool stream_complete(const ReceivedStream& stream) {
+    if (!stream_base_complete(stream)) return false;
+    for (const auto& object : stream.objects())
         if (object.points.size() < object.info->point_count) return false;
-    const auto& textures = stream().textures();
+    const auto& textures = stream.textures();
     if (!textures.empty() && textures.size() < textures.begin()->second.info.texture_count) return false;
     for (const auto& [index, texture] : textures)
         if (!texture.complete) return false;
+    return true;
+}
+
+}  // namespace
+
+bool Reception::base_complete() const { return stream_base_complete(stream()); }
+
+bool Reception::complete() const { return stream_complete(stream()); }
+
+bool Reception::every_candidate_complete() const {
+    if (candidates_.empty()) return false;
+    for (const Candidate& k : candidates_)
+        if (!stream_complete(k.stream)) return false;
     return true;
 }
 

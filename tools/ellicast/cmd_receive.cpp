@@ -180,6 +180,23 @@ int run_receive(const ReceiveArgs& a) {
     std::signal(SIGTERM, on_receive_interrupt);
     const bool tty = isatty(fileno(stderr)) != 0;
     const auto start = std::chrono::steady_clock::now();
+    // Done: the stream shown is complete and, when more than one stream was heard without a key to
+    // tell them apart, every other one too (a small forged stream that completes first must not end
+    // the reception while the real one is still arriving; --until, --stream-id or --key end the wait).
+    bool told_waiting = false;
+    auto done = [&]() {
+        if (!reception.complete()) return false;
+        if (reception.candidate_count() <= 1 || reception.authenticator() || reception.every_candidate_complete())
+            return true;
+        if (!told_waiting && !a.quiet) {
+            std::fprintf(stderr,
+                         "%sellicast: warning: the stream shown is complete, but %zu streams were heard on this address: "
+                         "waiting for every one to complete (--until, --stream-id or --key end this)\n",
+                         tty ? "\n" : "", reception.candidate_count());
+            told_waiting = true;
+        }
+        return false;
+    };
     auto seconds_since = [&](std::chrono::steady_clock::time_point t) {
         return std::chrono::duration<double>(t - start).count();
     };
@@ -241,7 +258,7 @@ int run_receive(const ReceiveArgs& a) {
             if (first_packet_at < 0) first_packet_at = seconds_since(std::chrono::steady_clock::now());
             if (stream_output && reception.last_accepted_by() != 0)
                 kept.emplace_back(reception.last_accepted_by(), std::vector<uint8_t>(bytes.begin(), bytes.end()));
-            if (reception.complete()) break;
+            if (done()) break;
         }
         if (base_at < 0 && reception.base_complete()) {
             base_at = seconds_since(std::chrono::steady_clock::now());
@@ -257,7 +274,7 @@ int run_receive(const ReceiveArgs& a) {
             for (auto& s : snapshots)
                 if (!s.done && s.kind == Snapshot::Base) take_snapshot(s);
         }
-        if (reception.complete()) {
+        if (done()) {
             complete_at = seconds_since(std::chrono::steady_clock::now());
             break;
         }

@@ -101,6 +101,10 @@ public:
     bool base_complete() const;
     // Everything the stream declares has arrived (every point, every texture): full quality.
     bool complete() const;
+    // complete() for every candidate. Without a key, a receiver that heard more than one stream
+    // waits for this: a small forged stream that completes first must not end the reception while
+    // the real one, which may overtake it, is still arriving.
+    bool every_candidate_complete() const;
     // Points received / declared over all objects (declared is 0 before the stream info).
     uint64_t points_received() const;
     uint64_t points_declared() const;
