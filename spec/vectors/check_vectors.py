@@ -19,6 +19,7 @@ EOI at the end).
 import hashlib
 import json
 import math
+from fractions import Fraction
 import os
 import struct
 import sys
@@ -48,6 +49,16 @@ def crc32c(data, crc=0):
 def f32(x):
     """Round a real number to the nearest binary32, as the spec's 'rounded to f32'."""
     return struct.unpack("<f", struct.pack("<f", x))[0]
+
+
+# Binary32 rounds (to nearest, ties to even) every real of magnitude 2^128 - 2^103 or more, half-way
+# between the largest f32 and 2^128 included, to infinity.
+F32_INFINITE_FROM = 2 ** 128 - 2 ** 103
+
+
+def f32_sum_infinite(a, b):
+    """Spec 5.3: whether a + b, computed exactly and rounded to f32, is infinite."""
+    return abs(Fraction(a) + Fraction(b)) >= F32_INFINITE_FROM
 
 
 class Bits:
@@ -138,6 +149,9 @@ def decode_stream_info(p):
         ts = struct.unpack_from("<ff", p, e + 36)
         floats = (ox, oy, oz, scale) + to + ts
         if not all(math.isfinite(v) for v in floats) or not scale > 0 or min(ts) < 0:
+            return None
+        # The frame's far corner and the texture-coordinate range's end must be finite in f32.
+        if any(f32_sum_infinite(o, scale) for o in (ox, oy, oz)) or any(f32_sum_infinite(to[k], ts[k]) for k in (0, 1)):
             return None
         if kind not in (0, 1) or attrs & 0xF0 or (attrs & 8 and not attrs & 4) or (kind == 1 and ne != 0):
             return None
@@ -634,7 +648,7 @@ class Receiver:
 
     def __init__(self, know_11=True):
         self.know_11 = know_11
-        self.scene_counts = None  # (node_count, mesh_count) once a SCENE packet was accepted
+        self.scene_counts = None  # (node_count, mesh_count) of the SCENE packets taken
         self.nodes, self.meshes, self.materials, self.textures = {}, {}, {}, {}
         self.material_count = None
         self.stream_id = None
@@ -691,11 +705,18 @@ class Receiver:
             return self.reject(offset, "malformed payload")
         fields, count, first, entries = d
         if self.info is not None:
+            # Spec 5.4: f32 fields compare as numbers (Python floats: -0.0 == 0.0); the reserved fields
+            # and the bytes after offset 43 of a longer entry are not in the dicts compared.
             if fields != self.info or count != self.object_count:
                 return self.reject(offset, "stream mismatch")
         else:
             self.info, self.object_count = fields, count
             self.objects = [dict(info=None, ellipsoids={}, points={}) for _ in range(count)]
+            # Spec 11.1: held packets naming an object beyond the table are rejected now, in arrival order.
+            for h, at in [x for x in self.held if x[0]["object_id"] >= count]:
+                self.counters["held"] -= 1
+                self.reject(at, "unknown object")
+            self.held = [x for x in self.held if x[0]["object_id"] < count]
         for i, e in enumerate(entries):
             known = self.objects[first + i]["info"]
             if known is not None and known != e:
@@ -706,16 +727,20 @@ class Receiver:
             if obj["info"] is None:
                 obj["info"] = e
                 news = True
-                self.release(first + i)
+        if news:
+            self.release()
         if news or not entries:
             self.counters["accepted"] += 1
             return "accepted"
         self.counters["duplicates"] += 1
         return "duplicate"
 
-    def release(self, object_id):
-        mine = [x for x in self.held if x[0]["object_id"] == object_id]
-        self.held = [x for x in self.held if x[0]["object_id"] != object_id]
+    def release(self):
+        """Spec 11.1: once a STREAM_INFO part is taken in whole, every held packet whose object's entry has
+        now arrived is checked, in the order the packets arrived (not grouped by object)."""
+        ready = lambda x: self.objects[x[0]["object_id"]]["info"] is not None
+        mine = [x for x in self.held if ready(x)]
+        self.held = [x for x in self.held if not ready(x)]
         for h, offset in mine:
             self.counters["held"] -= 1
             self.object_packet(h, offset)
@@ -758,7 +783,9 @@ class Receiver:
         if d is None:
             return self.reject(offset, "malformed payload")
         counts, nodes, meshes = d
-        if self.scene_counts is not None and counts != self.scene_counts:
+        # Spec 15.1: table sizes 0 and 0 fix nothing; the sizes of a taken SCENE packet bind the later
+        # ones only when one of them is not 0.
+        if self.scene_counts not in (None, (0, 0)) and counts != self.scene_counts:
             return self.reject(offset, "stream mismatch")
         for table, records in ((self.nodes, nodes), (self.meshes, meshes)):
             for r in records:
@@ -845,8 +872,9 @@ class Receiver:
                                  image_size=d["image_size"], image_crc=d["image_crc"], received_bytes=t["received"],
                                  missing=[] if t["complete"] else missing, complete=t["complete"],
                                  image_digest=fnv_bytes(t["image"]) if t["complete"] else None))
-        return dict(node_count=self.scene_counts[0] if self.scene_counts else None,
-                    mesh_count=self.scene_counts[1] if self.scene_counts else None,
+        sized = self.scene_counts not in (None, (0, 0))  # sizes 0 and 0 are listed as null (README)
+        return dict(node_count=self.scene_counts[0] if sized else None,
+                    mesh_count=self.scene_counts[1] if sized else None,
                     nodes=[node_json(n) for n in nodes], meshes=meshes,
                     material_count=self.material_count if self.materials else None,
                     materials=[material_json(self.materials[k]) for k in sorted(self.materials)],

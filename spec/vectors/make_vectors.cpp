@@ -471,6 +471,46 @@ void unusual_vectors(Writer& w) {
                 "every reserved header flag bit and reserved field set to non-zero values; decoders ignore them and decode as usual",
                 sent);
     }
+    {
+        // Repetitions of STREAM_INFO that differ only where spec 5.4 does not compare: the entry's
+        // reserved field (offset 26), the bytes after offset 43 of a longer entry, the reserved byte
+        // at offset 11, and +0 against -0 in f32 fields. None contradicts the others.
+        StreamInfo info = default_info({make_object({0, -1, 0}, 2, 8, 30, kAttrNormal | kAttrTexcoord)});
+        Stream s = make_stream(info, kStreamId, 19);
+        const Packet& original = s.packets.stream_info[0];
+        // A copy in the layout of a later minor version: entry_size 52, 8 unknown bytes after each entry.
+        auto grown = [&](uint8_t trailing, uint16_t reserved, uint32_t sequence) {
+            const auto payload = payload_of(original);
+            std::vector<uint8_t> out(payload.begin(), payload.begin() + 32);
+            out[2] = 52;  // entry_size
+            out.insert(out.end(), payload.begin() + 32, payload.begin() + 76);
+            put16(out, 32 + 26, reserved);
+            for (int k = 0; k < 8; ++k) out.push_back(uint8_t(trailing + k));
+            Packet q = with_payload(original, out);
+            q[5] = 1;  // minor version 1
+            put32(q, 12, sequence);
+            reseal(q);
+            return q;
+        };
+        Packet first = grown(0xB0, 0xBEEF, 100);
+        Packet later = grown(0xC0, 0x1234, 101);
+        const size_t H = kHeaderSize, E = kHeaderSize + 32;
+        later[H + 11] = 0x5A;              // the reserved stream-level byte
+        put32(later, E + 0, 0x80000000u);  // frame_origin x: -0 where the others say +0
+        put32(later, E + 8, 0x80000000u);  // frame_origin z: -0
+        put32(later, E + 28, 0x80000000u); // texcoord_origin u: -0
+        reseal(later);
+        Packets sent = {first};
+        for (const Packet& q : s.all()) sent.push_back(q);
+        sent.push_back(later);
+        w.write("unusual", "stream_info_uncompared_fields",
+                "three STREAM_INFO packets with the same entry, differing only where spec 5.4 does not compare: the "
+                "first (accepted) and the last say format 1.1 with entry_size 52 and 8 different unknown bytes after "
+                "the entry, the entry's reserved field is BEEF, 0 and 1234, and the last has the reserved byte at "
+                "offset 11 set and -0 where the others have +0 (frame_origin x and z, texcoord_origin u: f32 fields "
+                "are compared as numbers); the second and third are duplicates, nothing is rejected",
+                sent);
+    }
 }
 
 void faulty_vectors(Writer& w) {
@@ -642,8 +682,22 @@ void faulty_vectors(Writer& w) {
          [&](Packet& q) { put32(q, E + 12, f32_bits(-2.0f)); }},
         {"stream_info_origin_infinite", "the entry's frame_origin x is +infinity",
          [&](Packet& q) { put32(q, E + 0, 0x7F800000u); }},
+        {"stream_info_frame_end_infinite",
+         "the entry's frame_origin x 3.4028235e38 (the largest f32, 7F7FFFFF) and frame_scale 2^103: the far corner x, "
+         "computed exactly, lies half-way between the largest f32 and 2^128 and rounds to infinity in f32",
+         [&](Packet& q) {
+             put32(q, E + 0, 0x7F7FFFFFu);
+             put32(q, E + 12, f32_bits(0x1p103f));
+         }},
         {"stream_info_texcoord_scale_negative", "the entry's texcoord_scale u is -1",
          [&](Packet& q) { put32(q, E + 36, f32_bits(-1.0f)); }},
+        {"stream_info_texcoord_end_infinite",
+         "the entry's texcoord_origin v and texcoord_scale v both 2^127: the range's end, 2^128, is infinite in f32 "
+         "(checked whether or not the object has texture coordinates)",
+         [&](Packet& q) {
+             put32(q, E + 32, f32_bits(0x1p127f));
+             put32(q, E + 40, f32_bits(0x1p127f));
+         }},
         {"stream_info_kind_2", "the entry's kind 2 (0 and 1 are defined)", [&](Packet& q) { q[E + 24] = 2; }},
         {"stream_info_attribute_bit_4", "the entry's attributes with bit 4 set (unknown: the record size is unknown)",
          [&](Packet& q) { q[E + 25] |= 0x10; }},
@@ -699,6 +753,51 @@ void faulty_vectors(Writer& w) {
                 "the first POINTS packet carries one byte more than 8 + ceil(count x B / 8) (checksum valid): rejected "
                 "(malformed payload, spec 7)",
                 p);
+    }
+    {
+        // Held packets and the order of their outcomes (spec 11.1, last paragraph): the stream of
+        // valid/two_objects with STREAM_INFO last, and four defective copies held with the rest.
+        // When the STREAM_INFO is accepted, the copies naming objects beyond its table are rejected
+        // first (unknown object), in arrival order; then every held packet is released in arrival
+        // order, not object by object, so object 1's rejection comes before object 0's.
+        StreamInfo two = default_info({make_object({0, 0, 0}, 10, 10, 60, kAttrNormal | kAttrTexcoord),
+                                       make_object({-5, 2, 0.5f}, 3, 6, 40, kAttrColor | kAttrColorAlpha)},
+                                      512);
+        Stream t = make_stream(two, kStreamId, 3);
+        auto find = [&](const Packets& group, uint16_t object) {
+            for (const Packet& q : group)
+                if (get16(q, 16) == object) return q;
+            std::exit(1);
+        };
+        Packet past_end = find(t.packets.points, 1);  // object 1's points from index 39 of 40
+        put32(past_end, kHeaderSize, 39);
+        put32(past_end, 12, 1000);  // sequence
+        reseal(past_end);
+        Packet object_5 = find(t.packets.ellipsoids, 0);  // object 0's ellipsoids, renamed object 5
+        put16(object_5, 16, 5);
+        put32(object_5, 12, 1001);
+        reseal(object_5);
+        Packet count_high = find(t.packets.points, 0);  // object 0's points, count one too high
+        put16(count_high, kHeaderSize + 4, uint16_t(get16(count_high, kHeaderSize + 4) + 1));
+        put32(count_high, 12, 1002);
+        reseal(count_high);
+        Packet object_2 = find(t.packets.ellipsoids, 1);  // object 1's ellipsoids, renamed object 2 = object_count
+        put16(object_2, 16, 2);
+        put32(object_2, 12, 1003);
+        reseal(object_2);
+        Packets sent = {past_end, object_5, count_high};
+        for (const auto* group : {&t.packets.ellipsoids, &t.packets.points}) sent.insert(sent.end(), group->begin(), group->end());
+        sent.push_back(object_2);
+        sent.push_back(t.packets.stream_info[0]);
+        w.write("faulty", "held_release_order",
+                "the stream of valid/two_objects with its STREAM_INFO last and four defective copies (resealed) held "
+                "before it, in this order: object 1's POINTS from index 39 of 40, object 0's ELLIPSOIDS renamed object 5, "
+                "object 0's POINTS with its count one too high, and (after the intact packets) object 1's ELLIPSOIDS "
+                "renamed object 2 (= object_count). When the STREAM_INFO is accepted, the held packets naming objects "
+                "beyond its table are rejected first, in arrival order (unknown object: object 5, then object 2); then "
+                "the held packets are released in arrival order, not object by object (index out of range for object "
+                "1, then malformed payload for object 0), spec 11.1; the intact packets decode as valid/two_objects",
+                sent);
     }
 }
 
@@ -1003,6 +1102,20 @@ void scene_vectors(Writer& w) {
         w.write("unusual", "scene_geometry_1_0",
                 "geometry packets say 1.0, scene packets 1.1 (spec 9 allows the lower minor version): a 1.1 decoder "
                 "takes everything; a 1.0 decoder (as_1_0) skips the 10 scene packets and decodes the same objects",
+                sent);
+    }
+
+    {
+        // Table sizes 0 and 0 fix nothing (spec 15.1): an empty SCENE packet before the car's.
+        Packets sent = base.geometry.all();
+        sent.push_back(scene_packet(SceneBatch{}, 900));
+        for (const auto* group : {&base.scene.scene, &base.scene.materials, &base.scene.textures})
+            sent.insert(sent.end(), group->begin(), group->end());
+        w.write("unusual", "scene_sizes_zero",
+                "a SCENE packet with node_count 0, mesh_count 0 and no record before the car's SCENE packets: a "
+                "duplicate (it brings no record) that fixes no table size (spec 15.1: sizes 0 and 0 fix nothing), so "
+                "the SCENE packets after it, which say 5 nodes and 2 meshes, are accepted; decodes to the scene of "
+                "valid/scene",
                 sent);
     }
 
