@@ -13,10 +13,11 @@ bool is_detail_type(uint8_t type) {
 }
 
 namespace {
-// Parts never mix these: the stream info (a carousel repeats its part with every STREAM_INFO
-// repeat, so it is small), the rest of the base, and the detail.
+// Parts never mix these: what a first picture needs (STREAM_INFO and ELLIPSOIDS: a carousel repeats
+// their part with every STREAM_INFO repeat, so it is kept apart), the rest of the base, the detail.
 int part_class(uint8_t type) {
-    if (type == static_cast<uint8_t>(PacketType::StreamInfo)) return 0;
+    if (type == static_cast<uint8_t>(PacketType::StreamInfo) || type == static_cast<uint8_t>(PacketType::Ellipsoids))
+        return 0;
     return is_detail_type(type) ? 2 : 1;
 }
 }  // namespace

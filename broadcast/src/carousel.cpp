@@ -87,30 +87,34 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
     // packets goes just before the first of them in the cycle and again half-way through them; any
     // other part (it lists base packets, or none of this stream's) goes with the base.
     std::vector<std::vector<uint32_t>> manifests_before(out.data.size());
-    // The parts that list each STREAM_INFO part: sent again with every repeat of it inside a chunk,
-    // since a receiver with a key can use a stream info only once its part has verified.
-    std::vector<std::vector<uint32_t>> info_manifests;
+    // The parts that list a STREAM_INFO or an ELLIPSOIDS packet (what a first picture needs): one of
+    // them, in turn, after every repeat of the stream info inside a chunk, since a receiver with a key
+    // can use those packets only once their part has verified, and the base alone comes too rarely.
+    std::vector<uint32_t> first_picture_manifests;
     if (!manifests.empty()) {
         std::map<PacketDigest, size_t> data_position;  // digest -> position in out.data
         std::set<PacketDigest> base_digests;
         for (size_t k = 0; k < out.data.size(); ++k) data_position[packet_digest(packets[out.data[k]])] = k;
         for (uint32_t b : out.base) base_digests.insert(packet_digest(packets[b]));
         std::vector<uint32_t> base_manifests;
-        std::map<PacketDigest, size_t> info_position;  // digest -> position in out.stream_info
-        for (size_t k = 0; k < out.stream_info.size(); ++k) info_position[packet_digest(packets[out.stream_info[k]])] = k;
-        info_manifests.resize(out.stream_info.size());
+        std::set<PacketDigest> first_picture;  // STREAM_INFO and ELLIPSOIDS packets
+        for (uint32_t b : out.base)
+            if (packets[b][6] == static_cast<uint8_t>(PacketType::StreamInfo) ||
+                packets[b][6] == static_cast<uint8_t>(PacketType::Ellipsoids))
+                first_picture.insert(packet_digest(packets[b]));
         for (uint32_t m : manifests) {
             PacketView view;
             ManifestPart part;
             parse_packet(packets[m], view);
             std::vector<size_t> listed;
-            bool lists_base = false;
+            bool lists_base = false, lists_first_picture = false;
             if (decode_manifest_payload(view.payload, part) == Error::Ok)
                 for (const PacketDigest& d : part.digests) {
                     if (auto it = data_position.find(d); it != data_position.end()) listed.push_back(it->second);
                     else if (base_digests.count(d)) lists_base = true;
-                    if (auto it = info_position.find(d); it != info_position.end()) info_manifests[it->second].push_back(m);
+                    lists_first_picture |= first_picture.count(d) > 0;
                 }
+            if (lists_first_picture) first_picture_manifests.push_back(m);
             if (lists_base || listed.empty()) {
                 base_manifests.push_back(m);
                 continue;
@@ -137,7 +141,7 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
     // Spread the points packets evenly over the chunks (sizes differ by at most one packet).
     out.chunk_count = chunks;
     out.chunk_packets = out.data.empty() ? 0 : (out.data.size() + chunks - 1) / chunks;
-    size_t next = 0, next_info = 0;
+    size_t next = 0, next_info = 0, next_manifest = 0;
     for (size_t c = 0; c < chunks; ++c) {
         for (uint32_t b : out.base) out.cycle.push_back({b, true, false, static_cast<uint32_t>(c)});
         size_t end = out.data.size() * (c + 1) / chunks;
@@ -153,17 +157,16 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
             // A stream info part after every k-th packet, unless the base comes next anyway.
             if (options.stream_info_every > 0 && !out.stream_info.empty() && in_chunk % options.stream_info_every == 0 &&
                 next + 1 < end) {
-                const size_t which = next_info++ % out.stream_info.size();
-                const uint32_t info = out.stream_info[which];
+                const uint32_t info = out.stream_info[next_info++ % out.stream_info.size()];
                 out.cycle.push_back({info, true, true, static_cast<uint32_t>(c)});
                 chunk_bytes += packets[info].size();
                 out.repeat_bytes += packets[info].size();
-                if (which < info_manifests.size())
-                    for (uint32_t m : info_manifests[which]) {
-                        out.cycle.push_back({m, true, true, static_cast<uint32_t>(c)});
-                        chunk_bytes += packets[m].size();
-                        out.repeat_bytes += packets[m].size();
-                    }
+                if (!first_picture_manifests.empty()) {
+                    const uint32_t m = first_picture_manifests[next_manifest++ % first_picture_manifests.size()];
+                    out.cycle.push_back({m, true, true, static_cast<uint32_t>(c)});
+                    chunk_bytes += packets[m].size();
+                    out.repeat_bytes += packets[m].size();
+                }
             }
         }
         out.max_chunk_bytes = std::max(out.max_chunk_bytes, chunk_bytes);

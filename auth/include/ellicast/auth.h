@@ -51,9 +51,9 @@ bool write_key_pair(const std::string& secret_path, const std::string& public_pa
 
 // Signs a stream: the MANIFEST packets listing every packet of `packets` (whole packets of one stream
 // id, none of them a MANIFEST) in the given order, at most `packet_size` bytes each, numbered from
-// `first_sequence`. A new part starts where the listed packets change between stream info, the rest
-// of the base and detail (POINTS and TEXTURE_FRAGMENT), so that a carousel can send each part with
-// the packets it lists (spec 16.4). MalformedPayload (with `error`) when the packets are not such a list, there are
+// `first_sequence`. A new part starts where the listed packets change between what a first picture
+// needs (STREAM_INFO, ELLIPSOIDS), the rest of the base and detail (POINTS and TEXTURE_FRAGMENT), so
+// that a carousel can send each part with the packets it lists (spec 16.4). MalformedPayload (with `error`) when the packets are not such a list, there are
 // more than 65535 parts, or the packet size leaves no room for a digest.
 Error sign_packets(const std::vector<std::vector<uint8_t>>& packets, const KeyPair& key, size_t packet_size,
                    uint32_t first_sequence, std::vector<std::vector<uint8_t>>& manifests, std::string& error);

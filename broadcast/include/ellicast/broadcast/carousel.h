@@ -52,7 +52,7 @@ struct CarouselOptions {
 struct CarouselEntry {
     uint32_t packet = 0;  // index into the packet list the carousel was built from
     bool base = false;
-    bool stream_info_repeat = false;  // a STREAM_INFO part inside a chunk, or the MANIFEST part listing it (base is true too)
+    bool stream_info_repeat = false;  // a STREAM_INFO part inside a chunk, or the MANIFEST part after it (base is true too)
     uint32_t chunk = 0;   // chunk index (0..chunk_count-1) of the base repetition or data chunk
 };
 
