@@ -2,7 +2,10 @@
 // an object and one ELLIPSOIDS packet of it. Simulates the carousel of a stream file under
 // independent loss, with and without the stream info repeated inside the chunks, and prints the
 // share of receivers that can show something after a given time and the percentiles of the wait.
-//   bench_first_picture STREAM.ellc [--loss 0.5] [--trials 20000] [--seed 1]
+// A signed stream given its public key (--key) is also measured as a receiver with that key sees it:
+// the stream info and the ellipsoids count only once a MANIFEST part that lists them has verified.
+//   bench_first_picture STREAM.ellc [--loss 0.5] [--trials 20000] [--seed 1] [--key PUB]
+#include <ellicast/auth.h>
 #include <ellicast/broadcast/carousel.h>
 #include <ellicast/format.h>
 
@@ -11,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -19,16 +23,23 @@ using namespace ellicast;
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: bench_first_picture STREAM.ellc [--loss P] [--trials N] [--seed S]\n");
+        std::fprintf(stderr, "usage: bench_first_picture STREAM.ellc [--loss P] [--trials N] [--seed S] [--key PUB]\n");
         return 2;
     }
     double loss = 0.5;
     size_t trials = 20000;
     uint32_t seed = 1;
+    std::optional<auth::PublicKey> key;
     for (int i = 2; i + 1 < argc; i += 2) {
         if (!std::strcmp(argv[i], "--loss")) loss = std::stod(argv[i + 1]);
         else if (!std::strcmp(argv[i], "--trials")) trials = std::stoul(argv[i + 1]);
         else if (!std::strcmp(argv[i], "--seed")) seed = uint32_t(std::stoul(argv[i + 1]));
+        else if (!std::strcmp(argv[i], "--key")) {
+            auth::PublicKey k;
+            std::string error;
+            if (!auth::read_public_key(argv[i + 1], k, error)) return std::fprintf(stderr, "--key: %s\n", error.c_str()), 2;
+            key = k;
+        }
         else return std::fprintf(stderr, "unknown option %s\n", argv[i]), 2;
     }
     std::ifstream in(argv[1], std::ios::binary);
@@ -37,15 +48,16 @@ int main(int argc, char** argv) {
     if (contents.header_error != Error::Ok || contents.packets.empty())
         return std::fprintf(stderr, "%s: not an ellicast stream file\n", argv[1]), 1;
     std::vector<std::vector<uint8_t>> packets;
-    std::vector<uint8_t> type;
     for (const auto& p : contents.packets) {
         packets.emplace_back(bytes.data() + p.offset, bytes.data() + p.offset + p.view.size);
-        type.push_back(p.view.header.type);
     }
     std::printf("%s: %zu packets, loss %.2f, %zu trials\n", std::filesystem::path(argv[1]).filename().c_str(), packets.size(), loss, trials);
     std::printf("%-28s %10s %10s %10s %10s %10s %10s\n", "carousel", "cycle B", "shown@.125", "shown@.25", "shown@.5",
                 "p50 cyc", "p99 cyc");
-    for (size_t every : {size_t(0), size_t(8), size_t(4)}) {
+    // (stream info repeat, with the key)
+    std::vector<std::pair<size_t, bool>> rows = {{0, false}, {8, false}, {4, false}};
+    if (key) rows.insert(rows.end(), {{0, true}, {8, true}, {4, true}});
+    for (const auto& [every, with_key] : rows) {
         broadcast::CarouselOptions options;
         options.stream_info_every = every;
         broadcast::Carousel c;
@@ -63,11 +75,25 @@ int main(int argc, char** argv) {
             const double start = at;
             bool info = false, ellipsoids = false;
             double wait = -1;
-            for (uint64_t k = 0; k < 64 * c.cycle.size(); ++k, ++slot) {
-                if (uniform(rng) < loss) continue;
-                const uint8_t ty = type[c.packet_at(slot)];
+            // With the key: what passes the receiver's filter (held packets released by their part).
+            std::optional<auth::Authenticator> authenticator;
+            if (with_key) authenticator.emplace(*key);
+            auto take = [&](const std::vector<uint8_t>& p) {
+                const uint8_t ty = p[6];
                 info |= ty == uint8_t(PacketType::StreamInfo);
                 ellipsoids |= ty == uint8_t(PacketType::Ellipsoids);
+            };
+            for (uint64_t k = 0; k < 64 * c.cycle.size(); ++k, ++slot) {
+                if (uniform(rng) < loss) continue;
+                const std::vector<uint8_t>& p = packets[c.packet_at(slot)];
+                if (authenticator) {
+                    PacketView view;
+                    parse_packet(p, view);
+                    if (authenticator->take(view, p, k) == auth::Authenticator::Verdict::Pass) take(p);
+                    for (const auto& released : authenticator->take_released()) take(released.bytes);
+                } else {
+                    take(p);
+                }
                 if (info && ellipsoids) {
                     wait = (double(c.bytes_before(slot + 1)) - start) / cycle;
                     break;
@@ -78,7 +104,8 @@ int main(int argc, char** argv) {
         std::sort(waits.begin(), waits.end());
         auto shown = [&](double x) { return 100.0 * double(std::upper_bound(waits.begin(), waits.end(), x) - waits.begin()) / double(trials); };
         char name[64];
-        std::snprintf(name, sizeof name, every ? "stream info every %zu" : "stream info with base only", every);
+        if (every) std::snprintf(name, sizeof name, "stream info every %zu%s", every, with_key ? ", key" : "");
+        else std::snprintf(name, sizeof name, "stream info with base only%s", with_key ? ", key" : "");
         std::printf("%-28s %10llu %9.1f%% %9.1f%% %9.1f%% %10.3f %10.3f\n", name, (unsigned long long)c.cycle_bytes,
                     shown(0.125), shown(0.25), shown(0.5), waits[trials / 2], waits[trials * 99 / 100]);
     }
