@@ -21,6 +21,7 @@ std::string packet_type_name(uint8_t type) {
     case 0x11: return "MATERIAL";
     case 0x12: return "TEXTURE_FRAGMENT";
     case 0x20: return "MANIFEST";
+    case 0x04: return "POINTS_REPAIR";
     default: {
         char buf[24];
         std::snprintf(buf, sizeof buf, "UNKNOWN(0x%02X)", type);
@@ -30,7 +31,7 @@ std::string packet_type_name(uint8_t type) {
 }
 
 bool is_known_packet_type(uint8_t type) {
-    return (type >= 0x01 && type <= 0x03) || (type >= 0x10 && type <= 0x12) || type == 0x20;
+    return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x12) || type == 0x20;
 }
 
 const char* error_name(Error e) {

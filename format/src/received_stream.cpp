@@ -75,6 +75,16 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
         e = Error::Ok;
         break;
     }
+    case PacketType::PointsRepair: {
+        // Step 11: the fixed fields need no stream info (spec 17.3).
+        RepairPacket repair;
+        if (decode_repair_payload(packet.payload, repair) != Error::Ok)
+            return reject(where, Error::MalformedPayload,
+                          "POINTS_REPAIR of object " + std::to_string(h.object_id) +
+                              ": its block (point_count, batch, source_count, row) is inconsistent or the payload too short");
+        e = take_object_packet(packet, where);
+        break;
+    }
     default: e = take_object_packet(packet, where); break;
     }
     if (e == Error::Ok) {
@@ -166,6 +176,7 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
     }
     ReceivedObject& object = objects_[id];
     const ObjectInfo& oi = *object.info;
+    if (packet.header.type == static_cast<uint8_t>(PacketType::PointsRepair)) return take_repair(object, packet, name, where);
     bool news = false;
     if (packet.header.type == static_cast<uint8_t>(PacketType::Ellipsoids)) {
         EllipsoidBatch batch;
@@ -185,12 +196,135 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
             return reject(where, Error::IndexOutOfRange,
                           name + ": points " + std::to_string(batch.first_index) + "+" +
                               std::to_string(batch.points.size()) + " of " + std::to_string(oi.point_count));
+        std::vector<uint32_t> fresh;
         for (size_t i = 0; i < batch.points.size(); ++i)
-            news |= object.points.emplace(batch.first_index + static_cast<uint32_t>(i), batch.points[i]).second;
+            if (object.points.emplace(batch.first_index + static_cast<uint32_t>(i), batch.points[i]).second)
+                fresh.push_back(batch.first_index + static_cast<uint32_t>(i));
+        news = !fresh.empty();
+        if (news) ++counters_.accepted;
+        else ++counters_.duplicates;
+        if (news && !object.repair_blocks.empty()) note_new_points(object, fresh);
+        return Error::Ok;
     }
     if (news) ++counters_.accepted;
     else ++counters_.duplicates;
     return Error::Ok;
+}
+
+Error ReceivedStream::take_repair(ReceivedObject& object, const PacketView& packet, const std::string& name,
+                                  uint64_t where) {
+    const ObjectInfo& oi = *object.info;
+    RepairPacket repair;
+    decode_repair_payload(packet.payload, repair);  // checked before it was taken or held
+    RepairBlock& block = repair.block;
+    const size_t length = repair_symbol_bytes(block, *info_, oi);
+    if (repair.symbol.size() != length)
+        return reject(where, Error::MalformedPayload,
+                      name + ": a symbol of " + std::to_string(repair.symbol.size()) + " bytes where batch " +
+                          std::to_string(block.batch) + " makes " + std::to_string(length));
+    if (!block.clip(oi.point_count))
+        return reject(where, Error::IndexOutOfRange,
+                      name + ": " + std::to_string(block.sources) + " batches of " + std::to_string(block.batch) +
+                          " points from point " + std::to_string(block.first_index) + ", the last past the object's " +
+                          std::to_string(oi.point_count) + " points");
+    auto it = object.repair_blocks.find(block.first_index);
+    if (it != object.repair_blocks.end()) {
+        if (!it->second.block.same_block(block))
+            return reject(where, Error::StreamMismatch, name + ": its block contradicts one received before");
+    } else {
+        // Blocks of an object do not overlap (spec 17.3).
+        auto next = object.repair_blocks.lower_bound(block.first_index);
+        if (next != object.repair_blocks.end() && next->first < uint64_t{block.first_index} + block.point_count)
+            return reject(where, Error::StreamMismatch, name + ": its block overlaps another block");
+        if (next != object.repair_blocks.begin()) {
+            auto prev = std::prev(next);
+            if (uint64_t{prev->first} + prev->second.block.point_count > block.first_index)
+                return reject(where, Error::StreamMismatch, name + ": its block overlaps another block");
+        }
+        ReceivedRepairBlock fresh;
+        fresh.block = block;
+        fresh.held_in_batch.assign(block.source_count(), 0);
+        for (auto p = object.points.lower_bound(block.first_index);
+             p != object.points.end() && p->first < uint64_t{block.first_index} + block.point_count; ++p)
+            ++fresh.held_in_batch[(p->first - block.first_index) / block.batch];
+        for (uint32_t i = 0; i < block.source_count(); ++i)
+            if (fresh.held_in_batch[i] == block.batch_points(i)) ++fresh.batches_held;
+        fresh.complete = fresh.batches_held == block.source_count();
+        it = object.repair_blocks.emplace(block.first_index, std::move(fresh)).first;
+    }
+    ReceivedRepairBlock& held = it->second;
+    if (held.complete || std::find(held.rows_accepted.begin(), held.rows_accepted.end(), repair.row) != held.rows_accepted.end()) {
+        ++counters_.duplicates;
+        return Error::Ok;
+    }
+    held.rows.push_back(repair.row);
+    held.rows_accepted.push_back(repair.row);
+    held.symbols.push_back(std::move(repair.symbol));
+    ++counters_.accepted;
+    try_recover(object, held);
+    return Error::Ok;
+}
+
+void ReceivedStream::note_new_points(ReceivedObject& object, const std::vector<uint32_t>& indices) {
+    std::vector<ReceivedRepairBlock*> touched;
+    for (uint32_t index : indices) {
+        auto it = object.repair_blocks.upper_bound(index);
+        if (it == object.repair_blocks.begin()) continue;
+        --it;
+        ReceivedRepairBlock& b = it->second;
+        if (index >= uint64_t{b.block.first_index} + b.block.point_count || b.complete) continue;
+        const uint32_t i = (index - b.block.first_index) / b.block.batch;
+        if (++b.held_in_batch[i] == b.block.batch_points(i) && ++b.batches_held == b.block.source_count()) {
+            b.complete = true;
+            b.rows.clear();
+            b.symbols.clear();
+        }
+        if (!b.rows.empty() && (touched.empty() || touched.back() != &b)) touched.push_back(&b);
+    }
+    for (ReceivedRepairBlock* b : touched) try_recover(object, *b);
+}
+
+void ReceivedStream::try_recover(ReceivedObject& object, ReceivedRepairBlock& held) {
+    const RepairBlock& block = held.block;
+    const uint32_t k = block.source_count();
+    if (held.complete || held.rows.size() < k - held.batches_held) return;
+    const ObjectInfo& oi = *object.info;
+    std::vector<std::vector<uint8_t>> sources(k);
+    std::vector<QuantizedPoint> batch_points;
+    for (uint32_t i = 0; i < k; ++i) {
+        if (held.held_in_batch[i] != block.batch_points(i)) continue;
+        batch_points.clear();
+        const uint32_t first = block.first_index + i * block.batch;
+        for (auto p = object.points.lower_bound(first); p != object.points.end() && p->first < first + block.batch_points(i); ++p)
+            batch_points.push_back(p->second);
+        sources[i] = repair_source_symbol(block, batch_points, *info_, oi);
+    }
+    std::vector<uint32_t> unknown;
+    for (uint32_t i = 0; i < k; ++i)
+        if (sources[i].empty()) unknown.push_back(i);
+    if (!recover_source_symbols(sources, held.rows, held.symbols)) return;
+    const size_t bits = point_record_bits(*info_, oi);
+    for (uint32_t i : unknown) {
+        const uint32_t first = block.first_index + i * block.batch, count = block.batch_points(i);
+        std::vector<uint8_t> payload(8, 0);
+        payload[0] = uint8_t(first), payload[1] = uint8_t(first >> 8), payload[2] = uint8_t(first >> 16),
+        payload[3] = uint8_t(first >> 24), payload[4] = uint8_t(count), payload[5] = uint8_t(count >> 8);
+        payload.insert(payload.end(), sources[i].begin(), sources[i].begin() + std::ptrdiff_t((size_t{count} * bits + 7) / 8));
+        PointBatch batch;
+        if (decode_points_payload(payload, *info_, oi, batch) != Error::Ok) continue;  // cannot happen: lengths match
+        for (size_t n = 0; n < batch.points.size(); ++n)
+            if (object.points.emplace(first + static_cast<uint32_t>(n), batch.points[n]).second) {
+                ++held.points_recovered;
+                ++object.points_recovered;
+            }
+        held.held_in_batch[i] = count;
+    }
+    held.batches_held = k;
+    held.complete = held.recovered = true;
+    held.rows.clear();
+    held.symbols.clear();
+    held.rows.shrink_to_fit();
+    held.symbols.shrink_to_fit();
 }
 
 void ReceivedStream::release_pending() {

@@ -8,6 +8,7 @@
 // names what was wrong instead of throwing or crashing.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -53,11 +54,12 @@ enum class PacketType : uint8_t {
     StreamInfo = 0x01,  // critical: frames, bit depths, object table
     Ellipsoids = 0x02,  // critical: a batch of quantized ellipsoids of one object
     Points = 0x03,      // critical: a batch of bit-packed surface points of one object
+    PointsRepair = 0x04,  // 1.2, skippable: a repair symbol of an erasure code over a block of points
     Scene = 0x10,       // 1.1, skippable: nodes (hierarchy, names, transforms) and meshes (object + material)
     Material = 0x11,    // 1.1, skippable: one PBR material
     TextureFragment = 0x12,  // 1.1, skippable: a piece of one texture image, at its byte offset
     Manifest = 0x20,    // 1.2, skippable: signed digests of the stream's other packets
-    // 0x00 is invalid; 0x04..0x0F reserved for geometry; 0x13..0x1F reserved for the scene;
+    // 0x00 is invalid; 0x05..0x0F reserved for geometry; 0x13..0x1F reserved for the scene;
     // 0x21..0x7F future; 0x80..0xFF experimental.
 };
 
@@ -500,12 +502,105 @@ std::array<uint8_t, kKeyIdSize> key_id_of(std::span<const uint8_t, 32> public_ke
 std::vector<uint8_t> manifest_signed_message(std::span<const uint8_t> packet);
 
 // ---------------------------------------------------------------------------------------------
+// Repair packets (format 1.2, spec section 17): a systematic Cauchy Reed-Solomon code over GF(2^8)
+// across a block of consecutive points of one object, cut into source batches of `batch` points.
+
+inline constexpr size_t kRepairHeaderSize = 8;    // first_index, batch, source_count, row
+inline constexpr unsigned kMaxRepairRow = 254;    // rows k..254: a block has at most 255 symbols
+
+// k source batches of `batch` consecutive points from first_index on; the block ends with the k
+// batches or with the object's points (spec 17.1): point_count is min(k * batch, object points -
+// first_index), set by clip() once the object's entry is known.
+struct RepairBlock {
+    uint32_t first_index = 0;
+    uint16_t batch = 0;
+    uint8_t sources = 0;       // k
+    uint32_t point_count = 0;  // points in the block's range
+    uint32_t source_count() const { return sources; }
+    // Points of source batch i.
+    uint32_t batch_points(uint32_t i) const {
+        return static_cast<uint32_t>(std::min<uint64_t>(batch, uint64_t(point_count) - uint64_t(i) * batch));
+    }
+    // The range cut at the object's `object_points`; false when the last batch would hold no point.
+    bool clip(uint32_t object_points) {
+        const uint64_t last = uint64_t{first_index} + uint64_t(sources - 1) * batch;
+        if (sources == 0 || last >= object_points) return false;
+        point_count = static_cast<uint32_t>(std::min<uint64_t>(uint64_t(sources) * batch, object_points - uint64_t{first_index}));
+        return true;
+    }
+    bool same_block(const RepairBlock& o) const {
+        return first_index == o.first_index && batch == o.batch && sources == o.sources;
+    }
+};
+
+struct RepairPacket {
+    RepairBlock block;
+    uint8_t row = 0;
+    std::vector<uint8_t> symbol;
+};
+
+// GF(2^8) with the polynomial x^8 + x^4 + x^3 + x^2 + 1 (0x11D), spec 17.2.
+uint8_t gf256_mul(uint8_t a, uint8_t b);
+uint8_t gf256_inv(uint8_t a);  // a != 0
+// The code's coefficient C(row, j) = inv(row XOR j).
+inline uint8_t repair_coefficient(unsigned row, unsigned j) { return gf256_inv(static_cast<uint8_t>(row ^ j)); }
+
+// Bytes of a source or repair symbol: ceil(batch * B / 8).
+size_t repair_symbol_bytes(const RepairBlock& block, const StreamInfo& info, const ObjectInfo& object);
+
+std::vector<uint8_t> encode_repair_payload(const RepairPacket& packet);
+// The checks that need no stream info (spec 17.3, step 11): MalformedPayload when the payload is
+// shorter than 9 bytes, batch or source_count is 0, the row is outside source_count..254, or the
+// last batch starts past 2^32 - 1. The symbol is the rest of the payload (its length is checked
+// against the object's record size by the caller). point_count is k * batch until clipped.
+Error decode_repair_payload(std::span<const uint8_t> payload, RepairPacket& out);
+
+// Source symbol i of `block` from the points that hold it (points[k] is point first + k of the
+// batch, `object`'s attributes): the records bit-packed as in a POINTS payload, zero-padded.
+std::vector<uint8_t> repair_source_symbol(const RepairBlock& block, std::span<const QuantizedPoint> batch_points,
+                                          const StreamInfo& info, const ObjectInfo& object);
+// The repair symbol of `row` (source_count <= row <= 254) from all k source symbols (equal lengths).
+std::vector<uint8_t> repair_symbol(const std::vector<std::vector<uint8_t>>& sources, unsigned row);
+// Solves for the missing source symbols: `sources[i]` is empty where unknown; `rows`/`symbols` are the
+// repair rows used, at least as many as the unknowns (the first ones are used). Fills the unknown
+// sources and returns true; false when too few rows were given.
+bool recover_source_symbols(std::vector<std::vector<uint8_t>>& sources, const std::vector<uint8_t>& rows,
+                            const std::vector<std::vector<uint8_t>>& symbols);
+
+// The blocks the reference encoder cuts an object's points into (spec 17.5): the object's point
+// batches of `batch` points (points_per_packet), grouped into as few blocks as hold at most
+// `max_sources` (<= 254) batches each, of nearly equal sizes, clipped. Empty when there are no points.
+std::vector<RepairBlock> plan_repair_blocks(uint32_t point_count, uint16_t batch, size_t max_sources);
+
+// The POINTS_REPAIR packets of rows source_count .. source_count + repairs - 1 (at most row 254) of
+// every block of object `object_id`, from its points in stream order. Sequence numbers from
+// `first_sequence`.
+Error packetize_repairs(const StreamInfo& info, uint16_t object_id, const std::vector<QuantizedPoint>& points,
+                        const std::vector<RepairBlock>& blocks, size_t repairs, uint32_t stream_id,
+                        uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out);
+
+// ---------------------------------------------------------------------------------------------
 // Receiving: collects whatever packets arrive, in any order, with duplicates and damage
+
+// A repair block a receiver has heard of (spec 17.4).
+struct ReceivedRepairBlock {
+    RepairBlock block;
+    std::vector<uint32_t> held_in_batch;    // points held of each source batch
+    uint32_t batches_held = 0;              // source batches of which every point is held
+    std::vector<uint8_t> rows;              // rows accepted, in order (released once complete)
+    std::vector<std::vector<uint8_t>> symbols;
+    std::vector<uint8_t> rows_accepted;     // every row accepted (kept for reports)
+    bool complete = false;                  // every point of the block is held
+    bool recovered = false;                 // completed by solving for missing batches
+    uint32_t points_recovered = 0;
+};
 
 struct ReceivedObject {
     std::optional<ObjectInfo> info;                 // once its stream info entry arrived
     std::map<uint32_t, QuantizedEllipsoid> ellipsoids;  // by index; duplicates collapse
     std::map<uint32_t, QuantizedPoint> points;          // by index
+    std::map<uint32_t, ReceivedRepairBlock> repair_blocks;  // by first_index (format 1.2)
+    uint64_t points_recovered = 0;                  // points that came through repair packets
 };
 
 struct Rejection {
@@ -600,6 +695,11 @@ private:
     uint64_t stream_info_rejected_ = 0;
     std::optional<Rejection> first_stream_info_rejection_;
     Error take_object_packet(const PacketView& packet, uint64_t where);
+    Error take_repair(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
+    // Counts newly held points [first, first + count) in the object's repair blocks and recovers the
+    // blocks that can be (spec 17.4).
+    void note_new_points(ReceivedObject& object, const std::vector<uint32_t>& indices);
+    void try_recover(ReceivedObject& object, ReceivedRepairBlock& block);
     void release_pending();  // decodes every held packet whose object entry has arrived
 
     Limits limits_;
@@ -624,6 +724,12 @@ private:
     std::map<uint16_t, ReceivedTexture> textures_;
     size_t texture_bytes_ = 0;
 };
+
+// For a validator (spec 11.5, 17.4): whether a POINTS_REPAIR packet's symbol is its row of the code
+// over the points `stream` holds. Ok when it is, or when the stream does not hold every point of the
+// block (nothing to compare with; the missing points are reported as such); StreamMismatch, with
+// `why`, when it is not; MalformedPayload when the packet does not fit the stream.
+Error check_repair_packet(const ReceivedStream& stream, const PacketView& packet, std::string& why);
 
 // ---------------------------------------------------------------------------------------------
 // Container files (.ellc): a recorded stream
