@@ -152,14 +152,15 @@ TEST_CASE("with packets lost the decoded scene is still a valid glTF: a missing 
     EncodedAsset encoded;
     std::string error;
     REQUIRE(encode_asset(in, coarse_encoding(), 1, true, encoded, error));
-    // Lose every ELLIPSOIDS and POINTS packet of object 3 (the wheels) and one texture fragment.
+    // Lose every ELLIPSOIDS, POINTS and POINTS_REPAIR packet of object 3 (the wheels) and one texture fragment.
     std::vector<size_t> drop;
     bool texture_dropped = false;
     for (size_t i = 0; i < encoded.packets.size(); ++i) {
         PacketView view;
         REQUIRE(parse_packet(encoded.packets[i], view) == Error::Ok);
         const auto type = PacketType(view.header.type);
-        if ((type == PacketType::Ellipsoids || type == PacketType::Points) && view.header.object_id == 3)
+        if ((type == PacketType::Ellipsoids || type == PacketType::Points || type == PacketType::PointsRepair) &&
+            view.header.object_id == 3)
             drop.push_back(i);
         if (type == PacketType::TextureFragment && !texture_dropped) drop.push_back(i), texture_dropped = true;
     }

@@ -43,6 +43,8 @@ std::string check_encode_options(const EncodeOptions& o) {
     if (o.max_samples > 10000000)
         return "at most 10000000 surface samples per object (got " + std::to_string(o.max_samples) + ")";
     if (o.threads < 1 || o.threads > 256) return "threads must be 1..256 (got " + std::to_string(o.threads) + ")";
+    if (!(o.repair_ratio >= 0) || o.repair_ratio > 4)
+        return "the repair ratio must be in [0, 4] (repair symbols per source packet; got " + std::to_string(o.repair_ratio) + ")";
     return "";
 }
 

@@ -2,6 +2,8 @@
 // transmission order; decode_asset rebuilds objects and scene from what arrived.
 #include "ellicast/converters/asset_stream.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace ellicast {
@@ -47,6 +49,28 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
     take(scene.materials, out.scene_packets, out.scene_bytes);
     take(scene.textures, out.scene_packets, out.scene_bytes);
     take(stream.points, out.point_packets, out.point_bytes);
+    if (options.repair_ratio > 0) {
+        // Blocks of at most floor(255 / (1 + ratio)) POINTS packets, each with ceil(ratio * k) repair
+        // symbols (spec 17.5).
+        const StreamInfo& info = out.encoded.info;
+        const size_t max_sources = std::max<size_t>(1, size_t(255.0 / (1.0 + options.repair_ratio)));
+        std::vector<std::vector<uint8_t>> repairs;
+        for (size_t i = 0; i < info.objects.size(); ++i) {
+            const ObjectInfo& object = info.objects[i];
+            const size_t batch = points_per_packet(info.packet_size, info, object);
+            if (object.point_count == 0 || batch == 0) continue;
+            for (const RepairBlock& block : plan_repair_blocks(object.point_count, uint16_t(batch), max_sources)) {
+                const size_t count = size_t(std::ceil(options.repair_ratio * block.source_count() - 1e-9));
+                if (Error e = packetize_repairs(info, uint16_t(i), out.encoded.contents[i].points, {block}, count,
+                                                stream_id, 0, repairs);
+                    e != Error::Ok) {
+                    error = std::string("could not make the repair packets: ") + error_name(e);
+                    return false;
+                }
+            }
+        }
+        take(repairs, out.repair_packets, out.repair_bytes);
+    }
     for (size_t i = 0; i < out.packets.size(); ++i) restamp_packet(out.packets[i], uint32_t(i));
     return true;
 }

@@ -33,6 +33,7 @@ struct EncodeArgs {
     bool quiet = false;
     bool allow_external_paths = false;
     std::string sign;  // secret key file: sign the stream (spec 16)
+    double repair = EncodeOptions{}.repair_ratio;
 };
 
 int run_encode(const EncodeArgs& a) {
@@ -58,6 +59,7 @@ int run_encode(const EncodeArgs& a) {
     options.sample_spacing = a.sample_spacing;
     options.max_samples = a.max_samples;
     options.threads = a.threads;
+    options.repair_ratio = a.repair;
     if (std::string why = check_encode_options(options); !why.empty()) return fail(kExitUsage, why);
 
     // A glTF keeps its scene: each distinct primitive once in its mesh's frame, plus the SCENE,
@@ -111,9 +113,10 @@ int run_encode(const EncodeArgs& a) {
         std::printf("scene: %zu nodes, %zu meshes, %zu materials, %zu textures\n", asset.scene.nodes.size(),
                     asset.scene.meshes.size(), asset.scene.materials.size(), asset.scene.textures.size());
     std::printf("bytes: stream info %zu (%zu packets), base %zu (%zu packets), scene %zu (%zu packets), "
-                "detail %zu (%zu packets), file %zu\n",
+                "detail %zu (%zu packets), repair %zu (%zu packets), file %zu\n",
                 out.stream_info_bytes, out.stream_info_packets, out.ellipsoid_bytes, out.ellipsoid_packets,
-                out.scene_bytes, out.scene_packets, out.point_bytes, out.point_packets, file.size());
+                out.scene_bytes, out.scene_packets, out.point_bytes, out.point_packets, out.repair_bytes,
+                out.repair_packets, file.size());
     if (manifest_parts) {
         size_t manifest_bytes = 0;  // sign_stream puts the MANIFEST parts first
         for (size_t i = 0; i < manifest_parts; ++i) manifest_bytes += out.packets[i].size();
@@ -156,6 +159,10 @@ const RegisterCommand registered({10, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--threads", args->threads, "worker threads (1..256; the result does not depend on it)")
         ->capture_default_str();
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
+    cmd->add_option("--repair", args->repair,
+                    "POINTS_REPAIR packets per POINTS packet, per block (format 1.2): a carousel sends them in turn "
+                    "with the POINTS packets so that a receiver under loss gets every point sooner; 0: none, [0, 4]")
+        ->capture_default_str();
     cmd->add_option("--sign", args->sign, "sign the stream with this secret key (NAME.key from `ellicast keygen`)");
     cmd->add_flag("--allow-external-paths", args->allow_external_paths,
                   "read glTF buffers and images outside the model's folder (refused by default)");

@@ -48,6 +48,11 @@ struct EncodeOptions {
     // keep the default spacing and come back within 0.1%; 20000 left it at 0.12%. 0..10000000
     uint32_t max_samples = 40000;
     unsigned threads = 2;            // worker threads (results do not depend on it)
+    // Repair packets (format 1.2, spec 17): POINTS_REPAIR symbols per block of POINTS packets, as a
+    // multiple of the block's source count (blocks hold at most floor(255 / (1 + ratio)) POINTS
+    // packets). 1: as many repair symbols as sources, which the carousel interleaves one for one. 0:
+    // none (a carousel then repeats the POINTS packets). [0, 4]
+    double repair_ratio = 1.0;
     // Called with a stage name and the fraction done (0..1); may be empty.
     std::function<void(const std::string& stage, double fraction)> progress;
 };
