@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
         if (!broadcast::build_carousel(packets, options, c, error)) return std::fprintf(stderr, "%s\n", error.c_str()), 1;
         std::mt19937_64 rng(seed);
         std::uniform_real_distribution<double> uniform(0, 1);
-        const double cycle = double(c.cycle_bytes);
+        const double cycle = c.bytes_per_cycle();
         std::vector<double> waits;
         for (size_t t = 0; t < trials; ++t) {
             // Tune in at a uniformly random moment: the packet on the air is missed.
@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
         char name[64];
         if (every) std::snprintf(name, sizeof name, "stream info every %zu%s", every, with_key ? ", key" : "");
         else std::snprintf(name, sizeof name, "stream info with base only%s", with_key ? ", key" : "");
-        std::printf("%-28s %10llu %9.1f%% %9.1f%% %9.1f%% %10.3f %10.3f\n", name, (unsigned long long)c.cycle_bytes,
+        std::printf("%-28s %10llu %9.1f%% %9.1f%% %9.1f%% %10.3f %10.3f\n", name, (unsigned long long)c.bytes_per_cycle(),
                     shown(0.125), shown(0.25), shown(0.5), waits[trials / 2], waits[trials * 99 / 100]);
     }
     return 0;

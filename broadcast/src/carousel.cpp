@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
+#include <random>
 #include <set>
 
 namespace ellicast::broadcast {
@@ -60,7 +62,7 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
         error = "the base share must lie strictly between 0 and 1 (got " + std::to_string(options.base_share) + ")";
         return false;
     }
-    std::vector<uint32_t> manifests;
+    std::vector<uint32_t> manifests, repairs;
     for (size_t i = 0; i < packets.size(); ++i) {
         PacketView view;
         Error e = parse_packet(packets[i], view);
@@ -73,6 +75,10 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
             manifests.push_back(static_cast<uint32_t>(i));
             continue;
         }
+        if (view.header.type == static_cast<uint8_t>(PacketType::PointsRepair)) {
+            repairs.push_back(static_cast<uint32_t>(i));
+            continue;
+        }
         if (is_base_packet(view.header)) {
             out.base.push_back(static_cast<uint32_t>(i));
             if (view.header.type == static_cast<uint8_t>(PacketType::StreamInfo))
@@ -83,34 +89,128 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
             out.data_bytes += packets[i].size();
         }
     }
-    // MANIFEST parts (signed streams, spec 16.4): a part that lists only POINTS / TEXTURE_FRAGMENT
-    // packets goes just before the first of them in the cycle and again half-way through them; any
-    // other part (it lists base packets, or none of this stream's) goes with the base.
-    std::vector<std::vector<uint32_t>> manifests_before(out.data.size());
+
+    // Repair blocks (spec 17.5): the POINTS packets a block's range holds are its sources; each
+    // cycle gives a block as many data slots as it has sources, filled with its source and repair
+    // packets evenly interleaved, each sent once before any is sent again.
+    std::vector<std::vector<size_t>> block_positions;  // per block: positions in out.data of its sources
+    std::vector<std::vector<uint32_t>> block_sequence;  // per block: one pass over its symbols
+    if (!repairs.empty()) {
+        struct Pending {
+            RepairBlock block;
+            std::vector<std::pair<uint8_t, uint32_t>> rows;  // (row, input index)
+        };
+        std::map<std::pair<uint16_t, uint32_t>, Pending> blocks;  // (object, first_index)
+        for (uint32_t r : repairs) {
+            PacketView view;
+            parse_packet(packets[r], view);
+            RepairPacket repair;
+            if (decode_repair_payload(view.payload, repair) != Error::Ok) {
+                error = "packet " + std::to_string(r) + ": a malformed POINTS_REPAIR packet";
+                return false;
+            }
+            Pending& b = blocks[{view.header.object_id, repair.block.first_index}];
+            if (b.rows.empty()) b.block = repair.block;
+            if (!b.block.same_block(repair.block)) {
+                error = "packet " + std::to_string(r) + ": a POINTS_REPAIR packet whose block contradicts another's";
+                return false;
+            }
+            b.rows.push_back({repair.row, r});
+        }
+        std::map<std::pair<uint16_t, uint32_t>, std::vector<size_t>> sources;
+        for (size_t k = 0; k < out.data.size(); ++k) {
+            PacketView view;
+            parse_packet(packets[out.data[k]], view);
+            if (view.header.type != static_cast<uint8_t>(PacketType::Points) || view.payload.size() < 4) continue;
+            const uint32_t first = uint32_t(view.payload[0]) | uint32_t(view.payload[1]) << 8 |
+                                   uint32_t(view.payload[2]) << 16 | uint32_t(view.payload[3]) << 24;
+            auto it = blocks.upper_bound({view.header.object_id, first});
+            if (it == blocks.begin()) continue;
+            --it;
+            if (it->first.first != view.header.object_id ||
+                first >= uint64_t{it->second.block.first_index} + it->second.block.point_count)
+                continue;
+            sources[it->first].push_back(k);
+        }
+        for (auto& [key, b] : blocks) {
+            auto s = sources.find(key);
+            if (s == sources.end()) continue;  // no POINTS packet to interleave with: not scheduled
+            std::sort(b.rows.begin(), b.rows.end());
+            b.rows.erase(std::unique(b.rows.begin(), b.rows.end(),
+                                     [](const auto& x, const auto& y) { return x.first == y.first; }),
+                         b.rows.end());
+            CarouselBlock cb;
+            cb.needed = b.block.source_count();
+            for (size_t pos : s->second) cb.symbols.push_back(out.data[pos]);
+            for (const auto& [row, index] : b.rows) cb.symbols.push_back(index);
+            cb.sources = s->second.size();
+            block_positions.push_back(s->second);
+            out.blocks.push_back(std::move(cb));
+        }
+        // The period: every block's pass of n symbols over its k slots a cycle repeats after
+        // n / gcd(n, k) cycles. Kept at most 64 cycles by sending whole multiples of k repairs.
+        auto period_of = [&](const std::vector<CarouselBlock>& bs) {
+            uint64_t period = 1;
+            for (const CarouselBlock& b : bs) {
+                const uint64_t n = b.symbols.size(), k = b.sources;
+                period = std::lcm(period, n / std::gcd(n, k));
+                if (period > 64) return period;
+            }
+            return period;
+        };
+        if (period_of(out.blocks) > 64)
+            for (CarouselBlock& b : out.blocks) b.symbols.resize(b.sources * (b.symbols.size() / b.sources));
+        if (period_of(out.blocks) > 64)
+            for (CarouselBlock& b : out.blocks) b.symbols.resize(b.sources);
+        out.period_cycles = static_cast<size_t>(period_of(out.blocks));
+        for (CarouselBlock& b : out.blocks) {
+            // Sources and repairs evenly interleaved (symbol t is a source when floor((t+1)k/n) grows).
+            const size_t n = b.symbols.size(), k = b.sources;
+            std::vector<uint32_t> pass;
+            size_t next_source = 0, next_repair = k;
+            for (size_t t = 0; t < n; ++t)
+                pass.push_back((t + 1) * k / n > t * k / n ? b.symbols[next_source++] : b.symbols[next_repair++]);
+            block_sequence.push_back(std::move(pass));
+            for (size_t i = k; i < n; ++i) out.repairs.push_back(b.symbols[i]);
+        }
+    }
+    // The data sent in each cycle of the period, position by position.
+    std::vector<std::vector<uint32_t>> cycle_data(out.period_cycles, out.data);
+    for (size_t c = 0; c < out.period_cycles; ++c)
+        for (size_t b = 0; b < out.blocks.size(); ++b) {
+            const size_t k = out.blocks[b].sources, n = block_sequence[b].size();
+            for (size_t j = 0; j < k; ++j) cycle_data[c][block_positions[b][j]] = block_sequence[b][(c * k + j) % n];
+        }
+
+    // MANIFEST parts (signed streams, spec 16.4): a part that lists only detail packets (POINTS,
+    // POINTS_REPAIR, TEXTURE_FRAGMENT) goes just before the first of them in each cycle and again
+    // half-way through them; any other part (it lists base packets, or none of this stream's) goes
+    // with the base.
+    std::vector<std::vector<PacketDigest>> detail_listed;  // per detail manifest: its digests
     // The parts that list a STREAM_INFO or an ELLIPSOIDS packet (what a first picture needs): one of
     // them, in turn, after every repeat of the stream info inside a chunk, since a receiver with a key
     // can use those packets only once their part has verified, and the base alone comes too rarely.
     std::vector<uint32_t> first_picture_manifests;
     if (!manifests.empty()) {
-        std::map<PacketDigest, size_t> data_position;  // digest -> position in out.data
-        std::set<PacketDigest> base_digests;
-        for (size_t k = 0; k < out.data.size(); ++k) data_position[packet_digest(packets[out.data[k]])] = k;
-        for (uint32_t b : out.base) base_digests.insert(packet_digest(packets[b]));
-        std::vector<uint32_t> base_manifests;
-        std::set<PacketDigest> first_picture;  // STREAM_INFO and ELLIPSOIDS packets
-        for (uint32_t b : out.base)
+        std::set<PacketDigest> detail_digests, base_digests, first_picture;
+        for (uint32_t d : out.data) detail_digests.insert(packet_digest(packets[d]));
+        for (uint32_t r : repairs) detail_digests.insert(packet_digest(packets[r]));
+        for (uint32_t b : out.base) {
+            base_digests.insert(packet_digest(packets[b]));
             if (packets[b][6] == static_cast<uint8_t>(PacketType::StreamInfo) ||
                 packets[b][6] == static_cast<uint8_t>(PacketType::Ellipsoids))
                 first_picture.insert(packet_digest(packets[b]));
+        }
+        std::vector<uint32_t> base_manifests;
         for (uint32_t m : manifests) {
             PacketView view;
             ManifestPart part;
             parse_packet(packets[m], view);
-            std::vector<size_t> listed;
+            std::vector<PacketDigest> listed;
             bool lists_base = false, lists_first_picture = false;
             if (decode_manifest_payload(view.payload, part) == Error::Ok)
                 for (const PacketDigest& d : part.digests) {
-                    if (auto it = data_position.find(d); it != data_position.end()) listed.push_back(it->second);
+                    if (detail_digests.count(d)) listed.push_back(d);
                     else if (base_digests.count(d)) lists_base = true;
                     lists_first_picture |= first_picture.count(d) > 0;
                 }
@@ -119,10 +219,8 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
                 base_manifests.push_back(m);
                 continue;
             }
-            std::sort(listed.begin(), listed.end());
-            manifests_before[listed.front()].push_back(m);
-            if (listed.size() > 1) manifests_before[listed[listed.size() / 2]].push_back(m);
             out.detail_manifests.push_back(m);
+            detail_listed.push_back(std::move(listed));
         }
         // Base order: the input order, MANIFEST parts included.
         for (uint32_t m : base_manifests) {
@@ -136,40 +234,60 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
         chunks = out.data.empty() ? 1 : (out.data.size() + options.chunk_packets - 1) / options.chunk_packets;
     } else {
         chunks = chunks_for_share(out.base_bytes, out.data_bytes, out.data.size(), options.base_share);
-        chunks = std::max(chunks, std::min(options.min_base_repetitions, std::max<size_t>(1, out.data.size())));
+        chunks = std::max(chunks, std::min(options.min_base_repetitions, std::max<size_t>(out.data.size(), 1)));
     }
+    chunks = std::max<size_t>(chunks, 1);
     // Spread the points packets evenly over the chunks (sizes differ by at most one packet).
     out.chunk_count = chunks;
     out.chunk_packets = out.data.empty() ? 0 : (out.data.size() + chunks - 1) / chunks;
-    size_t next = 0, next_info = 0, next_manifest = 0;
-    for (size_t c = 0; c < chunks; ++c) {
-        for (uint32_t b : out.base) out.cycle.push_back({b, true, false, static_cast<uint32_t>(c)});
-        size_t end = out.data.size() * (c + 1) / chunks;
-        uint64_t chunk_bytes = 0;
-        for (size_t in_chunk = 1; next < end; ++next, ++in_chunk) {
-            for (uint32_t m : manifests_before[next]) {
-                out.cycle.push_back({m, false, false, static_cast<uint32_t>(c)});
-                chunk_bytes += packets[m].size();
-                out.repeat_bytes += packets[m].size();
+    size_t next_info = 0, next_manifest = 0;
+    for (size_t period = 0; period < out.period_cycles; ++period) {
+        const std::vector<uint32_t>& data = cycle_data[period];
+        // This cycle's detail MANIFEST parts: before the first packet each lists, and half-way.
+        std::vector<std::vector<uint32_t>> manifests_before(data.size());
+        if (!detail_listed.empty()) {
+            std::map<PacketDigest, size_t> position;
+            for (size_t k = 0; k < data.size(); ++k) position.emplace(packet_digest(packets[data[k]]), k);
+            for (size_t m = 0; m < detail_listed.size(); ++m) {
+                std::vector<size_t> listed;
+                for (const PacketDigest& d : detail_listed[m])
+                    if (auto it = position.find(d); it != position.end()) listed.push_back(it->second);
+                if (listed.empty()) continue;
+                std::sort(listed.begin(), listed.end());
+                manifests_before[listed.front()].push_back(out.detail_manifests[m]);
+                if (listed.size() > 1) manifests_before[listed[listed.size() / 2]].push_back(out.detail_manifests[m]);
             }
-            out.cycle.push_back({out.data[next], false, false, static_cast<uint32_t>(c)});
-            chunk_bytes += packets[out.data[next]].size();
-            // A stream info part after every k-th packet, unless the base comes next anyway.
-            if (options.stream_info_every > 0 && !out.stream_info.empty() && in_chunk % options.stream_info_every == 0 &&
-                next + 1 < end) {
-                const uint32_t info = out.stream_info[next_info++ % out.stream_info.size()];
-                out.cycle.push_back({info, true, true, static_cast<uint32_t>(c)});
-                chunk_bytes += packets[info].size();
-                out.repeat_bytes += packets[info].size();
-                if (!first_picture_manifests.empty()) {
-                    const uint32_t m = first_picture_manifests[next_manifest++ % first_picture_manifests.size()];
-                    out.cycle.push_back({m, true, true, static_cast<uint32_t>(c)});
+        }
+        size_t next = 0;
+        for (size_t c = 0; c < chunks; ++c) {
+            for (uint32_t b : out.base) out.cycle.push_back({b, true, false, static_cast<uint32_t>(c)});
+            size_t end = data.size() * (c + 1) / chunks;
+            uint64_t chunk_bytes = 0;
+            for (size_t in_chunk = 1; next < end; ++next, ++in_chunk) {
+                for (uint32_t m : manifests_before[next]) {
+                    out.cycle.push_back({m, false, false, static_cast<uint32_t>(c)});
                     chunk_bytes += packets[m].size();
                     out.repeat_bytes += packets[m].size();
                 }
+                out.cycle.push_back({data[next], false, false, static_cast<uint32_t>(c)});
+                chunk_bytes += packets[data[next]].size();
+                // A stream info part after every k-th packet, unless the base comes next anyway.
+                if (options.stream_info_every > 0 && !out.stream_info.empty() && in_chunk % options.stream_info_every == 0 &&
+                    next + 1 < end) {
+                    const uint32_t info = out.stream_info[next_info++ % out.stream_info.size()];
+                    out.cycle.push_back({info, true, true, static_cast<uint32_t>(c)});
+                    chunk_bytes += packets[info].size();
+                    out.repeat_bytes += packets[info].size();
+                    if (!first_picture_manifests.empty()) {
+                        const uint32_t m = first_picture_manifests[next_manifest++ % first_picture_manifests.size()];
+                        out.cycle.push_back({m, true, true, static_cast<uint32_t>(c)});
+                        chunk_bytes += packets[m].size();
+                        out.repeat_bytes += packets[m].size();
+                    }
+                }
             }
+            out.max_chunk_bytes = std::max(out.max_chunk_bytes, chunk_bytes);
         }
-        out.max_chunk_bytes = std::max(out.max_chunk_bytes, chunk_bytes);
     }
     out.cycle_offsets.reserve(out.cycle.size() + 1);
     uint64_t offset = 0;
@@ -191,12 +309,69 @@ std::vector<uint8_t> carousel_packet(const Carousel& carousel, const std::vector
 
 namespace {
 
+// What a receiver waits for: single packets, and (repair) any `needed` distinct symbols of a block.
+struct Needs {
+    std::vector<bool> single;           // by input index
+    std::vector<int32_t> block_of;      // by input index: its block, or -1
+    std::vector<size_t> block_needed;   // per block
+    size_t total = 0;                   // singles + the sum of block_needed
+};
+
+Needs needs_of(const Carousel& c, WaitFor what) {
+    Needs n;
+    n.single.assign(c.sizes.size(), false);
+    n.block_of.assign(c.sizes.size(), -1);
+    for (uint32_t b : c.base) n.single[b] = true, ++n.total;
+    if (what != WaitFor::Everything) return n;
+    for (size_t b = 0; b < c.blocks.size(); ++b) {
+        for (uint32_t p : c.blocks[b].symbols) n.block_of[p] = static_cast<int32_t>(b);
+        n.block_needed.push_back(std::min(c.blocks[b].needed, c.blocks[b].symbols.size()));
+        n.total += n.block_needed.back();
+    }
+    for (uint32_t d : c.data)
+        if (n.block_of[d] < 0) n.single[d] = true, ++n.total;
+    return n;
+}
+
+// Follows the reception of the packets of `needs` one received packet at a time.
+struct Progress {
+    const Needs& needs;
+    std::vector<bool> have;
+    std::vector<size_t> block_have;
+    size_t missing;
+    explicit Progress(const Needs& n)
+        : needs(n), have(n.single.size(), false), block_have(n.block_needed.size(), 0), missing(n.total) {}
+    void take(uint32_t p) {
+        if (have[p]) return;
+        have[p] = true;
+        if (needs.single[p]) --missing;
+        else if (const int32_t b = needs.block_of[p]; b >= 0 && block_have[size_t(b)] < needs.block_needed[size_t(b)])
+            ++block_have[size_t(b)], --missing;
+    }
+    bool done() const { return missing == 0; }
+};
+
 // For every tune-in slot j of one cycle (the receiver gets slots j, j+1, ...), the bytes from the
 // start of slot j to the end of the slot that completes `what`, without loss. Two passes over a
 // doubled cycle suffice because every packet appears in every cycle.
 std::vector<uint64_t> lossless_waits(const Carousel& c, WaitFor what) {
     const size_t n = c.cycle.size();
     std::vector<uint64_t> waits(n, 0);
+    if (what == WaitFor::Everything && !c.blocks.empty()) {
+        // Repair blocks: any k symbols of a block will do, so follow each tune-in slot forward
+        // (at most two periods: every symbol comes once a period).
+        const Needs needs = needs_of(c, what);
+        for (size_t j = 0; j < n; ++j) {
+            Progress progress(needs);
+            uint64_t slot = j;
+            for (; slot < j + 2 * n; ++slot) {
+                progress.take(c.packet_at(slot));
+                if (progress.done()) break;
+            }
+            waits[j] = c.bytes_before(slot + 1) - c.bytes_before(j);
+        }
+        return waits;
+    }
     // The completion slot for start j is the latest, over needed packets p, of p's first occurrence
     // at or after j. Sweep j backwards over a doubled cycle keeping each packet's next occurrence in
     // a max segment tree over slots.
@@ -242,8 +417,8 @@ CarouselStats carousel_stats(const Carousel& c) {
     s.cycle_bytes = c.cycle_bytes;
     if (c.cycle.empty()) return s;
     double once = double(c.base_bytes + c.data_bytes);
-    s.repetition_overhead = double(c.cycle_bytes) / once - 1.0;
-    s.base_share = double(c.chunk_count * c.base_bytes + c.repeat_bytes) / double(c.cycle_bytes);
+    s.repetition_overhead = c.bytes_per_cycle() / once - 1.0;
+    s.base_share = double(c.period_cycles * c.chunk_count * c.base_bytes + c.repeat_bytes) / double(c.cycle_bytes);
     const size_t n = c.cycle.size();
     for (WaitFor what : {WaitFor::Base, WaitFor::Everything}) {
         auto waits = lossless_waits(c, what);
@@ -273,6 +448,39 @@ double expected_wait_bytes(const Carousel& c, WaitFor what, double loss, size_t 
     const size_t n = c.cycle.size();
     if (n == 0) return 0;
     if (!(loss >= 0) || loss >= 1) return std::numeric_limits<double>::infinity();
+    if (what == WaitFor::Everything && !c.blocks.empty()) {
+        // Repair blocks: "any k of a block" has no product form; estimated from 256 simulated
+        // receptions per tune-in slot (a fixed seed: the same carousel gives the same figure).
+        const Needs needs = needs_of(c, what);
+        const size_t samples = tune_in_samples == 0 ? n : std::min(n, tune_in_samples);
+        std::mt19937_64 rng(12345);
+        std::uniform_real_distribution<double> uniform(0, 1);
+        double total = 0, weight_total = 0;
+        for (size_t s = 0; s < samples; ++s) {
+            const size_t j = samples == n ? s : (s * n) / samples;
+            const double size_j = c.sizes[c.cycle[j].packet];
+            const uint64_t first = at_slot_start ? j : j + 1;
+            double sum = 0;
+            for (int trial = 0; trial < 256; ++trial) {
+                Progress progress(needs);
+                uint64_t slot = first;
+                for (; slot < first + uint64_t(n) * 2000; ++slot) {
+                    if (uniform(rng) >= loss) progress.take(c.packet_at(slot));
+                    if (progress.done()) break;
+                }
+                sum += double(c.bytes_before(slot + 1) - c.bytes_before(first));
+            }
+            const double expected = sum / 256;
+            if (at_slot_start) {
+                total += expected;
+                weight_total += 1;
+            } else {
+                total += size_j * (expected + size_j / 2.0);
+                weight_total += size_j;
+            }
+        }
+        return total / weight_total;
+    }
     std::vector<bool> needed(c.sizes.size(), false);
     size_t needed_count = 0;
     for (uint32_t b : c.base) needed[b] = true, ++needed_count;
@@ -325,18 +533,13 @@ double expected_wait_bytes(const Carousel& c, WaitFor what, double loss, size_t 
 
 int64_t completion_slot(const Carousel& c, WaitFor what, uint64_t first_slot, const std::vector<bool>& received) {
     if (c.cycle.empty()) return -1;
-    std::vector<bool> needed(c.sizes.size(), false), have(c.sizes.size(), false);
-    size_t missing = 0;
-    for (uint32_t b : c.base) needed[b] = true, ++missing;
-    if (what == WaitFor::Everything)
-        for (uint32_t d : c.data) needed[d] = true, ++missing;
+    const Needs needs = needs_of(c, what);
+    Progress progress(needs);
+    if (progress.done()) return -1;
     for (size_t k = 0; k < received.size(); ++k) {
         if (!received[k]) continue;
-        uint32_t p = c.packet_at(first_slot + k);
-        if (needed[p] && !have[p]) {
-            have[p] = true;
-            if (--missing == 0) return static_cast<int64_t>(k);
-        }
+        progress.take(c.packet_at(first_slot + k));
+        if (progress.done()) return static_cast<int64_t>(k);
     }
     return -1;
 }

@@ -305,7 +305,7 @@ bool serve_carousel(const Carousel& carousel, const std::vector<std::vector<uint
     }
     const bool forever = !(options.cycles > 0);
     const uint64_t total = forever ? UINT64_MAX
-                                   : static_cast<uint64_t>(std::ceil(options.cycles * double(carousel.cycle.size())));
+                                   : static_cast<uint64_t>(std::ceil(options.cycles * carousel.slots_per_cycle()));
     Pacer pacer(options.bits_per_second);
     struct Held {
         uint64_t due;

@@ -181,8 +181,17 @@ void print_carousel(std::FILE* out, const broadcast::Carousel& c, double bits_pe
                  s.base_packets, with_commas(s.base_bytes).c_str());
     std::fprintf(out, "detail: %zu packets, %s bytes (POINTS, TEXTURE_FRAGMENT), in %zu chunks of at most %zu packets\n", s.data_packets,
                  with_commas(s.data_bytes).c_str(), c.chunk_count, c.chunk_packets);
-    std::fprintf(out, "cycle: b d1 b d2 ... b d%zu = %zu packets, %s bytes%s\n", c.chunk_count, s.cycle_packets,
-                 with_commas(s.cycle_bytes).c_str(), at_rate(double(s.cycle_bytes)).c_str());
+    if (c.period_cycles > 1) {
+        size_t repairs = 0;
+        for (const auto& b : c.blocks) repairs += b.symbols.size() - b.sources;
+        std::fprintf(out,
+                     "repair: %zu blocks, %zu POINTS_REPAIR packets; each block's slots carry its POINTS and repair "
+                     "packets in turn, so the schedule repeats after %zu cycles\n",
+                     c.blocks.size(), repairs, c.period_cycles);
+    }
+    std::fprintf(out, "cycle: b d1 b d2 ... b d%zu = %zu packets, %s bytes%s\n", c.chunk_count,
+                 s.cycle_packets / c.period_cycles, with_commas(uint64_t(c.bytes_per_cycle())).c_str(),
+                 at_rate(c.bytes_per_cycle()).c_str());
     std::fprintf(out, "base share of the bandwidth: %.1f%%\n", s.base_share * 100);
     std::fprintf(out, "repetition overhead: %.1f%% more bytes than sending the stream once (the paper: about 15%%)\n",
                  s.repetition_overhead * 100);

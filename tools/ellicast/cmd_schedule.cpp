@@ -25,9 +25,12 @@ int run_schedule(const ScheduleArgs& a) {
     broadcast::Carousel carousel;
     if (int code = load_carousel(a.input, a.carousel, packets, carousel); code != kExitOk) return code;
     std::string error;
-    const uint64_t slots = static_cast<uint64_t>(std::ceil(a.cycles * double(carousel.cycle.size())));
+    // --cycles counts cycles (b d1 .. b dn); with repair packets the schedule repeats only after
+    // period_cycles of them.
+    const uint64_t slots = static_cast<uint64_t>(
+        std::ceil(a.cycles * double(carousel.cycle.size()) / double(carousel.period_cycles)));
     // A schedule file is a recording of what the sender sends: bound it like any output.
-    const uint64_t bytes = static_cast<uint64_t>(std::ceil(a.cycles * double(carousel.cycle_bytes)));
+    const uint64_t bytes = static_cast<uint64_t>(std::ceil(a.cycles * carousel.bytes_per_cycle()));
     if (bytes > (uint64_t(4) << 30))
         return fail(kExitUsage, "--cycles " + std::to_string(a.cycles) + " would write " + with_commas(bytes) +
                                     " bytes (more than 4 GiB)");

@@ -51,7 +51,7 @@ int run_serve(const ServeArgs& a) {
         size_t packet_bytes = 0;
         for (uint32_t size : carousel.sizes) packet_bytes = std::max<size_t>(packet_bytes, size);
         // The simulated channel repeats its trace when the sending outlasts it.
-        uint64_t slots = a.cycles > 0 ? static_cast<uint64_t>(std::ceil(a.cycles * double(carousel.cycle.size())))
+        uint64_t slots = a.cycles > 0 ? static_cast<uint64_t>(std::ceil(a.cycles * carousel.slots_per_cycle()))
                                       : 100 * carousel.cycle.size();
         slots = std::min<uint64_t>(std::max<uint64_t>(slots, 1), 1'000'000);
         if (!a.channel.trace_in.empty()) {
@@ -84,7 +84,7 @@ int run_serve(const ServeArgs& a) {
         last_line = now;
         std::fprintf(stderr, "%ssent %s datagrams, %s bytes, cycle %.2f, %.3f Mbit/s%s%s", tty ? "\r" : "",
                      with_commas(c.datagrams).c_str(), with_commas(c.bytes).c_str(),
-                     double(c.slots) / double(carousel.cycle.size()),
+                     double(c.slots) / carousel.slots_per_cycle(),
                      elapsed > 0 ? double(c.bytes) * 8 / elapsed / 1e6 : 0.0,
                      options.trace ? (", dropped " + with_commas(c.dropped)).c_str() : "", tty ? "   " : "\n");
         std::fflush(stderr);

@@ -30,7 +30,7 @@ int run_simulate(const SimulateArgs& a) {
     broadcast::Carousel carousel;
     if (int code = load_carousel(a.input, a.carousel, packets, carousel); code != kExitOk) return code;
     std::string error;
-    const uint64_t slots = static_cast<uint64_t>(std::ceil(a.cycles * double(carousel.cycle.size())));
+    const uint64_t slots = static_cast<uint64_t>(std::ceil(a.cycles * carousel.slots_per_cycle()));
     if (slots > broadcast::kMaxTraceSlots)
         return fail(kExitUsage, "--cycles " + std::to_string(a.cycles) + " means " + with_commas(slots) +
                                     " packets, more than the simulator's cap of " +
@@ -75,7 +75,7 @@ int run_simulate(const SimulateArgs& a) {
     std::printf("channel: %s\n", trace.description().c_str());
     std::printf("sent: %s packets, slots %s..%s of the carousel (%g cycles of %zu packets)\n",
                 with_commas(slots).c_str(), with_commas(tune_in).c_str(), with_commas(tune_in + slots - 1).c_str(),
-                a.cycles, carousel.cycle.size());
+                a.cycles, size_t(carousel.slots_per_cycle()));
     std::printf("channel did: %s lost (%.1f%%), %s corrupted, %s duplicated, %s reordered\n",
                 with_commas(trace.lost_count()).c_str(), 100.0 * double(trace.lost_count()) / double(slots),
                 with_commas(trace.corrupted_count()).c_str(), with_commas(trace.duplicated_count()).c_str(),

@@ -128,6 +128,13 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
                                                       std::to_string(o.info->point_count) + " points received; missing " +
                                                       missing});
     }
+    // Format 1.2 repair packets: each symbol must be its row of the code over the points (spec 17.4).
+    for (const ContainerPacket& p : contents.packets) {
+        if (p.view.header.type != uint8_t(PacketType::PointsRepair)) continue;
+        std::string why;
+        const Error e = check_repair_packet(r.stream, p.view, why);
+        if (e == Error::StreamMismatch) r.violations.push_back({p.offset, "POINTS_REPAIR packet: " + why});
+    }
     // Format 1.1 scene tables: complete when present.
     if (r.stream.has_scene()) {
         std::string missing = missing_ranges(r.stream.scene_nodes(), r.stream.scene_node_count());

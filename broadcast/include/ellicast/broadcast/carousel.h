@@ -56,6 +56,14 @@ struct CarouselEntry {
     uint32_t chunk = 0;   // chunk index (0..chunk_count-1) of the base repetition or data chunk
 };
 
+// A repair block (spec 17) as the carousel sends it: its source POINTS packets and its
+// POINTS_REPAIR packets; a receiver holds every point of it once it holds any `needed` of them.
+struct CarouselBlock {
+    std::vector<uint32_t> symbols;  // input indices: the sources (in stream order), then the repairs (by row)
+    size_t sources = 0;             // how many of `symbols` are POINTS packets
+    size_t needed = 0;              // k: the block's source count
+};
+
 struct Carousel {
     std::vector<uint32_t> base;      // input indices of the base packets, in input order
     std::vector<uint32_t> stream_info;  // input indices of the STREAM_INFO parts (also in `base`)
@@ -64,6 +72,12 @@ struct Carousel {
     // just before the first packet it lists and again half-way through them (its bytes count in
     // repeat_bytes). MANIFEST parts that list base packets are in `base`.
     std::vector<uint32_t> detail_manifests;
+    // Repair (format 1.2): the blocks, and the input indices of the POINTS_REPAIR packets scheduled.
+    // A block's data slots carry its sources and repairs in turn, so the schedule repeats only after
+    // `period_cycles` cycles; `cycle` and `cycle_bytes` are that whole period.
+    std::vector<CarouselBlock> blocks;
+    std::vector<uint32_t> repairs;
+    size_t period_cycles = 1;
     std::vector<uint32_t> sizes;     // byte size of every input packet
     size_t chunk_packets = 0;        // POINTS packets per chunk (the last chunk may hold fewer)
     size_t chunk_count = 0;          // n: number of base repetitions per cycle
@@ -74,7 +88,11 @@ struct Carousel {
     uint64_t base_bytes = 0;         // B: one copy of the base
     uint64_t data_bytes = 0;         // D: every POINTS packet once
     uint64_t repeat_bytes = 0;       // R: the STREAM_INFO parts (and detail MANIFEST parts) sent inside chunks
-    uint64_t cycle_bytes = 0;        // n * B + D + R
+    uint64_t cycle_bytes = 0;        // n * B + D + R, times period_cycles
+    // Bytes of one cycle (b d1 .. b dn) on average over the period: the unit of "cycles after tune-in".
+    double bytes_per_cycle() const { return double(cycle_bytes) / double(period_cycles ? period_cycles : 1); }
+    // Slots of one cycle, on average over the period.
+    double slots_per_cycle() const { return double(cycle.size()) / double(period_cycles ? period_cycles : 1); }
     uint64_t max_chunk_bytes = 0;    // the largest chunk
 
     // Input index of the packet sent in slot `slot` (slot 0 is the first packet the sender sends).
