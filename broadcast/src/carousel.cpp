@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <tuple>
 #include <random>
 #include <set>
 
@@ -139,6 +140,18 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
             b.rows.erase(std::unique(b.rows.begin(), b.rows.end(),
                                      [](const auto& x, const auto& y) { return x.first == y.first; }),
                          b.rows.end());
+            // How many repair rows to send: the ratio asked for (all by default), as near as a period
+            // of at most 16 cycles allows: with k slots a cycle, k + R symbols repeat after
+            // (k + R) / gcd(k + R, k) cycles.
+            const size_t k = s->second.size();
+            const double target = options.repair_ratio >= 0 ? options.repair_ratio * double(k) : double(b.rows.size());
+            size_t best = 0;
+            for (size_t r = 0; r <= b.rows.size(); ++r) {
+                if ((k + r) / std::gcd(k + r, k) > 16) continue;
+                if (std::abs(double(r) - target) <= std::abs(double(best) - target) + 1e-9) best = r;
+            }
+            b.rows.resize(best);
+            if (b.rows.empty()) continue;  // sent as plain POINTS packets
             CarouselBlock cb;
             cb.needed = b.block.source_count();
             for (size_t pos : s->second) cb.symbols.push_back(out.data[pos]);
@@ -163,6 +176,21 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
         if (period_of(out.blocks) > 64)
             for (CarouselBlock& b : out.blocks) b.symbols.resize(b.sources);
         out.period_cycles = static_cast<size_t>(period_of(out.blocks));
+        // Spread each block's slots over the whole cycle: the slots the blocks own, in cycle order,
+        // go to the blocks in the order of (j + 1/2) / k_b, so that a receiver short of a few symbols
+        // of a block gets its next slots soon wherever it is in the cycle (with the blocks one after
+        // the other, the last block's next slots came half a cycle later: 1.26 instead of 1.1 cycles
+        // to every point at 10% loss).
+        std::vector<size_t> owned;
+        std::vector<std::tuple<double, size_t, size_t>> order;  // (fraction, block, j)
+        for (size_t b = 0; b < block_positions.size(); ++b)
+            for (size_t j = 0; j < block_positions[b].size(); ++j) {
+                owned.push_back(block_positions[b][j]);
+                order.emplace_back((double(j) + 0.5) / double(block_positions[b].size()), b, j);
+            }
+        std::sort(owned.begin(), owned.end());
+        std::sort(order.begin(), order.end());
+        for (size_t r = 0; r < order.size(); ++r) block_positions[std::get<1>(order[r])][std::get<2>(order[r])] = owned[r];
         for (CarouselBlock& b : out.blocks) {
             // Sources and repairs evenly interleaved (symbol t is a source when floor((t+1)k/n) grows).
             const size_t n = b.symbols.size(), k = b.sources;

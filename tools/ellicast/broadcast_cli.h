@@ -32,6 +32,7 @@ struct CarouselCli {
     double base_share = 0.15;
     size_t min_base_repetitions = broadcast::CarouselOptions{}.min_base_repetitions;
     size_t stream_info_every = broadcast::CarouselOptions{}.stream_info_every;
+    double repair_ratio = broadcast::CarouselOptions{}.repair_ratio;
     void add(CLI::App* app);
     broadcast::CarouselOptions options() const;
 };

@@ -46,6 +46,9 @@ struct CarouselOptions {
     size_t stream_info_every = 8;
     // Restamp each transmitted packet's sequence number with its slot number (and its CRC).
     bool restamp_sequence = true;
+    // Repair packets (format 1.2) sent per POINTS packet of a block: the first ceil(ratio * k) rows
+    // of those the stream holds. Negative: every one it holds. 0: none (the POINTS packets repeat).
+    double repair_ratio = -1;
 };
 
 // One slot of the cycle: which input packet is sent there.
