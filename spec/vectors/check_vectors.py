@@ -10,8 +10,9 @@ rejections, counters, stream info, every element's integers and dequantized valu
 format 1.1 the scene graph, materials, textures and what a receiver shows of them, spec section 15, and
 a 1.0 decoder's view of the same file; for format 1.2 the MANIFEST layout, every packet digest, and the
 authentication of a signed recording with the vectors' key, spec section 16, with SHA-256 from hashlib
-and Ed25519 verification written here from RFC 8032) so that a disagreement between the spec text and the reference
-library shows up as a failing vector. Every complete texture is also checked to be a file of its
+and Ed25519 verification written here from RFC 8032, and the POINTS_REPAIR packets of spec section 17:
+their checks, the blocks a decoder holds and the points it recovers, with GF(2^8) written here) so
+that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
 EOI at the end).
@@ -31,8 +32,8 @@ SIGNATURE = b"\x89ELC\r\n\x1a\n"
 KNOWN_10 = {1: "STREAM_INFO", 2: "ELLIPSOIDS", 3: "POINTS"}
 # Format 1.1 types (spec sections 4 and 15).
 KNOWN_11 = {0x10: "SCENE", 0x11: "MATERIAL", 0x12: "TEXTURE_FRAGMENT"}
-# Format 1.2 (spec sections 4 and 16).
-KNOWN_12 = {0x20: "MANIFEST"}
+# Format 1.2 (spec sections 4, 16 and 17).
+KNOWN_12 = {0x20: "MANIFEST", 0x04: "POINTS_REPAIR"}
 NONE = 0xFFFF
 SLOTS = ("base_color", "metallic_roughness", "normal", "occlusion", "emissive")
 
@@ -643,8 +644,90 @@ def authenticate(packets):
                 authenticated=dict(counters=passed.counters, stream_info=info, objects=objects_json(passed)))
 
 
+# ------------------------------------------------------------------------------------------------
+# Format 1.2: repair packets (spec 17). GF(2^8): bytes are polynomials over GF(2), bit 0 the constant
+# term, multiplied modulo x^8 + x^4 + x^3 + x^2 + 1 (0x11D).
+
+
+def gf_mul_slow(a, b):
+    product = 0
+    while b:
+        if b & 1:
+            product ^= a
+        b >>= 1
+        a <<= 1
+        if a & 0x100:
+            a ^= 0x11D
+    return product
+
+
+GF_MUL = [[gf_mul_slow(a, b) for b in range(256)] for a in range(256)]
+GF_INV = [0] + [next(b for b in range(1, 256) if GF_MUL[a][b] == 1) for a in range(1, 256)]
+# The examples of spec 17.2.
+assert GF_MUL[0x02][0x80] == 0x1D and GF_MUL[0x53][0xCA] == 0x8F and GF_INV[2] == 0x8E and GF_INV[3] == 0xF4
+
+
+def cauchy(r, j):
+    """C(r, j) = inv(r XOR j), spec 17.2."""
+    return GF_INV[r ^ j]
+
+
+def repair_fields(p):
+    """Spec 17.3, the checks without stream info (step 11): (first_index, batch, k, row) or None."""
+    if len(p) < 9:
+        return None
+    first, batch, k, row = struct.unpack_from("<IHBB", p, 0)
+    if batch == 0 or k == 0 or row < k or row > 254 or first + (k - 1) * batch > 0xFFFFFFFF:
+        return None
+    return first, batch, k, row
+
+
+def pack_records(records, widths, length):
+    """Point records bit-packed LSB-first as in a POINTS payload (spec 1.1, 7), zero bits up to `length` bytes."""
+    value, pos = 0, 0
+    for q in records:
+        for v, n in zip(q, widths):
+            value |= v << pos
+            pos += n
+    return value.to_bytes(length, "little")
+
+
+def record_widths(info, obj):
+    """The bit width of each integer of a point record (spec 7.1), in order."""
+    a = obj["attributes"]
+    w = [info["position_bits"]] * 3
+    if a & 1:
+        w += [info["normal_bits"]] * 2
+    if a & 2:
+        w += [info["texcoord_bits"]] * 2
+    if a & 4:
+        w += [info["color_bits"]] * (4 if a & 8 else 3)
+    return w
+
+
+def solve_gf(matrix, rhs):
+    """Solves matrix * x = rhs over GF(2^8): matrix u x u, rhs u byte strings; returns the u byte strings x."""
+    u = len(matrix)
+    m = [list(row) for row in matrix]
+    y = [bytearray(v) for v in rhs]
+    for col in range(u):
+        pivot = next(r for r in range(col, u) if m[r][col])  # a Cauchy matrix: never singular
+        m[col], m[pivot] = m[pivot], m[col]
+        y[col], y[pivot] = y[pivot], y[col]
+        scale = GF_MUL[GF_INV[m[col][col]]]
+        m[col] = [scale[v] for v in m[col]]
+        y[col] = bytearray(scale[v] for v in y[col])
+        for r in range(u):
+            f = m[r][col]
+            if r != col and f:
+                mul = GF_MUL[f]
+                m[r] = [a ^ mul[b] for a, b in zip(m[r], m[col])]
+                y[r] = bytearray(a ^ mul[b] for a, b in zip(y[r], y[col]))
+    return [bytes(v) for v in y]
+
+
 class Receiver:
-    """Spec 11.1 steps 9..14 and 11.2."""
+    """Spec 11.1 steps 9..15 and 11.2."""
 
     def __init__(self, know_11=True):
         self.know_11 = know_11
@@ -690,6 +773,9 @@ class Receiver:
                 return self.reject(offset, "malformed payload")
             self.counters["skipped"] += 1
             result = "skipped"
+        elif t == 0x04 and repair_fields(h["payload"]) is None:
+            # Spec 17.3: the fixed fields are checked at step 11, before the packet can be held.
+            return self.reject(offset, "malformed payload")
         else:
             result = self.object_packet(h, offset)
         if result in ("accepted", "duplicate", "held", "skipped"):
@@ -711,7 +797,7 @@ class Receiver:
                 return self.reject(offset, "stream mismatch")
         else:
             self.info, self.object_count = fields, count
-            self.objects = [dict(info=None, ellipsoids={}, points={}) for _ in range(count)]
+            self.objects = [dict(info=None, ellipsoids={}, points={}, blocks={}, recovered=0) for _ in range(count)]
             # Spec 11.1: held packets naming an object beyond the table are rejected now, in arrival order.
             for h, at in [x for x in self.held if x[0]["object_id"] >= count]:
                 self.counters["held"] -= 1
@@ -754,6 +840,8 @@ class Receiver:
             self.counters["held"] += 1
             return "held"
         obj = self.objects[oid]
+        if h["type"] == 0x04:
+            return self.repair(obj, h, offset)
         ellipsoids = h["type"] == 2
         record = 128 if ellipsoids else record_bits(self.info, obj["info"])
         batch = decode_batch(h["payload"], record)
@@ -764,14 +852,88 @@ class Receiver:
         if first + len(readers) > declared:
             return self.reject(offset, "index out of range")
         store = obj["ellipsoids" if ellipsoids else "points"]
-        news = False
+        fresh = []
         for i, bits in enumerate(readers):
             q = unpack_ellipsoid(bits) if ellipsoids else unpack_point(bits, self.info, obj["info"])
             if first + i not in store:
                 store[first + i] = q
-                news = True
-        self.counters["accepted" if news else "duplicates"] += 1
-        return "accepted" if news else "duplicate"
+                fresh.append(first + i)
+        self.counters["accepted" if fresh else "duplicates"] += 1
+        if fresh and not ellipsoids:
+            # Spec 17.4: after accepting a POINTS packet that brings a point of a block with rows kept,
+            # recover the block if it can be.
+            for b in sorted(obj["blocks"].values(), key=lambda b: b["first"]):
+                if b["rows"] and any(b["first"] <= i < b["first"] + b["count"] for i in fresh):
+                    self.recover(obj, b)
+        return "accepted" if fresh else "duplicate"
+
+    def repair(self, obj, h, offset):
+        """Spec 17.3 (steps 13..15) and 17.4, once the object's entry has arrived."""
+        p = h["payload"]
+        first, batch, k, row = repair_fields(p)
+        info = obj["info"]
+        if len(p) != 8 + (batch * record_bits(self.info, info) + 7) // 8:
+            return self.reject(offset, "malformed payload")
+        if first + (k - 1) * batch >= info["point_count"]:
+            return self.reject(offset, "index out of range")
+        count = min(first + k * batch, info["point_count"]) - first  # the block's range, cut at the last point
+        block = obj["blocks"].get(first)
+        if block is not None:
+            if (block["batch"], block["k"]) != (batch, k):
+                return self.reject(offset, "stream mismatch")
+        else:
+            for other in obj["blocks"].values():
+                if other["first"] < first + count and first < other["first"] + other["count"]:
+                    return self.reject(offset, "stream mismatch")
+            block = obj["blocks"][first] = dict(first=first, batch=batch, k=k, count=count, rows=[], recovered=False,
+                                                points_recovered=0)
+        if self.complete(obj, block) or row in [r for r, _ in block["rows"]]:
+            self.counters["duplicates"] += 1
+            return "duplicate"
+        block["rows"].append((row, p[8:]))
+        self.counters["accepted"] += 1
+        self.recover(obj, block)
+        return "accepted"
+
+    def batch_range(self, block, i):
+        start = block["first"] + i * block["batch"]
+        return range(start, min(start + block["batch"], block["first"] + block["count"]))
+
+    def complete(self, obj, block):
+        return all(i in obj["points"] for i in range(block["first"], block["first"] + block["count"]))
+
+    def recover(self, obj, block):
+        """Spec 17.4: with u batches not wholly held and at least u rows, solve with the first u rows."""
+        if block["recovered"] or self.complete(obj, block):
+            return
+        points, k = obj["points"], block["k"]
+        known = [j for j in range(k) if all(i in points for i in self.batch_range(block, j))]
+        unknown = [j for j in range(k) if j not in known]
+        u = len(unknown)
+        if len(block["rows"]) < u:
+            return
+        widths = record_widths(self.info, obj["info"])
+        length = (block["batch"] * sum(widths) + 7) // 8
+        sources = {j: pack_records([points[i] for i in self.batch_range(block, j)], widths, length) for j in known}
+        rows = block["rows"][:u]
+        rhs = []
+        for r, symbol in rows:
+            y = bytearray(symbol)
+            for j, s in sources.items():
+                mul = GF_MUL[cauchy(r, j)]
+                for t in range(length):
+                    y[t] ^= mul[s[t]]
+            rhs.append(y)
+        solved = solve_gf([[cauchy(r, j) for j in unknown] for r, _ in rows], rhs)
+        for j, symbol in zip(unknown, solved):
+            bits = Bits(symbol)
+            for i in self.batch_range(block, j):
+                q = [bits.get(n) for n in widths]
+                if i not in points:  # points held are kept (the first copy, spec 7.2)
+                    points[i] = q
+                    block["points_recovered"] += 1
+                    obj["recovered"] += 1
+        block["recovered"] = True
 
     def news(self, fresh):
         self.counters["accepted" if fresh else "duplicates"] += 1
@@ -932,6 +1094,12 @@ def objects_json(r):
                                for k, q in sorted(obj["ellipsoids"].items())] if o["ellipsoids_listed"] else []
             o["points"] = [dict(index=k, q=q, **dequantize_point(q, r.info, obj["info"]))
                            for k, q in sorted(obj["points"].items())] if o["points_listed"] else []
+            o["points_recovered"] = obj["recovered"]
+            o["repair_blocks"] = [dict(first_index=b["first"], batch=b["batch"], source_count=b["k"],
+                                       point_count=b["count"], rows=[row for row, _ in b["rows"]],
+                                       complete=r.complete(obj, b), recovered=b["recovered"],
+                                       points_recovered=b["points_recovered"])
+                                  for _, b in sorted(obj["blocks"].items())]
         objects.append(o)
     return objects
 

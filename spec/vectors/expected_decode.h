@@ -1,4 +1,4 @@
-// The expected decode of a conformance vector as JSON: what a format 1.1 decoder makes of a container
+// The expected decode of a conformance vector as JSON: what a format 1.2 decoder makes of a container
 // file (spec/format.md sections 10 and 11). The vector generator (make_vectors.cpp) writes it next to
 // each .ellc; tests/test_conformance.cpp recomputes it with the library and compares. The JSON layout
 // is described in spec/vectors/README.md.
@@ -167,6 +167,23 @@ inline nlohmann::json objects_json(const ReceivedStream& stream) {
             o["points_listed"] = object.points.size() <= kMaxListedElements;
             o["ellipsoids"] = ellipsoids;
             o["points"] = points;
+            // Format 1.2 repair packets (spec 17.4): the points recovered, and every block of which a
+            // POINTS_REPAIR packet passed the checks, in first_index order.
+            o["points_recovered"] = object.points_recovered;
+            json blocks = json::array();
+            for (const auto& [first, b] : object.repair_blocks) {
+                json rows = json::array();
+                for (uint8_t r : b.rows_accepted) rows.push_back(r);
+                blocks.push_back({{"first_index", b.block.first_index},
+                                  {"batch", b.block.batch},
+                                  {"source_count", b.block.source_count()},
+                                  {"point_count", b.block.point_count},
+                                  {"rows", rows},
+                                  {"complete", b.complete},
+                                  {"recovered", b.recovered},
+                                  {"points_recovered", b.points_recovered}});
+            }
+            o["repair_blocks"] = blocks;
         }
         objects.push_back(o);
     }

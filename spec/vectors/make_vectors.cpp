@@ -1554,6 +1554,266 @@ void signed_vectors(Writer& w) {
     }
 }
 
+// ------------------------------------------------------------------------------------------------
+// Format 1.2: repair packets (POINTS_REPAIR, spec 17). The streams are 1.0 streams; their
+// POINTS_REPAIR packets, made by packetize_repairs over the blocks plan_repair_blocks cuts, say 1.2.
+
+// The repair vectors' stream: one object (12 ellipsoids, `points` points with normals) at packet size
+// 200: records of B = 3 x 14 + 2 x 10 = 62 bits, 21 points a POINTS packet (a symbol of 164 bytes, 4
+// padding bits after 21 records). Its blocks are the POINTS packets' batches of 21 points, at most
+// `max_sources` a block; repairs[b] holds block b's POINTS_REPAIR packets of rows k .. k + rows - 1.
+struct RepairStream {
+    Stream s;
+    std::vector<RepairBlock> blocks;
+    std::vector<Packets> repairs;
+    const Packet& info() const { return s.packets.stream_info[0]; }
+    const Packet& ellipsoids(size_t i) const { return s.packets.ellipsoids[i]; }
+    const Packet& points(size_t i) const { return s.packets.points[i]; }
+    // Block b's packet of row r.
+    const Packet& repair(size_t b, unsigned r) const { return repairs[b].at(r - blocks[b].source_count()); }
+    // A POINTS packet of the points [first, first + count), cut where the packetizer would not cut.
+    Packet points_packet(uint32_t first, uint32_t count) const {
+        PointBatch batch;
+        batch.first_index = first;
+        batch.points.assign(s.contents[0].points.begin() + first, s.contents[0].points.begin() + first + count);
+        PacketHeader h;
+        h.version_minor = 0;
+        h.type = uint8_t(PacketType::Points);
+        h.stream_id = kStreamId;
+        h.object_id = 0;
+        return write_packet(h, encode_points_payload(batch, s.info, s.info.objects[0]));
+    }
+};
+
+RepairStream repair_stream(uint32_t points, size_t max_sources, size_t rows, uint64_t seed) {
+    RepairStream r;
+    StreamInfo info = default_info({make_object({-1, -1, -1}, 2, 12, points, kAttrNormal)}, 200);
+    r.s = make_stream(info, kStreamId, seed);
+    const auto batch = uint16_t(points_per_packet(info.packet_size, info, info.objects[0]));
+    r.blocks = plan_repair_blocks(points, batch, max_sources);
+    uint32_t sequence = uint32_t(r.s.all().size());
+    for (const RepairBlock& b : r.blocks) {
+        Packets out;
+        if (packetize_repairs(info, 0, r.s.contents[0].points, {b}, rows, kStreamId, sequence, out) != Error::Ok) {
+            std::cerr << "make_vectors: packetize_repairs failed\n";
+            std::exit(1);
+        }
+        sequence += uint32_t(out.size());
+        r.repairs.push_back(out);
+    }
+    return r;
+}
+
+// Packets numbered in file order from `first`.
+Packets numbered(Packets p, uint32_t first = 0) {
+    for (uint32_t i = 0; i < p.size(); ++i) restamp_packet(p[i], first + i);
+    return p;
+}
+
+// Offsets in a POINTS_REPAIR packet (header included), spec 17.3.
+constexpr size_t kRepairFirst = kHeaderSize, kRepairBatch = kHeaderSize + 4, kRepairSources = kHeaderSize + 6,
+                 kRepairRow = kHeaderSize + 7, kRepairSymbol = kHeaderSize + 8;
+
+void repair_vectors(Writer& w) {
+    // 100 points: POINTS packets P0..P4 of points [0,21) [21,42) [42,63) [63,84) [84,100); at most 3
+    // batches a block: block 0 = P0 P1 (k 2, rows 2..), block 1 = P2 P3 P4 from point 42 (k 3, rows 3..),
+    // cut at the object's last point (58 points, the last batch 16).
+    const RepairStream r = repair_stream(100, 3, 3, 60);
+    {
+        // As a carousel sends it (each block's POINTS and repair packets interleaved), under loss: the
+        // packets lost leave gaps in the sequence numbers.
+        struct Sent {
+            Packet p;
+            bool lost;
+        };
+        const std::vector<Sent> sent = {
+            {r.info(), false},        {r.ellipsoids(0), false}, {r.ellipsoids(1), false}, {r.points(0), false},
+            {r.repair(0, 2), false},  {r.points(1), true},      {r.repair(0, 3), true},   {r.points(2), true},
+            {r.repair(1, 3), false},  {r.points(3), false},     {r.repair(1, 4), true},   {r.points(4), true},
+            {r.repair(1, 5), false},
+        };
+        Packets file;
+        for (uint32_t i = 0; i < sent.size(); ++i) {
+            if (sent[i].lost) continue;
+            Packet p = sent[i].p;
+            restamp_packet(p, i);
+            file.push_back(p);
+        }
+        w.write("valid", "repair",
+                "repair packets (format 1.2, spec 17): one object, 12 ellipsoids, 100 points with normals, packet "
+                "size 200, 5 POINTS packets of 21 points in 2 blocks (points 0..41: k 2; points 42..99: k 3, cut at "
+                "the last point, its last batch 16 points), sent as a carousel interleaves them, with POINTS P1, P2, "
+                "P4 and repair rows 3 of block 0 and 4 of block 1 lost (gaps in the sequence numbers): block 0 "
+                "recovers P1 from row 2 as soon as it arrives; block 1 waits for P3, then recovers P2 and P4 from "
+                "rows 3 and 5; every point is present, 58 of them recovered",
+                file);
+    }
+    {
+        // Repairs before the STREAM_INFO: held (11.2), released in arrival order (11.1) and used.
+        const Packets file = numbered({r.repair(1, 3), r.repair(0, 2), r.repair(1, 4), r.ellipsoids(0), r.points(0),
+                                       r.points(3), r.info(), r.ellipsoids(1)});
+        w.write("unusual", "repair_before_stream_info",
+                "the stream of valid/repair with three POINTS_REPAIR packets (block 1 row 3, block 0 row 2, block 1 "
+                "row 4), an ELLIPSOIDS and POINTS P0 and P3 before the STREAM_INFO: all held (a POINTS_REPAIR is held "
+                "like a POINTS packet, spec 17.3), then released in arrival order (11.1): the repairs first (their "
+                "blocks hold no point yet), then P0, which lets block 0 recover P1 from row 2, and P3, which lets "
+                "block 1 recover P2 and P4 from rows 3 and 4",
+                file);
+    }
+    {
+        // Blocks of one source batch (k = 1): a repair row is the batch times inv(row).
+        const RepairStream one = repair_stream(100, 1, 254, 60);
+        const Packets file = numbered({one.info(), one.ellipsoids(0), one.ellipsoids(1), one.points(0), one.repair(0, 1),
+                                       one.repair(1, 1), one.points(2), one.points(3), one.repair(4, 254),
+                                       one.repair(4, 2)});
+        w.write("unusual", "repair_one_batch",
+                "blocks of one source batch (k = 1, spec 17.2: row r is inv(r) times the batch's symbol): the stream "
+                "of valid/repair in 5 blocks, one a POINTS packet; P1 and P4 lost; block 0's row 1 arrives after P0 "
+                "(a duplicate: the block is complete, and held with no row), block 1's row 1 (C = 1: the symbol is "
+                "the batch's records) recovers P1, block 4's row 254 (C = inv(254)) recovers P4's 16 points, its row "
+                "2 after that is a duplicate",
+                file);
+    }
+    {
+        // More rows than needed: rows beyond the u a recovery takes, and repeats, are duplicates; a POINTS
+        // packet that completes a batch starts the recovery.
+        Packet again = r.repair(1, 3);
+        const Packets file =
+            numbered({r.info(), r.ellipsoids(0), r.ellipsoids(1), r.points(0), r.points(1), r.repair(0, 2),
+                      r.repair(0, 3), r.repair(1, 3), r.repair(1, 4), r.points(3), r.repair(1, 5), r.points(2),
+                      r.points(4), again});
+        w.write("unusual", "repair_extra_rows",
+                "more repair rows than needed: block 0's rows 2 and 3 arrive after P0 and P1 (duplicates: the block "
+                "is complete); block 1's rows 3 and 4 are kept (all 3 batches missing), P3 then completes batch 1 "
+                "and block 1 recovers P2 and P4 from rows 3 and 4 (spec 17.4: after accepting a POINTS packet); its "
+                "row 5, P2, P4 and row 3 again (renumbered) are duplicates",
+                file);
+    }
+    {
+        // Source symbols are functions of the points, not of the packets (spec 17.1): POINTS packets of
+        // 13 points, cut across the batches and across the blocks.
+        Packets file = {r.info(), r.ellipsoids(0), r.ellipsoids(1)};
+        for (uint32_t first : {0u, 13u, 39u, 65u, 78u, 91u}) file.push_back(r.points_packet(first, std::min(13u, 100 - first)));
+        file.push_back(r.repair(0, 2));
+        file.push_back(r.repair(1, 3));
+        file.push_back(r.repair(1, 4));
+        w.write("unusual", "repair_points_cut_differently",
+                "the object of valid/repair sent in POINTS packets of 13 points (0..12, 13..25, 39..51, 65..77, 78..90, "
+                "91..99; 26..38 and 52..64 lost), cut across the blocks' batches of 21 and across the blocks (39..51): "
+                "source symbols are formed from the points held, however they came (spec 17.1); block 0 forms batch "
+                "0 from two packets and recovers 26..38 from row 2 (batch 1's other points held are kept); block 1, "
+                "with only batch 2 whole, recovers 52..64 from rows 3 and 4",
+                numbered(file));
+    }
+    {
+        // A block cut at the object's last point: 43 points, one block of 3 batches of 21 from point 0,
+        // the last batch 1 point (its symbol: one 62-bit record, then zero bits to 164 bytes).
+        const RepairStream s = repair_stream(43, 3, 3, 61);
+        const Packets file = numbered({s.info(), s.ellipsoids(0), s.ellipsoids(1), s.points(1), s.repair(0, 4), s.repair(0, 5)});
+        w.write("unusual", "repair_short_last_batch",
+                "a block cut at the object's last point (spec 17.1): 43 points, one block of k = 3 batches of 21 from "
+                "point 0, its last batch the single point 42; P0 and the 1-point P2 lost, recovered from rows 4 and 5",
+                file);
+    }
+
+    // Faulty: the file of valid/repair plus one defective POINTS_REPAIR packet (resealed), every MUST-reject
+    // rule of spec 17.3 one vector each.
+    const Packets good = numbered({r.info(), r.ellipsoids(0), r.ellipsoids(1), r.points(0), r.repair(0, 2),
+                                   r.repair(1, 3), r.points(3), r.repair(1, 5)});
+    // A copy of block 1's row 4 (lost from the file) with `edit` applied, numbered 1000 and resealed.
+    auto defective = [&](const std::function<void(Packet&)>& edit) {
+        Packet p = r.repair(1, 4);
+        put32(p, 12, 1000);
+        edit(p);
+        reseal(p);
+        return p;
+    };
+    struct RepairEdit {
+        const char* name;
+        const char* description;
+        std::function<void(Packet&)> edit;
+        bool last;  // after the stream (else first, before the STREAM_INFO)
+    };
+    const std::vector<RepairEdit> edits = {
+        {"repair_payload_short",
+         "a POINTS_REPAIR packet whose payload is its 8-byte header without a symbol byte, before the STREAM_INFO: "
+         "rejected at once (malformed payload, spec 17.3: shorter than 9 bytes; step 11 needs no stream info), not held",
+         [](Packet& p) { p = with_payload(p, std::vector<uint8_t>(p.begin() + kHeaderSize, p.begin() + kRepairSymbol)); },
+         false},
+        {"repair_batch_zero",
+         "a POINTS_REPAIR packet with batch 0, before the STREAM_INFO: rejected at once (malformed payload, spec 17.3), not held",
+         [](Packet& p) { put16(p, kRepairBatch, 0); }, false},
+        {"repair_source_count_zero",
+         "a POINTS_REPAIR packet with source_count 0, before the STREAM_INFO: rejected at once (malformed payload, spec 17.3), not held",
+         [](Packet& p) { p[kRepairSources] = 0; }, false},
+        {"repair_row_below_source_count",
+         "a POINTS_REPAIR packet with row 2 and source_count 3 (rows 0..2 are the source symbols themselves), before "
+         "the STREAM_INFO: rejected at once (malformed payload, spec 17.3), not held",
+         [](Packet& p) { p[kRepairRow] = 2; }, false},
+        {"repair_row_255",
+         "a POINTS_REPAIR packet with row 255 (rows end at 254), before the STREAM_INFO: rejected at once (malformed "
+         "payload, spec 17.3), not held",
+         [](Packet& p) { p[kRepairRow] = 255; }, false},
+        {"repair_index_overflow",
+         "a POINTS_REPAIR packet with first_index 4294967254 (2^32 - 42), batch 21, source_count 3: its last batch "
+         "would start at 2^32, past 2^32 - 1 (0 in 32-bit arithmetic), before the STREAM_INFO: rejected at once "
+         "(malformed payload, spec 17.3), not held",
+         [](Packet& p) { put32(p, kRepairFirst, 0xFFFFFFD6u); }, false},
+        {"repair_symbol_length",
+         "a POINTS_REPAIR packet whose symbol is 163 bytes where batch 21 of 62-bit records makes 164, before the "
+         "STREAM_INFO: held (the length needs the object's entry), then rejected when released (malformed payload, "
+         "spec 17.3 step 13)",
+         [](Packet& p) {
+             std::vector<uint8_t> payload = payload_of(p);
+             payload.pop_back();
+             p = with_payload(p, payload);
+         },
+         false},
+        {"repair_index_out_of_range",
+         "a POINTS_REPAIR packet of a block from point 58, batch 21, source_count 3: its last batch would start at "
+         "point 100, the object's point_count, before the STREAM_INFO: held, then rejected when released (index out "
+         "of range, spec 17.3 step 14: every source batch holds at least one point)",
+         [](Packet& p) { put32(p, kRepairFirst, 58); }, false},
+        {"repair_block_contradicts",
+         "after the stream, a POINTS_REPAIR packet of a block from point 0 (block 0's first_index) with "
+         "source_count 3 instead of 2 (row 4): rejected (stream mismatch, spec 17.3: blocks are keyed by "
+         "first_index and must not overlap)",
+         [](Packet& p) { put32(p, kRepairFirst, 0); }, true},
+        {"repair_block_overlap",
+         "after the stream, a POINTS_REPAIR packet of a block from point 21 (batch 21, source_count 3, row 4), "
+         "inside block 0 (points 0..41) and overlapping block 1: rejected (stream mismatch, spec 17.3)",
+         [](Packet& p) { put32(p, kRepairFirst, 21); }, true},
+    };
+    for (const RepairEdit& e : edits) {
+        Packets file = good;
+        const Packet bad = defective(e.edit);
+        if (e.last) file.push_back(bad);
+        else file.insert(file.begin(), bad);
+        w.write("faulty", e.name, e.description, file);
+    }
+    {
+        // A forged symbol (valid checksum, wrong symbol): block 1's row 3 with one byte changed. Block 1
+        // (points 42..99) holds parts of batches 0 and 1 and rows 3 (forged) and 4 when one POINTS packet
+        // completes batches 0 and 1: u = 1, and the decoder recovers batch 2 from the FIRST row it
+        // accepted, the forged one. The honest row 4 is then not R_4 of the points held: a validator
+        // reports it (spec 17.4).
+        Packet forged = r.repair(1, 3);
+        forged[kRepairSymbol + 10] ^= 0x5A;  // bits 80..87 of batch 2's symbol: point 85's record
+        reseal(forged);
+        const Packets file = numbered({r.info(), r.ellipsoids(0), r.ellipsoids(1), r.points(0), r.points(1),
+                                       r.points_packet(42, 13), r.points_packet(66, 18), forged, r.repair(1, 4),
+                                       r.points_packet(55, 11)});
+        w.write("faulty", "repair_forged_symbol",
+                "a forged POINTS_REPAIR symbol (one byte changed, checksum valid) used in a recovery: block 1 holds "
+                "points 42..54 and 66..83 of its batches 0 and 1 and rows 3 (forged) and 4 when the POINTS packet of "
+                "55..65 completes both batches; u = 1 and the decoder recovers batch 2 (84..99) from the first row it "
+                "accepted, row 3 (spec 17.4): point 85's y is wrong (9746 instead of 9138), and nothing in the block "
+                "shows it to a decoder (one that took row 4 instead would recover the right points). A validator finds "
+                "that row 4 is not the repair symbol of the points held (spec 11.5, 17.4)",
+                file);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -1568,6 +1828,7 @@ int main(int argc, char** argv) {
     faulty_vectors(w);
     scene_vectors(w);
     signed_vectors(w);
+    repair_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
