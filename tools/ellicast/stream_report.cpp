@@ -73,6 +73,19 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         if (h.type <= uint8_t(PacketType::Points) && h.skippable())
             r.violations.push_back({p.offset, packet_type_name(h.type) + " packet marked skippable (flags bit 0 must be 0 for a format 1.0 type)"});
     }
+    // Packets held for their stream info and rejected when it arrived (their result when read was
+    // "held"): each is a violation at its own offset too.
+    {
+        std::set<uint64_t> reported;
+        for (const ReportPacket& p : r.packets)
+            if (p.result != "accepted" && p.result != "duplicate" && p.result != "skipped" && p.result != "held")
+                reported.insert(p.offset);
+        for (const Rejection& rejection : r.stream.rejections())
+            if (!reported.count(rejection.where))
+                r.violations.push_back({rejection.where, "packet held for its stream info, then rejected: " +
+                                                             std::string(error_name(rejection.error)) + " (" +
+                                                             rejection.detail + ")"});
+    }
     r.signing = auth::check_signed_recording(contents.packets, bytes, key);
     for (const auto& problem : r.signing.problems) r.violations.push_back({problem.offset, problem.message});
     if (key && !r.signing.is_signed)
