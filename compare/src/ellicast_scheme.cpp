@@ -5,6 +5,8 @@
 #include "ellicast/codec/decoder.h"
 #include "ellicast/format.h"
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace ellicast::compare {
@@ -13,7 +15,11 @@ struct EllicastScheme::State {
     broadcast::Carousel carousel;
     broadcast::CarouselStats stats;
     EllicastSettings settings;
-    std::vector<uint32_t> points_in_packet;  // surface points each packet carries (0 for the base)
+    std::vector<uint32_t> points_in_packet;  // surface points each packet carries (0 for the base and repairs)
+    // Repair blocks: per packet its block (-1: none); per block its k and its points.
+    std::vector<int32_t> block_of;
+    std::vector<size_t> block_needed;
+    std::vector<uint64_t> block_points;
     size_t info_packets = 0, ellipsoid_packets = 0;  // packets_ starts with these, in that order
 };
 
@@ -50,6 +56,30 @@ EllicastScheme::EllicastScheme(const Mesh& mesh, const EllicastSettings& setting
     }
     ellipsoids_ = object.ellipsoid_count;
     points_ = object.point_count;
+    state_->block_of.assign(packets_.size(), -1);
+    if (settings.repair_ratio > 0) {
+        // The encoder's blocks (spec 17.5): POINTS packets k at a time, ceil(ratio * k) repairs each.
+        const size_t batch = points_per_packet(encoded.info.packet_size, encoded.info, object);
+        const size_t max_sources = std::max<size_t>(1, size_t(255.0 / (1.0 + settings.repair_ratio)));
+        const size_t first_points_packet = state_->info_packets + state_->ellipsoid_packets;
+        for (const RepairBlock& block : plan_repair_blocks(object.point_count, uint16_t(batch), max_sources)) {
+            std::vector<std::vector<uint8_t>> repairs;
+            const size_t count = size_t(std::ceil(settings.repair_ratio * block.source_count() - 1e-9));
+            if (Error e = packetize_repairs(encoded.info, 0, encoded.contents[0].points, {block}, count, 1, 0, repairs);
+                e != Error::Ok)
+                throw CompareError(std::string("ellicast repair packets: ") + error_name(e));
+            const int32_t id = static_cast<int32_t>(state_->block_needed.size());
+            state_->block_needed.push_back(block.source_count());
+            state_->block_points.push_back(block.point_count);
+            const size_t first_batch = block.first_index / batch;
+            for (size_t i = 0; i < block.source_count(); ++i) state_->block_of[first_points_packet + first_batch + i] = id;
+            for (auto& r : repairs) {
+                packets_.push_back(std::move(r));
+                state_->points_in_packet.push_back(0);
+                state_->block_of.push_back(id);
+            }
+        }
+    }
 
     broadcast::CarouselOptions options;
     options.base_share = settings.base_share;
@@ -78,6 +108,11 @@ std::string EllicastScheme::describe() const {
       << point_packets() << " point packets; carousel b d1 ... b d" << state_->carousel.chunk_count << " (base "
       << std::lround(100 * base_share()) << "% of the cycle, repetition overhead "
       << std::lround(100 * repetition_overhead()) << "%); decodable from any subset holding the stream info and an ellipsoid";
+    if (!state_->block_needed.empty())
+        s << "; " << state_->carousel.repairs.size() << " repair packets in " << state_->block_needed.size()
+          << " blocks, sent in turn with the point packets (any k of a block give all its points)";
+    else
+        s << "; the point packets repeat every cycle (no repair packets)";
     return s.str();
 }
 
@@ -112,10 +147,41 @@ bool EllicastScheme::can_show(const std::vector<uint32_t>& held) const {
 
 double EllicastScheme::data_fraction(const std::vector<uint32_t>& held) const {
     if (points_ == 0) return 0;
-    size_t n = 0;
-    for (uint32_t i : held)
-        if (i < state_->points_in_packet.size()) n += state_->points_in_packet[i];
+    std::vector<size_t> symbols(state_->block_needed.size(), 0);
+    std::vector<uint64_t> block_points_held(state_->block_needed.size(), 0);
+    uint64_t n = 0;
+    for (uint32_t i : held) {
+        if (i >= state_->points_in_packet.size()) continue;
+        const int32_t b = state_->block_of[i];
+        if (b < 0) {
+            n += state_->points_in_packet[i];
+            continue;
+        }
+        ++symbols[size_t(b)];
+        block_points_held[size_t(b)] += state_->points_in_packet[i];
+    }
+    for (size_t b = 0; b < symbols.size(); ++b)
+        n += symbols[b] >= state_->block_needed[b] ? state_->block_points[b] : block_points_held[b];
     return double(n) / double(points_);
 }
+
+bool EllicastScheme::complete(const std::vector<uint32_t>& held) const {
+    std::vector<size_t> symbols(state_->block_needed.size(), 0);
+    size_t singles = 0, singles_needed = 0;
+    for (size_t i = 0; i < packets_.size(); ++i) singles_needed += state_->block_of[i] < 0;
+    for (uint32_t i : held) {
+        if (i >= packets_.size()) continue;
+        if (state_->block_of[i] < 0) ++singles;
+        else ++symbols[size_t(state_->block_of[i])];
+    }
+    if (singles < singles_needed) return false;
+    for (size_t b = 0; b < symbols.size(); ++b)
+        if (symbols[b] < state_->block_needed[b]) return false;
+    return true;
+}
+
+double EllicastScheme::cycle_bytes() const { return state_->carousel.bytes_per_cycle(); }
+
+std::string EllicastScheme::name() const { return state_->settings.name; }
 
 }  // namespace ellicast::compare

@@ -119,7 +119,7 @@ int run_compare(const CompareArgs& a) {
     if (mesh.triangles.empty()) return fail(kExitFailure, a.model + ": no triangle mesh to compare");
 
     auto bar = std::make_shared<ProgressBar>(!a.quiet);
-    std::unique_ptr<EllicastScheme> ellicast;
+    std::unique_ptr<EllicastScheme> ellicast, ellicast_repeat;
     std::unique_ptr<DracoWhole> whole;
     std::unique_ptr<DracoRsRepeat> fec;
     std::unique_ptr<DracoMds> mds;
@@ -133,6 +133,11 @@ int run_compare(const CompareArgs& a) {
         es.encode.progress = [bar](const std::string& stage, double f) { bar->update("encode: " + stage, f); };
         es.base_share = a.base_share;
         ellicast = std::make_unique<EllicastScheme>(mesh, es);
+        // The same stream without repair packets, as a carousel of format 1.1 sends it.
+        es.repair_ratio = 0;
+        es.name = "ellicast-repeat";
+        es.encode.progress = nullptr;
+        ellicast_repeat = std::make_unique<EllicastScheme>(mesh, es);
         bar->update("Draco baselines", 0);
         DracoSettings ds;  // glTF-Transform's defaults
         if (fec_redundancy < 0) fec_redundancy = ellicast->repetition_overhead();
@@ -159,7 +164,7 @@ int run_compare(const CompareArgs& a) {
     options.horizon = a.horizon;
     options.long_horizon = a.long_horizon;
     options.long_from = a.long_from;
-    options.cycle_bytes = ellicast->period_bytes();
+    options.cycle_bytes = uint64_t(std::llround(ellicast->cycle_bytes()));
     options.slot_bytes = uint64_t(a.packet_size);
     options.threads = a.threads;  // trials in parallel; each decode and metric on one thread
     options.progress = [bar](double f) { bar->update("trials", f); };
@@ -168,7 +173,7 @@ int run_compare(const CompareArgs& a) {
     metric.threshold_percent = a.hole_threshold;
     metric.threads = 1;
 
-    std::vector<const Scheme*> schemes{ellicast.get(), whole.get(), fec.get(), mds.get(), clusters.get()};
+    std::vector<const Scheme*> schemes{ellicast.get(), ellicast_repeat.get(), whole.get(), fec.get(), mds.get(), clusters.get()};
     ExperimentResult result;
     std::vector<std::string> plots;
     try {

@@ -7,6 +7,7 @@
 #include "ellicast/compare/schemes.h"
 
 #include <functional>
+#include <string>
 #include <memory>
 
 namespace ellicast::compare {
@@ -16,6 +17,10 @@ struct EllicastSettings {
     double base_share = 0.15;       // carousel: share of the cycle's bytes spent on the base
     size_t chunk_packets = 0;       // carousel: POINTS packets per chunk (0: from base_share)
     int grid_resolution = 0;        // decoder grid (0: the stream's hint, else the decoder default)
+    // Repair packets (format 1.2, spec 17) per POINTS packet of a block, interleaved by the carousel;
+    // 0: none, the carousel repeats the POINTS packets (the schedule of format 1.1).
+    double repair_ratio = 1.0;
+    std::string name = "ellicast";  // the scheme's name in the report
 };
 
 class EllicastScheme : public Scheme {
@@ -24,7 +29,7 @@ public:
     EllicastScheme(const Mesh& mesh, const EllicastSettings& settings);
     ~EllicastScheme() override;
 
-    std::string name() const override { return "ellicast"; }
+    std::string name() const override;
     std::string describe() const override;
     uint64_t period() const override;
     uint32_t packet_at(uint64_t slot) const override;
@@ -34,8 +39,14 @@ public:
     // The decoder shows a surface as soon as it holds the stream info and one ellipsoid packet: true
     // exactly then, without decoding.
     bool can_show(const std::vector<uint32_t>& held) const override;
-    // Share of the surface points that the held packets carry.
+    // Share of the surface points that the held packets carry, or that a receiver recovers from
+    // them (a block of which any k packets are held).
     double data_fraction(const std::vector<uint32_t>& held) const override;
+    // Every point held: every block has k of its packets, every other packet is held.
+    bool complete(const std::vector<uint32_t>& held) const override;
+    // Bytes of one carousel cycle (b d1 .. b dn): the comparison's unit of time. With repair packets
+    // the schedule's period is several cycles.
+    double cycle_bytes() const;
 
     // period_bytes(): the bytes of one carousel cycle, the channel cycle of the comparison.
     // Extra bytes the carousel spends repeating the base, relative to the stream sent once
