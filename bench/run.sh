@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reruns the benchmarks whose figures the README quotes and writes their output to bench/results/.
-#   bash bench/run.sh [encode|decode|quality|gallery|first-picture|broadcast|compare ...]   (default: encode decode quality)
+#   bash bench/run.sh [encode|decode|quality|gallery|first-picture|full-quality|broadcast|compare ...]   (default: encode decode quality)
 # Speed figures are only meaningful on an otherwise idle machine: check `uptime` first.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -76,6 +76,39 @@ for what in "$@"; do
         done
       done
       rm -rf "$tmp" ;;
+    full-quality)
+      echo "== every point: cycles until a receiver holds every point, with and without repair packets (bench_full_quality)" >&2
+      tmp=$(mktemp -d)
+      out="$results/full_quality.txt"
+      : > "$out"
+      for m in bunny.ply spot.obj; do
+        for ratio in 1 0; do
+          "$build/ellicast" encode -q "$samples/meshes/$m" -o "$tmp/${m%.*}-repair$ratio.ellc" --repair "$ratio" > /dev/null
+          "$build/bench/bench_full_quality" "$tmp/${m%.*}-repair$ratio.ellc" --loss 0.1,0.3,0.5,0.7 --trials 20 | tee -a "$out"
+        done
+      done
+      # The price: fewer points early. RMS (% of the diagonal, the larger direction) of the decoded model
+      # after 0.25, 0.5 and 1 cycle, 5 tune-ins each (ellicast simulate + decode + diff).
+      echo "RMS after a time, bunny, 5 random tune-ins (ellicast simulate --tune-in-random; decode; diff):" | tee -a "$out"
+      for loss in 0.1 0.5; do
+        for cycles in 0.25 0.5 1; do
+          for ratio in 1 0; do
+            values=""
+            for seed in 1 2 3 4 5; do
+              "$build/ellicast" simulate "$tmp/bunny-repair$ratio.ellc" -o "$tmp/rx.ellc" --loss "$loss" --cycles "$cycles" \
+                --seed "$seed" --tune-in-random > /dev/null 2>&1
+              if "$build/ellicast" decode -q "$tmp/rx.ellc" -o "$tmp/rx.ply" > /dev/null 2>&1; then
+                values="$values $("$build/ellicast" diff "$samples/meshes/bunny.ply" "$tmp/rx.ply" --samples 20000 2>/dev/null |
+                  awk '/^A -> B|^B -> A/ {gsub(/[()%]/, ""); print $7}' | sort -g | tail -1)"
+              else
+                values="$values none"
+              fi
+            done
+            echo "loss $loss, $cycles cycles, --repair $ratio:$values" | tee -a "$out"
+          done
+        done
+      done
+      rm -rf "$tmp" ;;
     broadcast)
       echo "== broadcast on loopback (bench_broadcast, bunny, 2 Mbit/s)" >&2
       "$build/bench/bench_broadcast" "$samples/meshes/bunny.ply" --trials 20 --loss 0,0.05,0.1,0.2,0.3,0.5,0.7 --out "$results/broadcast" 2>&1 |
@@ -85,6 +118,6 @@ for what in "$@"; do
       rm -rf "$results/bunny" "$results/spot" && mkdir -p "$results/bunny" "$results/spot"
       "$build/ellicast" compare "$samples/meshes/bunny.ply" -o "$results/bunny" | tee "$results/bunny/stdout.txt"
       "$build/ellicast" compare "$samples/meshes/spot.obj" -o "$results/spot" | tee "$results/spot/stdout.txt" ;;
-    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, first-picture, broadcast, compare)" >&2; exit 2 ;;
+    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, first-picture, full-quality, broadcast, compare)" >&2; exit 2 ;;
   esac
 done
