@@ -8,6 +8,8 @@
 #include <ellicast/broadcast/reception.h>
 #include <ellicast/format.h>
 
+#include "stream_file.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
@@ -41,13 +43,9 @@ int main(int argc, char** argv) {
             return std::fprintf(stderr, "unknown option %s\n", argv[i]), 2;
         }
     }
-    std::ifstream in(argv[1], std::ios::binary);
-    std::vector<uint8_t> bytes{std::istreambuf_iterator<char>(in), {}};
-    ContainerContents contents = read_container(bytes);
-    if (contents.header_error != Error::Ok || contents.packets.empty())
-        return std::fprintf(stderr, "%s: not an ellicast stream file\n", argv[1]), 1;
     std::vector<std::vector<uint8_t>> packets;
-    for (const auto& p : contents.packets) packets.emplace_back(bytes.data() + p.offset, bytes.data() + p.offset + p.view.size);
+    if (!bench::read_stream_packets(argv[1], packets))
+        return std::fprintf(stderr, "%s: not an ellicast stream file\n", argv[1]), 1;
     broadcast::Carousel c;
     std::string error;
     if (!broadcast::build_carousel(packets, broadcast::CarouselOptions{}, c, error))

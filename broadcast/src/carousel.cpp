@@ -361,6 +361,23 @@ Needs needs_of(const Carousel& c, WaitFor what) {
     return n;
 }
 
+// The mean over tune-in slots of a wait: tuning in as a slot starts weighs every slot alike; at a
+// random moment, slot j (lost to the receiver) weighs its size and adds its remaining half.
+struct TuneInAverage {
+    bool at_slot_start;
+    double total = 0, weight = 0;
+    void add(double expected_from_next, double size_j) {
+        if (at_slot_start) {
+            total += expected_from_next;
+            weight += 1;
+        } else {
+            total += size_j * (expected_from_next + size_j / 2.0);
+            weight += size_j;
+        }
+    }
+    double mean() const { return total / weight; }
+};
+
 // Follows the reception of the packets of `needs` one received packet at a time.
 struct Progress {
     const Needs& needs;
@@ -483,7 +500,7 @@ double expected_wait_bytes(const Carousel& c, WaitFor what, double loss, size_t 
         const size_t samples = tune_in_samples == 0 ? n : std::min(n, tune_in_samples);
         std::mt19937_64 rng(12345);
         std::uniform_real_distribution<double> uniform(0, 1);
-        double total = 0, weight_total = 0;
+        TuneInAverage average{at_slot_start};
         for (size_t s = 0; s < samples; ++s) {
             const size_t j = samples == n ? s : (s * n) / samples;
             const double size_j = c.sizes[c.cycle[j].packet];
@@ -498,16 +515,9 @@ double expected_wait_bytes(const Carousel& c, WaitFor what, double loss, size_t 
                 }
                 sum += double(c.bytes_before(slot + 1) - c.bytes_before(first));
             }
-            const double expected = sum / 256;
-            if (at_slot_start) {
-                total += expected;
-                weight_total += 1;
-            } else {
-                total += size_j * (expected + size_j / 2.0);
-                weight_total += size_j;
-            }
+            average.add(sum / 256, size_j);
         }
-        return total / weight_total;
+        return average.mean();
     }
     std::vector<bool> needed(c.sizes.size(), false);
     size_t needed_count = 0;
@@ -520,7 +530,7 @@ double expected_wait_bytes(const Carousel& c, WaitFor what, double loss, size_t 
     const double epsilon = 1e-12;
     const uint64_t max_slots = static_cast<uint64_t>(n) * 2000;
     std::vector<uint32_t> seen(c.sizes.size());
-    double total = 0, weight_total = 0;
+    TuneInAverage average{at_slot_start};
     for (size_t s = 0; s < samples; ++s) {
         size_t j = samples == n ? s : (s * n) / samples;
         // Tune in during slot j: slot j is missed, reception starts at slot j + 1 (or at j itself
@@ -548,15 +558,9 @@ double expected_wait_bytes(const Carousel& c, WaitFor what, double loss, size_t 
             }
             if (missing == 0 && 1.0 - std::exp(log_done) < epsilon) break;
         }
-        if (at_slot_start) {
-            total += expected;
-            weight_total += 1;
-        } else {
-            total += size_j * (expected + size_j / 2.0);
-            weight_total += size_j;
-        }
+        average.add(expected, size_j);
     }
-    return total / weight_total;
+    return average.mean();
 }
 
 int64_t completion_slot(const Carousel& c, WaitFor what, uint64_t first_slot, const std::vector<bool>& received) {
