@@ -100,6 +100,7 @@ TEST_CASE("the faulty vectors name the reason they must be rejected with") {
         {"unknown_critical_type", "unknown critical type"},
         {"payload_length_inconsistent", "malformed payload"},
         {"index_out_of_range", "index out of range"},
+        {"count_zero_past_end", "index out of range"},
         {"stream_info_bad_bits", "malformed payload"},
         {"stream_info_object_id", "malformed payload"},
         {"mixed_stream_ids", "stream mismatch"},

@@ -383,7 +383,7 @@ inline nlohmann::json signed_json(const ContainerContents& contents, const std::
         std::string verdict;
         switch (a.verdicts[i]) {
         case auth::Authenticator::Verdict::Pass: verdict = "pass"; break;
-        case auth::Authenticator::Verdict::Manifest: verdict = "manifest"; break;
+        case auth::Authenticator::Verdict::Manifest: verdict = "manifest"; break;  // or "skipped", below
         case auth::Authenticator::Verdict::Repeat: verdict = "repeat"; break;
         default: verdict = reason_name(a.errors[i]); break;
         }
@@ -397,6 +397,7 @@ inline nlohmann::json signed_json(const ContainerContents& contents, const std::
         } else if (part.scheme != kManifestSchemeEd25519) {
             m["malformed"] = false;
             m["scheme"] = part.scheme;
+            packets.back()["verdict"] = "skipped";  // a later scheme's MANIFEST: skipped, verified or not
         } else {
             json digests = json::array();
             for (const PacketDigest& d : part.digests) digests.push_back(hex(d));
@@ -460,10 +461,8 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
         }
         const PacketHeader& h = p.view.header;
         PacketView old = p.view;
-        if (is_scene_type(h.type)) {
-            any_scene_packet = true;
-            old.header.type = 0xFF;  // a type a 1.0 decoder does not know
-        }
+        if (is_scene_type(h.type)) any_scene_packet = true;
+        if (h.type > uint8_t(PacketType::Points)) old.header.type = 0xFF;  // a type a 1.0 decoder does not know
         as_1_0.add_parsed(old, p.offset);
         char version[8];
         std::snprintf(version, sizeof version, "%u.%u", h.version_major, h.version_minor);

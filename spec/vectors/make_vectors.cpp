@@ -592,6 +592,17 @@ void faulty_vectors(Writer& w) {
         w.write("faulty", "index_out_of_range", "the first POINTS packet starts at index 35 of 40 points and runs past the end (checksum valid): rejected (index out of range)", p);
     }
     {
+        // An empty batch starting past the end: first_index + count > point_count (spec 6, 7).
+        Packets p = base;
+        std::vector<uint8_t> empty(8, 0);
+        empty[0] = 41;  // first_index 41 of 40 points, count 0
+        p.push_back(with_payload(p[pts], empty));
+        w.write("faulty", "count_zero_past_end",
+                "a POINTS batch of count 0 at first_index 41 of a 40-point object: rejected (index out of range: "
+                "first_index + count must not exceed point_count, spec 6, 7); the rest decodes",
+                p);
+    }
+    {
         Packets p = base;
         p[0][kHeaderSize + 6] = 17;
         reseal(p[0]);
