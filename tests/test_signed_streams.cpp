@@ -8,6 +8,7 @@
 #include <ellicast/broadcast/reception.h>
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <fstream>
@@ -390,4 +391,50 @@ TEST_CASE("command line: keygen, encode --sign, validate and decode --key, sign"
     out = run("validate '" + plain + "' --key '" + k + ".pub'");
     CHECK(status == 1);
     CHECK(out.find("not signed") != std::string::npos);
+}
+
+TEST_CASE("ellicast receive --key takes the signed stream over UDP while a forger floods the same stream id") {
+    const auto dir = test::scratch_dir("receive-key");
+    const auth::KeyPair key = key_from(1);
+    const Packets real = signed_stream(key, 0xABCD, 3000);
+    test::write_stream_file(dir / "real.ellc", real);
+    // The forger: its own stream under the same stream id, unsigned, many more packets, faster.
+    test::write_stream_file(dir / "forger.ellc", test::synthetic_stream(7, 9000, 0xABCD, 1200, 99));
+    std::ofstream(dir / "k.pub") << auth::public_key_text(key.public_key);
+    std::ofstream(dir / "other.pub") << auth::public_key_text(key_from(2).public_key);
+    const std::string group = "239.255.61.9:" + std::to_string(41000 + (getpid() % 2000) * 8 + 6);
+    test::Child receive({"receive", "--from", group, "--interface", "lo", "-o", (dir / "out.ellc").string(), "--key",
+                         (dir / "k.pub").string(), "--until", "20"},
+                        dir / "receive.log");
+    test::Child wrong_key({"receive", "--from", group, "--interface", "lo", "-o", (dir / "wrong.ellc").string(), "--key",
+                           (dir / "other.pub").string(), "--until", "3"},
+                          dir / "wrong.log");
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // let them join
+    test::Child forger({"serve", (dir / "forger.ellc").string(), "--to", group, "--interface", "lo", "--ttl", "0", "--rate",
+                        "16000000", "--cycles", "40"},
+                       dir / "forger.log");
+    test::Child serve({"serve", (dir / "real.ellc").string(), "--to", group, "--interface", "lo", "--ttl", "0", "--rate",
+                       "4000000", "--cycles", "30", "--loss", "0.1", "--seed", "5"},
+                      dir / "serve.log");
+    const int code = receive.wait(std::chrono::seconds(25));
+    const std::string log = test::read_text(dir / "receive.log");
+    INFO(log);
+    REQUIRE(code == 0);
+    CHECK(log.find("everything complete after") != std::string::npos);
+    CHECK(log.find("signed stream: ") != std::string::npos);
+    // What it wrote is the signed stream, every packet authenticated, nothing of the forger's.
+    Reception::Options options;
+    options.key = key.public_key;
+    Reception check(options);
+    for (const auto& p : test::read_stream_file(dir / "out.ellc")) check.take(p);
+    CHECK(check.complete());
+    REQUIRE(check.stream().info());
+    CHECK(check.stream().info()->objects[0].ellipsoid_count == 40);
+    // With another sender's key nothing is authenticated: it says so and writes nothing.
+    const int wrong_code = wrong_key.wait(std::chrono::seconds(10));
+    const std::string wrong_log = test::read_text(dir / "wrong.log");
+    INFO(wrong_log);
+    CHECK(wrong_code != 0);
+    CHECK(wrong_log.find("no MANIFEST verified") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(dir / "wrong.ellc"));
 }

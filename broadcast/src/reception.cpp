@@ -88,6 +88,7 @@ Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
     ++counters_.datagrams;
     counters_.bytes += datagram.size();
     last_accepted_by_ = 0;
+    released_accepted_.clear();
     if (truncated || datagram.size() > kMaxPacketSize) {
         ++counters_.oversized;
         return Error::Oversized;
@@ -106,10 +107,16 @@ Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
             if (!r) ++counters_.other_stream;
             result = r.value_or(Error::StreamMismatch);
         }
-        for (const auth::Authenticator::Released& held : authenticator_->take_released()) {
+        // Packets held until this MANIFEST verified: taken now, in the order they arrived. Those that
+        // brought something new are kept for the caller (a recording of what was received).
+        const uint64_t own = last_accepted_by_;
+        for (auth::Authenticator::Released& held : authenticator_->take_released()) {
             PacketView released;
+            last_accepted_by_ = 0;
             if (parse_packet(held.bytes, released) == Error::Ok && !route(released, held.where)) ++counters_.other_stream;
+            if (last_accepted_by_) released_accepted_.push_back({last_accepted_by_, std::move(held.bytes)});
         }
+        last_accepted_by_ = own;
         return result;
     }
     if (e == Error::Ok) {

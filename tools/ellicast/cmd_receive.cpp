@@ -254,10 +254,19 @@ int run_receive(const ReceiveArgs& a) {
             if (got < 0) return fail(kExitFailure, error);
             if (got == 0) break;
             std::span<const uint8_t> bytes(buffer.data(), datagram.size);
+            const uint64_t verified_before =
+                reception.authenticator() ? reception.authenticator()->counters().manifests_verified : 0;
             if (reception.take(bytes, datagram.truncated) != Error::Ok) continue;
             if (first_packet_at < 0) first_packet_at = seconds_since(std::chrono::steady_clock::now());
             if (stream_output && reception.last_accepted_by() != 0)
                 kept.emplace_back(reception.last_accepted_by(), std::vector<uint8_t>(bytes.begin(), bytes.end()));
+            // A signed stream's recording keeps each MANIFEST part that verified, so that it can be
+            // checked again (decode --key, validate --key), and the packets it released.
+            if (stream_output && reception.authenticator()) {
+                if (reception.authenticator()->counters().manifests_verified > verified_before)
+                    kept.emplace_back(~uint64_t(0), std::vector<uint8_t>(bytes.begin(), bytes.end()));
+                for (auto& released : reception.take_released_accepted()) kept.push_back(std::move(released));
+            }
             if (done()) break;
         }
         if (base_at < 0 && reception.base_complete()) {
@@ -316,6 +325,9 @@ int run_receive(const ReceiveArgs& a) {
                          with_commas(ac.manifests_verified).c_str(), with_commas(ac.passed).c_str(),
                          with_commas(ac.not_authenticated).c_str(), with_commas(ac.manifests_failed).c_str());
     }
+    if (reception.authenticator() && reception.authenticator()->counters().passed == 0)
+        return fail(kExitInvalid, "nothing authenticated with the key given: " + reception.authenticator()->problem() +
+                                      " (" + with_commas(reception.counters().datagrams) + " datagrams)");
     if (first_packet_at < 0)
         return fail(kExitFailure, "no packet of an ellicast stream arrived on " + a.from + " (" +
                                       with_commas(reception.counters().datagrams) + " datagrams dropped" +

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace ellicast::broadcast {
@@ -93,6 +94,11 @@ public:
     const ReceivedStream& candidate(size_t i) const { return candidates_.at(i).stream; }
     size_t chosen() const { return chosen_; }
     uint64_t last_accepted_by() const { return last_accepted_by_; }
+    // With a key: the packets held for their MANIFEST that the last take() released and that brought
+    // something new, each with the candidates that took it (as last_accepted_by()). Moved out.
+    std::vector<std::pair<uint64_t, std::vector<uint8_t>>> take_released_accepted() {
+        return std::exchange(released_accepted_, {});
+    }
     // The signature filter, when Options::key was given.
     const auth::Authenticator* authenticator() const { return authenticator_ ? &*authenticator_ : nullptr; }
 
@@ -127,6 +133,7 @@ private:
 
     Options options_;
     std::optional<auth::Authenticator> authenticator_;
+    std::vector<std::pair<uint64_t, std::vector<uint8_t>>> released_accepted_;
     std::vector<Candidate> candidates_;
     size_t chosen_ = SIZE_MAX;
     uint64_t last_accepted_by_ = 0;
