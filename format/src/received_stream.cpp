@@ -257,7 +257,6 @@ Error ReceivedStream::take_repair(ReceivedObject& object, const PacketView& pack
         ++counters_.duplicates;
         return Error::Ok;
     }
-    held.rows.push_back(repair.row);
     held.rows_accepted.push_back(repair.row);
     held.symbols.push_back(std::move(repair.symbol));
     ++counters_.accepted;
@@ -276,10 +275,9 @@ void ReceivedStream::note_new_points(ReceivedObject& object, const std::vector<u
         const uint32_t i = (index - b.block.first_index) / b.block.batch;
         if (++b.held_in_batch[i] == b.block.batch_points(i) && ++b.batches_held == b.block.source_count()) {
             b.complete = true;
-            b.rows.clear();
             b.symbols.clear();
         }
-        if (!b.rows.empty() && (touched.empty() || touched.back() != &b)) touched.push_back(&b);
+        if (!b.symbols.empty() && (touched.empty() || touched.back() != &b)) touched.push_back(&b);
     }
     for (ReceivedRepairBlock* b : touched) try_recover(object, *b);
 }
@@ -287,7 +285,7 @@ void ReceivedStream::note_new_points(ReceivedObject& object, const std::vector<u
 void ReceivedStream::try_recover(ReceivedObject& object, ReceivedRepairBlock& held) {
     const RepairBlock& block = held.block;
     const uint32_t k = block.source_count();
-    if (held.complete || held.rows.size() < k - held.batches_held) return;
+    if (held.complete || held.symbols.size() < k - held.batches_held) return;
     const ObjectInfo& oi = *object.info;
     std::vector<std::vector<uint8_t>> sources(k);
     std::vector<QuantizedPoint> batch_points;
@@ -302,7 +300,7 @@ void ReceivedStream::try_recover(ReceivedObject& object, ReceivedRepairBlock& he
     std::vector<uint32_t> unknown;
     for (uint32_t i = 0; i < k; ++i)
         if (sources[i].empty()) unknown.push_back(i);
-    if (!recover_source_symbols(sources, held.rows, held.symbols)) return;
+    if (!recover_source_symbols(sources, held.rows_accepted, held.symbols)) return;
     const size_t bits = point_record_bits(*info_, oi);
     for (uint32_t i : unknown) {
         const uint32_t first = block.first_index + i * block.batch, count = block.batch_points(i);
@@ -321,9 +319,7 @@ void ReceivedStream::try_recover(ReceivedObject& object, ReceivedRepairBlock& he
     }
     held.batches_held = k;
     held.complete = held.recovered = true;
-    held.rows.clear();
     held.symbols.clear();
-    held.rows.shrink_to_fit();
     held.symbols.shrink_to_fit();
 }
 

@@ -587,9 +587,8 @@ struct ReceivedRepairBlock {
     RepairBlock block;
     std::vector<uint32_t> held_in_batch;    // points held of each source batch
     uint32_t batches_held = 0;              // source batches of which every point is held
-    std::vector<uint8_t> rows;              // rows accepted, in order (released once complete)
-    std::vector<std::vector<uint8_t>> symbols;
-    std::vector<uint8_t> rows_accepted;     // every row accepted (kept for reports)
+    std::vector<uint8_t> rows_accepted;     // every row accepted, in order
+    std::vector<std::vector<uint8_t>> symbols;  // their symbols, released once the block is complete
     bool complete = false;                  // every point of the block is held
     bool recovered = false;                 // completed by solving for missing batches
     uint32_t points_recovered = 0;
