@@ -20,6 +20,7 @@ struct EllicastScheme::State {
     std::vector<int32_t> block_of;
     std::vector<size_t> block_needed;
     std::vector<uint64_t> block_points;
+    size_t singles_needed = 0;  // packets in no block: each one is needed
     size_t info_packets = 0, ellipsoid_packets = 0;  // packets_ starts with these, in that order
 };
 
@@ -81,6 +82,7 @@ EllicastScheme::EllicastScheme(const Mesh& mesh, const EllicastSettings& setting
         }
     }
 
+    for (int32_t b : state_->block_of) state_->singles_needed += b < 0;
     broadcast::CarouselOptions options;
     options.base_share = settings.base_share;
     options.chunk_packets = settings.chunk_packets;
@@ -167,14 +169,13 @@ double EllicastScheme::data_fraction(const std::vector<uint32_t>& held) const {
 
 bool EllicastScheme::complete(const std::vector<uint32_t>& held) const {
     std::vector<size_t> symbols(state_->block_needed.size(), 0);
-    size_t singles = 0, singles_needed = 0;
-    for (size_t i = 0; i < packets_.size(); ++i) singles_needed += state_->block_of[i] < 0;
+    size_t singles = 0;
     for (uint32_t i : held) {
         if (i >= packets_.size()) continue;
         if (state_->block_of[i] < 0) ++singles;
         else ++symbols[size_t(state_->block_of[i])];
     }
-    if (singles < singles_needed) return false;
+    if (singles < state_->singles_needed) return false;
     for (size_t b = 0; b < symbols.size(); ++b)
         if (symbols[b] < state_->block_needed[b]) return false;
     return true;
