@@ -77,6 +77,14 @@ extern char** environ;
 
 namespace ellicast::test {
 
+// A packet with its checksum recomputed after an edit: what a sender (or a forger) writes.
+inline std::vector<uint8_t> resealed(std::vector<uint8_t> p) {
+    const size_t body = p.size() - kChecksumSize;
+    const uint32_t crc = crc32c(p.data(), body);
+    for (int i = 0; i < 4; ++i) p[body + i] = uint8_t(crc >> (8 * i));
+    return p;
+}
+
 // Writes `packets` as a stream file.
 inline void write_stream_file(const std::filesystem::path& path, const std::vector<std::vector<uint8_t>>& packets) {
     std::string message;

@@ -53,13 +53,6 @@ bool same_points(const ReceivedStream& stream, const std::vector<QuantizedPoint>
     return true;
 }
 
-std::vector<uint8_t> resealed(std::vector<uint8_t> p) {
-    const size_t body = p.size() - kChecksumSize;
-    const uint32_t crc = crc32c(p.data(), body);
-    for (int i = 0; i < 4; ++i) p[body + i] = uint8_t(crc >> (8 * i));
-    return p;
-}
-
 }  // namespace
 
 TEST_CASE("GF(2^8) arithmetic is the spec's: the examples of section 17.2 and inverses") {
@@ -167,7 +160,7 @@ TEST_CASE("hostile POINTS_REPAIR packets are rejected with the reason the spec g
         auto p = good;
         p[kHeaderSize + at] = value;
         if (at2) p[kHeaderSize + at2] = value2;
-        return resealed(p);
+        return test::resealed(p);
     };
     auto outcome = [&](const std::vector<uint8_t>& repair) {
         ReceivedStream stream;
@@ -198,7 +191,7 @@ TEST_CASE("hostile POINTS_REPAIR packets are rejected with the reason the spec g
         REQUIRE(stream.add_packet(good, 50) == Error::Ok);
         auto p = good;
         p[kHeaderSize + 0] = uint8_t(p[kHeaderSize + 0] + 1);  // first_index + 1: overlaps
-        CHECK(stream.add_packet(resealed(p), 51) == Error::StreamMismatch);
+        CHECK(stream.add_packet(test::resealed(p), 51) == Error::StreamMismatch);
     }
     // Held before the stream info, checked when it arrives.
     {
@@ -220,7 +213,7 @@ TEST_CASE("a forged repair symbol is caught by the validator check, and a signed
     for (const auto& p : s.points) stream.add_packet(p, where++);
     auto forged = s.repairs[0];
     forged[kHeaderSize + 8 + 3] ^= 0x10;  // one bit of the symbol
-    forged = resealed(forged);
+    forged = test::resealed(forged);
     PacketView v;
     REQUIRE(parse_packet(forged, v) == Error::Ok);
     std::string why;
@@ -316,7 +309,7 @@ TEST_CASE("command line: encode makes repair packets by default, --repair 0 none
     std::vector<uint8_t> packet(bytes.begin() + std::ptrdiff_t(last.offset),
                                 bytes.begin() + std::ptrdiff_t(last.offset + last.view.size));
     packet[kHeaderSize + 8] ^= 1;
-    packet = resealed(packet);
+    packet = test::resealed(packet);
     std::copy(packet.begin(), packet.end(), bytes.begin() + std::ptrdiff_t(last.offset));
     const std::string forged = (dir / "forged.ellc").string();
     REQUIRE(write_file(forged, bytes, message) == Error::Ok);
