@@ -395,7 +395,7 @@ TEST_CASE("ellicast as a scheme: its carousel's cycle, a surface from the base a
     CHECK(ellicast.data_fraction(every) == doctest::Approx(1));
 }
 
-TEST_CASE("ellicast with repair packets: any k packets of a block give all its points; without, every packet is needed") {
+TEST_CASE("ellicast with repair packets: any k packets of a block give all its points, without, every packet is needed") {
     if (!test::have_sample("meshes/spot.obj")) return;
     Mesh spot = load_sample("meshes/spot.obj");
     EllicastSettings settings;

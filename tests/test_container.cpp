@@ -224,7 +224,7 @@ TEST_CASE("a duplicated and reordered recording decodes to the same stream as th
     }
 }
 
-TEST_CASE("container files are written through a temporary name and read back; I/O errors name the file") {
+TEST_CASE("container files are written through a temporary name and read back, I/O errors name the file") {
     auto dir = test::scratch_dir("container_io");
     auto bytes = write_container(small_stream());
     std::string message;

@@ -246,7 +246,7 @@ TEST_CASE("points without ellipsoids become a point set and the report says why"
     CHECK(report.notes[0].find("no ellipsoid") != std::string::npos);
 }
 
-TEST_CASE("identical positions are one vertex; at a seam each face corner takes the matching texcoords") {
+TEST_CASE("identical positions are one vertex, at a seam each face corner takes the matching texcoords") {
     auto points = seamed_uv_sphere(16, 32, 1.0);
     std::set<std::array<float, 3>> unique;
     for (const auto& p : points) unique.insert(p.position);

@@ -111,7 +111,7 @@ TEST_CASE("one inward part among outward ones is turned, and only that part") {
     CHECK(r.reports[0].coverage > 0.9);
 }
 
-TEST_CASE("a hollow ball's inner wall faces its cavity and is left alone; facing out, it is turned") {
+TEST_CASE("a hollow ball's inner wall faces its cavity and is left alone, facing out, it is turned") {
     const Mesh outer = samples::uv_ellipsoid(20, {0, 0, 0}, {1, 1, 1});
     const Mesh inner_right = turned_round(samples::uv_ellipsoid(12, {0, 0, 0}, {0.5, 0.5, 0.5}));
     Mesh hollow = outer;

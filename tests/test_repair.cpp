@@ -282,7 +282,7 @@ TEST_CASE("under 50% loss a receiver holds every point after about two cycles wi
     CHECK(repeated > 3.5);
 }
 
-TEST_CASE("command line: encode makes repair packets by default, --repair 0 none; validate flags a forged symbol") {
+TEST_CASE("command line: encode makes repair packets by default, --repair 0 none, validate flags a forged symbol") {
     const auto dir = test::scratch_dir("repair_cli");
     const std::string exe = "'" + test::ellicast_exe().string() + "'";
     const std::string sample = (test::source_dir() / "samples" / "trefoil.obj").string();

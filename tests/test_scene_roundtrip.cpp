@@ -479,7 +479,7 @@ TEST_CASE("a JPEG texture goes through encode and decode byte for byte, as image
     }
 }
 
-TEST_CASE("with a JPEG texture fragment lost the Duck gets the default material and the file stays valid; "
+TEST_CASE("with a JPEG texture fragment lost the Duck gets the default material and the file stays valid, "
           "once every fragment arrived it shows the JPEG") {
     if (!have_sample("gltf/Duck/Duck.gltf")) return;
     auto dir = scratch_dir("scene_roundtrip_jpeg_loss");
