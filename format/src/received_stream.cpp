@@ -63,6 +63,7 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
         break;
     case PacketType::Scene: e = take_scene(packet, where); break;
     case PacketType::Material: e = take_material(packet, where); break;
+    case PacketType::MaterialExtensions: e = take_material_extensions(packet, where); break;
     case PacketType::TextureFragment: e = take_texture_fragment(packet, where); break;
     case PacketType::Manifest: {
         // A decoder checks its layout and takes nothing from it: verifying signatures is the
@@ -374,8 +375,9 @@ Error ReceivedStream::take_material(const PacketView& packet, uint64_t where) {
     Material m;
     if (decode_material_payload(packet.payload, m) != Error::Ok)
         return reject(where, Error::MalformedPayload, "MATERIAL payload inconsistent or out of range");
-    if (!materials_.empty() && materials_.begin()->second.material_count != m.material_count)
-        return reject(where, Error::StreamMismatch, "MATERIAL table size contradicts earlier MATERIAL packets");
+    if (auto count = material_count(); count && *count != m.material_count)
+        return reject(where, Error::StreamMismatch,
+                      "MATERIAL table size contradicts earlier MATERIAL or MATERIAL_EXTENSIONS packets");
     auto it = materials_.find(m.index);
     if (it != materials_.end()) {
         if (!(it->second == m))
@@ -384,6 +386,42 @@ Error ReceivedStream::take_material(const PacketView& packet, uint64_t where) {
         return Error::Ok;
     }
     materials_.emplace(m.index, std::move(m));
+    ++counters_.accepted;
+    return Error::Ok;
+}
+
+std::optional<uint16_t> ReceivedStream::material_count() const {
+    if (!materials_.empty()) return materials_.begin()->second.material_count;
+    if (!material_extensions_.empty()) return material_extensions_.begin()->second.material_count;
+    return std::nullopt;
+}
+
+// Format 1.3 (spec 18.2): a material's JSON patch. Checked in the order the spec gives: the payload,
+// the table size, the patch held for the same material, then the memory cap it shares with textures.
+Error ReceivedStream::take_material_extensions(const PacketView& packet, uint64_t where) {
+    MaterialExtensions m;
+    if (decode_material_extensions_payload(packet.payload, m) != Error::Ok)
+        return reject(where, Error::MalformedPayload,
+                      "MATERIAL_EXTENSIONS of " + std::to_string(packet.payload.size()) +
+                          " bytes: its index, table size or JSON patch breaks spec 18.2");
+    if (auto count = material_count(); count && *count != m.material_count)
+        return reject(where, Error::StreamMismatch,
+                      "MATERIAL_EXTENSIONS table size contradicts earlier MATERIAL or MATERIAL_EXTENSIONS packets");
+    if (auto it = material_extensions_.find(m.index); it != material_extensions_.end()) {
+        if (it->second.patch != m.patch)
+            return reject(where, Error::StreamMismatch,
+                          "the extensions of material " + std::to_string(m.index) + " contradict earlier ones");
+        ++counters_.duplicates;
+        return Error::Ok;
+    }
+    const uint64_t memory = m.patch.size() + kHeldPacketCost;
+    if (texture_bytes_ + memory > limits_.max_texture_bytes)
+        return reject(where, Error::MalformedPayload,
+                      "the extensions of material " + std::to_string(m.index) +
+                          " exceed this receiver's " + std::to_string(limits_.max_texture_bytes) +
+                          "-byte texture memory limit");
+    texture_bytes_ += memory;
+    material_extensions_.emplace(m.index, std::move(m));
     ++counters_.accepted;
     return Error::Ok;
 }

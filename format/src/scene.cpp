@@ -205,7 +205,7 @@ std::vector<uint8_t> encode_material_payload(const Material& m) {
     put_u8(out, static_cast<uint8_t>(m.alpha_mode));
     put_u8(out, m.double_sided ? 1 : 0);
     put_u8(out, static_cast<uint8_t>(name.size()));
-    put_u8(out, 0);
+    put_u8(out, m.has_extensions ? 1 : 0);  // flags (spec 18.1)
     for (float f : m.base_color) put_f32(out, f);
     put_f32(out, m.metallic);
     put_f32(out, m.roughness);
@@ -231,7 +231,7 @@ Error decode_material_payload(std::span<const uint8_t> payload, Material& out) {
     const uint8_t alpha = r.u8();
     m.double_sided = r.u8() != 0;
     const size_t name_length = r.u8();
-    r.u8();
+    m.has_extensions = (r.u8() & 1) != 0;  // flags bit 0 (spec 18.1); bits 1..7 reserved
     for (float& f : m.base_color) f = r.f32();
     m.metallic = r.f32();
     m.roughness = r.f32();
@@ -330,8 +330,9 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
 
     ScenePackets packets;
     uint32_t sequence = first_sequence;
-    auto emit = [&](PacketType type, const std::vector<uint8_t>& payload) {
+    auto emit = [&](PacketType type, const std::vector<uint8_t>& payload, uint8_t minor = kFormatMinor) {
         PacketHeader h;
+        h.version_minor = minor;
         h.type = static_cast<uint8_t>(type);
         h.flags = kFlagSkippable;
         h.stream_id = stream_id;
@@ -383,7 +384,23 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
         for (const TextureRef* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
                                     &m.occlusion_texture, &m.emissive_texture})
             if (t->texture != kNone && t->texture >= scene.textures.size()) return Error::MalformedPayload;
+        // Format 1.3: the patch in a MATERIAL_EXTENSIONS packet right after its material, when it fits one.
+        MaterialExtensions patch{m.index, m.material_count, std::move(m.extensions)};
+        m.extensions.clear();
+        m.has_extensions = false;
+        if (!patch.patch.empty()) {
+            std::vector<PatchTextureReference> refs;
+            if (check_material_patch(patch.patch, &refs) != Error::Ok) return Error::MalformedPayload;
+            for (const auto& r : refs)
+                if (r.texture >= scene.textures.size()) return Error::MalformedPayload;
+            m.has_extensions = 4 + patch.patch.size() <= capacity;
+            if (!m.has_extensions) packets.extensions_too_large.push_back(m.index);
+        }
         packets.materials.push_back(emit(PacketType::Material, encode_material_payload(m)));
+        if (m.has_extensions) {
+            packets.materials.push_back(emit(PacketType::MaterialExtensions, encode_material_extensions_payload(patch),
+                                             kMaterialExtensionsMinor));
+        }
     }
 
     const size_t per_fragment = capacity - kTextureFragmentHeaderSize;

@@ -17,6 +17,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <functional>
 #include <vector>
 
 namespace ellicast {
@@ -29,6 +30,11 @@ inline constexpr uint8_t kFormatMinor = 1;  // 1.1 added SCENE, MATERIAL, TEXTUR
 // 1.2 added MANIFEST (signed streams). Only MANIFEST packets say 1.2: every other packet keeps the
 // minor version whose layout it follows, so a 1.1 decoder reads a signed stream as it always did.
 inline constexpr uint8_t kManifestMinor = 2;
+// 1.3 added MATERIAL_EXTENSIONS (a material's extensions as a JSON patch, spec 18); those packets
+// say 1.3, MATERIAL packets keep saying 1.1 (bit 0 of their flags byte is read whatever they say).
+inline constexpr uint8_t kMaterialExtensionsMinor = 3;
+// The newest format version this library reads and writes (spec/format.md's version).
+inline constexpr uint8_t kSpecMinor = 3;
 
 inline constexpr std::array<uint8_t, 4> kPacketMagic = {0xE1, 'L', 'C', 'S'};
 inline constexpr size_t kHeaderSize = 20;                       // bytes before the payload
@@ -58,8 +64,9 @@ enum class PacketType : uint8_t {
     Scene = 0x10,       // 1.1, skippable: nodes (hierarchy, names, transforms) and meshes (object + material)
     Material = 0x11,    // 1.1, skippable: one PBR material
     TextureFragment = 0x12,  // 1.1, skippable: a piece of one texture image, at its byte offset
+    MaterialExtensions = 0x13,  // 1.3, skippable: a material's extensions and texture transforms (JSON)
     Manifest = 0x20,    // 1.2, skippable: signed digests of the stream's other packets
-    // 0x00 is invalid; 0x05..0x0F reserved for geometry; 0x13..0x1F reserved for the scene;
+    // 0x00 is invalid; 0x05..0x0F reserved for geometry; 0x14..0x1F reserved for the scene;
     // 0x21..0x7F future; 0x80..0xFF experimental.
 };
 
@@ -395,8 +402,40 @@ struct Material {
     float alpha_cutoff = 0.5f;
     bool double_sided = false;
     TextureRef base_color_texture, metallic_roughness_texture, normal_texture, occlusion_texture, emissive_texture;
+    // Format 1.3 (spec 18.1): MATERIAL flags bit 0, the material has a MATERIAL_EXTENSIONS packet.
+    bool has_extensions = false;
+    // Sender side: the patch (spec 18.2) packetize_scene sends in a MATERIAL_EXTENSIONS packet (and
+    // then sets has_extensions); empty: none. A decoded MATERIAL leaves it empty: a receiver finds
+    // patches in ReceivedStream::material_extensions().
+    std::string extensions;
     bool operator==(const Material&) const = default;
 };
+
+// Format 1.3 (spec 18.2): the JSON patch of one material.
+struct MaterialExtensions {
+    uint16_t index = 0;
+    uint16_t material_count = 0;  // size of the whole material table
+    std::string patch;            // the JSON text, as received
+    bool operator==(const MaterialExtensions&) const = default;
+};
+inline constexpr size_t kMaterialExtensionsMinSize = 6;  // index, count, and the shortest patch "{}"
+
+// A texture reference of a patch (spec 18.2, 18.3).
+struct PatchTextureReference {
+    std::string path;         // member names (array positions) from the top, joined by '/'
+    uint16_t texture = 0;     // index into the stream's texture table
+    size_t index_offset = 0;  // where the digits of its "index" stand in the patch text
+    size_t index_length = 0;
+};
+
+// Checks a patch by spec 18.2 (rules 2..8: UTF-8, RFC 8259 grammar, surrogates, finite numbers,
+// unique names, depth 32, shape and texture rules): Ok, with its texture references in document
+// order when `references` is given, or MalformedPayload.
+Error check_material_patch(std::string_view patch, std::vector<PatchTextureReference>* references = nullptr);
+// The patch with the index of each of its texture references (as check_material_patch found them)
+// replaced by map(index): a patch moved to another texture table.
+std::string remap_patch_textures(std::string_view patch, const std::vector<PatchTextureReference>& references,
+                                 const std::function<uint16_t(uint16_t)>& map);
 
 enum class ImageType : uint8_t { Png = 1, Jpeg = 2 };
 
@@ -436,12 +475,16 @@ std::vector<uint8_t> encode_scene_payload(const SceneBatch& batch);
 Error decode_scene_payload(std::span<const uint8_t> payload, SceneBatch& out);
 std::vector<uint8_t> encode_material_payload(const Material& material);
 Error decode_material_payload(std::span<const uint8_t> payload, Material& out);
+std::vector<uint8_t> encode_material_extensions_payload(const MaterialExtensions& extensions);
+Error decode_material_extensions_payload(std::span<const uint8_t> payload, MaterialExtensions& out);
 std::vector<uint8_t> encode_texture_fragment_payload(const TextureFragment& fragment);
 Error decode_texture_fragment_payload(std::span<const uint8_t> payload, TextureFragment& out);
 
 struct ScenePackets {
     std::vector<std::vector<uint8_t>> scene;      // SCENE packets
-    std::vector<std::vector<uint8_t>> materials;  // one MATERIAL packet per material
+    std::vector<std::vector<uint8_t>> materials;  // one MATERIAL packet per material, each followed by
+                                                  // its MATERIAL_EXTENSIONS packet when it has one
+    std::vector<uint16_t> extensions_too_large;   // materials whose patch did not fit a packet: sent without
     std::vector<std::vector<uint8_t>> textures;   // TEXTURE_FRAGMENT packets, texture by texture
 };
 
@@ -682,11 +725,15 @@ public:
     const std::map<uint16_t, SceneNode>& scene_nodes() const { return scene_nodes_; }
     const std::map<uint16_t, SceneMesh>& scene_meshes() const { return scene_meshes_; }
     const std::map<uint16_t, Material>& materials() const { return materials_; }
+    // Format 1.3: the patches received, by material index.
+    const std::map<uint16_t, MaterialExtensions>& material_extensions() const { return material_extensions_; }
     const std::map<uint16_t, ReceivedTexture>& textures() const { return textures_; }
 
 private:
     Error take_scene(const PacketView& packet, uint64_t where);
     Error take_material(const PacketView& packet, uint64_t where);
+    Error take_material_extensions(const PacketView& packet, uint64_t where);
+    std::optional<uint16_t> material_count() const;  // that of the materials and patches held
     Error take_texture_fragment(const PacketView& packet, uint64_t where);
 
     Error reject(uint64_t where, Error e, std::string detail);
@@ -720,6 +767,7 @@ private:
     std::map<uint16_t, SceneNode> scene_nodes_;
     std::map<uint16_t, SceneMesh> scene_meshes_;
     std::map<uint16_t, Material> materials_;
+    std::map<uint16_t, MaterialExtensions> material_extensions_;
     std::map<uint16_t, ReceivedTexture> textures_;
     size_t texture_bytes_ = 0;
 };
