@@ -245,7 +245,7 @@ TEST_CASE("an OBJ becomes one node with one mesh and no material") {
     CHECK(a.scene.materials.empty());
 }
 
-TEST_CASE("an image in a data: URI is kept byte for byte; a GIF is dropped with a warning") {
+TEST_CASE("an image in a data: URI is kept byte for byte, a GIF is dropped with a warning") {
     auto dir = ellicast::test::scratch_dir("asset_input_images");
     // The smallest valid PNG signature + IHDR is enough: images are carried, not decoded.
     std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A, 0, 0, 0, 13, 'I', 'H', 'D', 'R',
@@ -501,44 +501,43 @@ TEST_CASE("a texture on TEXCOORD_1 is not sent: the warning names the material a
     }
 }
 
-TEST_CASE("a material's KHR_texture_transform is applied to the texture coordinates it is drawn with; a texture "
-          "whose transform differs is not sent") {
+TEST_CASE("a material's KHR_texture_transform travels in its patch (format 1.3): the texture coordinates are sent as "
+          "they are, each texture keeps its own transform, and the receiver's file has them") {
     const char* f = "gltf/Duck/Duck.gltf";
     if (!have_sample(f)) return;
     auto dir = ellicast::test::scratch_dir("asset_input_texture_transform");
     Asset plain = load_asset(sample(f));
     REQUIRE(plain.objects.size() == 1);
     REQUIRE(plain.objects[0].has_texcoords());
+    CHECK(plain.scene.materials[0].extensions.empty());
     const double pi = std::acos(-1.0);
+    const nlohmann::json base_transform = {{"offset", {0, 1}}, {"rotation", pi / 2}, {"scale", {0.5, 0.5}}};
+    const nlohmann::json emissive_transform = {{"scale", {3, 3}}};
     Asset a = edited_duck(dir, "transform", [&](nlohmann::json& j) {
         j["extensionsUsed"] = {"KHR_texture_transform"};
         auto& material = j["materials"][0];
-        // The extension's own example: the lower left quadrant, turned a quarter.
-        material["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {
-            {"offset", {0, 1}}, {"rotation", pi / 2}, {"scale", {0.5, 0.5}}};
-        material["emissiveTexture"] = {{"index", 0},
-                                       {"extensions", {{"KHR_texture_transform", {{"scale", {3, 3}}}}}}};
+        // The extension's own example (the lower left quadrant, turned a quarter), and another
+        // transform on another texture of the same material.
+        material["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = base_transform;
+        material["emissiveTexture"] = {{"index", 0}, {"extensions", {{"KHR_texture_transform", emissive_transform}}}};
     });
-    CHECK(any_warning(a, "material 0 (blinn3-fx): its KHR_texture_transform is applied to the texture coordinates"));
-    CHECK(!any_warning(a, "extension(s) KHR_texture_transform not sent"));
-    CHECK(any_warning(a, "material 0 (blinn3-fx) emissiveTexture: its KHR_texture_transform differs from that of "
-                         "the baseColorTexture"));
+    CHECK(!any_warning(a, "KHR_texture_transform"));
     REQUIRE(a.scene.textures.size() == 1);
     CHECK(a.scene.textures[0].image == plain.scene.textures[0].image);
     CHECK(a.scene.materials[0].base_color_texture.texture == 0);
-    CHECK(a.scene.materials[0].emissive_texture.texture == kNone);
+    CHECK(a.scene.materials[0].emissive_texture.texture == 0);
     REQUIRE(a.objects.size() == 1);
-    REQUIRE(a.objects[0].texcoords.size() == plain.objects[0].texcoords.size());
-    for (size_t i = 0; i < a.objects[0].texcoords.size(); ++i) {
-        const auto& uv = plain.objects[0].texcoords[i];
-        const auto& t = a.objects[0].texcoords[i];
-        CHECK(t[0] == doctest::Approx(0.5 * uv[1]).epsilon(1e-5));        // u' = v / 2
-        CHECK(t[1] == doctest::Approx(1 - 0.5 * uv[0]).epsilon(1e-5));    // v' = 1 - u / 2
-    }
+    CHECK(a.objects[0].texcoords == plain.objects[0].texcoords);
     CHECK(a.objects[0].positions == plain.objects[0].positions);
-    // The receiver's file: no extension, the transformed coordinates, the texture.
+    const nlohmann::json patch = nlohmann::json::parse(a.scene.materials[0].extensions);
+    const nlohmann::json expected = {
+        {"pbrMetallicRoughness", {{"baseColorTexture", {{"extensions", {{"KHR_texture_transform", base_transform}}}}}}},
+        {"emissiveTexture", {{"extensions", {{"KHR_texture_transform", emissive_transform}}}}}};
+    CHECK(patch == expected);
+    // The receiver's file: the same coordinates, both transforms, the extension declared; valid.
     Asset back = written_and_read(a, dir / "transform_out.glb");
     REQUIRE(back.scene.textures.size() == 1);
     CHECK(back.scene.materials[0].base_color_texture.texture == 0);
     CHECK(back.objects[0].texcoords == a.objects[0].texcoords);
+    CHECK(nlohmann::json::parse(back.scene.materials[0].extensions) == expected);
 }

@@ -4,6 +4,7 @@
 #include "ellicast/converters/asset.h"
 
 #include "gltf_read.h"
+#include "material_extensions.h"
 #include "ellicast/converters/image_file.h"
 
 #include <algorithm>
@@ -56,38 +57,21 @@ std::string join(const std::vector<std::string>& items) {
     return out;
 }
 
-// A KHR_texture_transform: uv' = offset + R(rotation) * (scale * uv), with R as the extension's
-// worked example reads it (offset [0, 1], rotation pi/2, scale 0.5 shows the lower left quadrant).
-struct UvTransform {
-    std::array<double, 2> offset{0, 0};
-    double rotation = 0;
-    std::array<double, 2> scale{1, 1};
-
-    bool identity() const { return offset == std::array<double, 2>{0, 0} && rotation == 0 && scale == std::array<double, 2>{1, 1}; }
-    std::array<double, 5> key() const { return {offset[0], offset[1], rotation, scale[0], scale[1]}; }
-    std::array<float, 2> apply(const std::array<float, 2>& uv) const {
-        const double c = std::cos(rotation), s = std::sin(rotation);
-        const double u = scale[0] * uv[0], v = scale[1] * uv[1];
-        return {float(offset[0] + c * u + s * v), float(offset[1] - s * u + c * v)};
-    }
-};
-
-// Reads a KHR_texture_transform object; false with `why` when it cannot be applied.
-bool parse_uv_transform(const tinygltf::Value& value, UvTransform& t, std::string& why) {
+// Checks a KHR_texture_transform object (it travels in the material's patch, spec 18); false with
+// `why` when a receiver could not apply it.
+bool check_uv_transform(const tinygltf::Value& value, std::string& why) {
     if (!value.IsObject()) return why = "is not an object", false;
-    auto pair = [&](const char* name, std::array<double, 2>& out) {
+    auto pair = [&](const char* name) {
         if (!value.Has(name)) return true;
         const tinygltf::Value& a = value.Get(name);
         if (!a.IsArray() || a.ArrayLen() != 2 || !a.Get(0).IsNumber() || !a.Get(1).IsNumber()) return false;
-        out = {a.Get(0).GetNumberAsDouble(), a.Get(1).GetNumberAsDouble()};
-        return std::isfinite(out[0]) && std::isfinite(out[1]);
+        return std::isfinite(a.Get(0).GetNumberAsDouble()) && std::isfinite(a.Get(1).GetNumberAsDouble());
     };
-    if (!pair("offset", t.offset)) return why = "has an offset that is not two finite numbers", false;
-    if (!pair("scale", t.scale)) return why = "has a scale that is not two finite numbers", false;
+    if (!pair("offset")) return why = "has an offset that is not two finite numbers", false;
+    if (!pair("scale")) return why = "has a scale that is not two finite numbers", false;
     if (value.Has("rotation")) {
         const tinygltf::Value& r = value.Get("rotation");
         if (!r.IsNumber() || !std::isfinite(r.GetNumberAsDouble())) return why = "has a rotation that is not a finite number", false;
-        t.rotation = r.GetNumberAsDouble();
     }
     if (value.Has("texCoord")) {
         const tinygltf::Value& tc = value.Get("texCoord");
@@ -212,12 +196,7 @@ private:
         for (size_t p = 0; p < gmesh.primitives.size(); ++p) {
             const tinygltf::Primitive& prim = gmesh.primitives[p];
             const std::string pwhere = path_ + ": " + label + " primitive " + std::to_string(p);
-            static const UvTransform kIdentity;
-            const UvTransform& uv = prim.material >= 0 && size_t(prim.material) < material_transforms_.size()
-                                        ? material_transforms_[size_t(prim.material)]
-                                        : kIdentity;
-            int object =
-                object_index(prim, label + (gmesh.primitives.size() > 1 ? "#" + std::to_string(p) : ""), pwhere, uv);
+            int object = object_index(prim, label + (gmesh.primitives.size() > 1 ? "#" + std::to_string(p) : ""), pwhere);
             if (object < 0) continue;
             ScenePrimitive sp;
             sp.object = uint16_t(object);
@@ -245,12 +224,9 @@ private:
     }
 
     // The object of a primitive: primitives with the same accessors and mode are one object.
-    // The texture transform `uv` of the primitive's material is applied to the object's texture
-    // coordinates; the same accessors under another transform are another object.
-    int object_index(const tinygltf::Primitive& prim, const std::string& name, const std::string& where,
-                     const UvTransform& uv) {
+    int object_index(const tinygltf::Primitive& prim, const std::string& name, const std::string& where) {
         auto key = std::make_tuple(prim.attributes, prim.indices, prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode,
-                                   prim.extensions.count("KHR_draco_mesh_compression") > 0, uv.key());
+                                   prim.extensions.count("KHR_draco_mesh_compression") > 0);
         if (auto it = object_map_.find(key); it != object_map_.end()) return it->second;
         for (const auto& [attr, accessor] : prim.attributes) {
             (void)accessor;
@@ -261,8 +237,6 @@ private:
         mesh.name = name;
         int result = -1;
         if (primitive_to_mesh(model_, prim, Eigen::Matrix4d::Identity(), where, mesh, warnings_)) {
-            if (!uv.identity())
-                for (auto& t : mesh.texcoords) t = uv.apply(t);
             check_and_repair_mesh(mesh, where, warnings_);
             if (mesh.positions.empty()) {
                 warnings_.push_back(where + ": no vertices, skipped");
@@ -298,65 +272,39 @@ private:
                 warnings_.push_back(where + ": alphaMode \"" + gm.alphaMode + "\" is not a glTF mode; sent as OPAQUE");
             m.alpha_cutoff = float(gm.alphaCutoff);
             m.double_sided = gm.doubleSided;
-            UvTransform transforms[5];
             m.base_color_texture = texture_ref(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, 1,
-                                               pbr.baseColorTexture.extensions, where + " baseColorTexture",
-                                               transforms[0]);
+                                               pbr.baseColorTexture.extensions, where + " baseColorTexture");
             m.metallic_roughness_texture = texture_ref(pbr.metallicRoughnessTexture.index,
                                                        pbr.metallicRoughnessTexture.texCoord, 1,
                                                        pbr.metallicRoughnessTexture.extensions,
-                                                       where + " metallicRoughnessTexture", transforms[1]);
+                                                       where + " metallicRoughnessTexture");
             m.normal_texture = texture_ref(gm.normalTexture.index, gm.normalTexture.texCoord, gm.normalTexture.scale,
-                                           gm.normalTexture.extensions, where + " normalTexture", transforms[2]);
+                                           gm.normalTexture.extensions, where + " normalTexture");
             m.occlusion_texture = texture_ref(gm.occlusionTexture.index, gm.occlusionTexture.texCoord,
                                               gm.occlusionTexture.strength, gm.occlusionTexture.extensions,
-                                              where + " occlusionTexture", transforms[3]);
+                                              where + " occlusionTexture");
             m.emissive_texture = texture_ref(gm.emissiveTexture.index, gm.emissiveTexture.texCoord, 1,
-                                             gm.emissiveTexture.extensions, where + " emissiveTexture", transforms[4]);
-            material_transforms_.push_back(material_transform(m, transforms, where));
-            std::vector<std::string> exts;
-            for (const auto& [name, value] : gm.extensions) exts.push_back(name);
-            for (const auto& [name, value] : pbr.extensions) exts.push_back(name);
-            if (!exts.empty())
-                warnings_.push_back(where + ": extension(s) " + join(exts) + " not sent (the core PBR values are)");
+                                             gm.emissiveTexture.extensions, where + " emissiveTexture");
+            // Format 1.3: KHR_materials_* and every KHR_texture_transform travel in the material's
+            // patch (spec 18); the texture coordinates are sent as the asset has them.
+            const std::array<bool, 5> core_sent = {
+                m.base_color_texture.texture != kNone, m.metallic_roughness_texture.texture != kNone,
+                m.normal_texture.texture != kNone, m.occlusion_texture.texture != kNone,
+                m.emissive_texture.texture != kNone};
+            m.extensions = material_patch::make(
+                gm, core_sent, [&](int index, const std::string& at) { return texture_index(index, at); }, where,
+                warnings_);
             asset_.scene.materials.push_back(std::move(m));
         }
     }
 
-    // The one texture transform of a material, applied to the texture coordinates of the objects
-    // drawn with it (ellicast carries those coordinates, not the transform). Its textures must
-    // agree: one whose transform differs from the first textured slot's is not sent.
-    UvTransform material_transform(Material& m, const UvTransform (&transforms)[5], const std::string& where) {
-        TextureRef* refs[5] = {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
-                               &m.occlusion_texture, &m.emissive_texture};
-        const char* slots[5] = {"baseColorTexture", "metallicRoughnessTexture", "normalTexture", "occlusionTexture",
-                                "emissiveTexture"};
-        int first = -1;
-        for (int k = 0; k < 5; ++k) {
-            if (refs[k]->texture == kNone) continue;
-            if (first < 0) {
-                first = k;
-            } else if (transforms[k].key() != transforms[first].key()) {
-                warnings_.push_back(where + " " + slots[k] + ": its KHR_texture_transform differs from that of the " +
-                                    slots[first] + "; ellicast carries one set of texture coordinates, so this texture "
-                                    "is not sent");
-                refs[k]->texture = kNone;
-            }
-        }
-        if (first < 0 || transforms[first].identity()) return {};
-        warnings_.push_back(where + ": its KHR_texture_transform is applied to the texture coordinates of the objects "
-                            "drawn with it (the receiver gets the transformed coordinates, no extension)");
-        return transforms[first];
-    }
-
-    // The Asset texture reference of a material's glTF texture info, and in `transform` its
-    // KHR_texture_transform (identity without one). ellicast carries TEXCOORD_0 only: a reference
+    // The Asset texture reference of a material's glTF texture info (its KHR_texture_transform is
+    // checked here and travels in the material's patch). ellicast carries TEXCOORD_0 only: a reference
     // to another set (also through the transform's texCoord) is not sent (nor its image, unless
     // another reference uses it); the material keeps its factors and its other textures, and the
     // warning names the material and the slot.
     TextureRef texture_ref(int index, int texcoord, double scale, const tinygltf::ExtensionMap& extensions,
-                           const std::string& where, UvTransform& transform) {
-        transform = UvTransform{};
+                           const std::string& where) {
         TextureRef ref;
         ref.scale = float(scale);
         if (index < 0) return ref;
@@ -373,7 +321,7 @@ private:
         for (const auto& [name, value] : extensions) {
             if (name == "KHR_texture_transform") {
                 std::string why;
-                if (!parse_uv_transform(value, transform, why)) {
+                if (!check_uv_transform(value, why)) {
                     warnings_.push_back(where + ": its KHR_texture_transform " + why +
                                         "; this texture is not sent (the material keeps its factors and its other "
                                         "textures)");
@@ -526,8 +474,10 @@ private:
         if (!model_.lights.empty())
             warnings_.push_back(path_ + ": " + std::to_string(model_.lights.size()) + " light(s) not sent");
         std::vector<std::string> unknown;
-        for (const auto& ext : model_.extensionsUsed)  // texture transforms: applied, named per material
-            if (!kGeometryExtensions.count(ext) && ext != "KHR_texture_transform") unknown.push_back(ext);
+        for (const auto& ext : model_.extensionsUsed)  // material extensions: carried, or named per material
+            if (!kGeometryExtensions.count(ext) && ext != "KHR_texture_transform" &&
+                (ext.rfind("KHR_materials_", 0) != 0 || ext == "KHR_materials_variants"))
+                unknown.push_back(ext);
         if (!unknown.empty())
             warnings_.push_back(path_ + ": extension(s) " + join(unknown) + " not sent");
     }
@@ -553,8 +503,7 @@ private:
     std::vector<int> node_order_;
     std::map<int, uint16_t> new_node_;
     std::map<int, uint16_t> mesh_map_;
-    std::map<std::tuple<std::map<std::string, int>, int, int, bool, std::array<double, 5>>, int> object_map_;
-    std::vector<UvTransform> material_transforms_;  // per glTF material
+    std::map<std::tuple<std::map<std::string, int>, int, int, bool>, int> object_map_;
     std::map<std::tuple<int, uint16_t, uint16_t, uint16_t, uint16_t>, uint16_t> texture_map_;
     std::map<int, std::vector<uint8_t>> view_images_;
     std::map<int, image_file::Format> image_formats_;  // checked_image's answers

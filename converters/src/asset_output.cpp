@@ -6,6 +6,7 @@
 #include "ellicast/converters/mesh_output.h"
 
 #include "gltf_write.h"
+#include "material_extensions.h"
 #include "tangents.h"
 #include "ellicast/converters/image_file.h"
 
@@ -96,6 +97,7 @@ public:
             model_.extensionsUsed.push_back(kQuantizationExtension);
             model_.extensionsRequired.push_back(kQuantizationExtension);
         }
+        for (const std::string& name : used_extensions_) model_.extensionsUsed.push_back(name);
         return std::move(model_);
     }
 
@@ -184,8 +186,24 @@ private:
                 if (ref->texture != kNone && ref->texcoord == 0 &&
                     (ref->texture >= texture_out_.size() || texture_out_[ref->texture] < 0))
                     whole = false;
+            tinygltf::Material g = gltf_material(m, i, false);
+            // Format 1.3: the material's extensions and texture transforms (spec 18.4).
+            if (whole && !m.extensions.empty()) {
+                std::string why;
+                std::set<std::string> used;
+                const bool applied = material_patch::apply(
+                    m.extensions, g,
+                    [&](uint16_t t) { return t < texture_out_.size() ? texture_out_[t] : -1; }, used, why);
+                if (applied) {
+                    used_extensions_.insert(used.begin(), used.end());
+                } else {
+                    warnings_.push_back(path_ + ": material " + std::to_string(i) + ": " + why +
+                                        "; primitives using the material get the default material");
+                    whole = false;
+                }
+            }
             material_whole_.push_back(whole);
-            model_.materials.push_back(gltf_material(m, i, false));
+            model_.materials.push_back(std::move(g));
         }
     }
 
@@ -514,7 +532,8 @@ private:
                 continue;
             }
             const int material = primitive_material(sp.material, asset_.objects[sp.object], what);
-            const bool normal_mapped = material >= 0 && model_.materials[size_t(material)].normalTexture.index >= 0;
+            // A tangent space: for a normal map, also one in an extension, and for anisotropy.
+            const bool normal_mapped = material >= 0 && material_patch::needs_tangents(model_.materials[size_t(material)]);
             auto prim = object_primitive(sp.object, dq, dq ? int(mi) : -1, normal_mapped, what);
             if (!prim) continue;
             prim->material = material;
@@ -717,6 +736,7 @@ private:
     tinygltf::Model model_;
     std::vector<int> texture_out_;
     std::vector<bool> material_whole_;  // per asset material: every texture it uses was written
+    std::set<std::string> used_extensions_;  // extensions the materials' patches use (spec 18)
     std::map<uint16_t, int> untextured_;
     std::map<std::tuple<size_t, int, bool>, std::optional<tinygltf::Primitive>> primitives_;
     std::map<size_t, int> mesh_out_;

@@ -89,11 +89,34 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
             waiting.push_back(std::string(slot) + " texture " + std::to_string(ref->texture) + " (" +
                               texture_missing(stream, ref->texture) + ")");
         }
+        // Format 1.3 (spec 18.4): the material waits for its patch when its flag says it has one,
+        // and for every texture the patch refers to; shown, it carries the patch remapped to the
+        // complete textures' numbering.
+        out.extensions.clear();
+        out.has_extensions = false;
+        if (auto patch = stream.material_extensions().find(index); patch != stream.material_extensions().end()) {
+            std::vector<PatchTextureReference> refs;
+            check_material_patch(patch->second.patch, &refs);  // it passed at reception
+            bool complete = true;
+            for (const auto& r : refs) {
+                if (texture_map.count(r.texture)) continue;
+                complete = false;
+                waiting.push_back(r.path + " texture " + std::to_string(r.texture) + " (" +
+                                  texture_missing(stream, r.texture) + ")");
+            }
+            if (complete) {
+                out.extensions = remap_patch_textures(patch->second.patch, refs,
+                                                      [&](uint16_t t) { return texture_map.at(t); });
+                out.has_extensions = true;
+            }
+        } else if (m.has_extensions) {
+            waiting.push_back("extensions (its MATERIAL_EXTENSIONS packet has not arrived)");
+        }
         if (!waiting.empty()) {
             std::string list;
             for (size_t i = 0; i < waiting.size(); ++i) list += (i ? ", " : "") + waiting[i];
             warnings.push_back(what + " is waiting for its " + list +
-                               "; its primitives get the default material until the texture is complete");
+                               "; its primitives get the default material until it has arrived whole");
             waiting_materials.insert(index);
             continue;
         }

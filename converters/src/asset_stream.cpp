@@ -35,6 +35,11 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
                     error_name(e);
             return false;
         }
+        for (uint16_t m : scene.extensions_too_large)
+            out.encoded.warnings.push_back("material " + std::to_string(m) + ": its extensions (" +
+                                           std::to_string(asset.scene.materials[m].extensions.size()) +
+                                           " bytes of JSON) do not fit a " + std::to_string(out.encoded.info.packet_size) +
+                                           "-byte packet; the material is sent without them");
     }
     auto take = [&](std::vector<std::vector<uint8_t>>& packets, size_t& count, size_t& bytes) {
         for (auto& p : packets) {

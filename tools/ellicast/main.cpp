@@ -55,7 +55,7 @@ bool output_clobbers_input(const std::string& output, const std::vector<std::str
 
 int main(int argc, char** argv) {
     using namespace ellicast::cli;
-    const std::string format_version = std::to_string(ellicast::kFormatMajor) + "." + std::to_string(ellicast::kFormatMinor);
+    const std::string format_version = std::to_string(ellicast::kFormatMajor) + "." + std::to_string(ellicast::kSpecMinor);
     CLI::App app{"ellicast: 3D models over lossy one-way channels (format " + format_version + ")", "ellicast"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "ellicast 1.0.0, format " + format_version);

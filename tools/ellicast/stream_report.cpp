@@ -208,6 +208,32 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
                                                           " file cannot be shown: " + c.problem});
         }
     }
+    // Spec 18.4 (format 1.3): every flagged material has its patch, every patch's material its flag,
+    // and every texture a patch refers to is in the table and complete.
+    for (const auto& [index, m] : r.stream.materials())
+        if (m.has_extensions && !r.stream.material_extensions().count(index))
+            r.violations.push_back({std::nullopt, "material " + std::to_string(index) +
+                                                      ": its has_extensions bit is set but its MATERIAL_EXTENSIONS "
+                                                      "packet did not arrive"});
+    for (const auto& [index, patch] : r.stream.material_extensions()) {
+        const std::string name = "material " + std::to_string(index);
+        if (auto m = r.stream.materials().find(index); m != r.stream.materials().end() && !m->second.has_extensions)
+            r.violations.push_back({std::nullopt, name + ": a MATERIAL_EXTENSIONS packet arrived but the material's "
+                                                         "has_extensions bit is not set"});
+        std::vector<PatchTextureReference> refs;
+        check_material_patch(patch.patch, &refs);
+        for (const auto& ref : refs) {
+            const auto t = r.stream.textures().find(ref.texture);
+            const bool past = !r.stream.textures().empty() &&
+                              ref.texture >= r.stream.textures().begin()->second.info.texture_count;
+            if (past)
+                r.violations.push_back({std::nullopt, name + ": " + ref.path + " refers to texture " +
+                                                          std::to_string(ref.texture) + ", past the texture table"});
+            else if (t == r.stream.textures().end() || !t->second.complete)
+                r.violations.push_back({std::nullopt, name + ": " + ref.path + " refers to texture " +
+                                                          std::to_string(ref.texture) + ", which is not complete"});
+        }
+    }
     return r;
 }
 
