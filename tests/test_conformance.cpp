@@ -136,6 +136,33 @@ TEST_CASE("the faulty vectors name the reason they must be rejected with") {
         {"repair_index_out_of_range", "index out of range"},
         {"repair_block_contradicts", "stream mismatch"},
         {"repair_block_overlap", "stream mismatch"},
+        {"scene_extensions_short", "malformed payload"},
+        {"scene_extensions_index_out_of_range", "malformed payload"},
+        {"scene_extensions_not_utf8", "malformed payload"},
+        {"scene_extensions_byte_order_mark", "malformed payload"},
+        {"scene_extensions_second_value", "malformed payload"},
+        {"scene_extensions_trailing_garbage", "malformed payload"},
+        {"scene_extensions_trailing_comma", "malformed payload"},
+        {"scene_extensions_nan", "malformed payload"},
+        {"scene_extensions_comment", "malformed payload"},
+        {"scene_extensions_top_level_array", "malformed payload"},
+        {"scene_extensions_control_character", "malformed payload"},
+        {"scene_extensions_lone_high_surrogate", "malformed payload"},
+        {"scene_extensions_lone_low_surrogate", "malformed payload"},
+        {"scene_extensions_number_infinite", "malformed payload"},
+        {"scene_extensions_duplicate_name", "malformed payload"},
+        {"scene_extensions_depth_33", "malformed payload"},
+        {"scene_extensions_outside_shape", "malformed payload"},
+        {"scene_extensions_extension_not_object", "malformed payload"},
+        {"scene_extensions_index_leading_zero", "malformed payload"},
+        {"scene_extensions_index_65535", "malformed payload"},
+        {"scene_extensions_index_fraction", "malformed payload"},
+        {"scene_extensions_index_exponent", "malformed payload"},
+        {"scene_extensions_texcoord_1", "malformed payload"},
+        {"scene_extensions_transform_texcoord_1", "malformed payload"},
+        {"scene_extensions_count_contradicts", "stream mismatch"},
+        {"scene_extensions_contradicting_patch", "stream mismatch"},
+        {"scene_extensions_flag_contradicts", "stream mismatch"},
     };
     for (const auto& [name, reason] : reasons) {
         INFO(name);
@@ -257,7 +284,9 @@ TEST_CASE("a format 1.0 decoder skips the 1.1 scene packets of every scene vecto
             INFO(file.string());
             size_t scene_packets = 0;
             for (const auto& p : j["packets"])
-                if (p["type"] == "SCENE" || p["type"] == "MATERIAL" || p["type"] == "TEXTURE_FRAGMENT") ++scene_packets;
+                if (p["type"] == "SCENE" || p["type"] == "MATERIAL" || p["type"] == "TEXTURE_FRAGMENT" ||
+                    p["type"] == "MATERIAL_EXTENSIONS")
+                    ++scene_packets;
             CHECK(j["as_1_0"]["same_objects"] == true);
             CHECK(j["as_1_0"]["counters"]["skipped"] == scene_packets);
             ++checked;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent format 1.2 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.3 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
@@ -11,7 +11,9 @@ format 1.1 the scene graph, materials, textures and what a receiver shows of the
 a 1.0 decoder's view of the same file; for format 1.2 the MANIFEST layout, every packet digest, and the
 authentication of a signed recording with the vectors' key, spec section 16, with SHA-256 from hashlib
 and Ed25519 verification written here from RFC 8032, and the POINTS_REPAIR packets of spec section 17:
-their checks, the blocks a decoder holds and the points it recovers, with GF(2^8) written here) so
+their checks, the blocks a decoder holds and the points it recovers, with GF(2^8) written here; for
+format 1.3 the MATERIAL_EXTENSIONS patches of spec section 18, with a strict JSON reader written here
+from RFC 8259 and the rules of spec 18.2, their texture references and what a receiver shows) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -34,6 +36,9 @@ KNOWN_10 = {1: "STREAM_INFO", 2: "ELLIPSOIDS", 3: "POINTS"}
 KNOWN_11 = {0x10: "SCENE", 0x11: "MATERIAL", 0x12: "TEXTURE_FRAGMENT"}
 # Format 1.2 (spec sections 4, 16 and 17).
 KNOWN_12 = {0x20: "MANIFEST", 0x04: "POINTS_REPAIR"}
+# Format 1.3 (spec sections 4 and 18).
+KNOWN_13 = {0x13: "MATERIAL_EXTENSIONS"}
+SCENE_TYPES = set(KNOWN_11) | set(KNOWN_13)
 NONE = 0xFFFF
 SLOTS = ("base_color", "metallic_roughness", "normal", "occlusion", "emissive")
 
@@ -337,8 +342,9 @@ def decode_material(p):
             for k in range(5)]
     if index >= count or alpha > 2 or not finite(list(factors) + [r[2] for r in refs]):
         return None
+    # Byte 7, flags: bit 0 has_extensions (spec 18.1), compared like the other fields; bits 1..7 reserved.
     return dict(index=index, material_count=count, alpha=alpha, double_sided=double != 0, factors=list(factors),
-                refs=refs, name=p[88:].decode("utf-8", errors="replace"))
+                refs=refs, name=p[88:].decode("utf-8", errors="replace"), has_extensions=bool(p[7] & 1))
 
 
 def node_json(n):
@@ -351,7 +357,255 @@ def material_json(m):
                 for slot, ref in zip(SLOTS, m["refs"])}
     return dict(index=m["index"], name=m["name"], alpha_mode=("OPAQUE", "MASK", "BLEND")[m["alpha"]],
                 alpha_cutoff=f[9], double_sided=m["double_sided"], base_color=f[0:4], metallic=f[4], roughness=f[5],
-                emissive=f[6:9], textures=textures)
+                emissive=f[6:9], textures=textures, has_extensions=m["has_extensions"])
+
+
+# ---- Format 1.3: MATERIAL_EXTENSIONS patches (spec 18.2, 18.3) ----
+
+class PatchError(Exception):
+    pass
+
+
+NUMBER_DIGITS = "0123456789"
+
+
+class PatchReader:
+    """One JSON text by RFC 8259 section 2 with the limits of spec 18.2 rules 3..7. Values become
+    ("object", [(name, value), ...]) with members in text order, ("array", [values]), ("string", text),
+    ("number", token) or ("literal", word)."""
+
+    def __init__(self, text):
+        self.s, self.i = text, 0
+
+    def fail(self):
+        raise PatchError()
+
+    def ws(self):
+        while self.i < len(self.s) and self.s[self.i] in " \t\n\r":
+            self.i += 1
+
+    def document(self):
+        self.ws()
+        v = self.value(1)
+        self.ws()
+        if self.i != len(self.s):
+            self.fail()  # a second value, or anything else after the first
+        return v
+
+    def value(self, depth):
+        if self.i >= len(self.s):
+            self.fail()
+        c = self.s[self.i]
+        if c == "{":
+            return self.object(depth)
+        if c == "[":
+            return self.array(depth)
+        if c == '"':
+            return ("string", self.string())
+        for word in ("true", "false", "null"):
+            if self.s.startswith(word, self.i):
+                self.i += len(word)
+                return ("literal", word)
+        return ("number", self.number())
+
+    def object(self, depth):
+        if depth > 32:  # rule 7: the patch itself is depth 1
+            self.fail()
+        self.i += 1
+        members, names = [], set()
+        self.ws()
+        if self.s.startswith("}", self.i):
+            self.i += 1
+            return ("object", members)
+        while True:
+            self.ws()
+            if not self.s.startswith('"', self.i):
+                self.fail()
+            name = self.string()
+            if name in names:  # rule 6, names compared decoded
+                self.fail()
+            names.add(name)
+            self.ws()
+            if not self.s.startswith(":", self.i):
+                self.fail()
+            self.i += 1
+            self.ws()
+            members.append((name, self.value(depth + 1)))
+            self.ws()
+            if self.s.startswith(",", self.i):
+                self.i += 1
+            elif self.s.startswith("}", self.i):
+                self.i += 1
+                return ("object", members)
+            else:
+                self.fail()
+
+    def array(self, depth):
+        if depth > 32:
+            self.fail()
+        self.i += 1
+        elements = []
+        self.ws()
+        if self.s.startswith("]", self.i):
+            self.i += 1
+            return ("array", elements)
+        while True:
+            self.ws()
+            elements.append(self.value(depth + 1))
+            self.ws()
+            if self.s.startswith(",", self.i):
+                self.i += 1
+            elif self.s.startswith("]", self.i):
+                self.i += 1
+                return ("array", elements)
+            else:
+                self.fail()
+
+    def hex4(self):
+        h = self.s[self.i:self.i + 4]
+        if len(h) != 4 or any(c not in "0123456789abcdefABCDEF" for c in h):
+            self.fail()
+        self.i += 4
+        return int(h, 16)
+
+    def string(self):
+        self.i += 1  # the opening quote
+        out = []
+        short = {'"': '"', "\\": "\\", "/": "/", "b": "\b", "f": "\f", "n": "\n", "r": "\r", "t": "\t"}
+        while self.i < len(self.s):
+            c = self.s[self.i]
+            self.i += 1
+            if c == '"':
+                return "".join(out)
+            if ord(c) < 0x20:  # rule 4: unescaped control character
+                self.fail()
+            if c != "\\":
+                out.append(c)
+                continue
+            if self.i >= len(self.s):
+                self.fail()
+            e = self.s[self.i]
+            self.i += 1
+            if e in short:
+                out.append(short[e])
+            elif e == "u":
+                cp = self.hex4()
+                if 0xDC00 <= cp <= 0xDFFF:  # rule 4: a low surrogate not preceded by a high one
+                    self.fail()
+                if 0xD800 <= cp <= 0xDBFF:  # rule 4: must be directly followed by a low one
+                    if not self.s.startswith("\\u", self.i):
+                        self.fail()
+                    self.i += 2
+                    low = self.hex4()
+                    if not 0xDC00 <= low <= 0xDFFF:
+                        self.fail()
+                    cp = 0x10000 + ((cp - 0xD800) << 10) + (low - 0xDC00)
+                out.append(chr(cp))
+            else:
+                self.fail()
+        self.fail()  # the text ended inside a string
+
+    def number(self):
+        start = self.i
+
+        def digits():
+            at = self.i
+            while self.i < len(self.s) and self.s[self.i] in NUMBER_DIGITS:
+                self.i += 1
+            return self.i > at
+
+        if self.s.startswith("-", self.i):
+            self.i += 1
+        if self.s.startswith("0", self.i):
+            self.i += 1
+        elif not digits():
+            self.fail()
+        if self.s.startswith(".", self.i):
+            self.i += 1
+            if not digits():
+                self.fail()
+        if self.i < len(self.s) and self.s[self.i] in "eE":
+            self.i += 1
+            if self.i < len(self.s) and self.s[self.i] in "+-":
+                self.i += 1
+            if not digits():
+                self.fail()
+        token = self.s[start:self.i]
+        if not math.isfinite(float(token)):  # rule 5: float() rounds to the nearest binary64
+            self.fail()
+        return token
+
+
+CORE_INFOS_TOP = ("normalTexture", "occlusionTexture", "emissiveTexture")
+CORE_INFOS_PBR = ("baseColorTexture", "metallicRoughnessTexture")
+
+
+def patch_shape_ok(root):
+    """Spec 18.2, the fixed shape."""
+    def is_object(v):
+        return v[0] == "object"
+
+    def extensions_ok(v):
+        return is_object(v) and all(is_object(ext) for _, ext in v[1])
+
+    def core_info_ok(v):
+        return is_object(v) and all(n == "extensions" and extensions_ok(x) for n, x in v[1])
+
+    if not is_object(root):
+        return False
+    for name, v in root[1]:
+        if name == "extensions":
+            ok = extensions_ok(v)
+        elif name in CORE_INFOS_TOP:
+            ok = core_info_ok(v)
+        elif name == "pbrMetallicRoughness":
+            ok = is_object(v) and all(
+                extensions_ok(x) if n == "extensions" else n in CORE_INFOS_PBR and core_info_ok(x) for n, x in v[1])
+        else:
+            ok = False
+        if not ok:
+            return False
+    return True
+
+
+def patch_references(v, name, path, out):
+    """Spec 18.2's texture rules and 18.3's references (path, texture) in document order: the order of
+    their opening brace, which is a depth-first walk in text order."""
+    if v[0] == "object":
+        members = dict(v[1])
+        is_reference = name is not None and name.endswith("Texture") and "index" in members
+        if is_reference or name == "KHR_texture_transform":
+            tc = members.get("texCoord")
+            if tc is not None and tc != ("number", "0"):
+                raise PatchError()
+        if is_reference:
+            kind, token = members["index"]
+            if kind != "number" or not token or any(c not in NUMBER_DIGITS for c in token) or \
+                    (len(token) > 1 and token[0] == "0") or int(token) > 65534:
+                raise PatchError()
+            out.append(dict(path=path, texture=int(token)))
+        for n, x in v[1]:
+            patch_references(x, n, n if path == "" else path + "/" + n, out)
+    elif v[0] == "array":
+        for k, x in enumerate(v[1]):
+            patch_references(x, None, "%s/%d" % (path, k), out)
+
+
+def check_patch(data):
+    """Spec 18.2 rules 2..8 on the patch bytes: its texture references, or None when malformed."""
+    try:
+        text = data.decode("utf-8")  # strict: no surrogates, overlong forms or code points past U+10FFFF
+    except UnicodeDecodeError:
+        return None
+    try:
+        root = PatchReader(text).document()
+        if not patch_shape_ok(root):
+            return None
+        refs = []
+        patch_references(root, None, "", refs)
+        return refs
+    except PatchError:
+        return None
 
 
 def fnv_bytes(data):
@@ -740,7 +994,8 @@ class Receiver:
         self.know_11 = know_11
         self.scene_counts = None  # (node_count, mesh_count) of the SCENE packets taken
         self.nodes, self.meshes, self.materials, self.textures = {}, {}, {}, {}
-        self.material_count = None
+        self.patches = {}  # format 1.3: material index -> (patch bytes, texture references)
+        self.material_count = None  # that of the materials and patches held
         self.stream_id = None
         self.info = None
         self.object_count = 0
@@ -759,7 +1014,7 @@ class Receiver:
         if self.stream_id is not None and h["stream_id"] != self.stream_id:
             return self.reject(offset, "stream mismatch")
         t = h["type"]
-        if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12) or not self.know_11):
+        if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12 and t not in KNOWN_13) or not self.know_11):
             if not h["flags"] & 1:
                 return self.reject(offset, "unknown critical type")
             self.stream_id = h["stream_id"]
@@ -774,6 +1029,8 @@ class Receiver:
             result = self.material(h, offset)
         elif t == 0x12:
             result = self.fragment(h, offset)
+        elif t == 0x13:
+            result = self.extensions(h, offset)
         elif t == 0x20:
             # A decoder checks the layout and takes nothing (spec 16.2); verifying needs a key.
             if decode_manifest(h["payload"]) is None:
@@ -975,7 +1232,7 @@ class Receiver:
         if m is None:
             return self.reject(offset, "malformed payload")
         count = m.pop("material_count")
-        if self.materials and count != self.material_count:
+        if self.material_count is not None and count != self.material_count:  # materials and patches (18.2)
             return self.reject(offset, "stream mismatch")
         if m["index"] in self.materials:
             if self.materials[m["index"]] != m:
@@ -983,6 +1240,25 @@ class Receiver:
             return self.news(False)
         self.material_count = count
         self.materials[m["index"]] = m
+        return self.news(True)
+
+    def extensions(self, h, offset):
+        """Spec 18.2: the payload, the table size, then the patch held for the same material."""
+        p = h["payload"]
+        if len(p) < 6:
+            return self.reject(offset, "malformed payload")
+        index, count = struct.unpack_from("<HH", p, 0)
+        refs = check_patch(p[4:]) if index < count else None
+        if refs is None:
+            return self.reject(offset, "malformed payload")
+        if self.material_count is not None and count != self.material_count:
+            return self.reject(offset, "stream mismatch")
+        if index in self.patches:
+            if self.patches[index][0] != p[4:]:
+                return self.reject(offset, "stream mismatch")
+            return self.news(False)
+        self.material_count = count
+        self.patches[index] = (p[4:], refs)
         return self.news(True)
 
     def fragment(self, h, offset):
@@ -1045,17 +1321,19 @@ class Receiver:
         return dict(node_count=self.scene_counts[0] if sized else None,
                     mesh_count=self.scene_counts[1] if sized else None,
                     nodes=[node_json(n) for n in nodes], meshes=meshes,
-                    material_count=self.material_count if self.materials else None,
+                    material_count=self.material_count,
                     materials=[material_json(self.materials[k]) for k in sorted(self.materials)],
+                    material_extensions=[dict(index=k, patch=self.patches[k][0].decode("utf-8"),
+                                              references=self.patches[k][1]) for k in sorted(self.patches)],
                     texture_count=self.textures[min(self.textures)]["desc"]["texture_count"] if self.textures else None,
                     textures=textures, shown=self.shown())
 
     def shown(self):
-        """Spec 15.4: what a receiver shows."""
+        """Spec 15.4 and 18.4: what a receiver shows."""
         done = [k for k in sorted(self.textures) if self.textures[k]["complete"]]
-        materials, waiting, ignored = [], [], []
+        materials, waiting, ignored, waiting_extensions = [], [], [], []
         for k in sorted(self.materials):
-            ok = True
+            needs = []  # (slot, texture): the core references on set 0, then the patch's (18.3)
             for slot, ref in zip(SLOTS, self.materials[k]["refs"]):
                 texture, texcoord, _ = ref
                 if texture == NONE:
@@ -1063,6 +1341,14 @@ class Receiver:
                 if texcoord != 0:
                     ignored.append(dict(material=k, slot=slot, texcoord=texcoord))
                     continue
+                needs.append((slot, texture))
+            ok = True
+            if k in self.patches:  # applied once it arrived, whatever the bit says (18.4)
+                needs += [(r["path"], r["texture"]) for r in self.patches[k][1]]
+            elif self.materials[k]["has_extensions"]:
+                ok = False
+                waiting_extensions.append(k)
+            for slot, texture in needs:
                 if texture in done:
                     continue
                 ok = False
@@ -1083,7 +1369,8 @@ class Receiver:
             if reaches:
                 mesh = self.nodes[k]["mesh"]
                 nodes.append(dict(index=k, mesh=mesh if mesh != NONE and mesh in self.meshes else None))
-        return dict(textures=done, materials=materials, waiting=waiting, ignored_references=ignored, nodes=nodes)
+        return dict(textures=done, materials=materials, waiting=waiting, waiting_extensions=waiting_extensions,
+                    ignored_references=ignored, nodes=nodes)
 
 
 def objects_json(r):
@@ -1115,13 +1402,13 @@ def decode(buf):
     err, packets, damaged = read_container(buf)
     out = dict(file_size=len(buf), container_error=err, damaged=damaged)
     r = Receiver()
-    old = Receiver(know_11=False)  # a format 1.0 decoder: the 1.1 types are unknown to it (spec 9)
+    old = Receiver(know_11=False)  # a format 1.0 decoder: the later types are unknown to it (spec 9)
     plist = []
     for offset, size, h in packets:
         result = r.add(h, offset)
         old.add(h, offset)
         name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or KNOWN_12.get(h["type"]) or \
-            "UNKNOWN(0x%02X)" % h["type"]
+            KNOWN_13.get(h["type"]) or "UNKNOWN(0x%02X)" % h["type"]
         plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
                           flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
                           object_id=h["object_id"], payload_length=h["payload_length"], result=result))
@@ -1130,7 +1417,7 @@ def decode(buf):
     info = lambda rx: dict(rx.info, object_count=rx.object_count) if rx.info is not None else None
     out["stream_info"] = info(r)
     out["objects"] = objects_json(r)
-    any_scene = any(h["type"] in KNOWN_11 for _, _, h in packets)
+    any_scene = any(h["type"] in SCENE_TYPES for _, _, h in packets)
     out["scene"] = r.scene_json() if any_scene else None
     if any_scene:
         out["as_1_0"] = dict(counters=old.counters, newest_minor=old.newest_minor,

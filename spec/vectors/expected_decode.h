@@ -1,4 +1,4 @@
-// The expected decode of a conformance vector as JSON: what a format 1.2 decoder makes of a container
+// The expected decode of a conformance vector as JSON: what a format 1.3 decoder makes of a container
 // file (spec/format.md sections 10 and 11). The vector generator (make_vectors.cpp) writes it next to
 // each .ellc; tests/test_conformance.cpp recomputes it with the library and compares. The JSON layout
 // is described in spec/vectors/README.md.
@@ -197,9 +197,10 @@ inline nlohmann::json counters_json(const ReceiveCounters& c) {
 
 // ---- Format 1.1 scene (spec section 15) ----
 
+// The scene types of format 1.1 (SCENE, MATERIAL, TEXTURE_FRAGMENT) and 1.3 (MATERIAL_EXTENSIONS).
 inline bool is_scene_type(uint8_t type) {
     return type == uint8_t(PacketType::Scene) || type == uint8_t(PacketType::Material) ||
-           type == uint8_t(PacketType::TextureFragment);
+           type == uint8_t(PacketType::TextureFragment) || type == uint8_t(PacketType::MaterialExtensions);
 }
 
 inline nlohmann::json none_or(uint16_t v) { return v == kNone ? nlohmann::json(nullptr) : nlohmann::json(v); }
@@ -254,7 +255,21 @@ inline nlohmann::json material_json(const Material& m) {
             {"metallic", shortest(m.metallic)},
             {"roughness", shortest(m.roughness)},
             {"emissive", floats(m.emissive.data(), 3)},
-            {"textures", textures}};
+            {"textures", textures},
+            {"has_extensions", m.has_extensions}};
+}
+
+// Format 1.3 (spec 18.2, 18.3): the texture references of a received patch, in document order.
+inline std::vector<PatchTextureReference> patch_references(const MaterialExtensions& e) {
+    std::vector<PatchTextureReference> refs;
+    if (check_material_patch(e.patch, &refs) != Error::Ok) refs.clear();  // a received patch passed the check
+    return refs;
+}
+
+inline nlohmann::json material_extensions_json(const MaterialExtensions& e) {
+    nlohmann::json refs = nlohmann::json::array();
+    for (const PatchTextureReference& r : patch_references(e)) refs.push_back({{"path", r.path}, {"texture", r.texture}});
+    return {{"index", e.index}, {"patch", e.patch}, {"references", refs}};
 }
 
 inline nlohmann::json texture_json(const ReceivedStream::ReceivedTexture& t) {
@@ -279,19 +294,31 @@ inline nlohmann::json texture_json(const ReceivedStream::ReceivedTexture& t) {
             {"image_digest", t.complete ? nlohmann::json(bytes_digest(t.image)) : nlohmann::json(nullptr)}};
 }
 
-// What a receiver shows of the scene (spec 15.4): complete textures; materials whose texture
-// references on set 0 are all complete (the others wait, named with how much of the texture
-// arrived); references on other sets ignored; nodes whose parent chain reaches a root through
-// arrived nodes, with their mesh when its record arrived.
+// What a receiver shows of the scene (spec 15.4, 18.4): complete textures; materials whose texture
+// references on set 0 and whose patch's texture references are all complete, and whose patch arrived
+// when their has_extensions bit says they have one (the others wait: for a texture, named by slot or
+// patch path with how much of the texture arrived, or for their patch); references on other sets
+// ignored; nodes whose parent chain reaches a root through arrived nodes, with their mesh when its
+// record arrived.
 inline nlohmann::json shown_json(const ReceivedStream& s) {
     using nlohmann::json;
     json textures = json::array(), materials = json::array(), waiting = json::array(), ignored = json::array(),
-         nodes = json::array();
+         nodes = json::array(), waiting_extensions = json::array();
     for (const auto& [index, t] : s.textures())
         if (t.complete) textures.push_back(index);
     for (const auto& [index, m] : s.materials()) {
         bool shown = true;
         auto refs = texture_refs(m);
+        auto wait_for = [&](const std::string& slot, uint16_t texture) {
+            auto t = s.textures().find(texture);
+            if (t != s.textures().end() && t->second.complete) return;
+            shown = false;
+            waiting.push_back({{"material", index},
+                               {"slot", slot},
+                               {"texture", texture},
+                               {"received_bytes", t == s.textures().end() ? 0 : t->second.received_bytes},
+                               {"image_size", t == s.textures().end() ? json(nullptr) : json(t->second.info.image_size)}});
+        };
         for (size_t k = 0; k < refs.size(); ++k) {
             const TextureRef& r = *refs[k];
             if (r.texture == kNone) continue;
@@ -299,14 +326,16 @@ inline nlohmann::json shown_json(const ReceivedStream& s) {
                 ignored.push_back({{"material", index}, {"slot", kTextureSlots[k]}, {"texcoord", r.texcoord}});
                 continue;
             }
-            auto t = s.textures().find(r.texture);
-            if (t != s.textures().end() && t->second.complete) continue;
+            wait_for(kTextureSlots[k], r.texture);
+        }
+        // Format 1.3 (spec 18.4): the patch, when it arrived (also without the bit), its texture
+        // references in document order, named by their path (spec 18.3); a material whose bit says
+        // it has a patch that has not arrived waits for it.
+        if (auto e = s.material_extensions().find(index); e != s.material_extensions().end()) {
+            for (const PatchTextureReference& r : patch_references(e->second)) wait_for(r.path, r.texture);
+        } else if (m.has_extensions) {
             shown = false;
-            waiting.push_back({{"material", index},
-                               {"slot", kTextureSlots[k]},
-                               {"texture", r.texture},
-                               {"received_bytes", t == s.textures().end() ? 0 : t->second.received_bytes},
-                               {"image_size", t == s.textures().end() ? json(nullptr) : json(t->second.info.image_size)}});
+            waiting_extensions.push_back(index);
         }
         if (shown) materials.push_back(index);
     }
@@ -328,12 +357,13 @@ inline nlohmann::json shown_json(const ReceivedStream& s) {
         nodes.push_back({{"index", index}, {"mesh", has_mesh ? json(n.mesh) : json(nullptr)}});
     }
     return {{"textures", textures}, {"materials", materials}, {"waiting", waiting},
-            {"ignored_references", ignored}, {"nodes", nodes}};
+            {"waiting_extensions", waiting_extensions}, {"ignored_references", ignored}, {"nodes", nodes}};
 }
 
 inline nlohmann::json scene_json(const ReceivedStream& s) {
     using nlohmann::json;
-    json nodes = json::array(), meshes = json::array(), materials = json::array(), textures = json::array();
+    json nodes = json::array(), meshes = json::array(), materials = json::array(), textures = json::array(),
+         extensions = json::array();
     for (const auto& [index, n] : s.scene_nodes()) nodes.push_back(node_json(n));
     for (const auto& [index, m] : s.scene_meshes()) {
         json prims = json::array();
@@ -341,14 +371,20 @@ inline nlohmann::json scene_json(const ReceivedStream& s) {
         meshes.push_back({{"index", m.index}, {"name", replace_invalid_utf8(m.name)}, {"primitives", prims}});
     }
     for (const auto& [index, m] : s.materials()) materials.push_back(material_json(m));
+    for (const auto& [index, e] : s.material_extensions()) extensions.push_back(material_extensions_json(e));
     for (const auto& [index, t] : s.textures()) textures.push_back(texture_json(t));
     const bool scene = s.has_scene() || !s.scene_nodes().empty() || !s.scene_meshes().empty();
     return {{"node_count", scene ? json(s.scene_node_count()) : json(nullptr)},
             {"mesh_count", scene ? json(s.scene_mesh_count()) : json(nullptr)},
             {"nodes", nodes},
             {"meshes", meshes},
-            {"material_count", s.materials().empty() ? json(nullptr) : json(s.materials().begin()->second.material_count)},
+            // That of the materials and (format 1.3) patches held: all agree (spec 15.2, 18.2).
+            {"material_count", !s.materials().empty() ? json(s.materials().begin()->second.material_count)
+                               : !s.material_extensions().empty()
+                                   ? json(s.material_extensions().begin()->second.material_count)
+                                   : json(nullptr)},
             {"materials", materials},
+            {"material_extensions", extensions},
             {"texture_count",
              s.textures().empty() ? json(nullptr) : json(s.textures().begin()->second.info.texture_count)},
             {"textures", textures},
@@ -444,7 +480,7 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     out["container_error"] = contents.header_error == Error::Ok ? json(nullptr) : json(reason_name(contents.header_error));
 
     ReceivedStream stream;
-    // A format 1.0 decoder's view: the 1.1 scene types are unknown to it (spec section 9).
+    // A format 1.0 decoder's view: the 1.1 and 1.3 scene types are unknown to it (spec section 9).
     ReceivedStream as_1_0;
     bool any_scene_packet = false;
     json packets = json::array();
@@ -494,7 +530,8 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     out["newest_minor"] = stream.newest_minor();
     out["stream_info"] = stream.info() ? stream_info_json(*stream.info(), stream.objects().size()) : json(nullptr);
     out["objects"] = objects_json(stream);
-    // Format 1.1: present when the file holds any SCENE, MATERIAL or TEXTURE_FRAGMENT packet.
+    // Format 1.1: present when the file holds any SCENE, MATERIAL, TEXTURE_FRAGMENT or (format 1.3)
+    // MATERIAL_EXTENSIONS packet.
     out["scene"] = any_scene_packet ? scene_json(stream) : json(nullptr);
     if (any_scene_packet) {
         json info_1_0 = as_1_0.info() ? stream_info_json(*as_1_0.info(), as_1_0.objects().size()) : json(nullptr);

@@ -1825,6 +1825,347 @@ void repair_vectors(Writer& w) {
     }
 }
 
+// ------------------------------------------------------------------------------------------------
+// Format 1.3: material extensions (MATERIAL_EXTENSIONS, spec 18). The car of the scene vectors with a
+// third texture (a clearcoat map) and a JSON patch on each material, at packet size 400 so that the
+// patches fit: MATERIAL packets say 1.1 with flags bit 0 set, MATERIAL_EXTENSIONS packets say 1.3.
+
+// Material 0 (the paint): a clearcoat with its own texture (2), an emissive strength, and a texture
+// transform on its core base colour texture.
+const std::string kPatchPaint =
+    R"({"extensions":{"KHR_materials_clearcoat":{"clearcoatFactor":0.8,"clearcoatTexture":{"index":2},)"
+    R"("clearcoatRoughnessFactor":0.2},"KHR_materials_emissive_strength":{"emissiveStrength":4.5}},)"
+    R"("pbrMetallicRoughness":{"baseColorTexture":{"extensions":{"KHR_texture_transform":{"offset":[0.25,0],)"
+    R"("rotation":0.5,"scale":[2,2]}}}}})";
+// Material 1 (the rubber): an index of refraction, a specular colour texture (0) with an explicit
+// texCoord 0, and a texture transform (texCoord 0) on its core normal texture.
+const std::string kPatchRubber =
+    R"({"extensions":{"KHR_materials_ior":{"ior":1.45},"KHR_materials_specular":{"specularFactor":0.5,)"
+    R"("specularColorTexture":{"index":0,"texCoord":0}}},"normalTexture":{"extensions":{"KHR_texture_transform":)"
+    R"({"offset":[0.5,0],"scale":[4,4],"texCoord":0}}}})";
+
+// A patch that uses the corners of spec 18.2's grammar and still is well formed: whitespace of every
+// kind, escapes (\u00e9, a surrogate pair, the short escapes, \u0000), raw UTF-8, a member name with
+// an escape, numbers at the limits (1.7976931348623157e308 is finite, 1e-400 rounds to 0), nesting
+// 32 deep, a core texture info for a slot without texture, texture references inside an array, with
+// an escaped name, and inside another reference (document order is not breadth-first), and objects
+// that are not texture references (a lower-case "texture", a "...Texture" without "index").
+std::string syntax_patch() {
+    std::string nested;
+    for (int i = 0; i < 29; ++i) nested += "[";  // depth 4 .. 32 (spec 18.2 rule 7)
+    nested += "1";
+    for (int i = 0; i < 29; ++i) nested += "]";
+    return std::string("{\r\n\t\"normalTexture\" : {\"extensions\":{\"KHR_texture_transform\":{\"offset\":[0.5,-0.25],"
+                       "\"scale\":[4,4],\"texCoord\":0}}},\r\n") +
+           "  \"occlusionTexture\":{\"extensions\":{}},\n"
+           "  \"extensions\" : {\n"
+           "    \"ELLICAST_vector_test\" : {\n"
+           "      \"text\": \"caf\\u00e9 caf\\u00C9 caf\xC3\xA9 \\ud83d\\ude97 \xF0\x9F\x9A\x97 \\\"q\\\" \\\\ \\/ "
+           "\\b\\f\\n\\r\\t \\u0000 \\u001f\",\n"
+           "      \"caf\\u00e9\" : \"a member name with an escape\",\n"
+           "      \"caf\xC3\xA9 2\" : true ,\n"
+           "      \"numbers\": [0, -0, 1.5, -2.25e-3, 1E+2, 6.02e23, 1e-400, 1.7976931348623157e308, false, null],\n"
+           "      \"empty\": [{}, [], \"\"],\n"
+           "      \"nested\": " + nested + ",\n"
+           "      \"layers\": [\n"
+           "        {\"weight\": 0.5},\n"
+           "        {\"colorTexture\": {\"index\": 2, \"texCoord\": 0, \"extensions\": {\"KHR_texture_transform\": "
+           "{\"rotation\": 1.5707964}}}}\n"
+           "      ],\n"
+           "      \"layer\\u0054exture\": {\"index\": 0, \"extensions\": {\"ELLICAST_inner\": {\"innerTexture\": "
+           "{\"index\": 1}}}},\n"
+           "      \"lowercasetexture\": {\"index\": \"not a reference\"},\n"
+           "      \"sourceTexture\": {\"source\": 7, \"texCoord\": 1},\n"
+           "      \"note\": {\"texCoord\": 1}\n"
+           "    }\n"
+           "  }\n"
+           "}\n";
+}
+
+SceneDescription extensions_scene() {
+    SceneDescription s = make_scene();
+    SceneDescription::Texture clearcoat;
+    clearcoat.info.image_type = ImageType::Png;
+    clearcoat.info.mag_filter = 9728;  // NEAREST
+    clearcoat.image = make_png(10, 10, 43);
+    s.textures.push_back(clearcoat);
+    s.materials[0].extensions = kPatchPaint;
+    s.materials[1].extensions = kPatchRubber;
+    return s;
+}
+
+SceneStream make_extensions_stream(const SceneDescription& scene, uint16_t packet_size) {
+    SceneStream s = make_scene_stream(scene, packet_size);
+    if (!s.scene.extensions_too_large.empty()) {
+        std::cerr << "make_vectors: a patch does not fit its packet\n";
+        std::exit(1);
+    }
+    return s;
+}
+
+// `base` with `from` (which occurs exactly once) replaced by `to`: a patch with one defect.
+std::string replaced(const std::string& base, const std::string& from, const std::string& to) {
+    const size_t at = base.find(from);
+    if (at == std::string::npos || base.find(from, at + 1) != std::string::npos) {
+        std::cerr << "make_vectors: '" << from << "' is not in the patch exactly once\n";
+        std::exit(1);
+    }
+    return base.substr(0, at) + to + base.substr(at + from.size());
+}
+
+std::vector<uint8_t> extensions_payload(uint16_t index, uint16_t count, const std::string& patch) {
+    std::vector<uint8_t> p = {uint8_t(index), uint8_t(index >> 8), uint8_t(count), uint8_t(count >> 8)};
+    p.insert(p.end(), patch.begin(), patch.end());
+    return p;
+}
+
+// The position in `packets` of the packet of `type` whose payload starts with the u16 `index`.
+size_t find_packet(const Packets& packets, PacketType type, uint16_t index) {
+    for (size_t i = 0; i < packets.size(); ++i)
+        if (packets[i][6] == uint8_t(type) && get16(packets[i], kHeaderSize) == index) return i;
+    std::cerr << "make_vectors: no such packet\n";
+    std::exit(1);
+}
+
+void extensions_vectors(Writer& w) {
+    const SceneDescription scene = extensions_scene();
+    const SceneStream base = make_extensions_stream(scene, 400);
+    const Packets stream = base.all();
+    const size_t H = kHeaderSize;
+    const char* kCar =
+        "the car of valid/scene_extensions (format 1.3: 2 materials with a MATERIAL_EXTENSIONS patch each, 3 "
+        "textures, packet size 400)";
+    w.write("valid", "scene_extensions",
+            "format 1.3 (spec 18): the car at packet size 400 with a third texture (a 10 x 10 PNG clearcoat map, 378 "
+            "bytes in 2 fragments) and each MATERIAL (flags bit 0 has_extensions set) followed by its "
+            "MATERIAL_EXTENSIONS patch: the paint with KHR_materials_clearcoat (clearcoatTexture: texture 2), "
+            "KHR_materials_emissive_strength and KHR_texture_transform on its core base colour texture; the rubber "
+            "with KHR_materials_ior, KHR_materials_specular (specularColorTexture: texture 0, texCoord 0) and "
+            "KHR_texture_transform (texCoord 0) on its core normal texture; every texture complete, every material "
+            "shown with its patch",
+            stream);
+
+    // ---- unusual ----
+    {
+        Packets first, rest;
+        for (const Packet& p : stream)
+            (p[6] == uint8_t(PacketType::MaterialExtensions) ? first : rest).push_back(p);
+        first.insert(first.end(), rest.begin(), rest.end());
+        w.write("unusual", "scene_extensions_before_material",
+                std::string(kCar) +
+                    " with both MATERIAL_EXTENSIONS packets sent first, before the STREAM_INFO and their MATERIAL "
+                    "packets: each patch is accepted and kept (its material_count fixes the table size the MATERIAL "
+                    "packets are then checked against, spec 18.2) and applied once its material arrives (spec 18.4); "
+                    "decodes to the scene of valid/scene_extensions",
+                first);
+    }
+    {
+        Packets sent = stream;
+        Packet again = stream[find_packet(stream, PacketType::MaterialExtensions, 0)];
+        sent.push_back(again);
+        Packet renumbered = stream[find_packet(stream, PacketType::MaterialExtensions, 1)];
+        restamp_packet(renumbered, 900);
+        sent.push_back(renumbered);
+        sent.push_back(again);
+        w.write("unusual", "scene_extensions_repeated",
+                std::string(kCar) +
+                    " with material 0's patch sent twice more (byte-identical copies) and material 1's once more "
+                    "with a new sequence number: the same bytes again are duplicates (spec 18.2); decodes to the "
+                    "scene of valid/scene_extensions",
+                sent);
+    }
+    {
+        SceneDescription s = scene;
+        s.materials[1].extensions = syntax_patch();
+        const SceneStream t = make_extensions_stream(s, 1200);
+        w.write("unusual", "scene_extensions_json_syntax",
+                "the car of valid/scene_extensions at packet size 1200, material 1's patch replaced by one that uses "
+                "the corners of spec 18.2's grammar and is well formed: CR LF, tabs and spaces around every token; "
+                "escapes \\u00e9, \\u00C9, a surrogate pair (U+1F697), the short escapes and \\u0000, besides raw "
+                "UTF-8; a member name written with an escape; numbers -0, 1E+2, 1.7976931348623157e308 (finite) and "
+                "1e-400 (rounds to 0, finite); arrays nested to depth 32 (rule 7's limit); an occlusionTexture "
+                "texture info for a slot the MATERIAL has no texture for (its extensions are left out, spec 18.4); "
+                "texture references in document order (spec 18.3): layers/1/colorTexture (in an array: its position "
+                "in the path), then layerTexture (its name written with \\u0054), then the innerTexture inside it "
+                "(depth-first, not breadth-first); and objects that are not texture references (a lower-case "
+                "'texture' member, a 'sourceTexture' without 'index', whose texCoord 1 is no texCoord of a "
+                "reference); every texture complete, material 1 shown",
+                t.all());
+    }
+
+    // ---- faulty: no rejection, but the stream does not conform (spec 18.4) ----
+    {
+        Packets sent = stream;
+        // Texture 2's second fragment (the last packet of the stream).
+        const size_t at = find_packet(sent, PacketType::TextureFragment, 2);
+        sent.erase(sent.begin() + long(at) + 1);
+        w.write("faulty", "scene_extensions_texture_incomplete",
+                std::string(kCar) +
+                    " without the second fragment of texture 2 (bytes 348..377 of 378): no rejection; material 0's "
+                    "patch refers to texture 2 (extensions/KHR_materials_clearcoat/clearcoatTexture), so material 0 "
+                    "is not shown and waits for it with that path as its slot (spec 18.4: 'a material whose patch has "
+                    "arrived and refers to a texture that is not complete: the material is not shown'); material 1 "
+                    "is shown",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        sent.erase(sent.begin() + long(find_packet(sent, PacketType::MaterialExtensions, 0)));
+        w.write("faulty", "scene_extensions_lost",
+                std::string(kCar) +
+                    " without material 0's MATERIAL_EXTENSIONS packet: no rejection; material 0's has_extensions bit "
+                    "is set and its patch has not arrived, so it is not shown (waiting_extensions; spec 18.4: 'the "
+                    "material is not shown, as if it had not arrived'); the stream is not complete (18.4)",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        Packet& m = sent[find_packet(sent, PacketType::Material, 1)];
+        m[H + 7] = 0;
+        reseal(m);
+        w.write("faulty", "scene_extensions_without_flag",
+                std::string(kCar) +
+                    " with material 1's MATERIAL flags byte 0 (has_extensions not set, resealed) while its patch is "
+                    "sent: no rejection; the patch is applied as if the bit were set (spec 18.4: 'a patch for a "
+                    "material whose has_extensions bit is not set: the patch is applied as if the bit were set ... "
+                    "(the stream does not conform)'); material 1 shown",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        const size_t at = find_packet(sent, PacketType::MaterialExtensions, 0);
+        sent[at] = with_payload(sent[at], extensions_payload(0, 2, replaced(kPatchPaint, R"("index":2)", R"("index":65534)")));
+        w.write("faulty", "scene_extensions_texture_past_table",
+                std::string(kCar) +
+                    " with material 0's clearcoatTexture index 65534 (the largest value spec 18.2 allows, resealed) in "
+                    "a table of 3 textures: well formed, no rejection; material 0 waits for texture 65534, of which "
+                    "nothing can arrive (spec 18.4: every texture reference must name a texture below texture_count "
+                    "that is complete, else the stream does not conform)",
+                sent);
+    }
+
+    // ---- faulty: rejections. Material 0's MATERIAL_EXTENSIONS packet replaced (same header, length and
+    // checksum recomputed), or a packet added after the stream. Material 0 then waits for its patch. ----
+    auto with_patch0_payload = [&](const std::vector<uint8_t>& payload) {
+        Packets sent = stream;
+        const size_t at = find_packet(sent, PacketType::MaterialExtensions, 0);
+        sent[at] = with_payload(sent[at], payload);
+        return sent;
+    };
+    auto bad = [&](const std::string& name, const std::string& what, const std::string& patch) {
+        w.write("faulty", "scene_extensions_" + name,
+                "material 0's MATERIAL_EXTENSIONS patch " + what +
+                    " (resealed): rejected, malformed payload (spec 18.2); material 0's has_extensions bit is set and "
+                    "its patch never arrives, so it waits for it (18.4)",
+                with_patch0_payload(extensions_payload(0, 2, patch)));
+    };
+    const std::string P = kPatchPaint;
+    {
+        const std::string patch = "{";
+        w.write("faulty", "scene_extensions_short",
+                "material 0's MATERIAL_EXTENSIONS payload is 5 bytes: index, material_count and the patch '{' "
+                "(resealed): rejected, malformed payload (spec 18.2 rule 1: 'shorter than 6 bytes'); material 0 "
+                "waits for its patch",
+                with_patch0_payload(extensions_payload(0, 2, patch)));
+    }
+    w.write("faulty", "scene_extensions_index_out_of_range",
+            "material 0's MATERIAL_EXTENSIONS says index 2 in a table of 2 materials (resealed): rejected, malformed "
+            "payload (spec 18.2 rule 1: 'index >= material_count'); material 0 waits for its patch",
+            with_patch0_payload(extensions_payload(2, 2, P)));
+    bad("not_utf8", "has the UTF-8 encoding of a surrogate (ED A0 80) in a member name (rule 2: not well-formed UTF-8)",
+        replaced(P, "clearcoatRoughnessFactor", "clearcoat\xED\xA0\x80RoughnessFactor"));
+    bad("byte_order_mark", "starts with a byte order mark EF BB BF (rule 2: 'a byte order mark counts as text, and is "
+                           "not JSON')",
+        "\xEF\xBB\xBF" + P);
+    bad("second_value", "is followed by a second JSON value '{}' (rule 3: 'no second value after the first')", P + "{}");
+    bad("trailing_garbage", "is followed by the bytes ' x' (rule 3: not one JSON text)", P + " x");
+    bad("trailing_comma", "has a trailing comma in an object, '4.5,}' (rule 3: 'no trailing commas')",
+        replaced(P, R"("emissiveStrength":4.5})", R"("emissiveStrength":4.5,})"));
+    bad("nan", "has NaN as the clearcoatFactor (rule 3: 'no NaN or Infinity')",
+        replaced(P, R"("clearcoatFactor":0.8)", R"("clearcoatFactor":NaN)"));
+    bad("comment", "has a comment /* paint */ where whitespace may stand (rule 3: 'no comments')",
+        replaced(P, R"({"extensions":{"KHR_materials_clearcoat")", R"({"extensions":/* paint */{"KHR_materials_clearcoat")"));
+    bad("top_level_array", "is wrapped in an array, [{...}] (rule 3: 'its value is not an object')",
+        "[" + P + "]");
+    bad("control_character", "has an unescaped tab (09) inside a member name (rule 4: 'an unescaped character below "
+                             "U+0020'; a tab is whitespace only between tokens)",
+        replaced(P, "clearcoatFactor", "clearcoat\tFactor"));
+    bad("lone_high_surrogate", "has the escape \\ud83d at the end of a member name, not followed by a low surrogate "
+                               "escape (rule 4)",
+        replaced(P, R"("clearcoatRoughnessFactor")", R"("clearcoatRoughnessFactor\ud83d")"));
+    bad("lone_low_surrogate", "has the escape \\ude97 at the start of a member name, not preceded by a high surrogate "
+                              "escape (rule 4)",
+        replaced(P, R"("clearcoatRoughnessFactor")", R"("\ude97clearcoatRoughnessFactor")"));
+    bad("number_infinite", "has the emissiveStrength 1e400, infinite once rounded to binary64 (rule 5)",
+        replaced(P, "4.5", "1e400"));
+    bad("duplicate_name", "has a second top-level member \"ext\\u0065nsions\", which is \"extensions\" once its escape is "
+                          "decoded (rule 6: 'names compared after their escapes are decoded')",
+        P.substr(0, P.size() - 1) + R"(,"ext\u0065nsions":{}})");
+    {
+        std::string nested;
+        for (int i = 0; i < 30; ++i) nested += "[";
+        nested += "1";
+        for (int i = 0; i < 30; ++i) nested += "]";
+        bad("depth_33", "has arrays nested 30 deep inside the clearcoat extension object, which is at depth 3: depth 33 "
+                        "(rule 7: 'nest more than 32 deep')",
+            replaced(P, R"("clearcoatFactor":0.8,)", R"("clearcoatFactor":0.8,"nested":)" + nested + ","));
+    }
+    bad("outside_shape", "has a top-level member \"extras\" (rule 8: 'at the top level, only the members extensions, "
+                         "pbrMetallicRoughness, normalTexture, occlusionTexture, emissiveTexture')",
+        P.substr(0, P.size() - 1) + R"(,"extras":{}})");
+    bad("extension_not_object", "has the extension KHR_materials_emissive_strength as an array (rule 8: 'every member of "
+                                "every extensions object ... has an object as its value')",
+        replaced(P, R"({"emissiveStrength":4.5})", "[4.5]"));
+    bad("index_leading_zero", "has the clearcoatTexture index 02 (rule 8: 'digits only, 0 or without leading zeros'; "
+                              "RFC 8259's grammar, rule 3, refuses it too)",
+        replaced(P, R"("index":2)", R"("index":02)"));
+    bad("index_65535", "has the clearcoatTexture index 65535 (rule 8: 'of value at most 65534')",
+        replaced(P, R"("index":2)", R"("index":65535)"));
+    bad("index_fraction", "has the clearcoatTexture index 2.0 (rule 8: 'a number written with digits only')",
+        replaced(P, R"("index":2)", R"("index":2.0)"));
+    bad("index_exponent", "has the clearcoatTexture index 2e0 (rule 8: 'a number written with digits only')",
+        replaced(P, R"("index":2)", R"("index":2e0)"));
+    bad("texcoord_1", "has texCoord 1 on its clearcoatTexture reference (rule 8: 'a member texCoord of a texture "
+                      "reference ... MUST be the number written 0')",
+        replaced(P, R"({"index":2})", R"({"index":2,"texCoord":1})"));
+    bad("transform_texcoord_1", "has texCoord 1 in the KHR_texture_transform of its base colour texture info (rule 8: "
+                                "'a member texCoord of an object that is the value of a member named "
+                                "KHR_texture_transform MUST be the number written 0')",
+        replaced(P, R"("scale":[2,2]})", R"("scale":[2,2],"texCoord":1})"));
+    w.write("faulty", "scene_extensions_count_contradicts",
+            "material 0's MATERIAL_EXTENSIONS says material_count 3 where the MATERIAL packets say 2 (resealed): "
+            "rejected, stream mismatch (spec 18.2: 'All MATERIAL and MATERIAL_EXTENSIONS packets of a stream carry "
+            "the same material_count'); material 0 waits for its patch",
+            with_patch0_payload(extensions_payload(0, 3, P)));
+    {
+        Packets sent = stream;
+        Packet p = sent[find_packet(sent, PacketType::MaterialExtensions, 0)];
+        p = with_payload(p, extensions_payload(0, 2, replaced(P, R"("clearcoatFactor":0.8)", R"("clearcoatFactor": 0.8)")));
+        restamp_packet(p, 999);
+        sent.push_back(p);
+        w.write("faulty", "scene_extensions_contradicting_patch",
+                std::string(kCar) +
+                    ", then material 0's patch again with one space added after a colon (the same JSON value, other "
+                    "bytes): rejected, stream mismatch (spec 18.2: 'a patch received twice is the same bytes; "
+                    "otherwise stream mismatch'); the first patch stays",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        Packet p = sent[find_packet(sent, PacketType::Material, 0)];
+        p[H + 7] = 0;
+        reseal(p);
+        restamp_packet(p, 999);
+        sent.push_back(p);
+        w.write("faulty", "scene_extensions_flag_contradicts",
+                std::string(kCar) +
+                    ", then material 0's MATERIAL again with flags bit 0 (has_extensions) cleared: rejected, stream "
+                    "mismatch (spec 18.1: 'two records of one material that differ in it are a stream mismatch'); the "
+                    "first material 0 stays",
+                sent);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -1840,6 +2181,7 @@ int main(int argc, char** argv) {
     scene_vectors(w);
     signed_vectors(w);
     repair_vectors(w);
+    extensions_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
