@@ -93,7 +93,7 @@ std::vector<uint8_t> encode_stream_info_payload(const StreamInfo& info, uint16_t
         put_u32(out, o.point_count);
         put_u8(out, static_cast<uint8_t>(o.kind));
         put_u8(out, o.attributes);
-        put_u16(out, 0);
+        put_u16(out, o.exact_layer ? kEntryExactLayer : 0);  // flags (spec 19.1); the other bits reserved
         for (float f : o.texcoord_origin) put_f32(out, f);
         for (float f : o.texcoord_scale) put_f32(out, f);
     }
@@ -133,6 +133,7 @@ Error decode_stream_info_payload(std::span<const uint8_t> payload, StreamInfoPar
         o.point_count = get_u32(e + 20);
         o.kind = static_cast<ObjectKind>(e[24]);
         o.attributes = e[25];
+        o.exact_layer = (get_u16(e + 26) & kEntryExactLayer) != 0 && o.kind != ObjectKind::PointSet;
         for (int k = 0; k < 2; ++k) o.texcoord_origin[k] = get_f32(e + 28 + 4 * k);
         for (int k = 0; k < 2; ++k) o.texcoord_scale[k] = get_f32(e + 36 + 4 * k);
     }

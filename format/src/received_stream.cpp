@@ -178,6 +178,8 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
     ReceivedObject& object = objects_[id];
     const ObjectInfo& oi = *object.info;
     if (packet.header.type == static_cast<uint8_t>(PacketType::PointsRepair)) return take_repair(object, packet, name, where);
+    if (packet.header.type == static_cast<uint8_t>(PacketType::Connectivity))
+        return take_connectivity(object, packet, name, where);
     bool news = false;
     if (packet.header.type == static_cast<uint8_t>(PacketType::Ellipsoids)) {
         EllipsoidBatch batch;
@@ -209,6 +211,72 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
     }
     if (news) ++counters_.accepted;
     else ++counters_.duplicates;
+    return Error::Ok;
+}
+
+// Format 1.3 (spec 19.1): a piece of an object's coded connectivity, kept like a texture's bytes.
+Error ReceivedStream::take_connectivity(ReceivedObject& object, const PacketView& packet, const std::string& name,
+                                        uint64_t where) {
+    const ObjectInfo& oi = *object.info;
+    ConnectivityPiece piece;
+    if (decode_connectivity_payload(packet.payload, piece) != Error::Ok || oi.kind == ObjectKind::PointSet ||
+        uint64_t(piece.triangle_count) > 8 * uint64_t(oi.point_count))
+        return reject(where, Error::MalformedPayload,
+                      name + ": its triangle count, coded size or piece does not fit the object (spec 19.1)");
+    if (!object.connectivity) {
+        object.connectivity.emplace();
+        object.connectivity->triangle_count = piece.triangle_count;
+        object.connectivity->coded_size = piece.coded_size;
+        object.connectivity->coded_crc = piece.coded_crc;
+    }
+    ReceivedConnectivity& c = *object.connectivity;
+    if (c.triangle_count != piece.triangle_count || c.coded_size != piece.coded_size || c.coded_crc != piece.coded_crc)
+        return reject(where, Error::StreamMismatch, name + ": its triangle count, coded size or CRC contradicts earlier pieces");
+    if (c.complete) {
+        ++counters_.duplicates;
+        return Error::Ok;
+    }
+    const uint32_t begin = piece.offset, end = uint32_t(piece.offset + piece.data.size());
+    std::vector<std::pair<uint32_t, uint32_t>> gaps;
+    uint32_t cursor = begin;
+    auto it = c.pieces.upper_bound(begin);
+    if (it != c.pieces.begin()) --it;
+    for (; it != c.pieces.end() && it->first < end; ++it) {
+        const uint32_t it_end = uint32_t(it->first + it->second.size());
+        if (it_end <= cursor) continue;
+        if (it->first > cursor) gaps.emplace_back(cursor, it->first);
+        cursor = std::max(cursor, it_end);
+    }
+    if (cursor < end) gaps.emplace_back(cursor, end);
+    if (gaps.empty()) {
+        ++counters_.duplicates;
+        return Error::Ok;
+    }
+    // Memory as for textures (spec 15.3): the bytes kept plus kHeldPacketCost per run, under the same cap.
+    uint64_t memory = gaps.size() * kHeldPacketCost;
+    for (auto [a, b] : gaps) memory += b - a;
+    if (texture_bytes_ + memory > limits_.max_texture_bytes)
+        return reject(where, Error::MalformedPayload,
+                      name + ": the stream's textures and connectivity exceed this receiver's " +
+                          std::to_string(limits_.max_texture_bytes) + "-byte memory limit for them");
+    texture_bytes_ += memory;
+    for (auto [a, b] : gaps) {
+        c.pieces.emplace(a, std::vector<uint8_t>(piece.data.begin() + (a - begin), piece.data.begin() + (b - begin)));
+        c.received_bytes += b - a;
+    }
+    if (c.received_bytes == c.coded_size) {
+        std::vector<uint8_t> coded;
+        coded.reserve(c.coded_size);
+        for (const auto& [offset, bytes] : c.pieces) coded.insert(coded.end(), bytes.begin(), bytes.end());
+        c.pieces.clear();
+        c.received_bytes = 0;
+        if (crc32c(coded.data(), coded.size()) != c.coded_crc)
+            return reject(where, Error::StreamMismatch, name + ": the connectivity is complete but its CRC does not match");
+        c.coded = std::move(coded);
+        c.received_bytes = c.coded_size;
+        c.complete = true;
+    }
+    ++counters_.accepted;
     return Error::Ok;
 }
 

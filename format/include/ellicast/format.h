@@ -33,6 +33,7 @@ inline constexpr uint8_t kManifestMinor = 2;
 // 1.3 added MATERIAL_EXTENSIONS (a material's extensions as a JSON patch, spec 18); those packets
 // say 1.3, MATERIAL packets keep saying 1.1 (bit 0 of their flags byte is read whatever they say).
 inline constexpr uint8_t kMaterialExtensionsMinor = 3;
+inline constexpr uint8_t kConnectivityMinor = 3;  // 1.3 added CONNECTIVITY (the exact layer, spec 19)
 // The newest format version this library reads and writes (spec/format.md's version).
 inline constexpr uint8_t kSpecMinor = 3;
 
@@ -61,12 +62,13 @@ enum class PacketType : uint8_t {
     Ellipsoids = 0x02,  // critical: a batch of quantized ellipsoids of one object
     Points = 0x03,      // critical: a batch of bit-packed surface points of one object
     PointsRepair = 0x04,  // 1.2, skippable: a repair symbol of an erasure code over a block of points
+    Connectivity = 0x05,  // 1.3, skippable: a piece of an object's coded original triangles (the exact layer)
     Scene = 0x10,       // 1.1, skippable: nodes (hierarchy, names, transforms) and meshes (object + material)
     Material = 0x11,    // 1.1, skippable: one PBR material
     TextureFragment = 0x12,  // 1.1, skippable: a piece of one texture image, at its byte offset
     MaterialExtensions = 0x13,  // 1.3, skippable: a material's extensions and texture transforms (JSON)
     Manifest = 0x20,    // 1.2, skippable: signed digests of the stream's other packets
-    // 0x00 is invalid; 0x05..0x0F reserved for geometry; 0x14..0x1F reserved for the scene;
+    // 0x00 is invalid; 0x06..0x0F reserved for geometry; 0x14..0x1F reserved for the scene;
     // 0x21..0x7F future; 0x80..0xFF experimental.
 };
 
@@ -212,12 +214,16 @@ struct ObjectInfo {
     uint8_t attributes = 0;                    // kAttr* bits
     std::array<float, 2> texcoord_origin{};    // texture coordinates quantized in
     std::array<float, 2> texcoord_scale{1, 1}; // [origin, origin + scale] per component
+    // Format 1.3 (spec 19.1): the object's exact layer travels in CONNECTIVITY packets (entry flags
+    // bit 8); a receiver waits for it to call the object complete. Never set for a point set.
+    bool exact_layer = false;
 
     bool operator==(const ObjectInfo&) const = default;
     bool has(uint8_t attr) const { return (attributes & attr) == attr; }
     int color_channels() const { return has(kAttrColor) ? (has(kAttrColorAlpha) ? 4 : 3) : 0; }
 };
 
+inline constexpr uint16_t kEntryExactLayer = 0x0100;  // object entry flags (offset 26), format 1.3
 inline constexpr size_t kStreamInfoFixedSize = 32;  // v1.0 stream-level part of STREAM_INFO
 inline constexpr size_t kObjectEntrySize = 44;      // v1.0 object table entry
 
@@ -323,6 +329,10 @@ size_t objects_per_stream_info_packet(size_t packet_size);
 struct ObjectContent {
     std::vector<QuantizedEllipsoid> ellipsoids;  // must match info.objects[i].ellipsoid_count
     std::vector<QuantizedPoint> points;          // in stream order; must match point_count
+    // Format 1.3, the exact layer (spec 19): the coded original triangles (empty: none), sent by
+    // packetize_connectivity, not by packetize_stream.
+    std::vector<uint8_t> connectivity;
+    uint32_t triangle_count = 0;
 };
 
 struct StreamPackets {
@@ -623,7 +633,54 @@ Error packetize_repairs(const StreamInfo& info, uint16_t object_id, const std::v
                         uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out);
 
 // ---------------------------------------------------------------------------------------------
+// The exact layer (format 1.3, spec section 19): an object's original triangles over its points.
+
+using Triangle = std::array<uint32_t, 3>;
+
+// Codes `triangles` (point indices; three distinct points each) over the points at the quantized
+// `positions` (spec 19.2, 19.3): `coded` the bytes, `sent` the triangle list a decoder will
+// decode (the input's triangles, each in the input's winding, in traversal order).
+// MalformedPayload when a triangle is degenerate or out of range, or there is none.
+Error encode_connectivity(const std::vector<std::array<uint32_t, 3>>& positions, const std::vector<Triangle>& triangles,
+                          std::vector<uint8_t>& coded, std::vector<Triangle>& sent);
+// Decodes `triangle_count` triangles over the points at `positions`; MalformedPayload with `why`
+// when the connectivity is unusable (spec 19.2).
+Error decode_connectivity(std::span<const uint8_t> coded, uint32_t triangle_count,
+                          const std::vector<std::array<uint32_t, 3>>& positions, std::vector<Triangle>& out,
+                          std::string& why);
+
+inline constexpr size_t kConnectivityHeaderSize = 16;
+
+// What every CONNECTIVITY packet of an object repeats, and its piece.
+struct ConnectivityPiece {
+    uint32_t triangle_count = 0;
+    uint32_t coded_size = 0;
+    uint32_t coded_crc = 0;
+    uint32_t offset = 0;
+    std::vector<uint8_t> data;
+};
+std::vector<uint8_t> encode_connectivity_payload(const ConnectivityPiece& piece);
+// The object-independent checks of spec 19.1 (a data byte, the piece inside coded_size, a triangle
+// count, coded_size <= 16 * triangle_count + 64).
+Error decode_connectivity_payload(std::span<const uint8_t> payload, ConnectivityPiece& out);
+
+// The CONNECTIVITY packets of object `object_id` (pieces of `coded` at the stream's packet size),
+// numbered from `first_sequence`, saying version 1.3.
+Error packetize_connectivity(const StreamInfo& info, uint16_t object_id, uint32_t triangle_count,
+                             const std::vector<uint8_t>& coded, uint32_t stream_id, uint32_t first_sequence,
+                             std::vector<std::vector<uint8_t>>& out);
+
+// ---------------------------------------------------------------------------------------------
 // Receiving: collects whatever packets arrive, in any order, with duplicates and damage
+
+// An object's connectivity as it arrives (spec 19.1).
+struct ReceivedConnectivity {
+    uint32_t triangle_count = 0, coded_size = 0, coded_crc = 0;
+    std::map<uint32_t, std::vector<uint8_t>> pieces;  // disjoint runs of bytes, emptied once complete
+    uint64_t received_bytes = 0;
+    bool complete = false;        // every byte arrived and the CRC matches
+    std::vector<uint8_t> coded;   // once complete
+};
 
 // A repair block a receiver has heard of (spec 17.4).
 struct ReceivedRepairBlock {
@@ -643,6 +700,7 @@ struct ReceivedObject {
     std::map<uint32_t, QuantizedPoint> points;          // by index
     std::map<uint32_t, ReceivedRepairBlock> repair_blocks;  // by first_index (format 1.2)
     uint64_t points_recovered = 0;                  // points that came through repair packets
+    std::optional<ReceivedConnectivity> connectivity;  // format 1.3, once a CONNECTIVITY packet was taken
 };
 
 struct Rejection {
@@ -742,6 +800,7 @@ private:
     std::optional<Rejection> first_stream_info_rejection_;
     Error take_object_packet(const PacketView& packet, uint64_t where);
     Error take_repair(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
+    Error take_connectivity(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     // Counts newly held points [first, first + count) in the object's repair blocks and recovers the
     // blocks that can be (spec 17.4).
     void note_new_points(ReceivedObject& object, const std::vector<uint32_t>& indices);
@@ -771,6 +830,11 @@ private:
     std::map<uint16_t, ReceivedTexture> textures_;
     size_t texture_bytes_ = 0;
 };
+
+// The exact triangle list of object `object` (spec 19.2, 19.4): Ok when every point of it and its
+// whole connectivity are held and it decodes; Truncated (with `why`) while something is missing;
+// MalformedPayload (with `why`) when the connectivity is unusable.
+Error exact_triangles(const ReceivedStream& stream, size_t object, std::vector<Triangle>& out, std::string& why);
 
 // For a validator (spec 11.5, 17.4): whether a POINTS_REPAIR packet's symbol is its row of the code
 // over the points `stream` holds. Ok when it is, or when the stream does not hold every point of the

@@ -1,0 +1,434 @@
+// The exact layer (format 1.3, spec section 19): an object's original triangles as a range-coded
+// gate traversal over its points. Each new corner is named by its rank among the points nearest to
+// the parallelogram prediction (a k-d tree finds them), so a triangle costs a few adaptive bits and
+// the order of the points (chosen for spreading, section 7.2) costs nothing.
+//
+// Both directions run the same loop (spec 19.2): the encoder decides at each gate what the decoder
+// will read there. Work is linear in the triangles (at most 4 * triangle_count steps, each a k-nearest
+// query), memory in the triangles and points.
+#include "ellicast/format.h"
+
+#include <algorithm>
+#include <deque>
+#include <numeric>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace ellicast {
+
+namespace {
+
+constexpr int kRanks = 16;
+constexpr uint32_t kTop = 1u << 24;
+
+// ---- LZMA's binary range coder (spec 19.3)
+
+struct Contexts {
+    uint16_t none = 1024;
+    std::array<uint16_t, kRanks> rank;
+    Contexts() { rank.fill(1024); }
+};
+
+class RangeEncoder {
+public:
+    void bit(uint16_t& p, int b) {
+        const uint32_t bound = (range_ >> 11) * p;
+        if (b == 0) {
+            range_ = bound;
+            p = uint16_t(p + ((2048 - p) >> 5));
+        } else {
+            low_ += bound;
+            range_ -= bound;
+            p = uint16_t(p - (p >> 5));
+        }
+        normalize();
+    }
+    void direct(uint32_t value, int bits) {
+        for (int k = bits - 1; k >= 0; --k) {
+            range_ >>= 1;
+            if ((value >> k) & 1) low_ += range_;
+            normalize();
+        }
+    }
+    std::vector<uint8_t> finish() {
+        for (int i = 0; i < 5; ++i) shift_low();
+        return std::move(out_);
+    }
+
+private:
+    void normalize() {
+        while (range_ < kTop) {
+            range_ <<= 8;
+            shift_low();
+        }
+    }
+    void shift_low() {
+        if (uint32_t(low_) < 0xFF000000u || (low_ >> 32) != 0) {
+            uint8_t temp = cache_;
+            do {
+                out_.push_back(uint8_t(temp + uint8_t(low_ >> 32)));
+                temp = 0xFF;
+            } while (--cache_size_ != 0);
+            cache_ = uint8_t(uint32_t(low_) >> 24);
+        }
+        ++cache_size_;
+        low_ = uint64_t(uint32_t(low_) << 8);
+    }
+    uint64_t low_ = 0;
+    uint32_t range_ = 0xFFFFFFFFu;
+    uint8_t cache_ = 0;
+    uint64_t cache_size_ = 1;
+    std::vector<uint8_t> out_;
+};
+
+class RangeDecoder {
+public:
+    explicit RangeDecoder(std::span<const uint8_t> in) : in_(in) {
+        for (int i = 0; i < 5; ++i) code_ = (code_ << 8) | next();
+    }
+    int bit(uint16_t& p) {
+        const uint32_t bound = (range_ >> 11) * p;
+        int b;
+        if (code_ < bound) {
+            range_ = bound;
+            p = uint16_t(p + ((2048 - p) >> 5));
+            b = 0;
+        } else {
+            range_ -= bound;
+            code_ -= bound;
+            p = uint16_t(p - (p >> 5));
+            b = 1;
+        }
+        normalize();
+        return b;
+    }
+    uint32_t direct(int bits) {
+        uint32_t v = 0;
+        for (int k = 0; k < bits; ++k) {
+            range_ >>= 1;
+            int b = 0;
+            if (code_ >= range_) {
+                code_ -= range_;
+                b = 1;
+            }
+            normalize();
+            v = (v << 1) | uint32_t(b);
+        }
+        return v;
+    }
+
+private:
+    uint8_t next() { return pos_ < in_.size() ? in_[pos_++] : (++pos_, uint8_t(0)); }
+    void normalize() {
+        if (range_ < kTop) {
+            range_ <<= 8;
+            code_ = (code_ << 8) | next();
+        }
+    }
+    std::span<const uint8_t> in_;
+    size_t pos_ = 0;
+    uint32_t range_ = 0xFFFFFFFFu;
+    uint32_t code_ = 0;
+};
+
+// ---- the k points nearest to a prediction, ties by index (spec 19.2's candidates)
+
+class KdTree {
+public:
+    explicit KdTree(const std::vector<std::array<uint32_t, 3>>& p) : p_(p), order_(p.size()) {
+        std::iota(order_.begin(), order_.end(), 0u);
+        build(0, order_.size(), 0);
+    }
+
+    // The `k` points nearest to `q` other than a and b, by (squared distance, index), nearest first.
+    void nearest(const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k,
+                 std::vector<std::pair<uint64_t, uint32_t>>& best) const {
+        best.clear();
+        search(0, order_.size(), 0, q, a, b, k, best);
+    }
+
+private:
+    void build(size_t lo, size_t hi, int axis) {
+        if (hi - lo <= 8) return;
+        const size_t mid = (lo + hi) / 2;
+        std::nth_element(order_.begin() + lo, order_.begin() + mid, order_.begin() + hi,
+                         [&](uint32_t x, uint32_t y) { return p_[x][axis] < p_[y][axis]; });
+        build(lo, mid, (axis + 1) % 3);
+        build(mid + 1, hi, (axis + 1) % 3);
+    }
+    static uint64_t dist2(const std::array<uint32_t, 3>& p, const std::array<int64_t, 3>& q) {
+        uint64_t d = 0;
+        for (int k = 0; k < 3; ++k) {
+            const int64_t e = int64_t(p[k]) - q[k];
+            d += uint64_t(e * e);
+        }
+        return d;
+    }
+    void consider(uint32_t i, const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k,
+                  std::vector<std::pair<uint64_t, uint32_t>>& best) const {
+        if (i == a || i == b) return;
+        const std::pair<uint64_t, uint32_t> item{dist2(p_[i], q), i};
+        if (best.size() == k && !(item < best.back())) return;
+        best.insert(std::upper_bound(best.begin(), best.end(), item), item);
+        if (best.size() > k) best.pop_back();
+    }
+    void search(size_t lo, size_t hi, int axis, const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k,
+                std::vector<std::pair<uint64_t, uint32_t>>& best) const {
+        if (hi - lo <= 8) {
+            for (size_t j = lo; j < hi; ++j) consider(order_[j], q, a, b, k, best);
+            return;
+        }
+        const size_t mid = (lo + hi) / 2;
+        const uint32_t m = order_[mid];
+        const int64_t split = p_[m][axis];
+        const bool left_first = q[axis] < split;
+        consider(m, q, a, b, k, best);
+        const int next = (axis + 1) % 3;
+        if (left_first) search(lo, mid, next, q, a, b, k, best);
+        else search(mid + 1, hi, next, q, a, b, k, best);
+        // The other side holds points at least |q - split| away along this axis (ties included).
+        const int64_t gap = q[axis] - split;
+        const uint64_t plane = uint64_t(gap * gap);
+        if (best.size() < k || plane <= best.back().first) {
+            if (left_first) search(mid + 1, hi, next, q, a, b, k, best);
+            else search(lo, mid, next, q, a, b, k, best);
+        }
+    }
+    const std::vector<std::array<uint32_t, 3>>& p_;
+    std::vector<uint32_t> order_;
+};
+
+int index_bits(size_t n) {
+    int w = 1;
+    while (w < 32 && (uint64_t(1) << w) < n) ++w;
+    return w;
+}
+
+uint64_t edge_key(uint32_t u, uint32_t v) { return (uint64_t(u) << 32) | v; }
+
+struct Gate {
+    uint32_t a, b, o;
+};
+
+std::array<int64_t, 3> prediction(const std::vector<std::array<uint32_t, 3>>& p, const Gate& g) {
+    std::array<int64_t, 3> r;
+    for (int k = 0; k < 3; ++k) r[k] = int64_t(p[g.a][k]) + int64_t(p[g.b][k]) - int64_t(p[g.o][k]);
+    return r;
+}
+
+// The decoder's state, shared by both directions: T, D and Q of spec 19.2.
+struct Traversal {
+    std::vector<Triangle> triangles;
+    std::unordered_set<uint64_t> edges;
+    std::deque<Gate> gates;
+    void take(uint32_t a, uint32_t b, uint32_t c) {
+        triangles.push_back({a, b, c});
+        edges.insert(edge_key(a, b));
+        edges.insert(edge_key(b, c));
+        edges.insert(edge_key(c, a));
+        gates.push_back({a, b, c});
+        gates.push_back({b, c, a});
+        gates.push_back({c, a, b});
+    }
+};
+
+void put32(std::vector<uint8_t>& out, uint32_t v) {
+    for (int k = 0; k < 4; ++k) out.push_back(uint8_t(v >> (8 * k)));
+}
+uint32_t get32(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
+
+}  // namespace
+
+std::vector<uint8_t> encode_connectivity_payload(const ConnectivityPiece& piece) {
+    std::vector<uint8_t> out;
+    out.reserve(kConnectivityHeaderSize + piece.data.size());
+    put32(out, piece.triangle_count);
+    put32(out, piece.coded_size);
+    put32(out, piece.coded_crc);
+    put32(out, piece.offset);
+    out.insert(out.end(), piece.data.begin(), piece.data.end());
+    return out;
+}
+
+Error decode_connectivity_payload(std::span<const uint8_t> payload, ConnectivityPiece& out) {
+    if (payload.size() <= kConnectivityHeaderSize) return Error::MalformedPayload;
+    ConnectivityPiece c;
+    c.triangle_count = get32(payload.data());
+    c.coded_size = get32(payload.data() + 4);
+    c.coded_crc = get32(payload.data() + 8);
+    c.offset = get32(payload.data() + 12);
+    const uint64_t length = payload.size() - kConnectivityHeaderSize;
+    if (c.triangle_count == 0 || uint64_t(c.offset) + length > c.coded_size ||
+        uint64_t(c.coded_size) > 16 * uint64_t(c.triangle_count) + 64)
+        return Error::MalformedPayload;
+    c.data.assign(payload.begin() + kConnectivityHeaderSize, payload.end());
+    out = std::move(c);
+    return Error::Ok;
+}
+
+Error packetize_connectivity(const StreamInfo& info, uint16_t object_id, uint32_t triangle_count,
+                             const std::vector<uint8_t>& coded, uint32_t stream_id, uint32_t first_sequence,
+                             std::vector<std::vector<uint8_t>>& out) {
+    if (coded.empty() || coded.size() > 16 * uint64_t(triangle_count) + 64 || info.packet_size <= kPacketOverhead + kConnectivityHeaderSize)
+        return Error::MalformedPayload;
+    const size_t per_packet = info.packet_size - kPacketOverhead - kConnectivityHeaderSize;
+    ConnectivityPiece piece;
+    piece.triangle_count = triangle_count;
+    piece.coded_size = uint32_t(coded.size());
+    piece.coded_crc = crc32c(coded.data(), coded.size());
+    uint32_t sequence = first_sequence;
+    for (size_t offset = 0; offset < coded.size(); offset += per_packet) {
+        piece.offset = uint32_t(offset);
+        piece.data.assign(coded.begin() + offset, coded.begin() + std::min(coded.size(), offset + per_packet));
+        PacketHeader h;
+        h.version_minor = kConnectivityMinor;
+        h.type = uint8_t(PacketType::Connectivity);
+        h.flags = kFlagSkippable;
+        h.stream_id = stream_id;
+        h.sequence = sequence++;
+        h.object_id = object_id;
+        out.push_back(write_packet(h, encode_connectivity_payload(piece)));
+    }
+    return Error::Ok;
+}
+
+Error exact_triangles(const ReceivedStream& stream, size_t object, std::vector<Triangle>& out, std::string& why) {
+    if (object >= stream.objects().size()) {
+        why = "no such object";
+        return Error::UnknownObject;
+    }
+    const ReceivedObject& o = stream.objects()[object];
+    if (!o.info || !o.connectivity || !o.connectivity->complete) {
+        why = "its connectivity has not all arrived";
+        return Error::Truncated;
+    }
+    if (o.points.size() != o.info->point_count) {
+        why = std::to_string(o.points.size()) + " of its " + std::to_string(o.info->point_count) + " points arrived";
+        return Error::Truncated;
+    }
+    std::vector<std::array<uint32_t, 3>> positions;
+    positions.reserve(o.points.size());
+    for (const auto& [index, p] : o.points) positions.push_back(p.position);
+    return decode_connectivity(o.connectivity->coded, o.connectivity->triangle_count, positions, out, why);
+}
+
+Error encode_connectivity(const std::vector<std::array<uint32_t, 3>>& positions, const std::vector<Triangle>& input,
+                          std::vector<uint8_t>& coded, std::vector<Triangle>& sent) {
+    const size_t n = positions.size();
+    for (const Triangle& t : input)
+        if (t[0] >= n || t[1] >= n || t[2] >= n || t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+            return Error::MalformedPayload;
+    if (input.empty() || n < 3) return Error::MalformedPayload;
+    // The input's triangles not yet coded, by their directed edges (a triangle is found by any of its
+    // three, rotated so that edge comes first).
+    std::unordered_map<uint64_t, std::vector<uint32_t>> by_edge;
+    by_edge.reserve(input.size() * 3);
+    for (uint32_t t = 0; t < input.size(); ++t)
+        for (int k = 0; k < 3; ++k) by_edge[edge_key(input[t][k], input[t][(k + 1) % 3])].push_back(t);
+    std::vector<bool> done(input.size(), false);
+    size_t next_seed = 0;
+    const int w = index_bits(n);
+    const KdTree tree(positions);
+    RangeEncoder rc;
+    Contexts ctx;
+    Traversal tr;
+    std::vector<std::pair<uint64_t, uint32_t>> best;
+    auto mark = [&](uint32_t t) { done[t] = true; };
+    while (tr.triangles.size() < input.size()) {
+        if (tr.gates.empty()) {
+            while (done[next_seed]) ++next_seed;
+            const Triangle& t = input[next_seed];
+            for (uint32_t v : t) rc.direct(v, w);
+            mark(uint32_t(next_seed));
+            tr.take(t[0], t[1], t[2]);
+            continue;
+        }
+        const Gate g = tr.gates.front();
+        tr.gates.pop_front();
+        if (tr.edges.count(edge_key(g.b, g.a))) continue;
+        // The first input triangle not yet coded with the directed edge b->a.
+        int64_t found = -1;
+        uint32_t x = 0;
+        if (auto it = by_edge.find(edge_key(g.b, g.a)); it != by_edge.end())
+            for (uint32_t t : it->second)
+                if (!done[t]) {
+                    found = t;
+                    for (int k = 0; k < 3; ++k)
+                        if (input[t][k] == g.b && input[t][(k + 1) % 3] == g.a) x = input[t][(k + 2) % 3];
+                    break;
+                }
+        rc.bit(ctx.none, found < 0 ? 1 : 0);
+        if (found < 0) continue;
+        tree.nearest(prediction(positions, g), g.a, g.b, kRanks, best);
+        int rank = 0;
+        for (size_t r = 0; r < best.size(); ++r)
+            if (best[r].second == x) rank = int(r) + 1;
+        for (int r = 1; r <= kRanks; ++r) {
+            rc.bit(ctx.rank[r - 1], r == rank ? 1 : 0);
+            if (r == rank) break;
+        }
+        if (rank == 0) rc.direct(x, w);
+        mark(uint32_t(found));
+        tr.take(g.b, g.a, x);
+    }
+    coded = rc.finish();
+    sent = std::move(tr.triangles);
+    return Error::Ok;
+}
+
+Error decode_connectivity(std::span<const uint8_t> coded, uint32_t triangle_count,
+                          const std::vector<std::array<uint32_t, 3>>& positions, std::vector<Triangle>& out,
+                          std::string& why) {
+    const size_t n = positions.size();
+    if (n < 3 || triangle_count == 0 || triangle_count > 8 * uint64_t(n)) {
+        why = "the triangle count does not fit the object's points";
+        return Error::MalformedPayload;
+    }
+    const int w = index_bits(n);
+    const KdTree tree(positions);
+    RangeDecoder rc(coded);
+    Contexts ctx;
+    Traversal tr;
+    tr.triangles.reserve(triangle_count);
+    std::vector<std::pair<uint64_t, uint32_t>> best;
+    while (tr.triangles.size() < triangle_count) {
+        if (tr.gates.empty()) {
+            const uint32_t a = rc.direct(w), b = rc.direct(w), c = rc.direct(w);
+            if (a >= n || b >= n || c >= n || a == b || b == c || a == c) {
+                why = "seed triangle " + std::to_string(tr.triangles.size()) + " names points " + std::to_string(a) +
+                      ", " + std::to_string(b) + ", " + std::to_string(c) + " of " + std::to_string(n);
+                return Error::MalformedPayload;
+            }
+            tr.take(a, b, c);
+            continue;
+        }
+        const Gate g = tr.gates.front();
+        tr.gates.pop_front();
+        if (tr.edges.count(edge_key(g.b, g.a))) continue;
+        if (rc.bit(ctx.none)) continue;
+        int rank = 0;
+        for (int r = 1; r <= kRanks && rank == 0; ++r)
+            if (rc.bit(ctx.rank[r - 1])) rank = r;
+        uint32_t x;
+        if (rank > 0) {
+            tree.nearest(prediction(positions, g), g.a, g.b, size_t(rank), best);
+            if (best.size() < size_t(rank)) {
+                why = "a rank past the object's points";
+                return Error::MalformedPayload;
+            }
+            x = best[size_t(rank) - 1].second;
+        } else {
+            x = rc.direct(w);
+            if (x >= n || x == g.a || x == g.b) {
+                why = "triangle " + std::to_string(tr.triangles.size()) + " names point " + std::to_string(x) +
+                      " of " + std::to_string(n) + " beside " + std::to_string(g.b) + " and " + std::to_string(g.a);
+                return Error::MalformedPayload;
+            }
+        }
+        tr.take(g.b, g.a, x);
+    }
+    out = std::move(tr.triangles);
+    return Error::Ok;
+}
+
+}  // namespace ellicast
