@@ -224,8 +224,11 @@ bool stream_base_complete(const ReceivedStream& stream) {
 
 bool stream_complete(const ReceivedStream& stream) {
     if (!stream_base_complete(stream)) return false;
-    for (const auto& object : stream.objects())
+    for (const auto& object : stream.objects()) {
         if (object.points.size() < object.info->point_count) return false;
+        // Format 1.3: an object with an exact layer is complete with its connectivity (spec 19.1).
+        if (object.info->exact_layer && !(object.connectivity && object.connectivity->complete)) return false;
+    }
     const auto& textures = stream.textures();
     if (!textures.empty() && textures.size() < textures.begin()->second.info.texture_count) return false;
     for (const auto& [index, texture] : textures)

@@ -360,6 +360,39 @@ size_t shared_base_grid_nodes(const ReceivedStream& stream, const DecodeOptions&
     return std::min(options.base_grid_nodes, std::max<size_t>(4096, kBaseGridNodesInAll / with_base));
 }
 
+bool exact_mesh(const ReceivedStream& stream, size_t object, Mesh& out, std::string& why, bool& unusable) {
+    unusable = false;
+    std::vector<Triangle> triangles;
+    const Error e = exact_triangles(stream, object, triangles, why);
+    if (e != Error::Ok) {
+        unusable = e == Error::MalformedPayload;
+        return false;
+    }
+    const ObjectInfo& info = *stream.objects()[object].info;
+    const std::vector<SurfacePoint> points = stream.points(object);  // every point: index = position
+    std::vector<uint32_t> vertex(points.size(), UINT32_MAX);
+    Mesh m;
+    m.colors_have_alpha = info.has(kAttrColorAlpha);
+    for (const Triangle& t : triangles) {
+        std::array<uint32_t, 3> face;
+        for (int k = 0; k < 3; ++k) {
+            uint32_t& v = vertex[t[k]];
+            if (v == UINT32_MAX) {
+                v = uint32_t(m.positions.size());
+                const SurfacePoint& p = points[t[k]];
+                m.positions.push_back(p.position);
+                if (info.has(kAttrNormal)) m.normals.push_back(p.normal);
+                if (info.has(kAttrTexcoord)) m.texcoords.push_back(p.texcoord);
+                if (info.has(kAttrColor)) m.colors.push_back(p.color);
+            }
+            face[k] = v;
+        }
+        m.triangles.push_back(face);
+    }
+    out = std::move(m);
+    return true;
+}
+
 bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, std::vector<Mesh>& meshes,
                    StreamDecodeReport& report, std::string& error, std::vector<size_t>* mesh_objects) {
     meshes.clear();
@@ -389,6 +422,29 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
         }
         Mesh mesh;
         std::string object_error;
+        if (const auto& c = objects[i].connectivity) {
+            report.objects[i].has_connectivity = true;
+            report.objects[i].connectivity_bytes = c->received_bytes;
+            report.objects[i].connectivity_size = c->coded_size;
+        }
+        if (options.exact && objects[i].connectivity) {
+            std::string why;
+            bool unusable = false;
+            if (exact_mesh(stream, i, mesh, why, unusable)) {
+                ObjectDecodeReport& r = report.objects[i];
+                r.exact = r.complete = r.has_surface = true;
+                r.ellipsoids = objects[i].ellipsoids.size();
+                r.points = objects[i].points.size();
+                r.vertices_out = mesh.positions.size();
+                r.faces_out = mesh.triangles.size();
+                ++decoded;
+                mesh.name = "object" + std::to_string(i);
+                meshes.push_back(std::move(mesh));
+                if (mesh_objects) mesh_objects->push_back(i);
+                continue;
+            }
+            if (unusable) report.objects[i].notes.push_back("its exact layer is unusable (" + why + "): reconstructed");
+        }
         if (!decode_object(*objects[i].info, stream.ellipsoids(i), stream.points(i), info.grid_hint, shared, i, mesh,
                            report.objects[i], object_error)) {
             // One object that cannot be built does not cost the others theirs.

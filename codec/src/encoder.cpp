@@ -490,7 +490,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
 // Points of one mesh
 
 std::vector<QuantizedPoint> encode_points(const Mesh& mesh, const StreamInfo& info, const ObjectInfo& object,
-                                          uint32_t seed) {
+                                          uint32_t seed, std::vector<uint32_t>* vertex_points = nullptr) {
     std::vector<QuantizedPoint> all;
     all.reserve(mesh.positions.size());
     for (size_t i = 0; i < mesh.positions.size(); ++i) {
@@ -519,7 +519,46 @@ std::vector<QuantizedPoint> encode_points(const Mesh& mesh, const StreamInfo& in
     out.reserve(all.size());
     for (uint32_t p : order)
         for (size_t i = first[p]; i < first[p + 1]; ++i) out.push_back(all[i]);
+    if (vertex_points) {
+        // The point each vertex became: its quantized position and attributes, looked up by value.
+        std::map<std::tuple<std::array<uint32_t, 3>, std::array<uint32_t, 2>, std::array<uint32_t, 2>,
+                            std::array<uint32_t, 4>>, uint32_t> index;
+        for (uint32_t i = 0; i < out.size(); ++i) index.emplace(key(out[i]), i);
+        vertex_points->resize(mesh.positions.size());
+        for (size_t i = 0; i < mesh.positions.size(); ++i) {
+            SurfacePoint p;
+            p.position = mesh.positions[i];
+            if (mesh.has_normals()) p.normal = mesh.normals[i];
+            if (mesh.has_texcoords()) p.texcoord = mesh.texcoords[i];
+            if (mesh.has_colors()) p.color = mesh.colors[i];
+            (*vertex_points)[i] = index.at(key(quantize_point(p, info, object)));
+        }
+    }
     return out;
+}
+
+// The exact layer of one object (spec 19): its original triangles over its points, coded. A
+// triangle whose corners became fewer than three points is left out (counted in `dropped`).
+void encode_exact_layer(const Mesh& input, const std::vector<uint32_t>& vertex_points, ObjectContent& content,
+                        uint32_t& dropped) {
+    std::vector<Triangle> triangles;
+    triangles.reserve(input.triangles.size());
+    dropped = 0;
+    for (const auto& t : input.triangles) {
+        const Triangle p = {vertex_points[t[0]], vertex_points[t[1]], vertex_points[t[2]]};
+        if (p[0] == p[1] || p[1] == p[2] || p[0] == p[2]) ++dropped;
+        else triangles.push_back(p);
+    }
+    if (triangles.empty()) return;
+    std::vector<std::array<uint32_t, 3>> positions;
+    positions.reserve(content.points.size());
+    for (const auto& q : content.points) positions.push_back(q.position);
+    std::vector<Triangle> sent;
+    if (encode_connectivity(positions, triangles, content.connectivity, sent) != Error::Ok) {
+        content.connectivity.clear();
+        return;
+    }
+    content.triangle_count = uint32_t(sent.size());
 }
 
 // Spacings for the surface samples of one object, from its bounding box.
@@ -656,13 +695,27 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
             grid_hint = std::max<uint16_t>(grid_hint, uint16_t(std::max({report.grid[0], report.grid[1], report.grid[2]})));
         }
         progress("points", 0.97);
+        std::vector<uint32_t> vertex_points;  // per vertex of the input (samples come after them)
         if (!mesh.is_point_set && !mesh.triangles.empty() && options.sample_spacing > 0) {
             size_t added = 0;
             const Mesh sampled = with_surface_samples(mesh, sample_options(mesh, object.frame, options, report.flat_ellipsoids > 0), added);
             report.samples = uint32_t(added);
-            content.points = encode_points(sampled, info, object, object_seed);
+            content.points = encode_points(sampled, info, object, object_seed, &vertex_points);
         } else {
-            content.points = encode_points(mesh, info, object, object_seed);
+            content.points = encode_points(mesh, info, object, object_seed, &vertex_points);
+        }
+        // The original triangles as the input has them (not as turned for encoding): the exact layer.
+        if (options.exact_layer && !mesh.is_point_set && !input.triangles.empty()) {
+            progress("exact layer", 0.99);
+            uint32_t dropped = 0;
+            encode_exact_layer(input, vertex_points, content, dropped);
+            report.exact_triangles = content.triangle_count;
+            object.exact_layer = !content.connectivity.empty();
+            report.connectivity_bytes = uint32_t(content.connectivity.size());
+            if (dropped > 0)
+                result.warnings.push_back("mesh " + std::to_string(m) + (input.name.empty() ? "" : " (" + input.name + ")") + ": " + std::to_string(dropped) +
+                                          " triangle(s) whose corners are one point after quantization are left out "
+                                          "of the exact layer");
         }
         object.ellipsoid_count = uint32_t(content.ellipsoids.size());
         object.point_count = uint32_t(content.points.size());

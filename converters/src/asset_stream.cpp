@@ -54,6 +54,19 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
     take(scene.materials, out.scene_packets, out.scene_bytes);
     take(scene.textures, out.scene_packets, out.scene_bytes);
     take(stream.points, out.point_packets, out.point_bytes);
+    // Format 1.3: each object's exact layer (spec 19), after its points.
+    std::vector<std::vector<uint8_t>> connectivity;
+    for (size_t i = 0; i < out.encoded.contents.size(); ++i) {
+        const ObjectContent& c = out.encoded.contents[i];
+        if (c.connectivity.empty()) continue;
+        if (Error e = packetize_connectivity(out.encoded.info, uint16_t(i), c.triangle_count, c.connectivity, stream_id,
+                                             0, connectivity);
+            e != Error::Ok) {
+            error = std::string("could not cut the exact layer into packets: ") + error_name(e);
+            return false;
+        }
+    }
+    take(connectivity, out.connectivity_packets, out.connectivity_bytes);
     if (options.repair_ratio > 0) {
         // Blocks of at most floor(255 / (1 + ratio)) POINTS packets, each with ceil(ratio * k) repair
         // symbols (spec 17.5).

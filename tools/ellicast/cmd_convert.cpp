@@ -104,7 +104,8 @@ int run_convert(const ConvertArgs& a) {
     for (size_t i = 0; i < report.objects.size(); ++i) {
         const auto& o = report.objects[i];
         std::printf("  object %zu: %zu ellipsoids, %zu points -> %zu vertices, %zu faces%s\n", i, o.ellipsoids,
-                    o.points, o.vertices_out, o.faces_out, o.has_surface ? "" : " (point set)");
+                    o.points, o.vertices_out, o.faces_out,
+                    o.exact ? " (exact: the original triangles)" : o.has_surface ? "" : " (point set)");
     }
     const uint64_t in_bytes = model_files_size(a.input), out_bytes = model_files_size(a.output);
     const size_t stream_bytes =

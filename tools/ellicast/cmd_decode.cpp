@@ -144,11 +144,17 @@ int run_decode(const DecodeArgs& args) {
         const auto& info = *objects[i].info;
         std::printf("object %zu: %zu/%u ellipsoids, %zu/%u points -> %zu vertices, %zu faces", i, o.ellipsoids,
                     info.ellipsoid_count, o.points, info.point_count, o.vertices_out, o.faces_out);
-        if (o.has_surface)
+        if (o.exact)
+            std::printf(" (exact: the original triangles)");
+        else if (o.has_surface)
             std::printf(" (base %zu vertices, %zu faces; %zu marching-cubes vertices left; %zu flips, %zu collapses)",
                         o.base_vertices, o.base_faces, o.mc_vertices_left, o.flips, o.collapses);
         else
             std::printf(" (point set)");
+        if (!o.exact && o.has_connectivity)
+            std::printf("; exact layer: %llu of %llu bytes%s", (unsigned long long)o.connectivity_bytes,
+                        (unsigned long long)o.connectivity_size,
+                        o.connectivity_bytes == o.connectivity_size ? ", waiting for every point" : "");
         std::printf("\n");
         for (const auto& note : o.notes) std::fprintf(stderr, "ellicast: warning: object %zu: %s\n", i, note.c_str());
     }

@@ -375,7 +375,7 @@ int run_receive(const ReceiveArgs& a) {
                                               : "no STREAM_INFO packet was accepted (" + why + "): nothing can be decoded");
     }
     std::vector<Mesh> objects(chosen.objects().size());
-    size_t vertices = 0, faces = 0, built = 0;
+    size_t vertices = 0, faces = 0, built = 0, exact = 0;
     options.base_grid_nodes = shared_base_grid_nodes(chosen, options);
     for (size_t i = 0; i < objects.size(); ++i) {
         const auto& object = chosen.objects()[i];
@@ -384,6 +384,22 @@ int run_receive(const ReceiveArgs& a) {
             continue;
         }
         ObjectDecodeReport report;
+        // The exact layer (spec 19.4): every point and the whole connectivity give the original triangles.
+        std::string why;
+        bool unusable = false;
+        if (object.connectivity && exact_mesh(chosen, i, objects[i], why, unusable)) {
+            std::fprintf(stderr, "object %zu: exact (the original %s triangles)\n", i,
+                         with_commas(objects[i].triangles.size()).c_str());
+            objects[i].name = "object" + std::to_string(i);
+            vertices += objects[i].positions.size();
+            faces += objects[i].triangles.size();
+            ++built;
+            ++exact;
+            continue;
+        }
+        if (unusable) std::fprintf(stderr, "ellicast: warning: object %zu: its exact layer is unusable (%s)\n", i, why.c_str());
+        else if (object.connectivity)
+            std::fprintf(stderr, "object %zu: not exact yet (%s): reconstructed\n", i, why.c_str());
         if (!decode_object(*object.info, chosen.ellipsoids(i), chosen.points(i), chosen.info()->grid_hint, options, i,
                            objects[i], report, error)) {
             // One object that cannot be built does not cost the others theirs.
@@ -410,9 +426,9 @@ int run_receive(const ReceiveArgs& a) {
     if (!write_model(a.output, chosen, std::move(objects), gltf_output, warnings, error))
         return fail(kExitFailure, error);
     for (const auto& w : warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
-    std::fprintf(stderr, "decoded in %s; wrote %s: %zu object(s), %s vertices, %s triangles\n",
+    std::fprintf(stderr, "decoded in %s; wrote %s: %zu object(s) (%zu exact), %s vertices, %s triangles\n",
                  seconds_text(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()).c_str(),
-                 a.output.c_str(), built, with_commas(vertices).c_str(), with_commas(faces).c_str());
+                 a.output.c_str(), built, exact, with_commas(vertices).c_str(), with_commas(faces).c_str());
     return kExitOk;
 }
 

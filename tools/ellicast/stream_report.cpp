@@ -140,6 +140,23 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             r.violations.push_back({std::nullopt, name + ": " + std::to_string(o.points.size()) + " of " +
                                                       std::to_string(o.info->point_count) + " points received; missing " +
                                                       missing});
+        // Format 1.3, the exact layer (spec 19.4): announced, complete, and decodable with every point.
+        if (o.connectivity && !o.info->exact_layer)
+            r.violations.push_back({std::nullopt, name + ": CONNECTIVITY packets arrived but its entry does not "
+                                                         "announce an exact layer"});
+        if (o.info->exact_layer && !(o.connectivity && o.connectivity->complete)) {
+            r.violations.push_back({std::nullopt, name + ": its exact layer did not all arrive (" +
+                                                      std::to_string(o.connectivity ? o.connectivity->received_bytes : 0) +
+                                                      " of " +
+                                                      (o.connectivity ? std::to_string(o.connectivity->coded_size)
+                                                                      : std::string("?")) +
+                                                      " bytes)"});
+        } else if (o.connectivity && o.connectivity->complete && missing.empty()) {
+            std::vector<Triangle> triangles;
+            std::string why;
+            if (exact_triangles(r.stream, i, triangles, why) != Error::Ok)
+                r.violations.push_back({std::nullopt, name + ": its exact layer is unusable: " + why});
+        }
     }
     // Format 1.2 repair packets: each symbol must be its row of the code over the points (spec 17.4).
     for (const ContainerPacket& p : contents.packets) {

@@ -300,6 +300,9 @@ struct DecodeOptions {
     size_t base_grid_nodes = size_t(1) << 18;
     size_t grid_nodes_per_element = 2048;
     size_t snapshot_every = 0;   // > 0: call `snapshot` for the base and after every N inserted points
+    // The exact layer (format 1.3, spec 19): an object whose every point and whole connectivity
+    // arrived is written as its original triangles. false: always the reconstruction.
+    bool exact = true;
     ReconstructionOptions reconstruction;
     // Progress of the current stage: (stage name, fraction 0..1). May be empty.
     std::function<void(const std::string& stage, double fraction)> progress;
@@ -318,6 +321,9 @@ struct ObjectDecodeReport {
     size_t sheet_points = 0;   // points also inserted into the other side of a sheet's thin base
     bool complete = false;           // every declared point arrived
     bool has_surface = false;        // false: output is a point set (no ellipsoids, or a PointSet object)
+    bool exact = false;              // written as its original triangles (the exact layer, spec 19)
+    bool has_connectivity = false;   // the stream carries its exact layer (some of it arrived)
+    uint64_t connectivity_bytes = 0, connectivity_size = 0;  // bytes of it received, of its coded size
     std::vector<std::string> notes;  // what the user should know ("no ellipsoids: points only", ...)
     DecodeTimings timings;
 };
@@ -341,6 +347,11 @@ struct StreamDecodeReport {
 // kBaseGridNodesInAll shared by the objects that have ellipsoids (at least 4096, at most
 // options.base_grid_nodes). decode_stream applies it itself.
 size_t shared_base_grid_nodes(const ReceivedStream& stream, const DecodeOptions& options);
+
+// Object `object`'s exact mesh (spec 19.4): its original triangles over the points they use, each
+// corner with the point's dequantized attributes. False, with `why`, while its points or its
+// connectivity are not all there or the connectivity is unusable.
+bool exact_mesh(const ReceivedStream& stream, size_t object, Mesh& out, std::string& why, bool& unusable);
 
 // Reconstructs every object of a received stream whose info arrived. Fails with a clear `error`
 // when no STREAM_INFO arrived at all. Objects with no geometry at all are left out of `meshes`;

@@ -53,6 +53,9 @@ struct EncodeOptions {
     // packets). 1: as many repair symbols as sources, which the carousel interleaves one for one. 0:
     // none (a carousel then repeats the POINTS packets). [0, 4]
     double repair_ratio = 1.0;
+    // The exact layer (format 1.3, spec 19): each object's original triangles, coded over its points,
+    // sent in CONNECTIVITY packets, so that a receiver holding every point shows the original mesh.
+    bool exact_layer = true;
     // Called with a stage name and the fraction done (0..1); may be empty.
     std::function<void(const std::string& stage, double fraction)> progress;
 };
@@ -73,6 +76,8 @@ struct ObjectReport {
     uint32_t flat_ellipsoids = 0;     // of those, flat ones straddling a sheet without inside
     uint32_t shrunk = 0;              // ellipsoids shrunk after quantization to stay inside
     bool closed = false;              // no boundary edges
+    uint32_t exact_triangles = 0;     // triangles in the exact layer (0: none sent)
+    uint32_t connectivity_bytes = 0;  // their coded size
     uint32_t turned_faces = 0;        // triangles encoded turned round: parts that faced inward or
                                       // against their neighbours (the input is not changed)
     double interior_fraction = 0;     // of the grid's voxels, inside the surface
