@@ -201,7 +201,9 @@ bool decode_packets(const std::vector<const ContainerPacket*>& packets, Mesh& me
     StreamDecodeReport sr;
     std::string error;
     double w0 = wall_now();
-    if (!decode_stream(stream, DecodeOptions{}, meshes, sr, error)) {
+    DecodeOptions options;
+    options.exact = false;  // what is measured is the reconstruction, not the exact layer (spec 19)
+    if (!decode_stream(stream, options, meshes, sr, error)) {
         std::fprintf(stderr, "decode: %s\n", error.c_str());
         return false;
     }

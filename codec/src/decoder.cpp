@@ -421,7 +421,7 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
             continue;
         }
         Mesh mesh;
-        std::string object_error;
+        std::string object_error, exact_note;
         if (const auto& c = objects[i].connectivity) {
             report.objects[i].has_connectivity = true;
             report.objects[i].connectivity_bytes = c->received_bytes;
@@ -443,15 +443,22 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
                 if (mesh_objects) mesh_objects->push_back(i);
                 continue;
             }
-            if (unusable) report.objects[i].notes.push_back("its exact layer is unusable (" + why + "): reconstructed");
+            if (unusable) exact_note = "its exact layer is unusable (" + why + "): reconstructed";
         }
         if (!decode_object(*objects[i].info, stream.ellipsoids(i), stream.points(i), info.grid_hint, shared, i, mesh,
                            report.objects[i], object_error)) {
             // One object that cannot be built does not cost the others theirs.
+            if (!exact_note.empty()) report.objects[i].notes.push_back(exact_note);
             report.objects[i].notes.push_back("not decoded: " + object_error);
             error += (error.empty() ? "" : "; ") + ("object " + std::to_string(i) + ": " + object_error);
             ++failed;
             continue;
+        }
+        if (!exact_note.empty()) report.objects[i].notes.push_back(exact_note);
+        if (const auto& c = objects[i].connectivity) {  // decode_object starts its report afresh
+            report.objects[i].has_connectivity = true;
+            report.objects[i].connectivity_bytes = c->received_bytes;
+            report.objects[i].connectivity_size = c->coded_size;
         }
         ++decoded;
         const auto& t = report.objects[i].timings;

@@ -24,6 +24,7 @@ struct DecodeArgs {
     size_t snapshots = 0;
     int grid = 0;
     bool quiet = false;
+    bool no_exact = false;    // --no-exact: always the reconstruction
     std::string key;          // --key: decode only what this sender signed
     AssetWriteOptions write;  // --draco, --quantize
 };
@@ -83,6 +84,7 @@ int run_decode(const DecodeArgs& args) {
     ProgressBar bar(!args.quiet);
     DecodeOptions options;
     options.grid_resolution = args.grid;
+    options.exact = !args.no_exact;
     options.snapshot_every = args.snapshots;
     options.progress = [&](const std::string& stage, double fraction) { bar.update(stage, fraction); };
     std::string snapshot_error;
@@ -152,9 +154,8 @@ int run_decode(const DecodeArgs& args) {
         else
             std::printf(" (point set)");
         if (!o.exact && o.has_connectivity)
-            std::printf("; exact layer: %llu of %llu bytes%s", (unsigned long long)o.connectivity_bytes,
-                        (unsigned long long)o.connectivity_size,
-                        o.connectivity_bytes == o.connectivity_size ? ", waiting for every point" : "");
+            std::printf("; exact layer: %llu of %llu bytes", (unsigned long long)o.connectivity_bytes,
+                        (unsigned long long)o.connectivity_size);
         std::printf("\n");
         for (const auto& note : o.notes) std::fprintf(stderr, "ellicast: warning: object %zu: %s\n", i, note.c_str());
     }
@@ -184,6 +185,8 @@ const RegisterCommand kRegister{{40, [](CLI::App& app, int& exit_code) {
     cmd->add_flag("--quantize", args->write.quantize, "glTF output: quantize attributes with KHR_mesh_quantization");
     cmd->add_option("--key", args->key,
                     "public key (NAME.pub or 64 hex digits): decode only the packets a MANIFEST signed with it lists");
+    cmd->add_flag("--no-exact", args->no_exact,
+                  "reconstruct every object, also one whose exact layer (original triangles) arrived whole");
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
     cmd->callback([args, &exit_code] { exit_code = run_decode(*args); });
 }}};
