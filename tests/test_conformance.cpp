@@ -163,6 +163,18 @@ TEST_CASE("the faulty vectors name the reason they must be rejected with") {
         {"scene_extensions_count_contradicts", "stream mismatch"},
         {"scene_extensions_contradicting_patch", "stream mismatch"},
         {"scene_extensions_flag_contradicts", "stream mismatch"},
+        {"exact_no_data", "malformed payload"},
+        {"exact_piece_past_end", "malformed payload"},
+        {"exact_triangle_count_zero", "malformed payload"},
+        {"exact_too_many_triangles", "malformed payload"},
+        {"exact_coded_size_too_large", "malformed payload"},
+        {"exact_point_set", "malformed payload"},
+        {"exact_unknown_object", "unknown object"},
+        {"exact_triangle_count_contradicts", "stream mismatch"},
+        {"exact_coded_size_contradicts", "stream mismatch"},
+        {"exact_crc_contradicts", "stream mismatch"},
+        {"exact_crc_wrong", "stream mismatch"},
+        {"exact_flag_contradicts", "stream mismatch"},
     };
     for (const auto& [name, reason] : reasons) {
         INFO(name);

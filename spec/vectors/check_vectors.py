@@ -13,7 +13,9 @@ authentication of a signed recording with the vectors' key, spec section 16, wit
 and Ed25519 verification written here from RFC 8032, and the POINTS_REPAIR packets of spec section 17:
 their checks, the blocks a decoder holds and the points it recovers, with GF(2^8) written here; for
 format 1.3 the MATERIAL_EXTENSIONS patches of spec section 18, with a strict JSON reader written here
-from RFC 8259 and the rules of spec 18.2, their texture references and what a receiver shows) so
+from RFC 8259 and the rules of spec 18.2, their texture references and what a receiver shows, and
+the CONNECTIVITY packets of spec section 19: their checks, the pieces, and the exact triangle list
+decoded with a range decoder written here, candidates found by sorting every point) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -36,9 +38,9 @@ KNOWN_10 = {1: "STREAM_INFO", 2: "ELLIPSOIDS", 3: "POINTS"}
 KNOWN_11 = {0x10: "SCENE", 0x11: "MATERIAL", 0x12: "TEXTURE_FRAGMENT"}
 # Format 1.2 (spec sections 4, 16 and 17).
 KNOWN_12 = {0x20: "MANIFEST", 0x04: "POINTS_REPAIR"}
-# Format 1.3 (spec sections 4 and 18).
-KNOWN_13 = {0x13: "MATERIAL_EXTENSIONS"}
-SCENE_TYPES = set(KNOWN_11) | set(KNOWN_13)
+# Format 1.3 (spec sections 4, 18 and 19).
+KNOWN_13 = {0x13: "MATERIAL_EXTENSIONS", 0x05: "CONNECTIVITY"}
+SCENE_TYPES = set(KNOWN_11) | {0x13}
 NONE = 0xFFFF
 SLOTS = ("base_color", "metallic_roughness", "normal", "occlusion", "emissive")
 
@@ -151,6 +153,7 @@ def decode_stream_info(p):
         e = info_size + i * entry_size
         ox, oy, oz, scale, ne, npts = struct.unpack_from("<ffffII", p, e)
         kind, attrs = p[e + 24], p[e + 25]
+        flags = struct.unpack_from("<H", p, e + 26)[0]
         to = struct.unpack_from("<ff", p, e + 28)
         ts = struct.unpack_from("<ff", p, e + 36)
         floats = (ox, oy, oz, scale) + to + ts
@@ -163,7 +166,10 @@ def decode_stream_info(p):
             return None
         entries.append(dict(frame_origin=[ox, oy, oz], frame_scale=scale, ellipsoid_count=ne, point_count=npts,
                             kind="surface" if kind == 0 else "point set", attributes=attrs,
-                            texcoord_origin=list(to), texcoord_scale=list(ts)))
+                            texcoord_origin=list(to), texcoord_scale=list(ts),
+                            # Spec 19: flags bit 8, the exact layer; it means nothing for a point set. From
+                            # 1.3 on it is compared (5.4); the other bits of the field are not.
+                            exact_layer=bool(flags & 0x100) and kind == 0))
     fields = dict(packet_size=packet_size, position_bits=pb, normal_bits=nb, texcoord_bits=tb, color_bits=cb,
                   ellipsoid_encoding=enc, content_id=content_id, grid_hint=grid_hint, coverage_target=coverage,
                   seed=seed)
@@ -1106,6 +1112,8 @@ class Receiver:
         obj = self.objects[oid]
         if h["type"] == 0x04:
             return self.repair(obj, h, offset)
+        if h["type"] == 0x05:
+            return self.connectivity(obj, h, offset)
         ellipsoids = h["type"] == 2
         record = 128 if ellipsoids else record_bits(self.info, obj["info"])
         batch = decode_batch(h["payload"], record)
@@ -1130,6 +1138,37 @@ class Receiver:
                 if b["rows"] and any(b["first"] <= i < b["first"] + b["count"] for i in fresh):
                     self.recover(obj, b)
         return "accepted" if fresh else "duplicate"
+
+    def connectivity(self, obj, h, offset):
+        """Spec 19.1, once the object's entry has arrived: pieces of the coded connectivity, keyed by byte
+        offset like a texture's; complete once every byte arrived and the CRC-32C matches."""
+        p, info = h["payload"], obj["info"]
+        if len(p) <= 16:
+            return self.reject(offset, "malformed payload")
+        count, size, crc, at = struct.unpack_from("<IIII", p, 0)
+        data = p[16:]
+        if count == 0 or at + len(data) > size or count > 8 * info["point_count"] or size > 16 * count + 64 \
+                or info["kind"] == "point set":
+            return self.reject(offset, "malformed payload")
+        c = obj.setdefault("connectivity", dict(desc=(count, size, crc), have={}, complete=False, coded=None))
+        if c["desc"] != (count, size, crc):
+            return self.reject(offset, "stream mismatch")
+        if c["complete"]:
+            return self.news(False)
+        fresh = 0
+        for k, b in enumerate(data):
+            if at + k not in c["have"]:  # the first copy of a byte is kept
+                c["have"][at + k] = b
+                fresh += 1
+        if not fresh:
+            return self.news(False)
+        if len(c["have"]) == size:
+            coded = bytes(c["have"][k] for k in range(size))
+            if crc32c(coded) != crc:
+                c["have"] = {}  # discarded: none received
+                return self.reject(offset, "stream mismatch")
+            c["complete"], c["coded"] = True, coded
+        return self.news(True)
 
     def repair(self, obj, h, offset):
         """Spec 17.3 (steps 13..15) and 17.4, once the object's entry has arrived."""
@@ -1373,10 +1412,124 @@ class Receiver:
                     ignored_references=ignored, nodes=nodes)
 
 
+class RangeDecoder:
+    """Spec 19.3: LZMA's binary range decoder; a byte past the end reads as 0."""
+
+    def __init__(self, data):
+        self.data, self.pos = data, 0
+        self.range, self.code = 0xFFFFFFFF, 0
+        for _ in range(5):
+            self.code = (self.code * 256 + self.byte()) % 2 ** 32
+
+    def byte(self):
+        b = self.data[self.pos] if self.pos < len(self.data) else 0
+        self.pos += 1
+        return b
+
+    def normalize(self):
+        if self.range < 2 ** 24:
+            self.range = (self.range * 256) % 2 ** 32
+            self.code = (self.code * 256 + self.byte()) % 2 ** 32
+
+    def bit(self, probs, k):
+        p = probs[k]
+        bound = (self.range >> 11) * p
+        if self.code < bound:
+            self.range = bound
+            probs[k] = p + ((2048 - p) >> 5)
+            b = 0
+        else:
+            self.range -= bound
+            self.code -= bound
+            probs[k] = p - (p >> 5)
+            b = 1
+        self.normalize()
+        return b
+
+    def direct(self, bits):
+        v = 0
+        for _ in range(bits):
+            self.range >>= 1
+            b = 0
+            if self.code >= self.range:
+                self.code -= self.range
+                b = 1
+            self.normalize()
+            v = v * 2 + b
+        return v
+
+
+def decode_connectivity(coded, triangle_count, positions, stats=None):
+    """Spec 19.2: the exact triangle list, or None when the connectivity is unusable. The candidates of a
+    gate are found by sorting every point (fine for small objects). `stats`, when given, counts what
+    the decode met: seeds, skipped gates, none bits, each rank, explicit indices."""
+    n = len(positions)
+    w = max(1, (n - 1).bit_length())
+    rc = RangeDecoder(coded)
+    probs = [1024] * 17  # none, then rank 1 .. rank 16
+    T, D, Q = [], set(), []
+    head = 0
+    count = lambda key: stats is not None and stats.__setitem__(key, stats.get(key, 0) + 1)
+
+    def take(a, b, c):
+        T.append([a, b, c])
+        D.update(((a, b), (b, c), (c, a)))
+        Q.extend(((a, b, c), (b, c, a), (c, a, b)))
+
+    while len(T) < triangle_count:
+        if head == len(Q):
+            a, b, c = rc.direct(w), rc.direct(w), rc.direct(w)
+            if max(a, b, c) >= n or a == b or b == c or a == c:
+                return None
+            count("seeds")
+            take(a, b, c)
+            continue
+        a, b, o = Q[head]
+        head += 1
+        if (b, a) in D:
+            count("gates decoded before")
+            continue
+        if rc.bit(probs, 0):
+            count("none")
+            continue
+        rank = next((r for r in range(1, 17) if rc.bit(probs, r)), 0)
+        if rank:
+            R = [positions[a][k] + positions[b][k] - positions[o][k] for k in range(3)]
+            order = sorted((sum((positions[i][k] - R[k]) ** 2 for k in range(3)), i) for i in range(n) if i not in (a, b))
+            if len(order) < rank:
+                return None
+            x = order[rank - 1][1]
+            count("rank %d" % rank)
+        else:
+            x = rc.direct(w)
+            if x >= n or x in (a, b):
+                return None
+            count("explicit index")
+        take(b, a, x)
+    return T
+
+
+def connectivity_json(obj):
+    """Spec 19.1, 19.2: the connectivity held, and its decode once complete with every point held."""
+    c = obj["connectivity"]
+    count, size, crc = c["desc"]
+    j = dict(triangle_count=count, coded_size=size, coded_crc=crc, received_bytes=len(c["have"]),
+             complete=c["complete"])
+    if c["complete"] and len(obj["points"]) == obj["info"]["point_count"]:
+        positions = [obj["points"][i][:3] for i in range(obj["info"]["point_count"])]
+        triangles = decode_connectivity(c["coded"], count, positions)
+        if triangles is None:
+            j["unusable"] = True
+        else:
+            j["triangles"] = triangles
+    return j
+
+
 def objects_json(r):
     objects = []
     for i, obj in enumerate(r.objects):
-        o = dict(id=i, info=obj["info"], ellipsoids_received=len(obj["ellipsoids"]),
+        info = obj["info"] and {k: v for k, v in obj["info"].items() if k != "exact_layer"}
+        o = dict(id=i, info=info, ellipsoids_received=len(obj["ellipsoids"]),
                  points_received=len(obj["points"]))
         if obj["info"] is not None:
             words = lambda store: [w for k in sorted(store) for w in [k] + store[k]]
@@ -1394,6 +1547,12 @@ def objects_json(r):
                                        complete=r.complete(obj, b), recovered=b["recovered"],
                                        points_recovered=b["points_recovered"])
                                   for _, b in sorted(obj["blocks"].items())]
+            # Format 1.3 (spec 19): listed for an object whose entry announces an exact layer or that
+            # holds a connectivity (README).
+            if obj["info"]["exact_layer"] or "connectivity" in obj:
+                o["exact_layer"] = obj["info"]["exact_layer"]
+            if "connectivity" in obj:
+                o["connectivity"] = connectivity_json(obj)
         objects.append(o)
     return objects
 

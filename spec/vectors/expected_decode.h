@@ -122,6 +122,32 @@ inline nlohmann::json object_info_json(const ObjectInfo& o) {
             {"texcoord_scale", floats(o.texcoord_scale.data(), 2)}};
 }
 
+// Format 1.3 (spec 19.1, 19.2): an object's connectivity, held from the first CONNECTIVITY packet of
+// it that passed the checks of spec 19.1 (also after its bytes were discarded for a wrong CRC-32C),
+// and, once it is complete and every point of the object is held, its decode: the exact triangle
+// list, or `unusable`.
+inline nlohmann::json connectivity_json(const ReceivedStream& stream, size_t object) {
+    const ReceivedObject& o = stream.objects()[object];
+    const ReceivedConnectivity& c = *o.connectivity;
+    nlohmann::json j = {{"triangle_count", c.triangle_count},
+                        {"coded_size", c.coded_size},
+                        {"coded_crc", c.coded_crc},
+                        {"received_bytes", c.complete ? uint64_t(c.coded_size) : c.received_bytes},
+                        {"complete", c.complete}};
+    if (c.complete && o.info && o.points.size() == o.info->point_count) {
+        std::vector<Triangle> triangles;
+        std::string why;
+        if (exact_triangles(stream, object, triangles, why) == Error::Ok) {
+            nlohmann::json list = nlohmann::json::array();
+            for (const Triangle& t : triangles) list.push_back({t[0], t[1], t[2]});
+            j["triangles"] = list;
+        } else {
+            j["unusable"] = true;
+        }
+    }
+    return j;
+}
+
 // The objects a receiver holds, as the JSON lists them.
 inline nlohmann::json objects_json(const ReceivedStream& stream) {
     using nlohmann::json;
@@ -184,6 +210,10 @@ inline nlohmann::json objects_json(const ReceivedStream& stream) {
                                   {"points_recovered", b.points_recovered}});
             }
             o["repair_blocks"] = blocks;
+            // Format 1.3, the exact layer (spec 19): listed only for an object whose entry announces
+            // one or that holds a connectivity, so that the decodes of streams without it stay as they were.
+            if (oi.exact_layer || object.connectivity) o["exact_layer"] = oi.exact_layer;
+            if (object.connectivity) o["connectivity"] = connectivity_json(stream, i);
         }
         objects.push_back(o);
     }

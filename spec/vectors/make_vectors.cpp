@@ -19,6 +19,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <map>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -2166,6 +2167,562 @@ void extensions_vectors(Writer& w) {
     }
 }
 
+// ------------------------------------------------------------------------------------------------
+// Format 1.3: the exact layer (CONNECTIVITY, spec 19). Three objects at packet size 256: a closed
+// lumpy sphere (a twice subdivided octahedron: 66 points with normals, 128 triangles), a panel with a hole,
+// a UV seam and a fin (56 points with normals and texture coordinates, 65 triangles), both with an
+// exact layer, and a point set without one. The STREAM_INFO says 1.3 (its entries use flags bit 8),
+// the ELLIPSOIDS and POINTS packets 1.0, the CONNECTIVITY packets 1.3.
+
+// LZMA's binary range encoder (spec 19.3, 19.5), for coded connectivity no encoder would write (the
+// unusable vectors): the library's encoder only codes real triangles.
+class VectorRangeEncoder {
+public:
+    void bit(uint16_t& p, int b) {
+        const uint32_t bound = (range_ >> 11) * p;
+        if (b == 0) {
+            range_ = bound;
+            p = uint16_t(p + ((2048 - p) >> 5));
+        } else {
+            low_ += bound;
+            range_ -= bound;
+            p = uint16_t(p - (p >> 5));
+        }
+        normalize();
+    }
+    void direct(uint32_t value, int bits) {
+        for (int k = bits - 1; k >= 0; --k) {
+            range_ >>= 1;
+            if ((value >> k) & 1) low_ += range_;
+            normalize();
+        }
+    }
+    std::vector<uint8_t> finish() {
+        for (int i = 0; i < 5; ++i) shift_low();
+        return out_;
+    }
+
+private:
+    void normalize() {
+        while (range_ < (1u << 24)) {
+            range_ <<= 8;
+            shift_low();
+        }
+    }
+    void shift_low() {
+        if (uint32_t(low_) < 0xFF000000u || (low_ >> 32) != 0) {
+            uint8_t temp = cache_;
+            do {
+                out_.push_back(uint8_t(temp + uint8_t(low_ >> 32)));
+                temp = 0xFF;
+            } while (--cache_size_ != 0);
+            cache_ = uint8_t(uint32_t(low_) >> 24);
+        }
+        ++cache_size_;
+        low_ = uint64_t(uint32_t(low_) << 8);
+    }
+    uint64_t low_ = 0;
+    uint32_t range_ = 0xFFFFFFFFu;
+    uint8_t cache_ = 0;
+    uint64_t cache_size_ = 1;
+    std::vector<uint8_t> out_;
+};
+
+// Spec 19.2: w, the bits of n - 1 (at least 1).
+int vector_index_bits(size_t n) {
+    int w = 1;
+    while ((uint64_t(1) << w) < n) ++w;
+    return w;
+}
+
+// A mesh before it is sent: its points (float) and its triangles over them.
+struct ExactMesh {
+    std::vector<SurfacePoint> points;
+    std::vector<Triangle> triangles;
+};
+
+// Renumbers the points in a seeded random order (Fisher-Yates), as an encoder that orders points for
+// spreading (spec 7.2) would: point indices then say nothing about the triangles.
+void shuffle_points(ExactMesh& m, Rng& rng) {
+    std::vector<uint32_t> order(m.points.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng.below(i)]);
+    std::vector<uint32_t> new_of(order.size());
+    std::vector<SurfacePoint> points(order.size());
+    for (uint32_t i = 0; i < order.size(); ++i) {
+        points[i] = m.points[order[i]];
+        new_of[order[i]] = i;
+    }
+    for (Triangle& t : m.triangles)
+        for (uint32_t& v : t) v = new_of[v];
+    m.points = std::move(points);
+}
+
+// A sphere of radius 0.8 around (0, 0, 0): an octahedron subdivided twice (66 vertices, 128
+// triangles, wound outward), with normals; each vertex moved by up to 0.12 along each axis (about a third of an edge) (seeded), so
+// that the parallelogram predictions miss and ranks beyond 2 occur.
+ExactMesh exact_sphere(Rng& rng) {
+    std::vector<std::array<double, 3>> v = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    std::vector<Triangle> t = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    for (int level = 0; level < 2; ++level) {
+        std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
+        auto midpoint = [&](uint32_t a, uint32_t b) {
+            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+            auto it = mid.find(key);
+            if (it != mid.end()) return it->second;
+            std::array<double, 3> m;
+            double len = 0;
+            for (int k = 0; k < 3; ++k) {
+                m[k] = v[a][k] + v[b][k];
+                len += m[k] * m[k];
+            }
+            for (double& c : m) c /= std::sqrt(len);
+            v.push_back(m);
+            return mid[key] = uint32_t(v.size() - 1);
+        };
+        std::vector<Triangle> next;
+        for (const Triangle& f : t) {
+            const uint32_t ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+            next.push_back({f[0], ab, ca});
+            next.push_back({ab, f[1], bc});
+            next.push_back({ca, bc, f[2]});
+            next.push_back({ab, bc, ca});
+        }
+        t = std::move(next);
+    }
+    ExactMesh m;
+    for (const auto& d : v) {
+        SurfacePoint p;
+        for (int k = 0; k < 3; ++k) {
+            p.position[k] = float(0.8 * d[k] + rng.range(-0.12, 0.12));
+            p.normal[k] = float(d[k]);
+        }
+        m.points.push_back(p);
+    }
+    m.triangles = std::move(t);
+    return m;
+}
+
+// A panel around (2, 0, -0.6): a 7 x 7 grid of spacing 0.25, gently bent, with normals and texture
+// coordinates; a hole where its 4 middle quads are left out (its middle vertex, grid (3, 3), is a
+// point no triangle uses); a UV seam along grid column 3, whose 6 used vertices are split (the quads
+// right of it use copies with the same position and another texture coordinate), so that the panel
+// is two pieces no edge joins; and a fin: one triangle from the bottom edge of quad (0, 0) up to a
+// tip 1.5 above it. 56 points (49 + 6 copies + the tip), 65 triangles.
+ExactMesh exact_panel() {
+    ExactMesh m;
+    auto grid = [](int i, int j, float u) {
+        SurfacePoint p;
+        p.position = {float(2 - 0.75 + 0.25 * i), float(-0.75 + 0.25 * j), float(-0.6 + 0.03 * std::sin(i) * std::cos(j))};
+        p.normal = {0, 0, 1};
+        p.texcoord = {u, float(j / 6.0)};
+        return p;
+    };
+    for (int j = 0; j < 7; ++j)
+        for (int i = 0; i < 7; ++i) m.points.push_back(grid(i, j, i <= 3 ? float(i / 12.0) : float(0.5 + i / 12.0)));
+    std::map<int, uint32_t> copy;  // grid row j -> the copy of vertex (3, j)
+    for (int j = 0; j < 7; ++j) {
+        if (j == 3) continue;
+        copy[j] = uint32_t(m.points.size());
+        m.points.push_back(grid(3, j, float(0.5 + 3 / 12.0)));
+    }
+    const uint32_t tip = uint32_t(m.points.size());
+    SurfacePoint top = grid(0, 0, 0);
+    top.position = {float(2 - 0.625), -0.75f, 0.9f};
+    top.normal = {0, -1, 0};
+    top.texcoord = {0.0f, 1.0f};
+    m.points.push_back(top);
+    for (int j = 0; j < 6; ++j)
+        for (int i = 0; i < 6; ++i) {
+            if ((i == 2 || i == 3) && (j == 2 || j == 3)) continue;  // the hole
+            // Right of the seam (i >= 3), column 3 is the copies.
+            auto id = [&](int x, int y) { return x == 3 && i >= 3 ? copy.at(y) : uint32_t(y * 7 + x); };
+            const uint32_t v00 = id(i, j), v10 = id(i + 1, j), v11 = id(i + 1, j + 1), v01 = id(i, j + 1);
+            m.triangles.push_back({v00, v10, v11});
+            m.triangles.push_back({v00, v11, v01});
+        }
+    m.triangles.push_back({1, 0, tip});  // the fin, beyond the edge 0 -> 1 of the first triangle
+    return m;
+}
+
+struct ExactStream {
+    StreamInfo info;
+    std::vector<ObjectContent> contents;
+    std::vector<std::vector<uint8_t>> coded;  // per object (empty: none)
+    std::vector<uint32_t> triangle_count;
+    std::vector<std::vector<Triangle>> sent;  // what a decoder decodes
+    Packets info_packets, ellipsoids, points;
+    std::vector<Packets> connectivity;        // per object
+    Packets all() const {
+        Packets out = info_packets;
+        out.insert(out.end(), ellipsoids.begin(), ellipsoids.end());
+        out.insert(out.end(), points.begin(), points.end());
+        for (const Packets& c : connectivity) out.insert(out.end(), c.begin(), c.end());
+        return out;
+    }
+};
+
+ExactStream exact_stream() {
+    ExactStream s;
+    s.info = default_info({make_object({-1, -1, -1}, 2, 8, 66, kAttrNormal),
+                           make_object({1, -1, -1}, 2, 8, 56, kAttrNormal | kAttrTexcoord),
+                           make_object({-1, 2, -1}, 1, 0, 20, kAttrColor, ObjectKind::PointSet)},
+                          256);
+    s.info.objects[0].exact_layer = true;
+    s.info.objects[1].exact_layer = true;
+    Rng rng(70);
+    std::vector<ExactMesh> meshes = {exact_sphere(rng), exact_panel()};
+    for (size_t i = 0; i < s.info.objects.size(); ++i) {
+        const ObjectInfo& o = s.info.objects[i];
+        // Ellipsoids (and, for the point set, its points) as the other vectors make them.
+        ObjectContent c = make_content(s.info, o, rng);
+        s.coded.emplace_back();
+        s.triangle_count.push_back(0);
+        s.sent.emplace_back();
+        if (i < meshes.size()) {
+            ExactMesh& m = meshes[i];
+            shuffle_points(m, rng);
+            if (m.points.size() != o.point_count) {
+                std::cerr << "make_vectors: exact mesh " << i << " has " << m.points.size() << " points\n";
+                std::exit(1);
+            }
+            c.points.clear();
+            std::vector<std::array<uint32_t, 3>> positions;
+            for (const SurfacePoint& p : m.points) {
+                c.points.push_back(quantize_point(p, s.info, o));
+                positions.push_back(c.points.back().position);
+            }
+            if (encode_connectivity(positions, m.triangles, s.coded[i], s.sent[i]) != Error::Ok) {
+                std::cerr << "make_vectors: encode_connectivity failed\n";
+                std::exit(1);
+            }
+            s.triangle_count[i] = uint32_t(m.triangles.size());
+        }
+        s.contents.push_back(std::move(c));
+    }
+    StreamPackets packets;
+    if (packetize_stream(s.info, s.contents, kStreamId, packets) != Error::Ok) {
+        std::cerr << "make_vectors: packetize_stream failed\n";
+        std::exit(1);
+    }
+    mark_version_1_0(packets);
+    for (Packet& p : packets.stream_info) {
+        p[5] = 3;  // its entries use flags bit 8 (format 1.3)
+        reseal(p);
+    }
+    s.info_packets = packets.stream_info;
+    s.ellipsoids = packets.ellipsoids;
+    s.points = packets.points;
+    uint32_t sequence = uint32_t(s.info_packets.size() + s.ellipsoids.size() + s.points.size());
+    for (size_t i = 0; i < s.info.objects.size(); ++i) {
+        Packets out;
+        if (!s.coded[i].empty() &&
+            packetize_connectivity(s.info, uint16_t(i), s.triangle_count[i], s.coded[i], kStreamId, sequence, out) != Error::Ok) {
+            std::cerr << "make_vectors: packetize_connectivity failed\n";
+            std::exit(1);
+        }
+        sequence += uint32_t(out.size());
+        s.connectivity.push_back(out);
+    }
+    return s;
+}
+
+// A CONNECTIVITY packet as given (the faulty vectors need pieces no packetizer cuts).
+Packet connectivity_packet(uint16_t object, uint32_t sequence, uint32_t triangle_count, uint32_t coded_size,
+                           uint32_t coded_crc, uint32_t offset, std::vector<uint8_t> data) {
+    ConnectivityPiece piece;
+    piece.triangle_count = triangle_count;
+    piece.coded_size = coded_size;
+    piece.coded_crc = coded_crc;
+    piece.offset = offset;
+    piece.data = std::move(data);
+    PacketHeader h;
+    h.version_minor = kConnectivityMinor;
+    h.type = uint8_t(PacketType::Connectivity);
+    h.flags = kFlagSkippable;
+    h.stream_id = kStreamId;
+    h.sequence = sequence;
+    h.object_id = object;
+    return write_packet(h, encode_connectivity_payload(piece));
+}
+
+// Offsets in a CONNECTIVITY packet (header included), spec 19.1.
+constexpr size_t kConnTriangles = kHeaderSize, kConnSize = kHeaderSize + 4, kConnCrc = kHeaderSize + 8,
+                 kConnOffset = kHeaderSize + 12, kConnData = kHeaderSize + 16;
+
+void exact_vectors(Writer& w) {
+    const ExactStream s = exact_stream();
+    const Packets good = s.all();
+    const std::string kExact =
+        "the exact-layer stream of valid/exact (a lumpy sphere of 66 points and 128 triangles, a panel of 56 points and 65 "
+        "triangles with a hole, a UV seam and a fin, both with an exact layer, and a point set)";
+    w.write("valid", "exact",
+            "format 1.3, the exact layer (spec 19): three objects at packet size 256: a closed lumpy sphere (an "
+            "octahedron subdivided twice, its vertices jittered: 66 points with normals, 128 triangles; decoded with "
+            "one seed and ranks 1, 2, 3, 5 and 7), a panel (a 7 x 7 grid with a hole of 4 quads whose middle vertex no "
+            "triangle uses, a UV seam whose 6 split vertices cut it into two pieces no edge joins, and a fin whose tip "
+            "is no candidate; 56 points with normals and texture coordinates, 65 triangles; decoded with two seeds, "
+            "39 none bits, one explicit index, and ties between seam copies broken by index), both announcing an exact "
+            "layer (entry flags bit 8) and sent with one CONNECTIVITY packet each after the points, and a point set "
+            "without one; points in a shuffled order; every object exact",
+            good);
+
+    // Where object 0's CONNECTIVITY packet is in `good`.
+    const size_t conn0 = s.info_packets.size() + s.ellipsoids.size() + s.points.size();
+    if (s.connectivity[0].size() != 1 || s.connectivity[1].size() != 1) {
+        std::cerr << "make_vectors: the exact objects should fit one CONNECTIVITY packet each\n";
+        std::exit(1);
+    }
+    const std::vector<uint8_t>& coded0 = s.coded[0];
+    const uint32_t size0 = uint32_t(coded0.size()), crc0 = crc32c(coded0.data(), coded0.size());
+    {
+        // Object 0's coded connectivity cut into pieces of 4 bytes, in an order no sender uses: the last
+        // piece, a piece over bytes 2..5 (overlapping pieces 0 and 1), the middle pieces backwards,
+        // piece 0, piece 0 again (a byte-identical duplicate), piece 1 (completes it), piece 2 again with
+        // a new sequence number (a duplicate of a complete connectivity). Object 1's packet comes before
+        // the points (the connectivity complete before every point is held).
+        const size_t k = (coded0.size() + 3) / 4;
+        if (k < 4) {
+            std::cerr << "make_vectors: object 0's coded connectivity is too short to cut (" << coded0.size() << ")\n";
+            std::exit(1);
+        }
+        auto piece = [&](uint32_t from, uint32_t to, uint32_t sequence) {
+            to = std::min<uint32_t>(to, size0);
+            return connectivity_packet(0, sequence, s.triangle_count[0], size0, crc0, from,
+                                       std::vector<uint8_t>(coded0.begin() + from, coded0.begin() + to));
+        };
+        Packets file = s.info_packets;
+        file.insert(file.end(), s.ellipsoids.begin(), s.ellipsoids.end());
+        file.insert(file.end(), s.connectivity[1].begin(), s.connectivity[1].end());
+        file.insert(file.end(), s.points.begin(), s.points.end());
+        uint32_t seq = 100;
+        file.push_back(piece(uint32_t(4 * (k - 1)), size0, seq++));
+        file.push_back(piece(2, 6, seq++));
+        for (size_t i = k - 2; i >= 2; --i) file.push_back(piece(uint32_t(4 * i), uint32_t(4 * i + 4), seq++));
+        file.push_back(piece(0, 4, seq));
+        file.push_back(piece(0, 4, seq++));
+        file.push_back(piece(4, 8, seq++));
+        file.push_back(piece(8, 12, seq++));
+        w.write("unusual", "exact_pieces",
+                std::string(kExact) + ", with object 0's coded connectivity (" + std::to_string(size0) +
+                    " bytes) cut into pieces of 4 bytes (spec 19.1: any cut), sent out of order: the last piece, a "
+                    "piece of bytes 2..5 overlapping pieces 0 and 1, the middle pieces backwards, piece 0 (accepted: "
+                    "bytes 0..1 are new), piece 0 again (a duplicate), piece 1 (accepted: bytes 6..7 complete it), "
+                    "piece 2 again with a new sequence number (a duplicate); object 1's CONNECTIVITY packet before its "
+                    "points (decoded once every point is held); every object exact",
+                file);
+    }
+    {
+        Packets file = s.connectivity[1];
+        file.insert(file.end(), s.connectivity[0].begin(), s.connectivity[0].end());
+        const Packets rest = {good.begin(), good.begin() + long(conn0)};
+        file.insert(file.end(), rest.begin(), rest.end());
+        w.write("unusual", "exact_before_stream_info",
+                std::string(kExact) + ", with both CONNECTIVITY packets (object 1's first) before the STREAM_INFO: "
+                "held like POINTS packets (spec 19, 11.2), released in arrival order when the STREAM_INFO arrives "
+                "and accepted; every object exact",
+                file);
+    }
+    {
+        Packets file = good;
+        Packet& info = file[0];
+        put16(info, kHeaderSize + 32 + 2 * 44 + 26, kEntryExactLayer);
+        reseal(info);
+        w.write("unusual", "exact_point_set_flag",
+                std::string(kExact) + ", with flags bit 8 set in the point set's entry (object 2): the bit means "
+                "nothing for a point set (spec 19); no exact layer is awaited for it and it has no CONNECTIVITY packet",
+                file);
+    }
+
+    // Faulty: the stream of valid/exact with one defect.
+    // A copy of object 0's CONNECTIVITY packet with `edit` applied, numbered 1000 and resealed.
+    auto defective = [&](const std::function<void(Packet&)>& edit) {
+        Packet p = good[conn0];
+        put32(p, 12, 1000);
+        edit(p);
+        reseal(p);
+        return p;
+    };
+    struct ExactEdit {
+        const char* name;
+        const char* description;
+        std::function<void(Packet&)> edit;
+        bool first;  // before the STREAM_INFO (else after the stream)
+    };
+    const uint32_t n0 = s.info.objects[0].point_count;
+    const std::vector<ExactEdit> edits = {
+        {"exact_no_data",
+         "a CONNECTIVITY packet of object 0 with its 16-byte description and no data byte, before the STREAM_INFO: "
+         "held (its checks need the object's entry, spec 11.1), then rejected when released (malformed payload, "
+         "spec 19.1: no data byte)",
+         [](Packet& p) { p = with_payload(p, std::vector<uint8_t>(p.begin() + kHeaderSize, p.begin() + kConnData)); },
+         true},
+        {"exact_piece_past_end",
+         "after the stream, a CONNECTIVITY packet of object 0 whose piece (all the coded bytes) starts at offset 1: "
+         "offset + data length = coded_size + 1 (malformed payload, spec 19.1)",
+         [](Packet& p) { put32(p, kConnOffset, 1); }, false},
+        {"exact_triangle_count_zero",
+         "after the stream, a CONNECTIVITY packet of object 0 with triangle_count 0 (malformed payload, spec 19.1)",
+         [](Packet& p) { put32(p, kConnTriangles, 0); }, false},
+        {"exact_too_many_triangles",
+         "after the stream, a CONNECTIVITY packet of object 0 with triangle_count 529 = 8 x 66 + 1, more than 8 "
+         "times the object's point_count (malformed payload, spec 19.1; 528 would pass)",
+         [n0](Packet& p) { put32(p, kConnTriangles, 8 * n0 + 1); }, false},
+        {"exact_coded_size_too_large",
+         "after the stream, a CONNECTIVITY packet of object 0 with coded_size 2113 = 16 x 128 + 64 + 1 (malformed "
+         "payload, spec 19.1; 2112 would pass)",
+         [](Packet& p) { put32(p, kConnSize, 16 * get32(p, kConnTriangles) + 65); }, false},
+        {"exact_point_set",
+         "after the stream, object 0's CONNECTIVITY packet sent for object 2, a point set (malformed payload, spec "
+         "19.1)",
+         [](Packet& p) { put16(p, 16, 2); }, false},
+        {"exact_unknown_object",
+         "after the stream, object 0's CONNECTIVITY packet sent for object 3 of 3 (unknown object, spec 11.1 step 12)",
+         [](Packet& p) { put16(p, 16, 3); }, false},
+        {"exact_triangle_count_contradicts",
+         "after the stream, object 0's CONNECTIVITY packet again with triangle_count 129 where the first said 128 "
+         "(stream mismatch, spec 19.1), even though the connectivity is complete",
+         [](Packet& p) { put32(p, kConnTriangles, get32(p, kConnTriangles) + 1); }, false},
+        {"exact_coded_size_contradicts",
+         "after the stream, object 0's CONNECTIVITY packet again with coded_size one more than the first said "
+         "(stream mismatch, spec 19.1)",
+         [](Packet& p) { put32(p, kConnSize, get32(p, kConnSize) + 1); }, false},
+        {"exact_crc_contradicts",
+         "after the stream, object 0's CONNECTIVITY packet again with another coded_crc (stream mismatch, spec 19.1)",
+         [](Packet& p) { put32(p, kConnCrc, get32(p, kConnCrc) ^ 0x00010000u); }, false},
+    };
+    for (const ExactEdit& e : edits) {
+        Packets file = good;
+        const Packet bad = defective(e.edit);
+        if (e.first) file.insert(file.begin(), bad);
+        else file.push_back(bad);
+        w.write("faulty", e.name, e.description, file);
+    }
+    {
+        Packets file = good;
+        file[conn0][kConnData + 3] ^= 0x20;
+        reseal(file[conn0]);
+        w.write("faulty", "exact_crc_wrong",
+                std::string(kExact) + ", with one byte of object 0's coded connectivity changed (resealed): every "
+                "byte arrives but its CRC-32C does not match coded_crc: the packet that completed it is rejected "
+                "(stream mismatch) and the bytes discarded (spec 19.1); object 0 is not exact",
+                file);
+    }
+    // Coded connectivity no encoder writes, with a matching CRC: unusable when decoded (spec 19.2).
+    auto replaced_connectivity = [&](const std::vector<uint8_t>& coded) {
+        Packets file = good;
+        file[conn0] = connectivity_packet(0, get32(good[conn0], 12), s.triangle_count[0], uint32_t(coded.size()),
+                                          crc32c(coded.data(), coded.size()), 0, coded);
+        return file;
+    };
+    const int w0 = vector_index_bits(n0);
+    {
+        // The first seed of the real stream, then at its first gate: not none, no rank of 1..16, and the
+        // explicit index n (w = 7 bits hold it).
+        VectorRangeEncoder rc;
+        for (uint32_t v : s.sent[0][0]) rc.direct(v, w0);
+        uint16_t none = 1024;
+        std::array<uint16_t, 16> rank;
+        rank.fill(1024);
+        rc.bit(none, 0);
+        for (uint16_t& p : rank) rc.bit(p, 0);
+        rc.direct(n0, w0);
+        w.write("faulty", "exact_unusable_index",
+                std::string(kExact) + ", with object 0's coded connectivity replaced by one with a matching CRC whose "
+                "first gate escapes to the explicit index 66, not below the object's 66 points: no rejection (every "
+                "packet is well formed), but the connectivity is unusable (spec 19.2 step 4): object 0 is not exact "
+                "and the recording does not conform (spec 19.4: 'decodes to triangle_count triangles without being "
+                "unusable'); a validator reports it",
+                replaced_connectivity(rc.finish()));
+    }
+    {
+        VectorRangeEncoder rc;
+        for (uint32_t v : {5u, 5u, 9u}) rc.direct(v, w0);
+        w.write("faulty", "exact_unusable_seed",
+                std::string(kExact) + ", with object 0's coded connectivity replaced by one with a matching CRC whose "
+                "seed names points 5, 5, 9 (two equal): no rejection, but the connectivity is unusable (spec 19.2 "
+                "step 1): object 0 is not exact and the recording does not conform (spec 19.4); a validator reports it",
+                replaced_connectivity(rc.finish()));
+    }
+    {
+        Packets file = good;
+        const size_t conn1 = conn0 + s.connectivity[0].size();
+        file.erase(file.begin() + long(conn1), file.begin() + long(conn1 + s.connectivity[1].size()));
+        w.write("faulty", "exact_layer_lost",
+                std::string(kExact) + ", with object 1's CONNECTIVITY packet lost: no rejection; its entry announces an "
+                "exact layer that never arrives: object 1 is not exact and the stream is not complete (spec 19.4); a "
+                "validator reports it",
+                file);
+    }
+    {
+        // Spec 19: from format 1.3 on, bit 8 of an entry's flags is compared (5.4); its other bits, and
+        // the bit in a point set's entry, are not.
+        Packet again = good[0];
+        put32(again, 12, 1000);
+        put16(again, kHeaderSize + 32 + 0 * 44 + 26, 0xBFEF);
+        put16(again, kHeaderSize + 32 + 1 * 44 + 26, 0x0101);
+        put16(again, kHeaderSize + 32 + 2 * 44 + 26, 0x0100);
+        reseal(again);
+        Packets file = good;
+        file.push_back(again);
+        w.write("unusual", "exact_flags_uncompared",
+                std::string(kExact) + ", then the STREAM_INFO again (sequence 1000, resealed) with the entries' flags "
+                "BFEF, 0101 and 0100 where the first said 0100, 0100 and 0: bit 8 is the same for both surface objects "
+                "and means nothing for the point set, the other bits are reserved: a duplicate (spec 5.4, 19)",
+                file);
+        Packet contradicting = good[0];
+        put32(contradicting, 12, 1000);
+        put16(contradicting, kHeaderSize + 32 + 0 * 44 + 26, 0);
+        reseal(contradicting);
+        file = good;
+        file.push_back(contradicting);
+        w.write("faulty", "exact_flag_contradicts",
+                std::string(kExact) + ", then the STREAM_INFO again (sequence 1000, resealed) with flags bit 8 cleared "
+                "in object 0's entry: rejected, stream mismatch (spec 19: 'From format 1.3 on, it is one of the fields "
+                "section 5.4 compares'); the first entry stays",
+                file);
+    }
+    {
+        Packets file = good;
+        put16(file[0], kHeaderSize + 32 + 0 * 44 + 26, 0);
+        reseal(file[0]);
+        w.write("faulty", "exact_without_flag",
+                std::string(kExact) + ", with flags bit 8 cleared in object 0's entry (resealed) while its "
+                "CONNECTIVITY packet is sent: no rejection; the connectivity is taken and decodes, but a recording "
+                "with CONNECTIVITY packets for an object whose entry does not announce an exact layer does not "
+                "conform (spec 19.4); a validator reports it",
+                file);
+    }
+    {
+        // Object 0's last POINTS packet without its last point (point 65).
+        Packets file = good;
+        size_t last = 0;
+        uint32_t last_first = 0;
+        for (size_t i = 0; i < file.size(); ++i) {
+            PacketView v;
+            if (parse_packet(file[i], v) != Error::Ok || v.header.type != uint8_t(PacketType::Points) || v.header.object_id != 0)
+                continue;
+            const uint32_t first = get32(file[i], kHeaderSize);
+            if (last == 0 || first >= last_first) {
+                last = i;
+                last_first = first;
+            }
+        }
+        PacketView v;
+        parse_packet(file[last], v);
+        PointBatch batch;
+        batch.first_index = last_first;
+        batch.points.assign(s.contents[0].points.begin() + last_first, s.contents[0].points.end() - 1);
+        file[last] = write_packet(v.header, encode_points_payload(batch, s.info, s.info.objects[0]));
+        w.write("faulty", "exact_point_missing",
+                std::string(kExact) + ", with object 0's last POINTS packet one point short (point 65 never sent): no "
+                "rejection; object 0's connectivity is complete but it is not decoded (spec 19.2: the candidates are "
+                "points): the object is shown progressive (spec 19.4); the recording does not conform (spec 11.5: every "
+                "element present); a validator reports it",
+                file);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -2182,6 +2739,7 @@ int main(int argc, char** argv) {
     signed_vectors(w);
     repair_vectors(w);
     extensions_vectors(w);
+    exact_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
