@@ -283,7 +283,8 @@ TEST_CASE("hostile connectivity: random bytes decode in bounded time to valid tr
     ReceivedStream stream;
     uint64_t k = 0;
     for (const auto& p : encoded.packets)
-        if (p[6] != uint8_t(PacketType::Connectivity)) REQUIRE(stream.add_packet(p, k++) == Error::Ok);
+        if (p[6] != uint8_t(PacketType::Connectivity) && p[6] != uint8_t(PacketType::ConnectivityRepair))
+            REQUIRE(stream.add_packet(p, k++) == Error::Ok);
     for (const auto& p : forged) REQUIRE(stream.add_packet(p, k++) == Error::Ok);
     std::vector<Mesh> meshes;
     StreamDecodeReport report;
@@ -335,4 +336,60 @@ TEST_CASE("connectivity pieces: any order, overlaps and repeats complete it once
         CHECK(e == (i + 1 == pieces.size() ? Error::StreamMismatch : Error::Ok));
     }
     CHECK(!fresh.objects()[0].connectivity->complete);
+}
+
+TEST_CASE("repair packets give back the exact layer: any k of its pieces and repair symbols, also with pieces cut "
+          "at other offsets") {
+    if (!have_sample("meshes/bunny.ply")) return;
+    Asset asset = load_asset((shared_samples() / "meshes/bunny.ply").string());
+    EncodedAsset encoded;
+    std::string error;
+    REQUIRE(encode_asset(asset, quick_encoding(), 4, true, encoded, error));
+    std::vector<std::vector<uint8_t>> pieces, repairs, others;
+    for (const auto& p : encoded.packets) {
+        if (p[6] == uint8_t(PacketType::Connectivity)) pieces.push_back(p);
+        else if (p[6] == uint8_t(PacketType::ConnectivityRepair)) repairs.push_back(p);
+        else others.push_back(p);
+    }
+    const size_t k = pieces.size();
+    REQUIRE(k >= 3);
+    REQUIRE(repairs.size() == k);  // repair ratio 1
+    const auto expected = quantized_input(asset.objects[0], encoded.encoded.info, encoded.encoded.info.objects[0]);
+    // Half of the pieces lost: as many repair symbols complete it.
+    {
+        ReceivedStream stream;
+        uint64_t n = 0;
+        for (const auto& p : others) REQUIRE(stream.add_packet(p, n++) == Error::Ok);
+        for (size_t i = 0; i < k; i += 2) REQUIRE(stream.add_packet(pieces[i], n++) == Error::Ok);
+        const size_t missing = k / 2;
+        for (size_t r = 0; r + 1 < missing; ++r) REQUIRE(stream.add_packet(repairs[r], n++) == Error::Ok);
+        CHECK(!stream.objects()[0].connectivity->complete);
+        REQUIRE(stream.add_packet(repairs[missing - 1], n++) == Error::Ok);
+        REQUIRE(stream.objects()[0].connectivity->complete);
+        CHECK(stream.objects()[0].connectivity->recovered);
+        CHECK(exact_output(stream, 0) == expected);
+    }
+    // Only repair symbols, and a piece re-cut at an odd offset that covers no whole symbol but one.
+    {
+        ReceivedStream stream;
+        uint64_t n = 0;
+        for (const auto& p : others) REQUIRE(stream.add_packet(p, n++) == Error::Ok);
+        PacketView view;
+        REQUIRE(parse_packet(pieces[0], view) == Error::Ok);
+        ConnectivityPiece piece;
+        REQUIRE(decode_connectivity_payload(view.payload, piece) == Error::Ok);
+        ConnectivityPiece a = piece, b = piece;
+        a.data.resize(piece.data.size() / 2);
+        b.offset = uint32_t(a.data.size());
+        b.data.erase(b.data.begin(), b.data.begin() + long(a.data.size()));
+        REQUIRE(stream.add_packet(write_packet(view.header, encode_connectivity_payload(b)), n++) == Error::Ok);
+        REQUIRE(stream.add_packet(write_packet(view.header, encode_connectivity_payload(a)), n++) == Error::Ok);
+        for (size_t r = 0; r + 1 < k; ++r) REQUIRE(stream.add_packet(repairs[r], n++) == Error::Ok);
+        REQUIRE(stream.objects()[0].connectivity->complete);
+        CHECK(exact_output(stream, 0) == expected);
+        // A repeat after completion is a duplicate.
+        const uint64_t duplicates = stream.counters().duplicates;
+        REQUIRE(stream.add_packet(repairs[k - 1], n++) == Error::Ok);
+        CHECK(stream.counters().duplicates == duplicates + 1);
+    }
 }

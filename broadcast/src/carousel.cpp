@@ -18,7 +18,8 @@ namespace ellicast::broadcast {
 bool is_base_packet(const PacketHeader& header) {
     return header.type != static_cast<uint8_t>(PacketType::Points) &&
            header.type != static_cast<uint8_t>(PacketType::TextureFragment) &&
-           header.type != static_cast<uint8_t>(PacketType::Connectivity);
+           header.type != static_cast<uint8_t>(PacketType::Connectivity) &&
+           header.type != static_cast<uint8_t>(PacketType::ConnectivityRepair);
 }
 
 uint64_t Carousel::bytes_before(uint64_t slot) const {

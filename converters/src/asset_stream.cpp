@@ -66,6 +66,22 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
             return false;
         }
     }
+    // Its repair symbols (spec 19.5): ceil(ratio * k) rows where the repair ratio is above 0 and k <= 127.
+    if (options.repair_ratio > 0) {
+        const size_t symbol = out.encoded.info.packet_size - kPacketOverhead - kConnectivityHeaderSize;
+        for (size_t i = 0; i < out.encoded.contents.size(); ++i) {
+            const ObjectContent& c = out.encoded.contents[i];
+            const size_t k = (c.connectivity.size() + symbol - 1) / symbol;
+            if (c.connectivity.empty() || k > 127) continue;
+            const size_t count = size_t(std::ceil(options.repair_ratio * double(k) - 1e-9));
+            if (Error e = packetize_connectivity_repairs(out.encoded.info, uint16_t(i), c.triangle_count, c.connectivity,
+                                                         std::min(count, 255 - k), stream_id, 0, connectivity);
+                e != Error::Ok) {
+                error = std::string("could not make the exact layer's repair packets: ") + error_name(e);
+                return false;
+            }
+        }
+    }
     take(connectivity, out.connectivity_packets, out.connectivity_bytes);
     if (options.repair_ratio > 0) {
         // Blocks of at most floor(255 / (1 + ratio)) POINTS packets, each with ceil(ratio * k) repair

@@ -292,6 +292,78 @@ Error packetize_connectivity(const StreamInfo& info, uint16_t object_id, uint32_
     return Error::Ok;
 }
 
+std::vector<uint8_t> encode_connectivity_repair_payload(const ConnectivityRepair& r) {
+    std::vector<uint8_t> out;
+    out.reserve(16 + r.symbol.size());
+    put32(out, r.triangle_count);
+    put32(out, r.coded_size);
+    put32(out, r.coded_crc);
+    out.push_back(uint8_t(r.symbol_size));
+    out.push_back(uint8_t(r.symbol_size >> 8));
+    out.push_back(r.row);
+    out.push_back(0);
+    out.insert(out.end(), r.symbol.begin(), r.symbol.end());
+    return out;
+}
+
+Error decode_connectivity_repair_payload(std::span<const uint8_t> payload, ConnectivityRepair& out) {
+    if (payload.size() < 16) return Error::MalformedPayload;
+    ConnectivityRepair r;
+    r.triangle_count = get32(payload.data());
+    r.coded_size = get32(payload.data() + 4);
+    r.coded_crc = get32(payload.data() + 8);
+    r.symbol_size = uint16_t(payload[12] | (payload[13] << 8));
+    r.row = payload[14];
+    if (r.triangle_count == 0 || r.coded_size == 0 || uint64_t(r.coded_size) > 16 * uint64_t(r.triangle_count) + 64 ||
+        r.symbol_size == 0 || payload.size() != 16 + size_t(r.symbol_size))
+        return Error::MalformedPayload;
+    const uint64_t k = (uint64_t(r.coded_size) + r.symbol_size - 1) / r.symbol_size;
+    if (k > 254 || r.row < k) return Error::MalformedPayload;
+    r.symbol.assign(payload.begin() + 16, payload.end());
+    out = std::move(r);
+    return Error::Ok;
+}
+
+// The source symbols of spec 19.5: the coded connectivity cut into `size`-byte symbols, the last padded.
+std::vector<std::vector<uint8_t>> connectivity_symbols(const std::vector<uint8_t>& coded, size_t size) {
+    std::vector<std::vector<uint8_t>> out;
+    for (size_t at = 0; at < coded.size(); at += size) {
+        std::vector<uint8_t> s(coded.begin() + at, coded.begin() + std::min(coded.size(), at + size));
+        s.resize(size, 0);
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
+Error packetize_connectivity_repairs(const StreamInfo& info, uint16_t object_id, uint32_t triangle_count,
+                                     const std::vector<uint8_t>& coded, size_t count, uint32_t stream_id,
+                                     uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out) {
+    if (coded.empty() || info.packet_size <= kPacketOverhead + kConnectivityHeaderSize) return Error::MalformedPayload;
+    const size_t size = info.packet_size - kPacketOverhead - kConnectivityHeaderSize;
+    const auto sources = connectivity_symbols(coded, size);
+    const size_t k = sources.size();
+    if (k > 127 || k + count > 255) return Error::MalformedPayload;
+    ConnectivityRepair r;
+    r.triangle_count = triangle_count;
+    r.coded_size = uint32_t(coded.size());
+    r.coded_crc = crc32c(coded.data(), coded.size());
+    r.symbol_size = uint16_t(size);
+    uint32_t sequence = first_sequence;
+    for (size_t row = k; row < k + count; ++row) {
+        r.row = uint8_t(row);
+        r.symbol = repair_symbol(sources, unsigned(row));
+        PacketHeader h;
+        h.version_minor = kConnectivityMinor;
+        h.type = uint8_t(PacketType::ConnectivityRepair);
+        h.flags = kFlagSkippable;
+        h.stream_id = stream_id;
+        h.sequence = sequence++;
+        h.object_id = object_id;
+        out.push_back(write_packet(h, encode_connectivity_repair_payload(r)));
+    }
+    return Error::Ok;
+}
+
 Error exact_triangles(const ReceivedStream& stream, size_t object, std::vector<Triangle>& out, std::string& why) {
     if (object >= stream.objects().size()) {
         why = "no such object";

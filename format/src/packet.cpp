@@ -24,6 +24,7 @@ std::string packet_type_name(uint8_t type) {
     case 0x20: return "MANIFEST";
     case 0x04: return "POINTS_REPAIR";
     case 0x05: return "CONNECTIVITY";
+    case 0x06: return "CONNECTIVITY_REPAIR";
     default: {
         char buf[24];
         std::snprintf(buf, sizeof buf, "UNKNOWN(0x%02X)", type);
@@ -33,7 +34,7 @@ std::string packet_type_name(uint8_t type) {
 }
 
 bool is_known_packet_type(uint8_t type) {
-    return (type >= 0x01 && type <= 0x05) || (type >= 0x10 && type <= 0x13) || type == 0x20;
+    return (type >= 0x01 && type <= 0x06) || (type >= 0x10 && type <= 0x13) || type == 0x20;
 }
 
 const char* error_name(Error e) {

@@ -180,6 +180,8 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
     if (packet.header.type == static_cast<uint8_t>(PacketType::PointsRepair)) return take_repair(object, packet, name, where);
     if (packet.header.type == static_cast<uint8_t>(PacketType::Connectivity))
         return take_connectivity(object, packet, name, where);
+    if (packet.header.type == static_cast<uint8_t>(PacketType::ConnectivityRepair))
+        return take_connectivity_repair(object, packet, name, where);
     bool news = false;
     if (packet.header.type == static_cast<uint8_t>(PacketType::Ellipsoids)) {
         EllipsoidBatch batch;
@@ -264,18 +266,117 @@ Error ReceivedStream::take_connectivity(ReceivedObject& object, const PacketView
         c.pieces.emplace(a, std::vector<uint8_t>(piece.data.begin() + (a - begin), piece.data.begin() + (b - begin)));
         c.received_bytes += b - a;
     }
-    if (c.received_bytes == c.coded_size) {
-        std::vector<uint8_t> coded;
-        coded.reserve(c.coded_size);
-        for (const auto& [offset, bytes] : c.pieces) coded.insert(coded.end(), bytes.begin(), bytes.end());
-        c.pieces.clear();
-        c.received_bytes = 0;
-        if (crc32c(coded.data(), coded.size()) != c.coded_crc)
-            return reject(where, Error::StreamMismatch, name + ": the connectivity is complete but its CRC does not match");
-        c.coded = std::move(coded);
-        c.received_bytes = c.coded_size;
-        c.complete = true;
+    if (Error e = complete_connectivity(c, name, where); e != Error::Ok) return e;
+    ++counters_.accepted;
+    return Error::Ok;
+}
+
+namespace {
+
+// Whether bytes [begin, end) of a connectivity have all arrived, and if so (with `out`) what they are.
+bool covered(const ReceivedConnectivity& c, uint32_t begin, uint32_t end, std::vector<uint8_t>* out) {
+    auto it = c.pieces.upper_bound(begin);
+    if (it == c.pieces.begin()) return false;
+    --it;
+    uint32_t cursor = begin;
+    for (; it != c.pieces.end() && cursor < end; ++it) {
+        const uint32_t piece_end = uint32_t(it->first + it->second.size());
+        if (it->first > cursor) return false;
+        if (piece_end <= cursor) continue;
+        const uint32_t to = std::min(end, piece_end);
+        if (out) out->insert(out->end(), it->second.begin() + (cursor - it->first), it->second.begin() + (to - it->first));
+        cursor = to;
     }
+    return cursor >= end;
+}
+
+}  // namespace
+
+Error ReceivedStream::complete_connectivity(ReceivedConnectivity& c, const std::string& name, uint64_t where) {
+    if (c.complete) return Error::Ok;
+    if (c.received_bytes < c.coded_size && !c.rows.empty()) {
+        // Spec 19.5: held source symbols and repair rows together reach k: solve for the rest.
+        const size_t size = c.symbol_size;
+        const size_t k = (size_t(c.coded_size) + size - 1) / size;
+        std::vector<std::vector<uint8_t>> sources(k);
+        size_t held = 0;
+        for (size_t j = 0; j < k; ++j) {
+            const uint32_t from = uint32_t(j * size), to = uint32_t(std::min<size_t>(c.coded_size, (j + 1) * size));
+            std::vector<uint8_t> bytes;
+            if (!covered(c, from, to, &bytes)) continue;
+            bytes.resize(size, 0);
+            sources[j] = std::move(bytes);
+            ++held;
+        }
+        if (held + c.rows.size() >= k) {
+            const size_t missing = k - held;
+            std::vector<uint8_t> rows(c.rows.begin(), c.rows.begin() + long(missing));
+            std::vector<std::vector<uint8_t>> symbols(c.symbols.begin(), c.symbols.begin() + long(missing));
+            if (recover_source_symbols(sources, rows, symbols)) {
+                std::vector<uint8_t> coded;
+                coded.reserve(k * size);
+                for (const auto& s : sources) coded.insert(coded.end(), s.begin(), s.end());
+                coded.resize(c.coded_size);
+                c.pieces.clear();
+                c.pieces.emplace(0, std::move(coded));
+                c.received_bytes = c.coded_size;
+                c.recovered = missing > 0;
+            }
+        }
+    }
+    if (c.received_bytes < c.coded_size) return Error::Ok;
+    std::vector<uint8_t> coded;
+    coded.reserve(c.coded_size);
+    for (const auto& [offset, bytes] : c.pieces) coded.insert(coded.end(), bytes.begin(), bytes.end());
+    c.pieces.clear();
+    c.received_bytes = 0;
+    c.rows.clear();
+    c.symbols.clear();
+    if (crc32c(coded.data(), coded.size()) != c.coded_crc) {
+        c.recovered = false;
+        return reject(where, Error::StreamMismatch, name + ": the connectivity is complete but its CRC does not match");
+    }
+    c.coded = std::move(coded);
+    c.received_bytes = c.coded_size;
+    c.complete = true;
+    return Error::Ok;
+}
+
+// Format 1.3 (spec 19.5): a repair symbol over an object's coded connectivity.
+Error ReceivedStream::take_connectivity_repair(ReceivedObject& object, const PacketView& packet, const std::string& name,
+                                               uint64_t where) {
+    const ObjectInfo& oi = *object.info;
+    ConnectivityRepair r;
+    if (decode_connectivity_repair_payload(packet.payload, r) != Error::Ok || oi.kind == ObjectKind::PointSet ||
+        uint64_t(r.triangle_count) > 8 * uint64_t(oi.point_count))
+        return reject(where, Error::MalformedPayload,
+                      name + ": its triangle count, coded size, symbol size or row does not fit (spec 19.5)");
+    if (!object.connectivity) {
+        object.connectivity.emplace();
+        object.connectivity->triangle_count = r.triangle_count;
+        object.connectivity->coded_size = r.coded_size;
+        object.connectivity->coded_crc = r.coded_crc;
+    }
+    ReceivedConnectivity& c = *object.connectivity;
+    if (c.triangle_count != r.triangle_count || c.coded_size != r.coded_size || c.coded_crc != r.coded_crc ||
+        (c.symbol_size != 0 && c.symbol_size != r.symbol_size))
+        return reject(where, Error::StreamMismatch,
+                      name + ": its triangle count, coded size, CRC or symbol size contradicts earlier packets");
+    c.symbol_size = r.symbol_size;
+    const size_t k = (size_t(c.coded_size) + r.symbol_size - 1) / r.symbol_size;
+    if (c.complete || c.rows.size() >= k || std::find(c.rows.begin(), c.rows.end(), r.row) != c.rows.end()) {
+        ++counters_.duplicates;
+        return Error::Ok;
+    }
+    const uint64_t memory = r.symbol.size() + kHeldPacketCost;
+    if (texture_bytes_ + memory > limits_.max_texture_bytes)
+        return reject(where, Error::MalformedPayload,
+                      name + ": the stream's textures and connectivity exceed this receiver's " +
+                          std::to_string(limits_.max_texture_bytes) + "-byte memory limit for them");
+    texture_bytes_ += memory;
+    c.rows.push_back(r.row);
+    c.symbols.push_back(std::move(r.symbol));
+    if (Error e = complete_connectivity(c, name, where); e != Error::Ok) return e;
     ++counters_.accepted;
     return Error::Ok;
 }

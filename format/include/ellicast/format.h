@@ -63,12 +63,13 @@ enum class PacketType : uint8_t {
     Points = 0x03,      // critical: a batch of bit-packed surface points of one object
     PointsRepair = 0x04,  // 1.2, skippable: a repair symbol of an erasure code over a block of points
     Connectivity = 0x05,  // 1.3, skippable: a piece of an object's coded original triangles (the exact layer)
+    ConnectivityRepair = 0x06,  // 1.3, skippable: a repair symbol over an object's coded connectivity
     Scene = 0x10,       // 1.1, skippable: nodes (hierarchy, names, transforms) and meshes (object + material)
     Material = 0x11,    // 1.1, skippable: one PBR material
     TextureFragment = 0x12,  // 1.1, skippable: a piece of one texture image, at its byte offset
     MaterialExtensions = 0x13,  // 1.3, skippable: a material's extensions and texture transforms (JSON)
     Manifest = 0x20,    // 1.2, skippable: signed digests of the stream's other packets
-    // 0x00 is invalid; 0x06..0x0F reserved for geometry; 0x14..0x1F reserved for the scene;
+    // 0x00 is invalid; 0x07..0x0F reserved for geometry; 0x14..0x1F reserved for the scene;
     // 0x21..0x7F future; 0x80..0xFF experimental.
 };
 
@@ -670,6 +671,21 @@ Error packetize_connectivity(const StreamInfo& info, uint16_t object_id, uint32_
                              const std::vector<uint8_t>& coded, uint32_t stream_id, uint32_t first_sequence,
                              std::vector<std::vector<uint8_t>>& out);
 
+// A repair symbol over an object's coded connectivity (spec 19.5).
+struct ConnectivityRepair {
+    uint32_t triangle_count = 0, coded_size = 0, coded_crc = 0;
+    uint16_t symbol_size = 0;
+    uint8_t row = 0;
+    std::vector<uint8_t> symbol;
+};
+std::vector<uint8_t> encode_connectivity_repair_payload(const ConnectivityRepair& repair);
+Error decode_connectivity_repair_payload(std::span<const uint8_t> payload, ConnectivityRepair& out);
+// The CONNECTIVITY_REPAIR packets of rows k .. k + count - 1 over `coded` cut into symbols of the
+// CONNECTIVITY pieces' size; MalformedPayload when k > 127 or rows would pass 254.
+Error packetize_connectivity_repairs(const StreamInfo& info, uint16_t object_id, uint32_t triangle_count,
+                                     const std::vector<uint8_t>& coded, size_t count, uint32_t stream_id,
+                                     uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out);
+
 // ---------------------------------------------------------------------------------------------
 // Receiving: collects whatever packets arrive, in any order, with duplicates and damage
 
@@ -680,6 +696,11 @@ struct ReceivedConnectivity {
     uint64_t received_bytes = 0;
     bool complete = false;        // every byte arrived and the CRC matches
     std::vector<uint8_t> coded;   // once complete
+    // Repair symbols held while not complete (spec 19.5): their size, rows in order, symbols.
+    uint16_t symbol_size = 0;
+    std::vector<uint8_t> rows;
+    std::vector<std::vector<uint8_t>> symbols;
+    bool recovered = false;       // completed by solving for missing symbols
 };
 
 // A repair block a receiver has heard of (spec 17.4).
@@ -801,6 +822,10 @@ private:
     Error take_object_packet(const PacketView& packet, uint64_t where);
     Error take_repair(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_connectivity(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
+    Error take_connectivity_repair(ReceivedObject& object, const PacketView& packet, const std::string& name,
+                                   uint64_t where);
+    // Completes an object's connectivity from its pieces and repair symbols when it can (spec 19.1, 19.5).
+    Error complete_connectivity(ReceivedConnectivity& c, const std::string& name, uint64_t where);
     // Counts newly held points [first, first + count) in the object's repair blocks and recovers the
     // blocks that can be (spec 17.4).
     void note_new_points(ReceivedObject& object, const std::vector<uint32_t>& indices);
