@@ -393,3 +393,30 @@ TEST_CASE("repair packets give back the exact layer: any k of its pieces and rep
         CHECK(stream.counters().duplicates == duplicates + 1);
     }
 }
+
+TEST_CASE("a validator finds a CONNECTIVITY_REPAIR symbol that is not its row, also one no recovery used") {
+    if (!have_sample("meshes/spot.obj")) return;
+    Asset asset = load_asset((shared_samples() / "meshes/spot.obj").string());
+    EncodedAsset encoded;
+    std::string error;
+    REQUIRE(encode_asset(asset, quick_encoding(), 4, true, encoded, error));
+    ReceivedStream stream;
+    uint64_t n = 0;
+    std::vector<uint8_t> repair;
+    for (const auto& p : encoded.packets) {
+        REQUIRE(stream.add_packet(p, n++) == Error::Ok);
+        if (p[6] == uint8_t(PacketType::ConnectivityRepair)) repair = p;
+    }
+    REQUIRE(!repair.empty());
+    PacketView view;
+    REQUIRE(parse_packet(repair, view) == Error::Ok);
+    std::string why;
+    CHECK(check_connectivity_repair_packet(stream, view, why) == Error::Ok);
+    ConnectivityRepair r;
+    REQUIRE(decode_connectivity_repair_payload(view.payload, r) == Error::Ok);
+    r.symbol[3] ^= 0x40;
+    const std::vector<uint8_t> forged = write_packet(view.header, encode_connectivity_repair_payload(r));
+    REQUIRE(parse_packet(forged, view) == Error::Ok);
+    CHECK(check_connectivity_repair_packet(stream, view, why) == Error::StreamMismatch);
+    CHECK(why.find("is not that row") != std::string::npos);
+}

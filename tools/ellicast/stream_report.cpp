@@ -165,6 +165,13 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         const Error e = check_repair_packet(r.stream, p.view, why);
         if (e == Error::StreamMismatch) r.violations.push_back({p.offset, "POINTS_REPAIR packet: " + why});
     }
+    // Format 1.3: each CONNECTIVITY_REPAIR symbol must be its row of the code over the connectivity (spec 19.5).
+    for (const ContainerPacket& p : contents.packets) {
+        if (p.view.header.type != uint8_t(PacketType::ConnectivityRepair)) continue;
+        std::string why;
+        if (check_connectivity_repair_packet(r.stream, p.view, why) == Error::StreamMismatch)
+            r.violations.push_back({p.offset, "CONNECTIVITY_REPAIR packet: " + why});
+    }
     // Format 1.1 scene tables: complete when present.
     if (r.stream.has_scene()) {
         std::string missing = missing_ranges(r.stream.scene_nodes(), r.stream.scene_node_count());

@@ -861,6 +861,11 @@ private:
 // MalformedPayload (with `why`) when the connectivity is unusable.
 Error exact_triangles(const ReceivedStream& stream, size_t object, std::vector<Triangle>& out, std::string& why);
 
+// For a validator (spec 19.5): whether a CONNECTIVITY_REPAIR packet's symbol is its row of the code
+// over the object's complete connectivity. Ok when it is or when the connectivity is not complete;
+// StreamMismatch with `why` when it is not; MalformedPayload when the packet does not decode.
+Error check_connectivity_repair_packet(const ReceivedStream& stream, const PacketView& packet, std::string& why);
+
 // For a validator (spec 11.5, 17.4): whether a POINTS_REPAIR packet's symbol is its row of the code
 // over the points `stream` holds. Ok when it is, or when the stream does not hold every point of the
 // block (nothing to compare with; the missing points are reported as such); StreamMismatch, with
