@@ -82,6 +82,32 @@ EllicastScheme::EllicastScheme(const Mesh& mesh, const EllicastSettings& setting
         }
     }
 
+    // Format 1.3: the exact layer (spec 19), as encode_asset sends it: its pieces, and with repair its
+    // repair symbols, any k of which give it back. Complete then means the exact model.
+    if (const ObjectContent& content = encoded.contents[0]; !content.connectivity.empty()) {
+        std::vector<std::vector<uint8_t>> pieces, repairs;
+        if (Error e = packetize_connectivity(encoded.info, 0, content.triangle_count, content.connectivity, 1, 0, pieces);
+            e != Error::Ok)
+            throw CompareError(std::string("ellicast exact layer: ") + error_name(e));
+        const size_t k = pieces.size();
+        int32_t id = -1;
+        if (settings.repair_ratio > 0 && k <= 127) {
+            const size_t count = std::min(size_t(std::ceil(settings.repair_ratio * double(k) - 1e-9)), 255 - k);
+            if (Error e = packetize_connectivity_repairs(encoded.info, 0, content.triangle_count, content.connectivity,
+                                                         count, 1, 0, repairs);
+                e != Error::Ok)
+                throw CompareError(std::string("ellicast exact layer repair: ") + error_name(e));
+            id = static_cast<int32_t>(state_->block_needed.size());
+            state_->block_needed.push_back(k);
+            state_->block_points.push_back(0);
+        }
+        for (auto* group : {&pieces, &repairs})
+            for (auto& p : *group) {
+                packets_.push_back(std::move(p));
+                state_->points_in_packet.push_back(0);
+                state_->block_of.push_back(id);
+            }
+    }
     for (int32_t b : state_->block_of) state_->singles_needed += b < 0;
     broadcast::CarouselOptions options;
     options.base_share = settings.base_share;

@@ -446,8 +446,8 @@ void write_report(const ExperimentResult& result, const ReportSetup& setup, cons
               "horizon of " << num(o.horizon, "%g") << " cycles below " << num(100 * o.long_from, "%g") << "% loss, "
            << num(o.long_horizon, "%g") << " from there); errors are the median RMS in % of the diagonal, a receiver "
               "with nothing to show counting as 100, over " << few_list << o.curve_trials
-           << " trials for the others. \"Full\" is every point held for ellicast and the exact model for the Draco "
-              "schemes.\n\n";
+           << " trials for the others. \"Full\" is the exact model: for ellicast (format 1.3) every point and its "
+              "exact layer (the original triangles), for the Draco schemes the whole Draco file.\n\n";
         md << "| loss | scheme | first picture median / p90 / p99 | no picture | full median / p90 | not full | below 0.5% | "
               "below 0.1% | below 0.03% |";
         for (double t : glance_times) md << " error at " << num(t, "%g") << " |";
