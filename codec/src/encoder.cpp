@@ -489,17 +489,22 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
 // ---------------------------------------------------------------------------------------------
 // Points of one mesh
 
+// Vertex i of a mesh with its attributes, as a point.
+SurfacePoint vertex_point(const Mesh& mesh, size_t i) {
+    SurfacePoint p;
+    p.position = mesh.positions[i];
+    if (mesh.has_normals()) p.normal = mesh.normals[i];
+    if (mesh.has_texcoords()) p.texcoord = mesh.texcoords[i];
+    if (mesh.has_colors()) p.color = mesh.colors[i];
+    return p;
+}
+
 std::vector<QuantizedPoint> encode_points(const Mesh& mesh, const StreamInfo& info, const ObjectInfo& object,
                                           uint32_t seed, std::vector<uint32_t>* vertex_points = nullptr) {
     std::vector<QuantizedPoint> all;
     all.reserve(mesh.positions.size());
     for (size_t i = 0; i < mesh.positions.size(); ++i) {
-        SurfacePoint p;
-        p.position = mesh.positions[i];
-        if (mesh.has_normals()) p.normal = mesh.normals[i];
-        if (mesh.has_texcoords()) p.texcoord = mesh.texcoords[i];
-        if (mesh.has_colors()) p.color = mesh.colors[i];
-        all.push_back(quantize_point(p, info, object));
+        all.push_back(quantize_point(vertex_point(mesh, i), info, object));
     }
     auto key = [](const QuantizedPoint& q) { return std::tie(q.position, q.normal, q.texcoord, q.color); };
     std::sort(all.begin(), all.end(), [&](const QuantizedPoint& a, const QuantizedPoint& b) { return key(a) < key(b); });
@@ -526,12 +531,7 @@ std::vector<QuantizedPoint> encode_points(const Mesh& mesh, const StreamInfo& in
         for (uint32_t i = 0; i < out.size(); ++i) index.emplace(key(out[i]), i);
         vertex_points->resize(mesh.positions.size());
         for (size_t i = 0; i < mesh.positions.size(); ++i) {
-            SurfacePoint p;
-            p.position = mesh.positions[i];
-            if (mesh.has_normals()) p.normal = mesh.normals[i];
-            if (mesh.has_texcoords()) p.texcoord = mesh.texcoords[i];
-            if (mesh.has_colors()) p.color = mesh.colors[i];
-            (*vertex_points)[i] = index.at(key(quantize_point(p, info, object)));
+            (*vertex_points)[i] = index.at(key(quantize_point(vertex_point(mesh, i), info, object)));
         }
     }
     return out;

@@ -235,6 +235,18 @@ struct Traversal {
 void put32(std::vector<uint8_t>& out, uint32_t v) {
     for (int k = 0; k < 4; ++k) out.push_back(uint8_t(v >> (8 * k)));
 }
+// The header of an exact-layer packet (skippable, per object, version 1.3).
+PacketHeader layer_header(PacketType type, uint32_t stream_id, uint32_t sequence, uint16_t object_id) {
+    PacketHeader h;
+    h.version_minor = kConnectivityMinor;
+    h.type = uint8_t(type);
+    h.flags = kFlagSkippable;
+    h.stream_id = stream_id;
+    h.sequence = sequence;
+    h.object_id = object_id;
+    return h;
+}
+
 uint32_t get32(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
 
 }  // namespace
@@ -280,14 +292,8 @@ Error packetize_connectivity(const StreamInfo& info, uint16_t object_id, uint32_
     for (size_t offset = 0; offset < coded.size(); offset += per_packet) {
         piece.offset = uint32_t(offset);
         piece.data.assign(coded.begin() + offset, coded.begin() + std::min(coded.size(), offset + per_packet));
-        PacketHeader h;
-        h.version_minor = kConnectivityMinor;
-        h.type = uint8_t(PacketType::Connectivity);
-        h.flags = kFlagSkippable;
-        h.stream_id = stream_id;
-        h.sequence = sequence++;
-        h.object_id = object_id;
-        out.push_back(write_packet(h, encode_connectivity_payload(piece)));
+        out.push_back(write_packet(layer_header(PacketType::Connectivity, stream_id, sequence++, object_id),
+                                   encode_connectivity_payload(piece)));
     }
     return Error::Ok;
 }
@@ -352,14 +358,8 @@ Error packetize_connectivity_repairs(const StreamInfo& info, uint16_t object_id,
     for (size_t row = k; row < k + count; ++row) {
         r.row = uint8_t(row);
         r.symbol = repair_symbol(sources, unsigned(row));
-        PacketHeader h;
-        h.version_minor = kConnectivityMinor;
-        h.type = uint8_t(PacketType::ConnectivityRepair);
-        h.flags = kFlagSkippable;
-        h.stream_id = stream_id;
-        h.sequence = sequence++;
-        h.object_id = object_id;
-        out.push_back(write_packet(h, encode_connectivity_repair_payload(r)));
+        out.push_back(write_packet(layer_header(PacketType::ConnectivityRepair, stream_id, sequence++, object_id),
+                                   encode_connectivity_repair_payload(r)));
     }
     return Error::Ok;
 }
