@@ -175,6 +175,22 @@ TEST_CASE("the faulty vectors name the reason they must be rejected with") {
         {"exact_crc_contradicts", "stream mismatch"},
         {"exact_crc_wrong", "stream mismatch"},
         {"exact_flag_contradicts", "stream mismatch"},
+        {"exact_repair_payload_short", "malformed payload"},
+        {"exact_repair_symbol_size_zero", "malformed payload"},
+        {"exact_repair_symbol_length", "malformed payload"},
+        {"exact_repair_too_many_symbols", "malformed payload"},
+        {"exact_repair_row_below_k", "malformed payload"},
+        {"exact_repair_triangle_count_zero", "malformed payload"},
+        {"exact_repair_too_many_triangles", "malformed payload"},
+        {"exact_repair_coded_size_too_large", "malformed payload"},
+        {"exact_repair_coded_size_zero", "malformed payload"},
+        {"exact_repair_point_set", "malformed payload"},
+        {"exact_repair_unknown_object", "unknown object"},
+        {"exact_repair_triangle_count_contradicts", "stream mismatch"},
+        {"exact_repair_coded_size_contradicts", "stream mismatch"},
+        {"exact_repair_crc_contradicts", "stream mismatch"},
+        {"exact_repair_symbol_size_contradicts", "stream mismatch"},
+        {"exact_repair_crc_wrong", "stream mismatch"},
     };
     for (const auto& [name, reason] : reasons) {
         INFO(name);

@@ -15,7 +15,9 @@ their checks, the blocks a decoder holds and the points it recovers, with GF(2^8
 format 1.3 the MATERIAL_EXTENSIONS patches of spec section 18, with a strict JSON reader written here
 from RFC 8259 and the rules of spec 18.2, their texture references and what a receiver shows, and
 the CONNECTIVITY packets of spec section 19: their checks, the pieces, and the exact triangle list
-decoded with a range decoder written here, candidates found by sorting every point) so
+decoded with a range decoder written here, candidates found by sorting every point, and the
+CONNECTIVITY_REPAIR packets of spec 19.5: their checks, the rows held and the source symbols solved for
+with the GF(2^8) code of section 17) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -39,7 +41,7 @@ KNOWN_11 = {0x10: "SCENE", 0x11: "MATERIAL", 0x12: "TEXTURE_FRAGMENT"}
 # Format 1.2 (spec sections 4, 16 and 17).
 KNOWN_12 = {0x20: "MANIFEST", 0x04: "POINTS_REPAIR"}
 # Format 1.3 (spec sections 4, 18 and 19).
-KNOWN_13 = {0x13: "MATERIAL_EXTENSIONS", 0x05: "CONNECTIVITY"}
+KNOWN_13 = {0x13: "MATERIAL_EXTENSIONS", 0x05: "CONNECTIVITY", 0x06: "CONNECTIVITY_REPAIR"}
 SCENE_TYPES = set(KNOWN_11) | {0x13}
 NONE = 0xFFFF
 SLOTS = ("base_color", "metallic_roughness", "normal", "occlusion", "emissive")
@@ -1114,6 +1116,8 @@ class Receiver:
             return self.repair(obj, h, offset)
         if h["type"] == 0x05:
             return self.connectivity(obj, h, offset)
+        if h["type"] == 0x06:
+            return self.connectivity_repair(obj, h, offset)
         ellipsoids = h["type"] == 2
         record = 128 if ellipsoids else record_bits(self.info, obj["info"])
         batch = decode_batch(h["payload"], record)
@@ -1150,7 +1154,7 @@ class Receiver:
         if count == 0 or at + len(data) > size or count > 8 * info["point_count"] or size > 16 * count + 64 \
                 or info["kind"] == "point set":
             return self.reject(offset, "malformed payload")
-        c = obj.setdefault("connectivity", dict(desc=(count, size, crc), have={}, complete=False, coded=None))
+        c = self.new_connectivity(obj, count, size, crc)
         if c["desc"] != (count, size, crc):
             return self.reject(offset, "stream mismatch")
         if c["complete"]:
@@ -1162,13 +1166,81 @@ class Receiver:
                 fresh += 1
         if not fresh:
             return self.news(False)
-        if len(c["have"]) == size:
-            coded = bytes(c["have"][k] for k in range(size))
-            if crc32c(coded) != crc:
-                c["have"] = {}  # discarded: none received
-                return self.reject(offset, "stream mismatch")
-            c["complete"], c["coded"] = True, coded
+        if not self.complete_connectivity(c):
+            return self.reject(offset, "stream mismatch")
         return self.news(True)
+
+    @staticmethod
+    def new_connectivity(obj, count, size, crc):
+        """An object's connectivity, from the first CONNECTIVITY or CONNECTIVITY_REPAIR packet that passed the
+        well-formedness checks: its description, the bytes held, and (spec 19.5) the symbol size L of its repair
+        packets (None before one), the rows held with their symbols in the order accepted, and whether it was
+        completed by solving for source symbols."""
+        return obj.setdefault("connectivity", dict(desc=(count, size, crc), have={}, complete=False, coded=None,
+                                                   L=None, rows=[], recovered=False))
+
+    def connectivity_repair(self, obj, h, offset):
+        """Spec 19.5, once the object's entry has arrived: a repair symbol over the coded connectivity."""
+        p, info = h["payload"], obj["info"]
+        if len(p) < 16:
+            return self.reject(offset, "malformed payload")
+        count, size, crc, L, row = struct.unpack_from("<IIIHB", p, 0)
+        k = -(-size // L) if L else 0
+        # The rules of 19.1 for the first three fields (and a coded connectivity of at least one byte, as a
+        # CONNECTIVITY piece implies: see README), then those of 19.5.
+        if count == 0 or size == 0 or count > 8 * info["point_count"] or size > 16 * count + 64 \
+                or info["kind"] == "point set" or L == 0 or len(p) != 16 + L or k > 254 or row < k:
+            return self.reject(offset, "malformed payload")
+        c = self.new_connectivity(obj, count, size, crc)
+        if c["desc"] != (count, size, crc) or (c["L"] is not None and c["L"] != L):
+            return self.reject(offset, "stream mismatch")
+        c["L"] = L
+        if c["complete"] or row in [r for r, _ in c["rows"]]:
+            return self.news(False)
+        c["rows"].append((row, p[16:]))
+        if not self.complete_connectivity(c):
+            return self.reject(offset, "stream mismatch")
+        return self.news(True)
+
+    @staticmethod
+    def complete_connectivity(c):
+        """Spec 19.5, then 19.1: when the held source symbols and rows number k or more, solve for the missing
+        symbols with the first rows accepted; a solved symbol's bytes inside coded_size replace any held
+        before; when every byte is held, check the CRC-32C. False on a mismatch (the bytes,
+        rows and symbols are then discarded)."""
+        count, size, crc = c["desc"]
+        have = c["have"]
+        if len(have) < size and c["rows"]:
+            L = c["L"]
+            k = -(-size // L)
+            span = lambda j: range(j * L, min((j + 1) * L, size))
+            held = [j for j in range(k) if all(t in have for t in span(j))]
+            missing = [j for j in range(k) if j not in held]
+            if len(held) + len(c["rows"]) >= k:
+                sources = {j: bytes(have[t] for t in span(j)).ljust(L, b"\0") for j in held}
+                rows = c["rows"][:len(missing)]
+                rhs = []
+                for r, symbol in rows:
+                    y = bytearray(symbol)
+                    for j, sj in sources.items():
+                        mul = GF_MUL[cauchy(r, j)]
+                        for t in range(L):
+                            y[t] ^= mul[sj[t]]
+                    rhs.append(y)
+                solved = solve_gf([[cauchy(r, j) for j in missing] for r, _ in rows], rhs)
+                for j, symbol in zip(missing, solved):
+                    for t in span(j):
+                        have[t] = symbol[t - j * L]
+                c["recovered"] = True
+        if len(have) < size:
+            return True
+        coded = bytes(have[t] for t in range(size))
+        c["have"], c["rows"] = {}, []
+        if crc32c(coded) != crc:
+            c["recovered"] = False  # discarded: none received, no row held
+            return False
+        c["complete"], c["coded"] = True, coded
+        return True
 
     def repair(self, obj, h, offset):
         """Spec 17.3 (steps 13..15) and 17.4, once the object's entry has arrived."""
@@ -1513,8 +1585,10 @@ def connectivity_json(obj):
     """Spec 19.1, 19.2: the connectivity held, and its decode once complete with every point held."""
     c = obj["connectivity"]
     count, size, crc = c["desc"]
-    j = dict(triangle_count=count, coded_size=size, coded_crc=crc, received_bytes=len(c["have"]),
-             complete=c["complete"])
+    j = dict(triangle_count=count, coded_size=size, coded_crc=crc,
+             received_bytes=size if c["complete"] else len(c["have"]), complete=c["complete"])
+    if c["L"] is not None:  # spec 19.5: once a CONNECTIVITY_REPAIR packet passed the checks
+        j.update(symbol_size=c["L"], rows=[r for r, _ in c["rows"]], recovered=c["recovered"])
     if c["complete"] and len(obj["points"]) == obj["info"]["point_count"]:
         positions = [obj["points"][i][:3] for i in range(obj["info"]["point_count"])]
         triangles = decode_connectivity(c["coded"], count, positions)

@@ -122,10 +122,10 @@ inline nlohmann::json object_info_json(const ObjectInfo& o) {
             {"texcoord_scale", floats(o.texcoord_scale.data(), 2)}};
 }
 
-// Format 1.3 (spec 19.1, 19.2): an object's connectivity, held from the first CONNECTIVITY packet of
-// it that passed the checks of spec 19.1 (also after its bytes were discarded for a wrong CRC-32C),
-// and, once it is complete and every point of the object is held, its decode: the exact triangle
-// list, or `unusable`.
+// Format 1.3 (spec 19.1, 19.2, 19.5): an object's connectivity, held from the first CONNECTIVITY or
+// CONNECTIVITY_REPAIR packet of it that passed the checks of spec 19.1 or 19.5 (also after its bytes
+// were discarded for a wrong CRC-32C), and, once it is complete and every point of the object is
+// held, its decode: the exact triangle list, or `unusable`.
 inline nlohmann::json connectivity_json(const ReceivedStream& stream, size_t object) {
     const ReceivedObject& o = stream.objects()[object];
     const ReceivedConnectivity& c = *o.connectivity;
@@ -134,6 +134,18 @@ inline nlohmann::json connectivity_json(const ReceivedStream& stream, size_t obj
                         {"coded_crc", c.coded_crc},
                         {"received_bytes", c.complete ? uint64_t(c.coded_size) : c.received_bytes},
                         {"complete", c.complete}};
+    // Format 1.3 repair packets (spec 19.5), listed once a CONNECTIVITY_REPAIR packet of the object
+    // passed the checks (so that the decodes of the vectors without one stay as they were): the symbol
+    // size they say, the rows held (in the order accepted; none once complete, or after the bytes were
+    // discarded for a wrong CRC-32C), and whether the connectivity was completed by solving for missing
+    // source symbols.
+    if (c.symbol_size != 0) {
+        nlohmann::json rows = nlohmann::json::array();
+        for (uint8_t r : c.rows) rows.push_back(r);
+        j["symbol_size"] = c.symbol_size;
+        j["rows"] = rows;
+        j["recovered"] = c.recovered;
+    }
     if (c.complete && o.info && o.points.size() == o.info->point_count) {
         std::vector<Triangle> triangles;
         std::string why;

@@ -2723,6 +2723,370 @@ void exact_vectors(Writer& w) {
     }
 }
 
+// ------------------------------------------------------------------------------------------------
+// Format 1.3: repair packets for the exact layer (CONNECTIVITY_REPAIR, spec 19.5), over the stream of
+// valid/exact. Object 0's coded connectivity (34 bytes) is cut into symbols of L = 8 bytes: k = 5
+// source symbols (the last one 2 bytes and 6 padding zeros), repair rows 5 .. 254; its CONNECTIVITY
+// pieces are those symbols (pieces 0..4), except where a vector says otherwise. Object 1's repair
+// packets are those of the reference packetizer (L = the piece size of its CONNECTIVITY packets, 216
+// bytes: k = 1).
+
+constexpr size_t kRepL = 8;
+constexpr size_t kCRepTriangles = kHeaderSize, kCRepSize = kHeaderSize + 4, kCRepCrc = kHeaderSize + 8,
+                 kCRepSymbolSize = kHeaderSize + 12, kCRepRow = kHeaderSize + 14, kCRepReserved = kHeaderSize + 15,
+                 kCRepSymbol = kHeaderSize + 16;
+
+// The source symbols of spec 19.5: `coded` cut into `size`-byte symbols, the last padded with zeros.
+std::vector<std::vector<uint8_t>> vector_connectivity_symbols(const std::vector<uint8_t>& coded, size_t size) {
+    std::vector<std::vector<uint8_t>> out;
+    for (size_t at = 0; at < coded.size(); at += size) {
+        std::vector<uint8_t> s(coded.begin() + long(at), coded.begin() + long(std::min(coded.size(), at + size)));
+        s.resize(size, 0);
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
+// A CONNECTIVITY_REPAIR packet as given.
+Packet connectivity_repair_packet(uint16_t object, uint32_t sequence, uint32_t triangle_count, uint32_t coded_size,
+                                  uint32_t coded_crc, uint16_t symbol_size, uint8_t row, std::vector<uint8_t> symbol) {
+    ConnectivityRepair r;
+    r.triangle_count = triangle_count;
+    r.coded_size = coded_size;
+    r.coded_crc = coded_crc;
+    r.symbol_size = symbol_size;
+    r.row = row;
+    r.symbol = std::move(symbol);
+    PacketHeader h;
+    h.version_minor = kConnectivityMinor;
+    h.type = uint8_t(PacketType::ConnectivityRepair);
+    h.flags = kFlagSkippable;
+    h.stream_id = kStreamId;
+    h.sequence = sequence;
+    h.object_id = object;
+    return write_packet(h, encode_connectivity_repair_payload(r));
+}
+
+void exact_repair_vectors(Writer& w) {
+    const ExactStream s = exact_stream();
+    const Packets good = s.all();
+    const size_t conn0 = s.info_packets.size() + s.ellipsoids.size() + s.points.size();
+    const std::vector<uint8_t>& coded0 = s.coded[0];
+    const uint32_t tc0 = s.triangle_count[0], size0 = uint32_t(coded0.size()), crc0 = crc32c(coded0.data(), coded0.size());
+    const auto sources0 = vector_connectivity_symbols(coded0, kRepL);
+    const size_t k0 = sources0.size();
+    if (k0 != 5) {
+        std::cerr << "make_vectors: object 0's coded connectivity should make 5 symbols of 8 bytes, not " << k0 << "\n";
+        std::exit(1);
+    }
+    const uint32_t first_seq = get32(good[conn0], 12);
+    // Object 0's bytes [from, to) as one CONNECTIVITY piece.
+    auto piece = [&](uint32_t from, uint32_t to, uint32_t sequence) {
+        to = std::min(to, size0);
+        return connectivity_packet(0, sequence, tc0, size0, crc0, from,
+                                   std::vector<uint8_t>(coded0.begin() + from, coded0.begin() + to));
+    };
+    auto sym = [&](size_t j, uint32_t sequence) { return piece(uint32_t(j * kRepL), uint32_t((j + 1) * kRepL), sequence); };
+    auto row = [&](unsigned r, uint32_t sequence) {
+        return connectivity_repair_packet(0, sequence, tc0, size0, crc0, uint16_t(kRepL), uint8_t(r),
+                                          repair_symbol(sources0, r));
+    };
+    // Object 1's repair packets from the reference packetizer (k = 1: one row, row 1).
+    Packets repairs1;
+    if (packetize_connectivity_repairs(s.info, 1, s.triangle_count[1], s.coded[1], 1, kStreamId, 0, repairs1) != Error::Ok ||
+        repairs1.size() != 1) {
+        std::cerr << "make_vectors: packetize_connectivity_repairs failed\n";
+        std::exit(1);
+    }
+    auto numbered_as = [](Packet p, uint32_t sequence) {
+        put32(p, 12, sequence);
+        reseal(p);
+        return p;
+    };
+    const Packets head = {good.begin(), good.begin() + long(conn0)};  // STREAM_INFO, ELLIPSOIDS, POINTS
+    const Packet conn1 = good[conn0 + 1];
+
+    // The valid stream: sent piece 0, row 5, piece 1, row 6, piece 2, row 7, piece 3, piece 4, object
+    // 1's CONNECTIVITY packet, its row 1 (sequence numbers counting transmissions); piece 1, row 6,
+    // piece 3 and object 1's CONNECTIVITY packet lost.
+    Packets tail0;
+    {
+        uint32_t q = first_seq;
+        tail0.push_back(sym(0, q++));
+        tail0.push_back(row(5, q++));
+        ++q;  // piece 1 lost
+        ++q;  // row 6 lost
+        tail0.push_back(sym(2, q++));
+        tail0.push_back(row(7, q++));
+        ++q;  // piece 3 lost
+        tail0.push_back(sym(4, q++));
+        ++q;  // object 1's CONNECTIVITY packet lost
+        tail0.push_back(numbered_as(repairs1[0], q++));
+    }
+    Packets valid = head;
+    valid.insert(valid.end(), tail0.begin(), tail0.end());
+    const std::string kRepairStream =
+        "the exact-layer stream of valid/exact_repair (object 0's 34 coded bytes as 5 pieces of 8 bytes with rows 5 and "
+        "7 at L = 8, pieces 1 and 3 lost, recovered when piece 4 arrives; object 1's CONNECTIVITY packet lost and "
+        "recovered from its one repair row)";
+    w.write("valid", "exact_repair",
+            "format 1.3, repair packets for the exact layer (spec 19.5): the exact-layer stream of valid/exact, with "
+            "object 0's coded connectivity (34 bytes) sent as 5 CONNECTIVITY pieces of 8 bytes interleaved with "
+            "CONNECTIVITY_REPAIR rows 5, 6, 7 at L = 8 (k = 5), and object 1's with its one repair row as the reference "
+            "encoder makes it (L = 216, k = 1, row 1); pieces 1 and 3, row 6 and object 1's CONNECTIVITY packet lost: "
+            "object 0 holds source symbols 0, 2 and rows 5, 7 when piece 4 arrives and solves for symbols 1 and 3; "
+            "object 1 is recovered from row 1 alone; both recovered and exact",
+            valid);
+
+    // Unusual.
+    {
+        // Repair symbols alone: rows 254, 5, 100, 6 and 7 (the fifth completes it), then row 8 (a
+        // duplicate: complete); object 1 as in valid/exact.
+        Packets file = head;
+        uint32_t q = 100;
+        for (unsigned r : {254u, 5u, 100u, 6u, 7u, 8u}) file.push_back(row(r, q++));
+        file.push_back(conn1);
+        w.write("unusual", "exact_repair_only",
+                "the exact-layer stream of valid/exact with object 0's coded connectivity sent only as "
+                "CONNECTIVITY_REPAIR packets (L = 8, k = 5, no CONNECTIVITY piece at all): rows 254, 5, 100, 6, 7 "
+                "(the first repair packet starts the object's connectivity; the fifth row completes it: 5 unknown "
+                "symbols solved from 5 rows, spec 19.5), then row 8 (a duplicate: complete); every object exact, "
+                "object 0 recovered",
+                file);
+    }
+    {
+        // Pieces at offsets that are no symbol boundary: bytes 3..12, 13..26, 30..33 hold symbols 1, 2
+        // and 4 (symbol 0 lacks bytes 0..2, symbol 3 bytes 27..29); rows 5, 6 then complete it; then
+        // bytes 0..2 (a duplicate: complete).
+        Packets file = head;
+        uint32_t q = 100;
+        file.push_back(piece(3, 13, q++));
+        file.push_back(piece(13, 27, q++));
+        file.push_back(piece(30, 34, q++));
+        file.push_back(row(5, q++));
+        file.push_back(row(6, q++));
+        file.push_back(piece(0, 3, q++));
+        file.push_back(conn1);
+        w.write("unusual", "exact_repair_odd_pieces",
+                "the exact-layer stream of valid/exact with object 0's coded connectivity in CONNECTIVITY pieces that "
+                "do not follow the symbols (L = 8, k = 5): bytes 3..12, 13..26 and 30..33, so that source symbols 1, 2 "
+                "and 4 are held (symbol 4 has only bytes 32..33 inside coded_size) and symbols 0 and 3 are not (bytes "
+                "0..2 and 27..29 missing), then rows 5 and 6: the second row completes it (spec 19.5: a symbol is held "
+                "when its bytes have arrived, whatever the pieces' offsets); then bytes 0..2 (a duplicate: complete); "
+                "every object exact, object 0 recovered",
+                file);
+    }
+    {
+        Packets file = head;
+        uint32_t q = 100;
+        file.push_back(sym(0, q++));
+        const Packet r5 = row(5, q++);
+        file.push_back(r5);
+        file.push_back(r5);
+        file.push_back(row(5, q++));
+        file.push_back(sym(2, q++));
+        file.push_back(sym(4, q++));
+        file.push_back(row(6, q++));
+        file.push_back(row(7, q++));
+        file.push_back(sym(1, q++));
+        file.push_back(row(5, q++));
+        file.push_back(conn1);
+        w.write("unusual", "exact_repair_duplicates",
+                "the exact-layer stream of valid/exact with object 0's coded connectivity (L = 8, k = 5) as piece 0, "
+                "row 5, row 5 again (byte-identical: a duplicate), row 5 with a new sequence number (a duplicate: a "
+                "row held, spec 19.5), pieces 2 and 4, row 6 (completes it: 3 symbols and 2 rows held), then more "
+                "than it needs: row 7, piece 1 and row 5 again (duplicates: complete); every object exact, object 0 "
+                "recovered",
+                file);
+    }
+    {
+        Packets file = head;
+        Packets tail = tail0;
+        tail[1][kCRepReserved] = 0xA5;
+        reseal(tail[1]);
+        file.insert(file.end(), tail.begin(), tail.end());
+        w.write("unusual", "exact_repair_reserved",
+                std::string(kRepairStream) + ", with the reserved byte of object 0's row 5 set to A5 (resealed): "
+                "ignored when reading (spec 19.5); decodes as valid/exact_repair",
+                file);
+    }
+    {
+        Packets file = {tail0[1], tail0[3]};  // rows 5 and 7, before the STREAM_INFO
+        file.insert(file.end(), head.begin(), head.end());
+        for (size_t i = 0; i < tail0.size(); ++i)
+            if (i != 1 && i != 3) file.push_back(tail0[i]);
+        w.write("unusual", "exact_repair_before_stream_info",
+                std::string(kRepairStream) + ", with object 0's rows 5 and 7 first, before the STREAM_INFO: held like "
+                "POINTS packets (spec 19.5: checked once the object's entry is known), released and accepted when "
+                "the STREAM_INFO arrives (the first starts the object's connectivity); recovered when piece 4 arrives, "
+                "as in valid/exact_repair",
+                file);
+    }
+
+    // Faulty: valid/exact_repair with one defect.
+    // A copy of object 0's row 6 (lost in valid/exact_repair), numbered 1000, with `edit` applied, resealed.
+    auto defective = [&](const std::function<void(Packet&)>& edit) {
+        Packet p = row(6, 1000);
+        edit(p);
+        reseal(p);
+        return p;
+    };
+    auto set_payload = [](Packet& p, std::vector<uint8_t> payload) { p = with_payload(p, payload); };
+    struct RepairEdit {
+        const char* name;
+        const char* description;
+        std::function<void(Packet&)> edit;
+        bool first;  // before the STREAM_INFO (else after the stream)
+    };
+    const uint32_t n0 = s.info.objects[0].point_count;
+    const std::vector<RepairEdit> edits = {
+        {"exact_repair_payload_short",
+         "after the stream, a CONNECTIVITY_REPAIR packet of object 0 with a payload of 15 bytes, too short for its "
+         "fields (malformed payload, spec 19.5)",
+         [&](Packet& p) { set_payload(p, std::vector<uint8_t>(p.begin() + kHeaderSize, p.begin() + kHeaderSize + 15)); },
+         false},
+        {"exact_repair_symbol_size_zero",
+         "a CONNECTIVITY_REPAIR packet of object 0 with symbol_size 0 and no symbol byte, before the STREAM_INFO: held "
+         "(its checks need the object's entry), then rejected when released (malformed payload, spec 19.5: L is 0)",
+         [&](Packet& p) {
+             put16(p, kCRepSymbolSize, 0);
+             set_payload(p, std::vector<uint8_t>(p.begin() + kHeaderSize, p.begin() + kCRepSymbol));
+         },
+         true},
+        {"exact_repair_symbol_length",
+         "after the stream, object 0's row 6 with one byte more than its symbol_size 8 (payload 25 bytes, not 16 + L; "
+         "malformed payload, spec 19.5)",
+         [&](Packet& p) {
+             std::vector<uint8_t> payload = payload_of(p);
+             payload.push_back(0);
+             set_payload(p, payload);
+         },
+         false},
+        {"exact_repair_too_many_symbols",
+         "after the stream, a CONNECTIVITY_REPAIR packet of object 0 with coded_size 255, symbol_size 1 and row 255: "
+         "k = 255 > 254 (malformed payload, spec 19.5; the row is not below k)",
+         [&](Packet& p) {
+             put32(p, kCRepSize, 255);
+             put16(p, kCRepSymbolSize, 1);
+             p[kCRepRow] = 255;
+             set_payload(p, std::vector<uint8_t>(p.begin() + kHeaderSize, p.begin() + kCRepSymbol + 1));
+         },
+         false},
+        {"exact_repair_row_below_k",
+         "after the stream, object 0's row 6 renumbered row 4, below k = 5 (rows 0..4 are the source symbols; "
+         "malformed payload, spec 19.5)",
+         [](Packet& p) { p[kCRepRow] = 4; }, false},
+        {"exact_repair_triangle_count_zero",
+         "after the stream, object 0's row 6 with triangle_count 0 (malformed payload, spec 19.5 by 19.1)",
+         [](Packet& p) { put32(p, kCRepTriangles, 0); }, false},
+        {"exact_repair_too_many_triangles",
+         "after the stream, object 0's row 6 with triangle_count 529 = 8 x 66 + 1 (malformed payload, spec 19.5 by "
+         "19.1)",
+         [n0](Packet& p) { put32(p, kCRepTriangles, 8 * n0 + 1); }, false},
+        {"exact_repair_coded_size_too_large",
+         "after the stream, a CONNECTIVITY_REPAIR packet of object 0 with coded_size 2113 = 16 x 128 + 64 + 1, "
+         "symbol_size 212 (k = 10, so that only this rule fails) and row 10 (malformed payload, spec 19.5 by 19.1)",
+         [&](Packet& p) {
+             put32(p, kCRepSize, 16 * get32(p, kCRepTriangles) + 65);
+             put16(p, kCRepSymbolSize, 212);
+             p[kCRepRow] = 10;
+             std::vector<uint8_t> payload(p.begin() + kHeaderSize, p.begin() + kCRepSymbol);
+             payload.resize(16 + 212, 0);
+             set_payload(p, payload);
+         },
+         false},
+        {"exact_repair_coded_size_zero",
+         "after the stream, object 0's row 6 with coded_size 0 (k = 0; malformed payload in the reference decoder: a "
+         "coded connectivity has at least one byte)",
+         [](Packet& p) { put32(p, kCRepSize, 0); }, false},
+        {"exact_repair_point_set",
+         "after the stream, object 0's row 6 sent for object 2, a point set (malformed payload, spec 19.5 by 19.1)",
+         [](Packet& p) { put16(p, 16, 2); }, false},
+        {"exact_repair_unknown_object",
+         "after the stream, object 0's row 6 sent for object 3 of 3 (unknown object, spec 11.1 step 12)",
+         [](Packet& p) { put16(p, 16, 3); }, false},
+        {"exact_repair_triangle_count_contradicts",
+         "after the stream, object 0's row 6 with triangle_count 129 where its other packets say 128 (stream "
+         "mismatch, spec 19.5)",
+         [](Packet& p) { put32(p, kCRepTriangles, get32(p, kCRepTriangles) + 1); }, false},
+        {"exact_repair_coded_size_contradicts",
+         "after the stream, object 0's row 6 with coded_size 35 where its other packets say 34 (still k = 5; stream "
+         "mismatch, spec 19.5)",
+         [](Packet& p) { put32(p, kCRepSize, get32(p, kCRepSize) + 1); }, false},
+        {"exact_repair_crc_contradicts",
+         "after the stream, object 0's row 6 with another coded_crc (stream mismatch, spec 19.5)",
+         [](Packet& p) { put32(p, kCRepCrc, get32(p, kCRepCrc) ^ 0x00010000u); }, false},
+        {"exact_repair_symbol_size_contradicts",
+         "after the stream, object 0's row 6 of the code at L = 16 (k = 3; the true symbol of that row for that "
+         "cut) where its other repair packets say L = 8 (stream mismatch, spec 19.5: all its repair packets carry "
+         "the same L)",
+         [&](Packet& p) {
+             ConnectivityRepair r;
+             r.triangle_count = tc0;
+             r.coded_size = size0;
+             r.coded_crc = crc0;
+             r.symbol_size = 16;
+             r.row = 6;
+             r.symbol = repair_symbol(vector_connectivity_symbols(coded0, 16), 6);
+             set_payload(p, encode_connectivity_repair_payload(r));
+         },
+         false},
+    };
+    for (const RepairEdit& e : edits) {
+        Packets file = valid;
+        const Packet bad = defective(e.edit);
+        if (e.first) file.insert(file.begin(), bad);
+        else file.push_back(bad);
+        w.write("faulty", e.name, e.description, file);
+    }
+    {
+        // Pieces 0, 2, 4, row 5, then row 7 with a symbol byte changed: the fifth symbol held, the
+        // recovered bytes fail the CRC; then row 5 again, held anew.
+        Packets file = head;
+        uint32_t q = 100;
+        file.push_back(sym(0, q++));
+        file.push_back(sym(2, q++));
+        file.push_back(sym(4, q++));
+        const Packet r5 = row(5, q++);
+        file.push_back(r5);
+        Packet forged = row(7, q++);
+        forged[kCRepSymbol + 2] ^= 0x40;
+        reseal(forged);
+        file.push_back(forged);
+        file.push_back(numbered_as(r5, q++));
+        file.push_back(conn1);
+        w.write("faulty", "exact_repair_crc_wrong",
+                "the exact-layer stream of valid/exact with object 0's coded connectivity (L = 8, k = 5) as pieces 0, "
+                "2, 4, row 5, then row 7 with one symbol byte changed (resealed: a forged symbol): it completes the "
+                "symbols, but the recovered bytes fail the CRC-32C: row 7 is rejected (stream mismatch) and the "
+                "bytes, rows and symbols discarded (spec 19.5); then row 5 again (new sequence number): accepted, held "
+                "anew (received_bytes 0, rows [5]); object 0 is not exact",
+                file);
+    }
+    {
+        // Pieces 0 and 2, rows 5 and 6 (6 forged), then bytes 24..33 (symbols 3 and 4): 4 symbols held,
+        // one missing, solved from row 5 alone.
+        Packets file = head;
+        uint32_t q = 100;
+        file.push_back(sym(0, q++));
+        file.push_back(sym(2, q++));
+        file.push_back(row(5, q++));
+        Packet forged = row(6, q++);
+        forged[kCRepSymbol + 5] ^= 0x11;
+        reseal(forged);
+        file.push_back(forged);
+        file.push_back(piece(24, 34, q++));
+        file.push_back(conn1);
+        w.write("faulty", "exact_repair_unused_forged",
+                "the exact-layer stream of valid/exact with object 0's coded connectivity (L = 8, k = 5) as pieces 0 "
+                "and 2, row 5, row 6 with one symbol byte changed (resealed: forged), then one piece of bytes 24..33 "
+                "(symbols 3 and 4): one symbol missing, solved from the first row held, row 5 (spec 19.5), so the "
+                "forged row is not used: no rejection, object 0 recovered and exact; but row 6's symbol is not that "
+                "row of the code over the connectivity: the recording does not conform; a validator reports it",
+                file);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -2740,6 +3104,7 @@ int main(int argc, char** argv) {
     repair_vectors(w);
     extensions_vectors(w);
     exact_vectors(w);
+    exact_repair_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
