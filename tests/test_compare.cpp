@@ -406,23 +406,43 @@ TEST_CASE("ellicast with repair packets: any k packets of a block give all its p
     EllicastScheme repeated(spot, settings);
     CHECK(repaired.name() == "ellicast");
     CHECK(repeated.name() == "ellicast-repeat");
-    const size_t base = repaired.base_packets(), points = repaired.point_packets();
-    REQUIRE(repaired.packets().size() == base + 2 * points);  // one repair per POINTS packet
-    REQUIRE(repeated.packets().size() == base + points);
-    // The period is two cycles with repair, one without; a cycle costs the same bytes.
+    // Packets by type: the base, POINTS and their repairs, and the exact layer (format 1.3) and its repairs.
+    auto count = [](const EllicastScheme& s, PacketType type) {
+        return size_t(std::count_if(s.packets().begin(), s.packets().end(),
+                                    [&](const auto& p) { return p[6] == uint8_t(type); }));
+    };
+    const size_t points = count(repaired, PacketType::Points), pieces = count(repaired, PacketType::Connectivity);
+    REQUIRE(points > 0);
+    REQUIRE(pieces > 0);
+    CHECK(count(repaired, PacketType::PointsRepair) == points);  // one repair per POINTS packet
+    CHECK(count(repaired, PacketType::ConnectivityRepair) == pieces);
+    CHECK(count(repeated, PacketType::PointsRepair) == 0);
+    CHECK(count(repeated, PacketType::ConnectivityRepair) == 0);
+    CHECK(count(repeated, PacketType::Connectivity) == pieces);
+    // The period is two cycles with repair, one without; a cycle costs the same bytes but for the
+    // exact layer's repair packets, which go once a cycle.
+    size_t layer_repair_bytes = 0;
+    for (const auto& p : repaired.packets())
+        if (p[6] == uint8_t(PacketType::ConnectivityRepair)) layer_repair_bytes += p.size();
     CHECK(repaired.period_bytes() > 1.9 * repaired.cycle_bytes());
     CHECK(repeated.period_bytes() == doctest::Approx(repeated.cycle_bytes()));
-    CHECK(repaired.cycle_bytes() == doctest::Approx(repeated.cycle_bytes()).epsilon(0.01));
-    // The base and the repair packets alone (as many as POINTS packets): every point.
+    CHECK(repaired.cycle_bytes() == doctest::Approx(repeated.cycle_bytes() + double(layer_repair_bytes)).epsilon(0.01));
+    // The base, the POINTS_REPAIR packets and the exact layer's repairs alone: every point, and exact.
     std::vector<uint32_t> held;
-    for (uint32_t i = 0; i < base; ++i) held.push_back(i);
-    for (uint32_t i = uint32_t(base + points); i < repaired.packets().size(); ++i) held.push_back(i);
+    for (uint32_t i = 0; i < repaired.packets().size(); ++i) {
+        const uint8_t type = repaired.packets()[i][6];
+        if (type != uint8_t(PacketType::Points) && type != uint8_t(PacketType::Connectivity)) held.push_back(i);
+    }
     CHECK(repaired.complete(held));
     CHECK(repaired.data_fraction(held) == doctest::Approx(1));
     Mesh out;
     REQUIRE(repaired.reconstruct(held, out));
-    // One fewer: not complete, and no point is held (none of the POINTS packets arrived).
-    held.pop_back();
+    // One POINTS_REPAIR fewer: not complete, and no point is held (none of the POINTS packets arrived).
+    for (size_t k = held.size(); k-- > 0;)
+        if (repaired.packets()[held[k]][6] == uint8_t(PacketType::PointsRepair)) {
+            held.erase(held.begin() + long(k));
+            break;
+        }
     CHECK_FALSE(repaired.complete(held));
     CHECK(repaired.data_fraction(held) == 0);
     // Without repair, every POINTS packet is needed.
