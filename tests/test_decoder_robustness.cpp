@@ -238,3 +238,46 @@ TEST_CASE("when every STREAM_INFO was rejected, the decoder says why instead of 
     CHECK_FALSE(decode_stream(nothing, DecodeOptions{}, out, report, error));
     CHECK(error.find("no STREAM_INFO packet arrived") != std::string::npos);
 }
+
+TEST_CASE("a collapse that OpenMesh allows but that leaves a face with a repeated vertex is refused (fuzz_decode)") {
+    // 724 bytes found by fuzz_decode: the scene vector cut down to 6 ellipsoids and 15 points. At grids
+    // 4 to 10 a marching-cubes collapse passed is_collapse_ok and left faces such as (26 26 4); the next
+    // point inserted into one read an edge array at -1 (UBSan) and the release build aborted.
+    const std::string hex =
+        "89454c430d0a1a0a01000000e14c43530101010057ca110e00000000ffff780020002c00c8000e0a0c08000055abd3cf"
+        "02000000020040003333733f07000000000080bf000080bf000080bf00000040060000001e0000000003000000000000"
+        "000000000000803f0000803f000000bf000000bf000000bf0000803f0400000014000000000100000000000000000000"
+        "0000803f0000803f69493a2ce14c43530101020057ca110e01000000000068000000000006000000474c5868935799dc"
+        "89b3f1bdfe9015c66549f81254f54d3010c2b02298769df3a63c2b97ff6bcb24973263c0f3fe46170d4aced9f3f28670"
+        "16e5c05066336f000000000000000c88093e224c0f953257cb2e6859750a7c608cc94191df43958630b512e1e14c4353"
+        "0101030057ca110e030000000000aa00000000000f0000008d2600e88baff91f004645f1957826dc938dc9e14cc2139e"
+        "475575843be5d0befca70b2d6c3f0000803f0000803f0000803f014c000100000000000104426f647900000040000000"
+        "000000000000000000000000000000803f000000000000000000000000000000000000803f0000000000000000000000"
+        "3f000000000000803f7a180ee9e14c43530101100157ca110e07000000ffff83000500020002000000018dc725100100"
+        "0100000b576865656c2e46726f6e74cdcccc3e9a9999be000000000000000000000000000000000000803f0000003f00"
+        "00803f0000803f013a00030001000100000a576865656c2e4261636bcdccbe9999cc9abe000000000000000000000000"
+        "000000000000803f0000003f0000803f0000803fe987dfb4e14c43530101100157ca110e08000000ffff640005000200"
+        "0300000001380004000000ffff00084c616d706520c3bc000000000000c03f0000000000000000000000000000000000"
+        "0080bb0000803f0000803f0000803f020d00000004426f6479010000000000020e00010005576865656c010001000100"
+        "4630cf2a";
+    std::vector<uint8_t> bytes;
+    for (size_t i = 0; i + 1 < hex.size(); i += 2) bytes.push_back(uint8_t(std::stoi(hex.substr(i, 2), nullptr, 16)));
+    const ContainerContents contents = read_container(bytes);
+    REQUIRE(contents.header_error == Error::Ok);
+    ReceivedStream stream;
+    for (const auto& p : contents.packets) stream.add_parsed(p.view, p.offset);
+    for (int grid : {4, 5, 6, 8, 10}) {
+        CAPTURE(grid);
+        DecodeOptions options;
+        options.grid_resolution = grid;
+        std::vector<Mesh> meshes;
+        StreamDecodeReport report;
+        std::string error;
+        decode_stream(stream, options, meshes, report, error);
+        for (const Mesh& m : meshes)
+            for (const auto& t : m.triangles) {
+                CHECK((t[0] != t[1] && t[1] != t[2] && t[0] != t[2]));
+                CHECK((t[0] < m.positions.size() && t[1] < m.positions.size() && t[2] < m.positions.size()));
+            }
+    }
+}

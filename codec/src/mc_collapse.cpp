@@ -7,6 +7,24 @@
 
 namespace ellicast {
 
+bool collapse_link_ok(DecoderTriMesh& mesh, OpenMesh::HalfedgeHandle h) {
+    if (!mesh.is_collapse_ok(h)) return false;
+    const auto from = mesh.from_vertex_handle(h), to = mesh.to_vertex_handle(h);
+    int apexes = 0;
+    if (!mesh.is_boundary(h)) ++apexes;
+    if (!mesh.is_boundary(mesh.opposite_halfedge_handle(h))) ++apexes;
+    int common = 0;
+    for (auto a : mesh.vv_range(from)) {
+        if (a == to) continue;
+        for (auto b : mesh.vv_range(to)) common += a == b;
+    }
+    if (common != apexes) return false;
+    int faces = 0;
+    for (auto f : mesh.vf_range(from))
+        for (auto v : mesh.fv_range(f)) faces += v == to;
+    return faces == apexes;
+}
+
 using Vec3 = OpenMesh::Vec3d;
 
 namespace {
@@ -89,7 +107,7 @@ bool try_collapse(Reconstruction& r, OpenMesh::VertexHandle m, bool force, bool 
         // as 8 corners): every further collapse and flip would cost time in proportion to the fan,
         // quadratic overall. Leave such vertices in place instead.
         if (valence_m + mesh.valence(mesh.to_vertex_handle(h)) > kMaxCollapseValence) continue;
-        if (!mesh.is_collapse_ok(h)) continue;
+        if (!collapse_link_ok(mesh, h)) continue;  // not is_collapse_ok alone: see collapse_link_ok
         double d = collapse_worst_dot(mesh, h);
         if (d >= cos_fold) {
             chosen = h;

@@ -154,21 +154,8 @@ private:
 // collapses that leave faces with a repeated vertex in the folded regions this pass repairs); and
 // no face that stays becomes degenerate.
 bool collapse_keeps_manifold(DecoderTriMesh& mesh, OpenMesh::HalfedgeHandle h) {
-    if (!mesh.is_collapse_ok(h)) return false;
+    if (!collapse_link_ok(mesh, h)) return false;
     const auto from = mesh.from_vertex_handle(h), to = mesh.to_vertex_handle(h);
-    int apexes = 0;
-    if (!mesh.is_boundary(h)) ++apexes;
-    if (!mesh.is_boundary(mesh.opposite_halfedge_handle(h))) ++apexes;
-    int common = 0;
-    for (auto a : mesh.vv_range(from)) {
-        if (a == to) continue;
-        for (auto b : mesh.vv_range(to)) common += a == b;
-    }
-    if (common != apexes) return false;
-    int faces = 0;
-    for (auto f : mesh.vf_range(from))
-        for (auto v : mesh.fv_range(f)) faces += v == to;
-    if (faces != apexes) return false;
     // No face left degenerate (the other side of a sheet stands at the same position).
     const Vec3 target = mesh.point(to);
     for (auto f : mesh.vf_range(from)) {

@@ -36,6 +36,12 @@ struct DecoderMeshTraits : public OpenMesh::DefaultTraits {
 };
 using DecoderTriMesh = OpenMesh::TriMesh_ArrayKernelT<DecoderMeshTraits>;
 
+// Whether collapsing halfedge h keeps the mesh manifold, by the link condition checked directly:
+// the vertices next to both ends are exactly the apexes of the edge's faces and no other face holds
+// both ends. OpenMesh's is_collapse_ok alone lets through collapses that leave faces with a repeated
+// vertex (found by fuzz_decode: a later insertion into such a face read past an edge array).
+bool collapse_link_ok(DecoderTriMesh& mesh, OpenMesh::HalfedgeHandle h);
+
 // ---------------------------------------------------------------------------------------------
 // Rasterization (rasterize.cpp)
 
