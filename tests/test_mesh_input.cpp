@@ -199,6 +199,13 @@ TEST_CASE("bad input files are refused with a message naming the file and the pr
         CHECK(e.find("bomb.off: line 6: face 0 declares 2000000000 corners") != std::string::npos);
         spit(dir / "short.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n4 0 1 2\n");
         CHECK(error_of((dir / "short.off").string()).find("(3 given)") != std::string::npos);
+        // Found by fuzz_readers: OpenMesh reads the counts from the line after the keyword's, whatever
+        // the keyword's line holds (this took 22 s and 16 GB when the counts "1 0 0" were checked).
+        spit(dir / "keyword.off", "OFF 1 0 0\n0 4294967295 0\n");
+        CHECK(error_of((dir / "keyword.off").string()).find("line 2: the OFF header declares 0 vertices and 4294967295 faces") !=
+              std::string::npos);
+        spit(dir / "binary.off", "OFF BINARY\n\x01\x02");
+        CHECK(error_of((dir / "binary.off").string()).find("binary OFF files are not supported") != std::string::npos);
         spit(dir / "counts.off", "OFF\n9223372036854775807 9223372036854775807 0\n");
         CHECK(error_of((dir / "counts.off").string()).find("more than the file can hold") != std::string::npos);
         spit(dir / "ok.off", "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n"
