@@ -8,7 +8,9 @@
 #      (default 60) seconds, seeded from spec/vectors. A crash leaves its input in build-fuzz/crashes/;
 #   3. builds every library instrumented with clang in build-fuzz-pipeline/ and runs fuzz_decode (received
 #      packets through the decoder and the glTF writer) and fuzz_readers (glTF/GLB, OBJ, PLY, OFF, STL)
-#      for as long, seeded from spec/vectors and ../shared/samples (ELLICAST_FUZZ_PIPELINE=0 skips it).
+#      for as long, seeded from spec/vectors and ../shared/samples (ELLICAST_FUZZ_PIPELINE=0 skips it),
+#      with short inputs (-max_len 1024 and 4096) and -entropic_scale_per_exec_time=1 (slow inputs are
+#      mutated less often) so that each runs thousands of inputs a second, not tens (see the targets).
 # Usage: bash scripts/check-sanitizers.sh        (from anywhere; exits non-zero on any finding)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -88,6 +90,38 @@ if [ "${ELLICAST_FUZZ_PIPELINE:-1}" = 1 ]; then
   t5=$(date +%s)
   mkdir -p "$pipeline/corpus/decode" "$pipeline/corpus/readers"
   cp "$corpus/packet/"* "$pipeline/corpus/decode/"
+  decode_max_len=1024
+  # Seeds that fit fuzz_decode's -max_len: from each vector at least that long, its first STREAM_INFO,
+  # ELLIPSOIDS and POINTS packets followed by as many of its other packets (scene, materials, textures,
+  # manifests, repair, more points) as fit, for each run of them, so that short inputs reach them too.
+  for f in "$root"/spec/vectors/*/*.ellc; do
+    size=$(wc -c < "$f")
+    [ "$size" -ge "$decode_max_len" ] || continue
+    name="$(basename "$(dirname "$f")")_$(basename "$f" .ellc)"
+    core=() rest=() used=1 off=12 seen=""
+    while [ $((off + 24)) -le "$size" ]; do  # packets: type at offset 6, payload length at 18 (u16 LE)
+      read -r type lo hi < <(od -An -tu1 -j $((off + 6)) -N 14 "$f" | tr -s ' \n' '  ' | awk '{print $1, $13, $14}')
+      len=$((24 + lo + 256 * hi))
+      [ $((off + len)) -le "$size" ] || len=$((size - off))
+      if [ "$type" -ge 1 ] && [ "$type" -le 3 ] && [[ $seen != *"<$type>"* ]] && [ $((used + len)) -le "$decode_max_len" ]; then
+        core+=("$off:$len") used=$((used + len)) seen+="<$type>"
+      else
+        rest+=("$off:$len")
+      fi
+      off=$((off + len))
+    done
+    n=0 i=0
+    while [ "$i" -lt "${#rest[@]}" ]; do
+      seed=("${core[@]}") len=$used
+      while [ "$i" -lt "${#rest[@]}" ] && [ $((len + ${rest[i]#*:})) -le "$decode_max_len" ]; do
+        seed+=("${rest[i]}") len=$((len + ${rest[i]#*:})) i=$((i + 1))
+      done
+      if [ "${#seed[@]}" -eq "${#core[@]}" ]; then i=$((i + 1)); continue; fi  # a packet too long for any seed
+      { printf '\001'; for p in "${seed[@]}"; do dd if="$f" iflag=skip_bytes,count_bytes skip="${p%%:*}" count="${p#*:}" status=none; done; } \
+        > "$pipeline/corpus/decode/${name}_part$n"
+      n=$((n + 1))
+    done
+  done
   # Reader seeds: small sample files, the type byte first (0 glb, 1 gltf, 2 obj, 3 ply, 4 off, 5 stl).
   samples="$root/../shared/samples"
   [ -d "$samples" ] || samples="$root/samples"
@@ -101,8 +135,15 @@ if [ "${ELLICAST_FUZZ_PIPELINE:-1}" = 1 ]; then
     n=$((n + 1))
   done < <(find "$samples" -type f -size -200k \( -iname '*.glb' -o -iname '*.gltf' -o -iname '*.obj' -o -iname '*.ply' -o -iname '*.off' -o -iname '*.stl' \) 2>/dev/null | sort)
   printf '\003ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > "$pipeline/corpus/readers/triangle"
-  run_target "$pipeline" decode "$pipeline/corpus/decode" -max_len=70000
-  run_target "$pipeline" readers "$pipeline/corpus/readers" -max_len=300000 -timeout=30
+  # The samples hold no OFF nor STL file: one triangle each (STL in ASCII and binary).
+  printf '\004OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > "$pipeline/corpus/readers/off_triangle"
+  printf '\005solid t\nfacet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\nendsolid t\n' \
+    > "$pipeline/corpus/readers/stl_ascii"
+  { printf '\005binary stl%70s\001\000\000\000' ''; printf '\000\000\000\000\000\000\000\000\000\000\200\077'
+    printf '\000%.0s' {1..12}; printf '\000\000\200\077\000\000\000\000\000\000\000\000'
+    printf '\000\000\000\000\000\000\200\077\000\000\000\000\000\000'; } > "$pipeline/corpus/readers/stl_binary"
+  run_target "$pipeline" decode "$pipeline/corpus/decode" -max_len="$decode_max_len" -entropic_scale_per_exec_time=1
+  run_target "$pipeline" readers "$pipeline/corpus/readers" -max_len=4096 -timeout=30 -entropic_scale_per_exec_time=1
   t6=$(date +%s)
   echo "== fuzzing the decoder and readers: build $((t5 - t4)) s, fuzzing $((t6 - t5)) s" >&2
 fi

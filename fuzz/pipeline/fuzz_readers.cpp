@@ -4,6 +4,10 @@
 //
 // Input: one byte choosing the file type (modulo 6: glb, gltf, obj, ply, off, stl), then the file.
 // Mode bit 3 (of that byte) reads it as an asset with its scene (load_asset) instead of meshes.
+//
+// Speed: one input costs about its size (under the sanitizers the glTF path reads the file three
+// times, byte by byte); run with -max_len=4096 (the small samples still fit) and
+// -entropic_scale_per_exec_time=1: about 3,000-5,000 inputs/s on one core, ~750 with -max_len=300000.
 #include <ellicast/converters/asset.h>
 #include <ellicast/converters/mesh_input.h>
 
