@@ -427,7 +427,8 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
             report.objects[i].connectivity_bytes = c->received_bytes;
             report.objects[i].connectivity_size = c->coded_size;
         }
-        if (options.exact && objects[i].connectivity) {
+        // Snapshots show the reconstruction as points arrive, so they keep to it (spec 13).
+        if (options.exact && options.snapshot_every == 0 && objects[i].connectivity) {
             std::string why;
             bool unusable = false;
             if (exact_mesh(stream, i, mesh, why, unusable)) {

@@ -307,7 +307,8 @@ struct DecodeOptions {
     size_t grid_nodes_per_element = 2048;
     size_t snapshot_every = 0;   // > 0: call `snapshot` for the base and after every N inserted points
     // The exact layer (format 1.3, spec 19): an object whose every point and whole connectivity
-    // arrived is written as its original triangles. false: always the reconstruction.
+    // arrived is written as its original triangles. false: always the reconstruction. Not used with
+    // snapshot_every > 0: snapshots follow the reconstruction as points arrive.
     bool exact = true;
     ReconstructionOptions reconstruction;
     // Progress of the current stage: (stage name, fraction 0..1). May be empty.
