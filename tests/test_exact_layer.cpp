@@ -420,3 +420,23 @@ TEST_CASE("a validator finds a CONNECTIVITY_REPAIR symbol that is not its row, a
     CHECK(check_connectivity_repair_packet(stream, view, why) == Error::StreamMismatch);
     CHECK(why.find("is not that row") != std::string::npos);
 }
+
+TEST_CASE("snapshots of a complete stream follow the reconstruction as points arrive, not the exact layer") {
+    if (!have_sample("meshes/spot.obj")) return;
+    Asset asset = load_asset((shared_samples() / "meshes/spot.obj").string());
+    EncodedAsset encoded;
+    std::string error;
+    REQUIRE(encode_asset(asset, quick_encoding(), 4, true, encoded, error));
+    ReceivedStream stream;
+    for (size_t k = 0; k < encoded.packets.size(); ++k) REQUIRE(stream.add_packet(encoded.packets[k], k) == Error::Ok);
+    DecodeOptions options;
+    options.grid_resolution = 32;
+    options.snapshot_every = 1000;
+    size_t snapshots = 0;
+    options.snapshot = [&](size_t, size_t, const Mesh&) { ++snapshots; };
+    std::vector<Mesh> meshes;
+    StreamDecodeReport report;
+    REQUIRE(decode_stream(stream, options, meshes, report, error));
+    CHECK(snapshots >= 2);  // the base and after every 1,000 points
+    CHECK(!report.objects[0].exact);
+}
