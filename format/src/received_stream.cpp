@@ -216,6 +216,22 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
     return Error::Ok;
 }
 
+namespace {
+
+// The object's connectivity, described by the first packet of it taken (spec 19.1, 19.5).
+ReceivedConnectivity& connectivity_of(ReceivedObject& object, uint32_t triangle_count, uint32_t coded_size,
+                                      uint32_t coded_crc) {
+    if (!object.connectivity) {
+        object.connectivity.emplace();
+        object.connectivity->triangle_count = triangle_count;
+        object.connectivity->coded_size = coded_size;
+        object.connectivity->coded_crc = coded_crc;
+    }
+    return *object.connectivity;
+}
+
+}  // namespace
+
 // Format 1.3 (spec 19.1): a piece of an object's coded connectivity, kept like a texture's bytes.
 Error ReceivedStream::take_connectivity(ReceivedObject& object, const PacketView& packet, const std::string& name,
                                         uint64_t where) {
@@ -225,13 +241,7 @@ Error ReceivedStream::take_connectivity(ReceivedObject& object, const PacketView
         uint64_t(piece.triangle_count) > 8 * uint64_t(oi.point_count))
         return reject(where, Error::MalformedPayload,
                       name + ": its triangle count, coded size or piece does not fit the object (spec 19.1)");
-    if (!object.connectivity) {
-        object.connectivity.emplace();
-        object.connectivity->triangle_count = piece.triangle_count;
-        object.connectivity->coded_size = piece.coded_size;
-        object.connectivity->coded_crc = piece.coded_crc;
-    }
-    ReceivedConnectivity& c = *object.connectivity;
+    ReceivedConnectivity& c = connectivity_of(object, piece.triangle_count, piece.coded_size, piece.coded_crc);
     if (c.triangle_count != piece.triangle_count || c.coded_size != piece.coded_size || c.coded_crc != piece.coded_crc)
         return reject(where, Error::StreamMismatch, name + ": its triangle count, coded size or CRC contradicts earlier pieces");
     if (c.complete) {
@@ -351,13 +361,7 @@ Error ReceivedStream::take_connectivity_repair(ReceivedObject& object, const Pac
         uint64_t(r.triangle_count) > 8 * uint64_t(oi.point_count))
         return reject(where, Error::MalformedPayload,
                       name + ": its triangle count, coded size, symbol size or row does not fit (spec 19.5)");
-    if (!object.connectivity) {
-        object.connectivity.emplace();
-        object.connectivity->triangle_count = r.triangle_count;
-        object.connectivity->coded_size = r.coded_size;
-        object.connectivity->coded_crc = r.coded_crc;
-    }
-    ReceivedConnectivity& c = *object.connectivity;
+    ReceivedConnectivity& c = connectivity_of(object, r.triangle_count, r.coded_size, r.coded_crc);
     if (c.triangle_count != r.triangle_count || c.coded_size != r.coded_size || c.coded_crc != r.coded_crc ||
         (c.symbol_size != 0 && c.symbol_size != r.symbol_size))
         return reject(where, Error::StreamMismatch,
