@@ -281,3 +281,35 @@ TEST_CASE("a collapse that OpenMesh allows but that leaves a face with a repeate
             }
     }
 }
+
+TEST_CASE("the decoder's face index is sized by the mesh it holds, not by the frame or the declared point count") {
+    // fuzz_decode: one tiny ellipsoid in a large frame with a million points declared made a 4M-cell
+    // index (98 MB for a 203-byte stream), and points far from a tiny base walked its empty cells.
+    DecoderTriMesh base;
+    const double s = 1e-3;  // a tetrahedron a thousandth of the frame across
+    auto a = base.add_vertex({0.5, 0.5, 0.5}), b = base.add_vertex({0.5 + s, 0.5, 0.5}),
+         c = base.add_vertex({0.5, 0.5 + s, 0.5}), d = base.add_vertex({0.5, 0.5, 0.5 + s});
+    base.add_face(a, c, b);
+    base.add_face(a, b, d);
+    base.add_face(a, d, c);
+    base.add_face(b, c, d);
+    Reconstruction r;
+    start_reconstruction(r, std::move(base), Frame{{0, 0, 0}, 1}, 1.0 / 1024, 1000000, ReconstructionOptions{});
+    CHECK(r.faces.cell_count() <= 4096);
+    // Points spread over the whole frame: the index is laid out again, finer, as the mesh grows, and
+    // never has more than 16 cells per face it had when laid out (at least 4,096).
+    uint64_t state = 12345;
+    auto next = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return float((state >> 40) & 0xFFFFFF) / float(1 << 24);
+    };
+    const double first_cell = r.faces.cell_size();
+    for (uint32_t i = 0; i < 20000; ++i) {
+        OpenMesh::VertexHandle v;
+        insert_point(r, i, {next(), next(), next()}, v);
+        REQUIRE(r.faces.cell_count() <= std::max<size_t>(4096, 16 * r.index_built_for));
+    }
+    CHECK(r.mesh.n_faces() > 4 * 4096);
+    CHECK(r.faces.cell_size() < first_cell);  // refined at least once
+    CHECK(r.faces.cell_count() > 4096);
+}

@@ -11,7 +11,7 @@ namespace ellicast {
 
 using Vec3 = OpenMesh::Vec3d;
 
-void FaceGrid::reset(const Vec3& lo, const Vec3& hi, double cell) {
+void FaceGrid::reset(const Vec3& lo, const Vec3& hi, double cell, size_t max_cells) {
     lo_ = lo;
     cell_ = cell > 0 ? cell : 1;
     for (int k = 0; k < 3; ++k) {
@@ -19,7 +19,8 @@ void FaceGrid::reset(const Vec3& lo, const Vec3& hi, double cell) {
         dims_[k] = std::clamp(int(std::ceil(extent / cell_)) + 1, 1, 1024);
     }
     // Keep the number of cells bounded (a few million at most).
-    while (size_t(dims_[0]) * dims_[1] * dims_[2] > (size_t(4) << 20)) {
+    max_cells = std::clamp<size_t>(max_cells, 1, size_t(4) << 20);
+    while (size_t(dims_[0]) * dims_[1] * dims_[2] > max_cells) {
         cell_ *= 1.25;
         for (int k = 0; k < 3; ++k)
             dims_[k] = std::clamp(int(std::ceil(std::max(0.0, hi[k] - lo[k]) / cell_)) + 1, 1, 1024);

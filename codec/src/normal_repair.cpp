@@ -438,10 +438,7 @@ size_t agree_with_received_normals(Reconstruction& r) {
     // body and trim 38% and 46%: thin panels sampled more coarsely than they are thick), the mesh is
     // not locally wrong but wrong throughout: re-insertion does not converge there and only costs.
     const bool rebuild = 5 * faces.size() <= live;
-    if (r.index_paused) {  // re-insertion looks faces up
-        r.faces.build(mesh);
-        r.index_paused = false;
-    }
+    r.refresh_index();  // re-insertion looks faces up
     flip_towards_agreement(r, view, faces);
     if (cut_tunnels(r, view) > 0) {
         faces.clear();

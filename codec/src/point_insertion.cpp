@@ -78,9 +78,22 @@ void start_reconstruction(Reconstruction& r, DecoderTriMesh&& base, const Frame&
     double faces = std::max<double>({1.0, double(r.mesh.n_faces()), 2.0 * double(expected_points)});
     double size = std::clamp(3.0 * std::sqrt(area / faces), 0.25 * cell, 4 * cell);
     if (!(size > 0)) size = cell;
-    r.faces.reset(lo, hi, size);
-    r.faces.build(r.mesh);
-    r.index_paused = false;
+    r.index_lo = lo;
+    r.index_hi = hi;
+    r.index_cell = size;
+    r.rebuild_index();
+}
+
+void Reconstruction::rebuild_index() {
+    index_built_for = mesh.n_faces();
+    faces.reset(index_lo, index_hi, index_cell, std::max<size_t>(4096, 16 * index_built_for));
+    faces.build(mesh);
+    index_paused = false;
+}
+
+void Reconstruction::refresh_index() {
+    if (index_paused || (faces.cell_size() > index_cell * 1.001 && mesh.n_faces() > 4 * index_built_for))
+        rebuild_index();
 }
 
 Insertion insert_point(Reconstruction& r, uint32_t point_index, const std::array<float, 3>& position,
@@ -100,10 +113,7 @@ Insertion insert_point(Reconstruction& r, uint32_t point_index, const std::array
     }
     if (merged) return Insertion::SeamDuplicate;
 
-    if (r.index_paused) {
-        r.faces.build(mesh);
-        r.index_paused = false;
-    }
+    r.refresh_index();
     Vec3 closest;
     std::array<double, 3> bary;
     OpenMesh::FaceHandle f = r.faces.nearest(mesh, p, closest, bary);

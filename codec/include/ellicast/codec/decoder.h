@@ -95,8 +95,9 @@ DecoderTriMesh marching_cubes(const EllipsoidGrid& grid);
 // from a cell whenever it would grow, so cells stay small and queries fast as the mesh is refined.
 class FaceGrid {
 public:
-    // Covers [lo, hi] (points outside are clamped to the border cells) with cells of edge `cell`.
-    void reset(const OpenMesh::Vec3d& lo, const OpenMesh::Vec3d& hi, double cell);
+    // Covers [lo, hi] (points outside are clamped to the border cells) with cells of edge `cell`,
+    // coarsened until there are at most `max_cells` cells (and never more than 4M).
+    void reset(const OpenMesh::Vec3d& lo, const OpenMesh::Vec3d& hi, double cell, size_t max_cells = size_t(4) << 20);
     // Registers every live face of `mesh`.
     void build(const DecoderTriMesh& mesh);
     // (Re)registers face `f` at its current position; call after any change to its vertices.
@@ -111,6 +112,8 @@ public:
                                  const std::function<bool(OpenMesh::FaceHandle)>& accept = {},
                                  double max_distance = std::numeric_limits<double>::max()) const;
     size_t live_faces() const { return live_; }
+    size_t cell_count() const { return cells_.size(); }
+    double cell_size() const { return cell_; }
 
 private:
     struct Entry {
@@ -170,6 +173,17 @@ struct Reconstruction {
     // and re-indexing the large faces of a sparse stream's last collapses would cost more than the
     // collapses); insert_point rebuilds the index first when it is set.
     bool index_paused = false;
+
+    // The face index covers [index_lo, index_hi] with cells of about index_cell, but never more cells
+    // than 16 per face the mesh has when it is built (at least 4,096): its memory and the empty cells a
+    // search walks follow what the stream carried, not the object's frame or the count it declares.
+    // It is built again, finer, each time the mesh has grown fourfold.
+    OpenMesh::Vec3d index_lo{0, 0, 0}, index_hi{0, 0, 0};
+    double index_cell = 1;
+    size_t index_built_for = 0;  // faces the mesh had when the index was last laid out
+    void rebuild_index();
+    // Rebuilds the index when it is paused, or coarser than wanted and the mesh has grown fourfold.
+    void refresh_index();
 
     bool is_original(OpenMesh::VertexHandle v) const { return !vertex_points[v.idx()].empty(); }
     // Keep the face index in step with a changed or deleted face.
