@@ -364,9 +364,7 @@ void for_each_draco_primitive(
 
 // tinygltf's Draco path indexes buffers and buffer views without checking them (a wrong "buffer"
 // number crashed inside Draco). Check them here, on the JSON, before tinygltf sees the file.
-void check_buffer_views(const std::string& path, bool binary) {
-    std::ifstream in(path, std::ios::binary);
-    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
+void check_buffer_views(const std::string& path, const std::vector<uint8_t>& bytes, bool binary) {
     const std::string text = json_text(bytes, binary);
     uint64_t bin_length = 0;
     bool has_bin = false;
@@ -494,9 +492,31 @@ void check_draco_primitives(const std::string& path, const std::vector<uint8_t>&
 
 }  // namespace
 
+std::vector<uint8_t> read_file_bytes(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a folder, not a file");
+        std::ifstream in(path, std::ios::binary);  // a pipe or device: read as a stream
+        if (!in) throw InputError(path + ": cannot be opened for reading");
+        return {std::istreambuf_iterator<char>(in), {}};
+    }
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) throw InputError(path + ": cannot be opened for reading");
+    const std::streamoff size = in.tellg();
+    if (size < 0) throw InputError(path + ": cannot tell its size");
+    std::vector<uint8_t> bytes(static_cast<size_t>(size));
+    in.seekg(0);
+    if (!in.read(reinterpret_cast<char*>(bytes.data()), size)) throw InputError(path + ": could not be read whole");
+    return bytes;
+}
+
 nlohmann::json read_json(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
+    std::vector<uint8_t> bytes;
+    try {
+        bytes = read_file_bytes(path);
+    } catch (const InputError&) {
+        return nlohmann::json::value_t::discarded;
+    }
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
     return nlohmann::json::parse(json_text(bytes, binary), nullptr, false);
 }
@@ -581,28 +601,20 @@ void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadI
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(image_loader, image_user_data);
     std::string err, warn;
-    bool binary = false;
-    {
-        FILE* f = std::fopen(path.c_str(), "rb");
-        if (!f) throw InputError(path + ": cannot be opened for reading");
-        char magic[4] = {};
-        binary = std::fread(magic, 1, 4, f) == 4 && std::memcmp(magic, "glTF", 4) == 0;
-        std::fclose(f);
-    }
-    check_buffer_views(path, binary);
-    std::vector<uint8_t> decoded;
-    {
-        std::ifstream in(path, std::ios::binary);
-        const std::vector<uint8_t> bytes(std::istreambuf_iterator<char>(in), {});
-        check_resource_uris(path, bytes, binary, options);
-        check_draco_primitives(path, bytes, binary, options);
-        decoded = decode_meshopt(path, bytes, binary, options);
-    }
+    // The file is read once; every check and tinygltf work on these bytes.
+    const std::vector<uint8_t> bytes = read_file_bytes(path);
+    if (bytes.size() > 0xFFFFFFFFu) throw InputError(path + ": larger than 4 GiB, the most glTF's loader reads");
+    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    check_buffer_views(path, bytes, binary);
+    check_resource_uris(path, bytes, binary, options);
+    check_draco_primitives(path, bytes, binary, options);
+    const std::vector<uint8_t> decoded = decode_meshopt(path, bytes, binary, options);
     const std::string base_dir = std::filesystem::path(path).parent_path().string();
-    bool ok = !decoded.empty()
-                  ? loader.LoadBinaryFromMemory(&model, &err, &warn, decoded.data(), unsigned(decoded.size()), base_dir)
-                  : binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                           : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+    const std::vector<uint8_t>& data = decoded.empty() ? bytes : decoded;
+    const bool ok = !decoded.empty() || binary
+                        ? loader.LoadBinaryFromMemory(&model, &err, &warn, data.data(), unsigned(data.size()), base_dir)
+                        : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(data.data()),
+                                                     unsigned(data.size()), base_dir);
     if (!ok) {
         while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
         throw InputError(path + ": not a readable glTF 2.0 " + std::string(binary ? "binary (.glb)" : "(.gltf)") +

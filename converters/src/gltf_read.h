@@ -55,6 +55,9 @@ std::string json_text(const std::vector<uint8_t>& bytes, bool binary);
 std::vector<uint8_t> decode_meshopt(const std::string& path, const std::vector<uint8_t>& bytes, bool binary,
                                     const InputOptions& options);
 
+// The whole file at `path`, read in one go. Throws InputError when it cannot be opened or read.
+std::vector<uint8_t> read_file_bytes(const std::string& path);
+
 // The JSON of the glTF file at `path` (a .gltf file's text or a GLB's JSON chunk), for what tinygltf
 // does not keep (e.g. the mimeType of an image given by URI); discarded when it cannot be parsed.
 nlohmann::json read_json(const std::string& path);

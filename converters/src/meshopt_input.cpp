@@ -86,9 +86,11 @@ std::vector<std::vector<uint8_t>> buffer_data(const std::string& path, const nlo
                 bytes = base64_decode(uri, comma + 8);
             } else {
                 const std::filesystem::path file = resource_file(path, uri, where, options);
-                std::ifstream in(file, std::ios::binary);
-                if (!in) fail(path, where + " refers to " + quoted_input(file.filename().string()) + ", which cannot be read");
-                bytes.assign(std::istreambuf_iterator<char>(in), {});
+                try {
+                    bytes = read_file_bytes(file.string());
+                } catch (const InputError&) {
+                    fail(path, where + " refers to " + quoted_input(file.filename().string()) + ", which cannot be read");
+                }
             }
             if (bytes.size() < length)
                 fail(path, where + " holds " + std::to_string(bytes.size()) + " bytes, less than its byteLength " +
