@@ -23,12 +23,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace ellicast;
     if (size < 1) return 0;
     static const char* const kTypes[] = {".glb", ".gltf", ".obj", ".ply", ".off", ".stl"};
+    // A folder of its own, so that relative URIs find nothing else; made for each input and removed
+    // after it, so that the processes of a -fork run, which end without cleaning up, leave nothing.
     static const std::string dir = [] {
         const char* shm = access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp";
-        std::string d = std::string(shm) + "/ellicast_fuzz_readers_" + std::to_string(getpid());
-        mkdir(d.c_str(), 0700);
-        return d;
+        return std::string(shm) + "/ellicast_fuzz_readers_" + std::to_string(getpid());
     }();
+    mkdir(dir.c_str(), 0700);
+    struct RemoveFolder {
+        const std::string& dir;
+        ~RemoveFolder() { rmdir(dir.c_str()); }
+    } remove_folder{dir};
     const std::string path = dir + "/model" + kTypes[(data[0] & 7) % 6];
     FILE* f = std::fopen(path.c_str(), "wb");
     if (!f) return 0;
