@@ -435,3 +435,30 @@ TEST_CASE("ellicast receive --key takes the signed stream over UDP while a forge
     CHECK(wrong_log.find("no MANIFEST verified") != std::string::npos);
     CHECK_FALSE(std::filesystem::exists(dir / "wrong.ellc"));
 }
+
+TEST_CASE("a flood of forged MANIFESTs with the right key id costs a bounded number of signature checks, and the real stream still gets through") {
+    const auth::KeyPair key = key_from(1);
+    const Packets real = signed_stream(key, 0xAAAA);
+    std::vector<std::vector<uint8_t>> forged;  // the real MANIFESTs with a digest byte changed: right key id, bad signature
+    for (const auto& p : real)
+        if (is_manifest(p)) forged.push_back(forge(p, kHeaderSize + kManifestFixedSize + 3));
+    REQUIRE(!forged.empty());
+    Reception::Options options;
+    options.key = key.public_key;
+    Reception reception(options);
+    // Each real packet is sent among 20 forged MANIFESTs, and the carousel repeats the real stream.
+    size_t taken = 0;
+    for (int cycle = 0; cycle < 4 && !reception.complete(); ++cycle)
+        for (const auto& p : real) {
+            for (int i = 0; i < 20; ++i, ++taken) reception.take(forged[(taken + i) % forged.size()]);
+            reception.take(p);
+            ++taken;
+        }
+    const auth::Authenticator::Counters& c = reception.authenticator()->counters();
+    const auth::Authenticator::Limits limits;
+    // Every check is a forged or a real MANIFEST: no more than the budget allows.
+    CHECK(c.manifests_failed + c.manifests_verified <= limits.verify_burst + taken / limits.packets_per_verification);
+    CHECK(c.manifests_unchecked > 0);
+    CHECK(c.manifests_failed + c.manifests_unchecked + c.manifests_verified + c.manifests_repeated >= taken * 20 / 21);
+    CHECK(reception.complete());
+}

@@ -12,7 +12,8 @@ constexpr size_t kMaxRejectionsKept = 10'000;
 Authenticator::Authenticator(const PublicKey& key) : Authenticator(key, Limits{}) {}
 
 Authenticator::Authenticator(const PublicKey& key, Limits limits)
-    : key_(key), key_id_(key_id_of(std::span<const uint8_t, 32>(key))), limits_(limits) {}
+    : key_(key), key_id_(key_id_of(std::span<const uint8_t, 32>(key))), limits_(limits),
+      verify_budget_(limits.verify_burst) {}
 
 Authenticator::Verdict Authenticator::reject(uint64_t where, Error e, std::string detail) {
     last_error_ = e;
@@ -24,6 +25,10 @@ Authenticator::Verdict Authenticator::reject(uint64_t where, Error e, std::strin
 Authenticator::Verdict Authenticator::take(const PacketView& packet, std::span<const uint8_t> bytes, uint64_t where) {
     last_error_ = Error::Ok;
     bytes = bytes.first(std::min(bytes.size(), packet.size));
+    if (limits_.packets_per_verification > 0 && ++packets_toward_budget_ >= limits_.packets_per_verification) {
+        packets_toward_budget_ = 0;
+        verify_budget_ = std::min(verify_budget_ + 1, limits_.verify_burst);
+    }
     if (packet.header.type == static_cast<uint8_t>(PacketType::Manifest)) return take_manifest(packet, bytes, where);
     const PacketDigest digest = packet_digest(bytes);
     if (listed_.count(digest)) {
@@ -98,6 +103,13 @@ Authenticator::Verdict Authenticator::take_manifest(const PacketView& packet, st
         if (first_failure_.empty()) first_failure_ = detail;
         return reject(where, Error::ManifestSignature, std::move(detail));
     }
+    if (limits_.verify_burst > 0) {
+        if (verify_budget_ == 0) {
+            ++counters_.manifests_unchecked;
+            return Verdict::Manifest;  // not rejected: it may be the real one, which comes again
+        }
+        --verify_budget_;
+    }
     if (!verify_manifest(bytes, part, key_)) {
         ++counters_.manifests_failed;
         std::string detail = "MANIFEST part " + std::to_string(part.part) + " of stream " +
@@ -161,6 +173,7 @@ RecordingAuthentication authenticate_recording(const std::vector<ContainerPacket
     Authenticator::Limits limits;
     limits.max_held_packets = 0;
     limits.max_digests = SIZE_MAX;
+    limits.verify_burst = 0;  // a file is read once: every MANIFEST in it is checked
     Authenticator a(key, limits);
     RecordingAuthentication out;
     out.verdicts.assign(packets.size(), Authenticator::Verdict::Rejected);

@@ -321,9 +321,11 @@ int run_receive(const ReceiveArgs& a) {
         else
             std::fprintf(stderr,
                          "signed stream: %s MANIFEST part(s) verified, %s packet(s) authenticated, %s rejected as not "
-                         "authenticated, %s MANIFEST(s) failed verification\n",
+                         "authenticated, %s MANIFEST(s) failed verification, %s left unchecked (verification "
+                         "budget spent: a flood of MANIFESTs)\n",
                          with_commas(ac.manifests_verified).c_str(), with_commas(ac.passed).c_str(),
-                         with_commas(ac.not_authenticated).c_str(), with_commas(ac.manifests_failed).c_str());
+                         with_commas(ac.not_authenticated).c_str(), with_commas(ac.manifests_failed).c_str(),
+                         with_commas(ac.manifests_unchecked).c_str());
     }
     if (reception.authenticator() && reception.authenticator()->counters().passed == 0)
         return fail(kExitInvalid, "nothing authenticated with the key given: " + reception.authenticator()->problem() +

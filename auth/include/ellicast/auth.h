@@ -92,6 +92,15 @@ public:
         size_t max_held_bytes = 8u << 20;
         // Digests kept from verified MANIFESTs (about 50 bytes each): a sender's streams together.
         size_t max_digests = 1u << 21;
+        // Ed25519 verifications a forger can make a receiver do (spec 16.3 lets a receiver bound
+        // them): a budget of verify_burst checks, and one more for every packets_per_verification
+        // packets that go through take(). A MANIFEST that is not a repeat and finds the budget empty
+        // is dropped unchecked (counted in manifests_unchecked); the carousel sends it again. The
+        // real sender needs one check per distinct MANIFEST part (a few per stream), so only a flood
+        // of forged MANIFESTs meets the bound, and it then costs at most one check per 16 packets.
+        // 0 = unbounded (recordings: every MANIFEST is checked).
+        size_t verify_burst = 64;
+        size_t packets_per_verification = 16;
     };
     enum class Verdict {
         Pass,       // listed by a verified MANIFEST: give it to the decoder
@@ -106,6 +115,7 @@ public:
         uint64_t manifests_verified = 0;  // distinct MANIFEST packets whose signature verified
         uint64_t manifests_repeated = 0;  // copies of those
         uint64_t manifests_failed = 0;    // bad manifest signature (another key id, or a forgery)
+        uint64_t manifests_unchecked = 0; // dropped unchecked: the verification budget was spent
         uint64_t malformed = 0;           // malformed MANIFEST payloads
         uint64_t unknown_scheme = 0;      // MANIFESTs of a later scheme, skipped
         uint64_t not_authenticated = 0;   // rejected: listed by no verified MANIFEST
@@ -159,6 +169,9 @@ private:
     std::set<uint32_t> complete_streams_;
     std::deque<Held> held_;
     size_t held_bytes_ = 0;
+    // Verifications left in the budget, and packets counted toward the next one (Limits).
+    size_t verify_budget_ = 0;
+    size_t packets_toward_budget_ = 0;
     std::vector<Released> released_;
     std::vector<Rejection> rejections_;
     Counters counters_;
