@@ -70,7 +70,7 @@ for what in "$@"; do
       "$build/ellicast" keygen "$tmp/bench" > /dev/null
       for m in bunny.ply spot.obj; do
         "$build/ellicast" encode -q "$samples/meshes/$m" -o "$tmp/${m%.*}.ellc" --sign "$tmp/bench.key" > /dev/null
-        for loss in 0.3 0.5 0.7; do
+        for loss in 0.1 0.3 0.5 0.7; do
           "$build/bench/bench_first_picture" "$tmp/${m%.*}.ellc" --loss "$loss" --trials 20000 --key "$tmp/bench.pub" |
             tee -a "$results/first_picture.txt"
         done
