@@ -21,6 +21,7 @@ std::string packet_type_name(uint8_t type) {
     case 0x11: return "MATERIAL";
     case 0x12: return "TEXTURE_FRAGMENT";
     case 0x13: return "MATERIAL_EXTENSIONS";
+    case 0x14: return "ANIMATION";
     case 0x20: return "MANIFEST";
     case 0x04: return "POINTS_REPAIR";
     case 0x05: return "CONNECTIVITY";
@@ -34,7 +35,7 @@ std::string packet_type_name(uint8_t type) {
 }
 
 bool is_known_packet_type(uint8_t type) {
-    return (type >= 0x01 && type <= 0x06) || (type >= 0x10 && type <= 0x13) || type == 0x20;
+    return (type >= 0x01 && type <= 0x06) || (type >= 0x10 && type <= 0x14) || type == 0x20;
 }
 
 const char* error_name(Error e) {

@@ -65,6 +65,7 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
     case PacketType::Material: e = take_material(packet, where); break;
     case PacketType::MaterialExtensions: e = take_material_extensions(packet, where); break;
     case PacketType::TextureFragment: e = take_texture_fragment(packet, where); break;
+    case PacketType::Animation: e = take_animation(packet, where); break;
     case PacketType::Manifest: {
         // A decoder checks its layout and takes nothing from it: verifying signatures is the
         // job of the filter in front of it (spec 16.3), which needs the sender's key.

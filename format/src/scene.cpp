@@ -420,6 +420,41 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
             packets.textures.push_back(emit(PacketType::TextureFragment, encode_texture_fragment_payload(f)));
         }
     }
+    // ANIMATION (format 1.4): each track's keys in runs of as many as fit a packet.
+    if (scene.animations.size() > 0xFFFF) return Error::MalformedPayload;
+    for (size_t i = 0; i < scene.animations.size(); ++i) {
+        const SceneAnimation& animation = scene.animations[i];
+        if (animation.tracks.empty() || animation.tracks.size() > 0xFFFF) return Error::MalformedPayload;
+        AnimationPiece piece;
+        piece.animation = static_cast<uint16_t>(i);
+        piece.animation_count = static_cast<uint16_t>(scene.animations.size());
+        piece.track_count = static_cast<uint16_t>(animation.tracks.size());
+        piece.name = utf8_prefix(animation.name, kMaxName);
+        for (size_t t = 0; t < animation.tracks.size(); ++t) {
+            const SceneAnimation::Track& track = animation.tracks[t];
+            const size_t per_key = animation_values_per_key(track.path, track.interpolation);
+            const size_t keys = track.times.size();
+            if (keys == 0 || keys > 0xFFFFFFFFull || track.values.size() != keys * per_key ||
+                (track.interpolation == Interpolation::CubicSpline && keys < 2) || track.node >= node_count ||
+                !all_finite(track.times) || !all_finite(track.values))
+                return Error::MalformedPayload;
+            for (size_t k = 0; k < keys; ++k)
+                if (track.times[k] < 0 || (k > 0 && !(track.times[k] > track.times[k - 1]))) return Error::MalformedPayload;
+            piece.track = static_cast<uint16_t>(t);
+            piece.info = {track.node, track.path, track.interpolation, static_cast<uint32_t>(keys)};
+            const size_t key_bytes = 4 * (1 + per_key);
+            if (capacity < kAnimationHeaderSize + piece.name.size() + key_bytes) return Error::MalformedPayload;
+            const size_t per_packet = std::min<size_t>(0xFFFF, (capacity - kAnimationHeaderSize - piece.name.size()) / key_bytes);
+            for (size_t first = 0; first < keys; first += per_packet) {
+                const size_t n = std::min(per_packet, keys - first);
+                piece.first_key = static_cast<uint32_t>(first);
+                piece.times.assign(track.times.begin() + std::ptrdiff_t(first), track.times.begin() + std::ptrdiff_t(first + n));
+                piece.values.assign(track.values.begin() + std::ptrdiff_t(first * per_key),
+                                    track.values.begin() + std::ptrdiff_t((first + n) * per_key));
+                packets.animations.push_back(emit(PacketType::Animation, encode_animation_payload(piece), kAnimationMinor));
+            }
+        }
+    }
     out = std::move(packets);
     return Error::Ok;
 }

@@ -34,8 +34,9 @@ inline constexpr uint8_t kManifestMinor = 2;
 // say 1.3, MATERIAL packets keep saying 1.1 (bit 0 of their flags byte is read whatever they say).
 inline constexpr uint8_t kMaterialExtensionsMinor = 3;
 inline constexpr uint8_t kConnectivityMinor = 3;  // 1.3 added CONNECTIVITY (the exact layer, spec 19)
+inline constexpr uint8_t kAnimationMinor = 4;  // 1.4 added ANIMATION (spec 20)
 // The newest format version this library reads and writes (spec/format.md's version).
-inline constexpr uint8_t kSpecMinor = 3;
+inline constexpr uint8_t kSpecMinor = 4;
 
 inline constexpr std::array<uint8_t, 4> kPacketMagic = {0xE1, 'L', 'C', 'S'};
 inline constexpr size_t kHeaderSize = 20;                       // bytes before the payload
@@ -68,8 +69,9 @@ enum class PacketType : uint8_t {
     Material = 0x11,    // 1.1, skippable: one PBR material
     TextureFragment = 0x12,  // 1.1, skippable: a piece of one texture image, at its byte offset
     MaterialExtensions = 0x13,  // 1.3, skippable: a material's extensions and texture transforms (JSON)
+    Animation = 0x14,   // 1.4, skippable: keys of one track of an animation
     Manifest = 0x20,    // 1.2, skippable: signed digests of the stream's other packets
-    // 0x00 is invalid; 0x07..0x0F reserved for geometry; 0x14..0x1F reserved for the scene;
+    // 0x00 is invalid; 0x07..0x0F reserved for geometry; 0x15..0x1F reserved for the scene;
     // 0x21..0x7F future; 0x80..0xFF experimental.
 };
 
@@ -470,6 +472,49 @@ struct TextureFragment {
 
 inline constexpr size_t kTextureFragmentHeaderSize = 28;
 
+// Animations (format 1.4, spec 20). A track moves one property of one node over keys.
+enum class AnimationPath : uint8_t { Translation = 0, Rotation = 1, Scale = 2 };
+enum class Interpolation : uint8_t { Linear = 0, Step = 1, CubicSpline = 2 };
+
+// What every packet of a track repeats.
+struct AnimationTrackInfo {
+    uint16_t node = 0;  // index of the SCENE node table
+    AnimationPath path = AnimationPath::Translation;
+    Interpolation interpolation = Interpolation::Linear;
+    uint32_t key_count = 0;
+    bool operator==(const AnimationTrackInfo&) const = default;
+};
+
+// f32 values per key: C (3, or 4 for rotation), three times that for cubic splines.
+size_t animation_values_per_key(AnimationPath path, Interpolation interpolation);
+
+// One ANIMATION packet's content: keys [first_key, first_key + times.size()) of one track.
+struct AnimationPiece {
+    uint16_t animation = 0, animation_count = 0;
+    uint16_t track = 0, track_count = 0;
+    std::string name;  // the animation's
+    AnimationTrackInfo info;
+    uint32_t first_key = 0;
+    std::vector<float> times;   // one per key
+    std::vector<float> values;  // animation_values_per_key per key
+};
+inline constexpr size_t kAnimationHeaderSize = 24;
+std::vector<uint8_t> encode_animation_payload(const AnimationPiece& piece);
+Error decode_animation_payload(std::span<const uint8_t> payload, AnimationPiece& out);
+
+// An animation as a sender has it: tracks of whole key lists.
+struct SceneAnimation {
+    std::string name;
+    struct Track {
+        uint16_t node = 0;
+        AnimationPath path = AnimationPath::Translation;
+        Interpolation interpolation = Interpolation::Linear;
+        std::vector<float> times;
+        std::vector<float> values;
+    };
+    std::vector<Track> tracks;
+};
+
 // Everything of the scene that travels besides geometry.
 struct SceneDescription {
     std::vector<SceneNode> nodes;  // node i has index i
@@ -480,6 +525,7 @@ struct SceneDescription {
         std::vector<uint8_t> image; // the image file bytes as the asset had them
     };
     std::vector<Texture> textures;
+    std::vector<SceneAnimation> animations;  // format 1.4
 };
 
 std::vector<uint8_t> encode_scene_payload(const SceneBatch& batch);
@@ -497,12 +543,15 @@ struct ScenePackets {
                                                   // its MATERIAL_EXTENSIONS packet when it has one
     std::vector<uint16_t> extensions_too_large;   // materials whose patch did not fit a packet: sent without
     std::vector<std::vector<uint8_t>> textures;   // TEXTURE_FRAGMENT packets, texture by texture
+    std::vector<std::vector<uint8_t>> animations; // ANIMATION packets, track by track (format 1.4)
 };
 
 // Cuts a scene description into packets of at most `packet_size` bytes, numbered from
 // `first_sequence`. MalformedPayload when a table is larger than 65535 entries, a name longer than
 // 255 bytes, a record does not fit one packet, a reference points outside its table, or an image is
-// empty or over 4 GiB.
+// empty or over 4 GiB; for animations when a table has more than 65535 entries, a track has no key,
+// values of another count than its keys need, a float that is not finite, negative or not strictly
+// increasing times, a cubic spline of one key, or a node outside the node table.
 Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_t stream_id, uint32_t first_sequence,
                       ScenePackets& out);
 
@@ -808,7 +857,31 @@ public:
     const std::map<uint16_t, MaterialExtensions>& material_extensions() const { return material_extensions_; }
     const std::map<uint16_t, ReceivedTexture>& textures() const { return textures_; }
 
+    // Animations (format 1.4, spec 20): what has arrived, by animation index.
+    struct ReceivedAnimation {
+        uint16_t track_count = 0;
+        std::string name;
+        struct Track {
+            AnimationTrackInfo info;
+            // Disjoint runs of keys that arrived: first key -> times (and values, V per key).
+            struct Run {
+                std::vector<float> times, values;
+            };
+            std::map<uint32_t, Run> runs;
+            uint32_t keys_held = 0;
+            uint64_t memory = 0;  // what the runs cost: key bytes plus kHeldPacketCost per run
+            bool complete = false;  // every key arrived
+            bool usable = false;    // complete, and its times strictly increase (spec 20.2)
+            std::vector<float> times, values;  // every key, once complete
+        };
+        std::map<uint16_t, Track> tracks;
+        bool complete() const;  // every track 0 .. track_count - 1 complete
+    };
+    std::optional<uint16_t> animation_count() const { return animation_count_; }
+    const std::map<uint16_t, ReceivedAnimation>& animations() const { return animations_; }
+
 private:
+    Error take_animation(const PacketView& packet, uint64_t where);
     Error take_scene(const PacketView& packet, uint64_t where);
     Error take_material(const PacketView& packet, uint64_t where);
     Error take_material_extensions(const PacketView& packet, uint64_t where);
@@ -853,7 +926,9 @@ private:
     std::map<uint16_t, Material> materials_;
     std::map<uint16_t, MaterialExtensions> material_extensions_;
     std::map<uint16_t, ReceivedTexture> textures_;
-    size_t texture_bytes_ = 0;
+    size_t texture_bytes_ = 0;  // textures, patches and animation keys (the texture cap)
+    std::optional<uint16_t> animation_count_;
+    std::map<uint16_t, ReceivedAnimation> animations_;
 };
 
 // The exact triangle list of object `object` (spec 19.2, 19.4): Ok when every point of it and its

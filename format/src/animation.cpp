@@ -1,0 +1,197 @@
+// ANIMATION packets (format 1.4, spec 20): the payload, and what a receiver keeps of them.
+#include "ellicast/format.h"
+
+#include "bytes.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ellicast {
+
+using namespace detail;
+
+size_t animation_values_per_key(AnimationPath path, Interpolation interpolation) {
+    const size_t components = path == AnimationPath::Rotation ? 4 : 3;
+    return interpolation == Interpolation::CubicSpline ? 3 * components : components;
+}
+
+std::vector<uint8_t> encode_animation_payload(const AnimationPiece& a) {
+    std::vector<uint8_t> out;
+    const size_t name = std::min<size_t>(a.name.size(), 255);
+    out.reserve(kAnimationHeaderSize + name + 4 * (a.times.size() + a.values.size()));
+    put_u16(out, a.animation);
+    put_u16(out, a.animation_count);
+    put_u16(out, a.track);
+    put_u16(out, a.track_count);
+    put_u16(out, a.info.node);
+    put_u8(out, static_cast<uint8_t>(a.info.path));
+    put_u8(out, static_cast<uint8_t>(a.info.interpolation));
+    put_u32(out, a.info.key_count);
+    put_u32(out, a.first_key);
+    put_u16(out, static_cast<uint16_t>(a.times.size()));
+    put_u8(out, static_cast<uint8_t>(name));
+    put_u8(out, 0);
+    out.insert(out.end(), a.name.begin(), a.name.begin() + static_cast<std::ptrdiff_t>(name));
+    const size_t per_key = animation_values_per_key(a.info.path, a.info.interpolation);
+    for (size_t k = 0; k < a.times.size(); ++k) {
+        put_f32(out, a.times[k]);
+        for (size_t v = 0; v < per_key; ++v) put_f32(out, a.values[k * per_key + v]);
+    }
+    return out;
+}
+
+Error decode_animation_payload(std::span<const uint8_t> payload, AnimationPiece& out) {
+    if (payload.size() < kAnimationHeaderSize) return Error::MalformedPayload;
+    const uint8_t* p = payload.data();
+    AnimationPiece a;
+    a.animation = get_u16(p);
+    a.animation_count = get_u16(p + 2);
+    a.track = get_u16(p + 4);
+    a.track_count = get_u16(p + 6);
+    a.info.node = get_u16(p + 8);
+    const uint8_t path = p[10], interpolation = p[11];
+    a.info.key_count = get_u32(p + 12);
+    a.first_key = get_u32(p + 16);
+    const uint16_t count = get_u16(p + 20);
+    const uint8_t name = p[22];
+    if (path > 2 || interpolation > 2) return Error::MalformedPayload;
+    a.info.path = static_cast<AnimationPath>(path);
+    a.info.interpolation = static_cast<Interpolation>(interpolation);
+    const size_t per_key = animation_values_per_key(a.info.path, a.info.interpolation);
+    if (payload.size() != kAnimationHeaderSize + name + size_t(count) * 4 * (1 + per_key)) return Error::MalformedPayload;
+    if (a.animation >= a.animation_count || a.track >= a.track_count || count == 0 || a.info.key_count == 0 ||
+        (a.info.interpolation == Interpolation::CubicSpline && a.info.key_count < 2) ||
+        uint64_t(a.first_key) + count > a.info.key_count)
+        return Error::MalformedPayload;
+    a.name.assign(reinterpret_cast<const char*>(p + kAnimationHeaderSize), name);
+    const uint8_t* key = p + kAnimationHeaderSize + name;
+    a.times.resize(count);
+    a.values.resize(size_t(count) * per_key);
+    for (size_t k = 0; k < count; ++k, key += 4 * (1 + per_key)) {
+        const float t = get_f32(key);
+        if (!std::isfinite(t) || t < 0 || (k > 0 && !(t > a.times[k - 1]))) return Error::MalformedPayload;
+        a.times[k] = t;
+        for (size_t v = 0; v < per_key; ++v) {
+            const float x = get_f32(key + 4 + 4 * v);
+            if (!std::isfinite(x)) return Error::MalformedPayload;
+            a.values[k * per_key + v] = x;
+        }
+    }
+    out = std::move(a);
+    return Error::Ok;
+}
+
+bool ReceivedStream::ReceivedAnimation::complete() const {
+    if (tracks.size() != track_count) return false;
+    return std::all_of(tracks.begin(), tracks.end(), [](const auto& t) { return t.second.complete; });
+}
+
+Error ReceivedStream::take_animation(const PacketView& packet, uint64_t where) {
+    AnimationPiece a;
+    if (decode_animation_payload(packet.payload, a) != Error::Ok)
+        return reject(where, Error::MalformedPayload,
+                      "ANIMATION payload inconsistent or out of range (length, indices, path, interpolation, key "
+                      "range, or a time or value that is not finite, negative or increasing)");
+    const std::string what = "animation " + std::to_string(a.animation) + " track " + std::to_string(a.track);
+    // Comparisons (spec 20.1), in order: table size, animation, track, keys.
+    if (animation_count_ && *animation_count_ != a.animation_count)
+        return reject(where, Error::StreamMismatch,
+                      "ANIMATION table size " + std::to_string(a.animation_count) + " contradicts the " +
+                          std::to_string(*animation_count_) + " of earlier packets");
+    auto anim = animations_.find(a.animation);
+    if (anim != animations_.end() && (anim->second.track_count != a.track_count || anim->second.name != a.name))
+        return reject(where, Error::StreamMismatch,
+                      "animation " + std::to_string(a.animation) + ": its track count or name contradicts earlier packets");
+    const ReceivedAnimation::Track* held = nullptr;
+    if (anim != animations_.end()) {
+        auto t = anim->second.tracks.find(a.track);
+        if (t != anim->second.tracks.end()) held = &t->second;
+    }
+    if (held && !(held->info == a.info))
+        return reject(where, Error::StreamMismatch, what + ": its node, path, interpolation or key count contradicts earlier packets");
+    const size_t per_key = animation_values_per_key(a.info.path, a.info.interpolation);
+    const uint32_t begin = a.first_key, end = static_cast<uint32_t>(a.first_key + a.times.size());
+    // Keys held before: each must agree; the rest are the gaps this packet fills.
+    std::vector<std::pair<uint32_t, uint32_t>> gaps;
+    uint32_t cursor = begin;
+    if (held) {
+        auto run = held->runs.upper_bound(begin);
+        if (run != held->runs.begin()) --run;
+        for (; run != held->runs.end() && run->first < end; ++run) {
+            const uint32_t run_begin = run->first;
+            const uint32_t run_end = static_cast<uint32_t>(run_begin + run->second.times.size());
+            if (run_end <= cursor) continue;
+            if (run_begin > cursor) gaps.emplace_back(cursor, run_begin);
+            for (uint32_t k = std::max(run_begin, begin); k < std::min(run_end, end); ++k) {
+                bool same = run->second.times[k - run_begin] == a.times[k - begin];
+                for (size_t v = 0; v < per_key && same; ++v)
+                    same = run->second.values[(k - run_begin) * per_key + v] == a.values[(k - begin) * per_key + v];
+                if (!same)
+                    return reject(where, Error::StreamMismatch,
+                                  what + ": key " + std::to_string(k) + " differs from the one received before");
+            }
+            cursor = std::max(cursor, run_end);
+        }
+        if (held->complete) {
+            // Keys are kept whole once complete: compare with them.
+            for (uint32_t k = begin; k < end; ++k) {
+                bool same = held->times[k] == a.times[k - begin];
+                for (size_t v = 0; v < per_key && same; ++v)
+                    same = held->values[size_t(k) * per_key + v] == a.values[(k - begin) * per_key + v];
+                if (!same)
+                    return reject(where, Error::StreamMismatch,
+                                  what + ": key " + std::to_string(k) + " differs from the one received before");
+            }
+            cursor = end;
+        }
+    }
+    if (cursor < end) gaps.emplace_back(cursor, end);
+    uint64_t fresh = 0;
+    for (auto [x, y] : gaps) fresh += y - x;
+    if (fresh == 0) {
+        if (!animation_count_) animation_count_ = a.animation_count;
+        ++counters_.duplicates;  // taken: a duplicate fixes the descriptions it carries, as an accepted one
+        return Error::Ok;
+    }
+    const uint64_t memory = fresh * 4 * (1 + per_key) + gaps.size() * kHeldPacketCost;
+    if (texture_bytes_ + memory > limits_.max_texture_bytes)
+        return reject(where, Error::MalformedPayload,
+                      what + ": the stream's textures and animations exceed this receiver's " +
+                          std::to_string(limits_.max_texture_bytes) + "-byte memory limit for them");
+    animation_count_ = a.animation_count;
+    ReceivedAnimation& animation = animations_[a.animation];
+    if (animation.tracks.empty() && animation.track_count == 0) {
+        animation.track_count = a.track_count;
+        animation.name = a.name;
+    }
+    auto [it, fresh_track] = animation.tracks.try_emplace(a.track);
+    ReceivedAnimation::Track& track = it->second;
+    if (fresh_track) track.info = a.info;
+    for (auto [x, y] : gaps) {
+        ReceivedAnimation::Track::Run run;
+        run.times.assign(a.times.begin() + (x - begin), a.times.begin() + (y - begin));
+        run.values.assign(a.values.begin() + std::ptrdiff_t((x - begin) * per_key),
+                          a.values.begin() + std::ptrdiff_t((y - begin) * per_key));
+        track.runs.emplace(x, std::move(run));
+    }
+    track.keys_held += static_cast<uint32_t>(fresh);
+    track.memory += memory;
+    texture_bytes_ += memory;
+    if (track.keys_held == track.info.key_count) {
+        // Every key: join the runs (in key order, they are disjoint and cover the track).
+        track.times.reserve(track.info.key_count);
+        track.values.reserve(size_t(track.info.key_count) * per_key);
+        for (auto& [first, run] : track.runs) {
+            track.times.insert(track.times.end(), run.times.begin(), run.times.end());
+            track.values.insert(track.values.end(), run.values.begin(), run.values.end());
+        }
+        track.runs.clear();
+        track.complete = true;
+        track.usable = std::adjacent_find(track.times.begin(), track.times.end(),
+                                          [](float x, float y) { return !(y > x); }) == track.times.end();
+    }
+    ++counters_.accepted;
+    return Error::Ok;
+}
+
+}  // namespace ellicast
