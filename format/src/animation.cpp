@@ -194,4 +194,23 @@ Error ReceivedStream::take_animation(const PacketView& packet, uint64_t where) {
     return Error::Ok;
 }
 
+std::vector<ShownAnimation> shown_animations(const ReceivedStream& stream,
+                                             const std::function<bool(uint16_t node)>& node_shown) {
+    std::vector<ShownAnimation> out;
+    for (const auto& [index, animation] : stream.animations()) {
+        if (!animation.complete()) continue;
+        ShownAnimation shown{index, {}};
+        std::vector<std::pair<uint16_t, AnimationPath>> targets;
+        for (const auto& [t, track] : animation.tracks) {
+            if (!track.usable || !node_shown(track.info.node)) continue;
+            const std::pair<uint16_t, AnimationPath> target{track.info.node, track.info.path};
+            if (std::find(targets.begin(), targets.end(), target) != targets.end()) continue;
+            targets.push_back(target);
+            shown.tracks.push_back(t);
+        }
+        if (!shown.tracks.empty()) out.push_back(std::move(shown));
+    }
+    return out;
+}
+
 }  // namespace ellicast

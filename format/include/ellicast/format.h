@@ -931,6 +931,17 @@ private:
     std::map<uint16_t, ReceivedAnimation> animations_;
 };
 
+// What a receiver shows of the animations (spec 20.2): each complete animation with the tracks it
+// keeps, in index order: a track is left out when it is not usable, when node_shown(its node) is
+// false, or when a kept track of a smaller index of that animation has its node and path; an
+// animation with no track left is not shown.
+struct ShownAnimation {
+    uint16_t index = 0;
+    std::vector<uint16_t> tracks;
+};
+std::vector<ShownAnimation> shown_animations(const ReceivedStream& stream,
+                                             const std::function<bool(uint16_t node)>& node_shown);
+
 // The exact triangle list of object `object` (spec 19.2, 19.4): Ok when every point of it and its
 // whole connectivity are held and it decodes; Truncated (with `why`) while something is missing;
 // MalformedPayload (with `why`) when the connectivity is unusable.
