@@ -71,6 +71,23 @@ inline void check_same_scene(const Asset& in, const Asset& out) {
             if (ra[s]->texture != kNone) CHECK(ra[s]->scale == doctest::Approx(rb[s]->scale));
         }
     }
+    // Animations (format 1.4): the same tracks over the same nodes, key for key.
+    REQUIRE(out.scene.animations.size() == in.scene.animations.size());
+    for (size_t i = 0; i < in.scene.animations.size(); ++i) {
+        const SceneAnimation& a = in.scene.animations[i];
+        const SceneAnimation& b = out.scene.animations[i];
+        CAPTURE(i);
+        CHECK(a.name == b.name);
+        REQUIRE(a.tracks.size() == b.tracks.size());
+        for (size_t t = 0; t < a.tracks.size(); ++t) {
+            CAPTURE(t);
+            CHECK(a.tracks[t].node == b.tracks[t].node);
+            CHECK(a.tracks[t].path == b.tracks[t].path);
+            CHECK(a.tracks[t].interpolation == b.tracks[t].interpolation);
+            CHECK(a.tracks[t].times == b.tracks[t].times);
+            CHECK(a.tracks[t].values == b.tracks[t].values);
+        }
+    }
 }
 
 }  // namespace ellicast::test

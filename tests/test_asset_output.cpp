@@ -295,6 +295,7 @@ TEST_CASE("a receiver writes what arrived: lost textures, materials, objects and
                 if (i != lost_material) REQUIRE(stream.add_packet(packets.materials[i], 0) == Error::Ok);
         for (size_t i = texture_fragments_lost; i < packets.textures.size(); ++i)
             REQUIRE(stream.add_packet(packets.textures[i], 0) == Error::Ok);
+        for (const auto& p : packets.animations) REQUIRE(stream.add_packet(p, 0) == Error::Ok);
         return stream;
     };
 

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
 #include <tuple>
 
 #if defined(__GNUC__) && !defined(__clang__)
@@ -99,6 +100,7 @@ public:
         read_materials();
         for (int old : order) add_node(old);
         if (asset_.objects.empty()) throw InputError(path_ + ": the scene holds no triangle or point primitive to send");
+        read_animations();
     }
 
 private:
@@ -438,6 +440,102 @@ private:
         return image_formats_[i] = format;
     }
 
+    // Animations (format 1.4, spec 20): every channel that moves a node of the scene sent, as a track
+    // over its sampler's keys. Channels the format cannot carry are named in a warning.
+    void read_animations() {
+        if (model_.animations.size() > 0xFFFF)
+            throw InputError(path_ + ": more than 65535 animations");
+        for (size_t a = 0; a < model_.animations.size(); ++a) {
+            const tinygltf::Animation& anim = model_.animations[a];
+            const std::string where = path_ + ": animation " + std::to_string(a) + (anim.name.empty() ? "" : " (" + anim.name + ")");
+            SceneAnimation out;
+            out.name = wire_name(anim.name, where, warnings_);
+            std::vector<std::string> dropped;
+            for (size_t c = 0; c < anim.channels.size(); ++c) {
+                const tinygltf::AnimationChannel& channel = anim.channels[c];
+                const std::string what = where + " channel " + std::to_string(c);
+                const auto node = new_node_.find(channel.target_node);
+                if (channel.target_path == "weights") {
+                    dropped.push_back("channel " + std::to_string(c) + " (morph target weights)");
+                    continue;
+                }
+                if (channel.target_node < 0 || node == new_node_.end()) {
+                    dropped.push_back("channel " + std::to_string(c) + " (no node of the scene)");
+                    continue;
+                }
+                try {
+                    out.tracks.push_back(read_track(anim, channel, node->second, what));
+                } catch (const InputError& e) {
+                    // A broken channel costs that channel, not the model.
+                    warnings_.push_back(std::string(e.what()) + "; the channel is not sent");
+                }
+            }
+            if (!dropped.empty())
+                warnings_.push_back(where + ": not sent: " + join(dropped));
+            // Skins are not carried: an animation of joints plays, but moves no mesh.
+            std::set<int> joints;
+            for (const auto& skin : model_.skins) joints.insert(skin.joints.begin(), skin.joints.end());
+            size_t on_joints = 0;
+            for (const auto& channel : anim.channels) on_joints += joints.count(channel.target_node);
+            if (on_joints > 0)
+                warnings_.push_back(where + ": " + std::to_string(on_joints) + " of its channels move joints of a skin, "
+                                    "which is not sent: they play, but the skinned mesh stays in its bind pose");
+            if (out.tracks.size() > 0xFFFF) throw InputError(where + ": more than 65535 channels");
+            if (out.tracks.empty()) {
+                warnings_.push_back(where + ": nothing of it can be sent; the animation is left out");
+                continue;
+            }
+            asset_.scene.animations.push_back(std::move(out));
+        }
+    }
+
+    // One channel's track: its sampler's keys as f32. Throws InputError naming what is wrong.
+    SceneAnimation::Track read_track(const tinygltf::Animation& anim, const tinygltf::AnimationChannel& channel,
+                                     uint16_t node, const std::string& what) {
+        SceneAnimation::Track track;
+        track.node = node;
+        if (channel.target_path == "translation") track.path = AnimationPath::Translation;
+        else if (channel.target_path == "rotation") track.path = AnimationPath::Rotation;
+        else if (channel.target_path == "scale") track.path = AnimationPath::Scale;
+        else throw InputError(what + ": path " + quoted_input(channel.target_path) + " is not glTF's");
+        if (channel.sampler < 0 || size_t(channel.sampler) >= anim.samplers.size())
+            throw InputError(what + ": refers to sampler " + std::to_string(channel.sampler) + ", which does not exist");
+        const tinygltf::AnimationSampler& sampler = anim.samplers[size_t(channel.sampler)];
+        if (sampler.interpolation.empty() || sampler.interpolation == "LINEAR") track.interpolation = Interpolation::Linear;
+        else if (sampler.interpolation == "STEP") track.interpolation = Interpolation::Step;
+        else if (sampler.interpolation == "CUBICSPLINE") track.interpolation = Interpolation::CubicSpline;
+        else throw InputError(what + ": interpolation " + quoted_input(sampler.interpolation) + " is not glTF's");
+        int components = 0;
+        const std::vector<double> times = read_accessor(model_, sampler.input, what + " input", components);
+        if (components != 1) throw InputError(what + ": its input accessor is not SCALAR");
+        int value_components = 0;
+        const std::vector<double> values = read_accessor(model_, sampler.output, what + " output", value_components);
+        const size_t want = track.path == AnimationPath::Rotation ? 4 : 3;
+        if (size_t(value_components) != want)
+            throw InputError(what + ": its output accessor has " + std::to_string(value_components) +
+                             " components, the path needs " + std::to_string(want));
+        const size_t per_key = animation_values_per_key(track.path, track.interpolation);
+        if (times.empty() || values.size() != times.size() * per_key)
+            throw InputError(what + ": " + std::to_string(times.size()) + " keys but " +
+                             std::to_string(values.size() / want) + " output elements (" +
+                             std::to_string(per_key / want) + " per key needed)");
+        if (track.interpolation == Interpolation::CubicSpline && times.size() < 2)
+            throw InputError(what + ": a CUBICSPLINE sampler needs at least two keys");
+        for (size_t k = 0; k < times.size(); ++k) {
+            const float t = float(times[k]);
+            if (!std::isfinite(t) || t < 0 || (k > 0 && !(t > track.times.back())))
+                throw InputError(what + ": its key times are not finite, non-negative and strictly increasing (key " +
+                                 std::to_string(k) + ")");
+            track.times.push_back(t);
+        }
+        for (double v : values) {
+            const float f = float(v);
+            if (!std::isfinite(f)) throw InputError(what + ": an output value is not finite");
+            track.values.push_back(f);
+        }
+        return track;
+    }
+
     // The file bytes of image `i`: from its URI (captured while loading) or its bufferView.
     const std::vector<uint8_t>* image_bytes(int i) {
         if (auto it = view_images_.find(i); it != view_images_.end()) return &it->second;
@@ -463,9 +561,6 @@ private:
 
     // Whole-file things ellicast does not carry.
     void warn_not_carried() {
-        if (!model_.animations.empty())
-            warnings_.push_back(path_ + ": " + std::to_string(model_.animations.size()) +
-                                " animation(s) not sent; geometry is sent in its rest pose");
         if (!model_.skins.empty())
             warnings_.push_back(path_ + ": " + std::to_string(model_.skins.size()) +
                                 " skin(s) not sent; skinned meshes are sent in their bind pose");

@@ -671,6 +671,61 @@ private:
             model_.scenes.push_back(std::move(scene));
             model_.defaultScene = 0;
         }
+        write_animations(out);
+    }
+
+    // Animations (format 1.4) over the nodes written: node_out[i] is the glTF node of asset node i
+    // (-1: not written). A track whose node is not written is left out, and an animation left without
+    // track too, each with a warning.
+    void write_animations(const std::vector<int>& node_out) {
+        for (size_t a = 0; a < asset_.scene.animations.size(); ++a) {
+            const SceneAnimation& animation = asset_.scene.animations[a];
+            const std::string what = path_ + ": animation " + std::to_string(a) +
+                                     (animation.name.empty() ? "" : " (" + animation.name + ")");
+            tinygltf::Animation g;
+            g.name = animation.name;
+            std::set<std::pair<int, int>> targets;
+            for (size_t t = 0; t < animation.tracks.size(); ++t) {
+                const SceneAnimation::Track& track = animation.tracks[t];
+                const int node = track.node < node_out.size() ? node_out[track.node] : -1;
+                const size_t per_key = animation_values_per_key(track.path, track.interpolation);
+                if (node < 0 || track.times.empty() || track.values.size() != track.times.size() * per_key ||
+                    !targets.insert({node, int(track.path)}).second) {
+                    warnings_.push_back(what + ": track " + std::to_string(t) +
+                                        " moves a node that is not written (or one another track moves); left out");
+                    continue;
+                }
+                const auto [lo, hi] = std::minmax_element(track.times.begin(), track.times.end());
+                const int input_view = add_buffer_view(model_, track.times.data(), track.times.size() * 4, 0);
+                const int input = add_accessor(model_, input_view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
+                                               track.times.size(), {double(*lo)}, {double(*hi)});
+                const bool rotation = track.path == AnimationPath::Rotation;
+                const size_t components = rotation ? 4 : 3;
+                const int output_view = add_buffer_view(model_, track.values.data(), track.values.size() * 4, 0);
+                const int output = add_accessor(model_, output_view, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                                rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
+                                                track.values.size() / components);
+                tinygltf::AnimationSampler sampler;
+                sampler.input = input;
+                sampler.output = output;
+                sampler.interpolation = track.interpolation == Interpolation::Step          ? "STEP"
+                                        : track.interpolation == Interpolation::CubicSpline ? "CUBICSPLINE"
+                                                                                            : "LINEAR";
+                tinygltf::AnimationChannel channel;
+                channel.sampler = int(g.samplers.size());
+                channel.target_node = node;
+                channel.target_path = track.path == AnimationPath::Translation ? "translation"
+                                      : rotation                               ? "rotation"
+                                                                               : "scale";
+                g.samplers.push_back(std::move(sampler));
+                g.channels.push_back(std::move(channel));
+            }
+            if (g.channels.empty()) {
+                warnings_.push_back(what + ": no track of it can be written; left out");
+                continue;
+            }
+            model_.animations.push_back(std::move(g));
+        }
     }
 
     // Shows glTF mesh `mesh` at node `g` (index `at`): directly, or through a child node holding

@@ -21,6 +21,11 @@ std::string texture_missing(const ReceivedStream& stream, uint16_t index) {
     return t == stream.textures().end() ? std::string("none of it arrived") : texture_gap(t->second);
 }
 
+// Animations (format 1.4, spec 20.2): each complete one with the tracks a receiver shows, over the
+// nodes written (node_map: stream node -> written node). What is not shown yet is named.
+void received_animations(const ReceivedStream& stream, const std::map<uint16_t, uint16_t>& node_map, Asset& asset,
+                         std::vector<std::string>& warnings);
+
 // A name as it can be shown and written (glTF is UTF-8 JSON): ill-formed UTF-8 replaced by U+FFFD
 // (spec 15.1), with a warning.
 std::string shown_name(const std::string& name, const std::string& what, std::vector<std::string>& warnings) {
@@ -195,6 +200,7 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
         }
         asset.scene.nodes.push_back(std::move(out));
     }
+    received_animations(stream, node_map, asset, warnings);
     const size_t node_count = stream.scene_node_count();
     if (nodes.size() < node_count || cut_off)
         warnings.push_back(std::to_string(node_count - nodes.size()) + " of " + std::to_string(node_count) +
@@ -235,5 +241,43 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
     }
     return asset;
 }
+
+namespace {
+void received_animations(const ReceivedStream& stream, const std::map<uint16_t, uint16_t>& node_map, Asset& asset,
+                         std::vector<std::string>& warnings) {
+    const auto shown = shown_animations(stream, [&](uint16_t node) { return node_map.count(node) > 0; });
+    std::set<uint16_t> shown_indices;
+    for (const ShownAnimation& s : shown) {
+        shown_indices.insert(s.index);
+        const auto& received = stream.animations().at(s.index);
+        const std::string what = "animation " + std::to_string(s.index);
+        SceneAnimation a;
+        a.name = shown_name(received.name, what, warnings);
+        for (uint16_t t : s.tracks) {
+            const auto& track = received.tracks.at(t);
+            a.tracks.push_back({node_map.at(track.info.node), track.info.path, track.info.interpolation, track.times,
+                                track.values});
+        }
+        if (s.tracks.size() < received.track_count)
+            warnings.push_back(what + ": " + std::to_string(received.track_count - s.tracks.size()) + " of its " +
+                               std::to_string(received.track_count) +
+                               " tracks left out (a node not shown, times that do not increase, or a target moved twice)");
+        asset.scene.animations.push_back(std::move(a));
+    }
+    for (const auto& [index, animation] : stream.animations()) {
+        if (shown_indices.count(index)) continue;
+        uint64_t held = 0, keys = 0;
+        for (const auto& [t, track] : animation.tracks) held += track.keys_held, keys += track.info.key_count;
+        warnings.push_back("animation " + std::to_string(index) + " not shown: " +
+                           (animation.complete() ? std::string("none of its tracks can be shown")
+                                                 : std::to_string(animation.tracks.size()) + " of its " +
+                                                       std::to_string(animation.track_count) + " tracks and " +
+                                                       std::to_string(held) + " keys of those arrived so far"));
+    }
+    if (const auto count = stream.animation_count(); count && stream.animations().size() < *count)
+        warnings.push_back(std::to_string(*count - stream.animations().size()) + " of " + std::to_string(*count) +
+                           " animations did not arrive at all");
+}
+}  // namespace
 
 }  // namespace ellicast

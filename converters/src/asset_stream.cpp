@@ -31,7 +31,7 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
     if (with_scene) {
         if (Error e = packetize_scene(asset.scene, out.encoded.info.packet_size, stream_id, 0, scene); e != Error::Ok) {
             error = std::string("could not cut the scene into packets (a table over 65534 entries, a record larger "
-                                "than a packet, or a reference outside its table): ") +
+                                "than a packet, a reference outside its table, or an animation track it cannot carry): ") +
                     error_name(e);
             return false;
         }
@@ -53,6 +53,7 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
     take(scene.scene, out.scene_packets, out.scene_bytes);
     take(scene.materials, out.scene_packets, out.scene_bytes);
     take(scene.textures, out.scene_packets, out.scene_bytes);
+    take(scene.animations, out.scene_packets, out.scene_bytes);
     take(stream.points, out.point_packets, out.point_bytes);
     // Format 1.3: each object's exact layer (spec 19), after its points.
     std::vector<std::vector<uint8_t>> connectivity;
