@@ -57,7 +57,10 @@ void print_scene_summary(const ReceivedStream& stream, const Asset& asset) {
                 total(stream.scene_mesh_count(), stream.has_scene()).c_str(), shown,
                 total(material_total, !stream.materials().empty()).c_str());
     if (waiting) std::printf(" (%zu waiting for a texture)", waiting);
-    std::printf(", %zu of %s textures complete\n", textures_complete, total(texture_total, !stream.textures().empty()).c_str());
+    std::printf(", %zu of %s textures complete", textures_complete, total(texture_total, !stream.textures().empty()).c_str());
+    if (stream.animation_count())
+        std::printf(", %zu of %u animations shown", asset.scene.animations.size(), unsigned(*stream.animation_count()));
+    std::printf("\n");
 }
 
 int run_decode(const DecodeArgs& args) {

@@ -91,6 +91,13 @@ nlohmann::json to_json(const StreamReport& r, bool with_packets) {
                       {"meshes", r.stream.scene_meshes().size()}, {"mesh_count", r.stream.scene_mesh_count()},
                       {"materials", r.stream.materials().size()}, {"textures", r.stream.textures().size()},
                       {"textures_complete", complete}};
+        if (const auto count = r.stream.animation_count()) {
+            size_t whole = 0;
+            for (const auto& [i, a] : r.stream.animations()) whole += a.complete();
+            j["scene"]["animations"] = r.stream.animations().size();
+            j["scene"]["animation_count"] = *count;
+            j["scene"]["animations_complete"] = whole;
+        }
     }
     json damaged = json::array();
     for (const auto& d : r.damaged)
@@ -182,7 +189,13 @@ void print_text(const StreamReport& r, bool with_packets) {
         out << "scene (format 1.1): nodes " << r.stream.scene_nodes().size() << "/" << r.stream.scene_node_count()
             << ", meshes " << r.stream.scene_meshes().size() << "/" << r.stream.scene_mesh_count() << ", materials "
             << r.stream.materials().size() << ", textures " << complete << " complete of " << r.stream.textures().size()
-            << " started\n";
+            << " started";
+        if (const auto count = r.stream.animation_count()) {
+            size_t whole = 0;
+            for (const auto& [i, a] : r.stream.animations()) whole += a.complete();
+            out << ", animations (format 1.4) " << whole << " complete of " << *count;
+        }
+        out << "\n";
     }
     out << "damaged regions: " << r.damaged.size() << "\n";
     for (const auto& d : r.damaged)

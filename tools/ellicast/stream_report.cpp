@@ -207,6 +207,36 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         std::string missing = missing_ranges(r.stream.materials(), r.stream.materials().begin()->second.material_count);
         if (!missing.empty()) r.violations.push_back({std::nullopt, "materials missing: " + missing});
     }
+    // Spec 20.2: every animation complete, every track usable, its node recorded, one track per target.
+    if (const auto count = r.stream.animation_count()) {
+        std::string missing = missing_ranges(r.stream.animations(), *count);
+        if (!missing.empty()) r.violations.push_back({std::nullopt, "animations missing: " + missing});
+        for (const auto& [index, a] : r.stream.animations()) {
+            const std::string name = "animation " + std::to_string(index);
+            if (!is_valid_utf8(a.name)) r.violations.push_back({std::nullopt, name + ": its name is not valid UTF-8"});
+            std::set<std::pair<uint16_t, int>> targets;
+            for (uint16_t t = 0; t < a.track_count; ++t) {
+                const auto it = a.tracks.find(t);
+                const std::string track = name + " track " + std::to_string(t);
+                if (it == a.tracks.end()) {
+                    r.violations.push_back({std::nullopt, track + ": no key received"});
+                    continue;
+                }
+                const auto& info = it->second.info;
+                if (!it->second.complete)
+                    r.violations.push_back({std::nullopt, track + ": " + std::to_string(it->second.keys_held) + " of " +
+                                                              std::to_string(info.key_count) + " keys received"});
+                else if (!it->second.usable)
+                    r.violations.push_back({std::nullopt, track + ": its times do not strictly increase across packets"});
+                if (info.node >= r.stream.scene_node_count() || !r.stream.scene_nodes().count(info.node))
+                    r.violations.push_back({std::nullopt, track + ": its node " + std::to_string(info.node) +
+                                                              " has no node record"});
+                if (!targets.insert({info.node, int(info.path)}).second)
+                    r.violations.push_back({std::nullopt, track + ": another track of the animation moves the same "
+                                                              "property of node " + std::to_string(info.node)});
+            }
+        }
+    }
     if (!r.stream.textures().empty()) {
         std::string missing = missing_ranges(r.stream.textures(), r.stream.textures().begin()->second.info.texture_count);
         if (!missing.empty()) r.violations.push_back({std::nullopt, "textures missing: " + missing});
