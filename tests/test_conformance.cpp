@@ -191,6 +191,30 @@ TEST_CASE("the faulty vectors name the reason they must be rejected with") {
         {"exact_repair_crc_contradicts", "stream mismatch"},
         {"exact_repair_symbol_size_contradicts", "stream mismatch"},
         {"exact_repair_crc_wrong", "stream mismatch"},
+        {"animation_payload_short", "malformed payload"},
+        {"animation_length_mismatch", "malformed payload"},
+        {"animation_index_past_table", "malformed payload"},
+        {"animation_track_past_count", "malformed payload"},
+        {"animation_path_3", "malformed payload"},
+        {"animation_interpolation_3", "malformed payload"},
+        {"animation_key_count_zero", "malformed payload"},
+        {"animation_cubicspline_one_key", "malformed payload"},
+        {"animation_count_zero", "malformed payload"},
+        {"animation_keys_past_count", "malformed payload"},
+        {"animation_first_key_overflow", "malformed payload"},
+        {"animation_time_infinite", "malformed payload"},
+        {"animation_value_nan", "malformed payload"},
+        {"animation_time_negative", "malformed payload"},
+        {"animation_times_not_increasing", "malformed payload"},
+        {"animation_count_contradicts", "stream mismatch"},
+        {"animation_track_count_contradicts", "stream mismatch"},
+        {"animation_name_contradicts", "stream mismatch"},
+        {"animation_node_contradicts", "stream mismatch"},
+        {"animation_path_contradicts", "stream mismatch"},
+        {"animation_interpolation_contradicts", "stream mismatch"},
+        {"animation_key_count_contradicts", "stream mismatch"},
+        {"animation_time_contradicts", "stream mismatch"},
+        {"animation_value_contradicts", "stream mismatch"},
     };
     for (const auto& [name, reason] : reasons) {
         INFO(name);
@@ -304,6 +328,7 @@ TEST_CASE("a texture with fragments missing is not complete and the material usi
 }
 
 TEST_CASE("a format 1.0 decoder skips the 1.1 scene packets of every scene vector and decodes the same objects") {
+    // (and the 1.3 and 1.4 ones: MATERIAL_EXTENSIONS, ANIMATION)
     size_t checked = 0;
     for (const std::string set : {"valid", "unusual", "faulty"})
         for (const auto& file : vectors_in(set)) {
@@ -313,13 +338,58 @@ TEST_CASE("a format 1.0 decoder skips the 1.1 scene packets of every scene vecto
             size_t scene_packets = 0;
             for (const auto& p : j["packets"])
                 if (p["type"] == "SCENE" || p["type"] == "MATERIAL" || p["type"] == "TEXTURE_FRAGMENT" ||
-                    p["type"] == "MATERIAL_EXTENSIONS")
+                    p["type"] == "MATERIAL_EXTENSIONS" || p["type"] == "ANIMATION")
                     ++scene_packets;
             CHECK(j["as_1_0"]["same_objects"] == true);
             CHECK(j["as_1_0"]["counters"]["skipped"] == scene_packets);
             ++checked;
         }
     CHECK(checked >= 17);
+}
+
+TEST_CASE("the animation vectors: every animation of valid/animation comes back whole from the unusual ones, and a "
+          "receiver shows what spec 20.2 says") {
+    auto decode = [](const std::string& vector) {
+        return conformance::expected_decode(read_bytes(vectors_dir() / (vector + ".ellc")))["scene"];
+    };
+    const auto valid = decode("valid/animation");
+    REQUIRE(valid["animation_count"] == 2);
+    REQUIRE(valid["animations"].size() == 2);
+    for (const auto& a : valid["animations"]) {
+        CHECK(a["complete"] == true);
+        for (const auto& t : a["tracks"]) {
+            CHECK(t["usable"] == true);
+            CHECK(t["times"].size() == t["key_count"]);
+        }
+    }
+    CHECK(valid["animations"][0]["tracks"][0]["values"].size() == 16 * 4);  // LINEAR rotation: V = 4
+    CHECK(valid["animations"][1]["tracks"][0]["values"].size() == 5 * 9);   // CUBICSPLINE scale: V = 9
+    CHECK(valid["shown"]["animations"] == nlohmann::json::parse(R"([{"index":0,"tracks":[0,1]},{"index":1,"tracks":[0]}])"));
+    for (const char* same : {"unusual/animation_negative_zero", "unusual/animation_before_scene",
+                             "unusual/animation_overlapping_keys", "unusual/animation_reserved"}) {
+        INFO(same);
+        const auto s = decode(same);
+        CHECK(s["animations"] == valid["animations"]);
+        CHECK(s["shown"]["animations"] == valid["shown"]["animations"]);
+    }
+    // What is left out, and why (spec 20.2).
+    const std::vector<std::pair<std::string, std::string>> shown = {
+        {"faulty/animation_incomplete", R"([{"index":1,"tracks":[0]}])"},
+        {"faulty/animation_lost", R"([{"index":0,"tracks":[0,1]}])"},
+        {"faulty/animation_track_unusable", R"([{"index":0,"tracks":[1]},{"index":1,"tracks":[0]}])"},
+        {"faulty/animation_duplicate_target", R"([{"index":0,"tracks":[0,1,3]},{"index":1,"tracks":[0]}])"},
+        {"faulty/animation_duplicate_target_freed", R"([{"index":0,"tracks":[1,2]},{"index":1,"tracks":[0]}])"},
+        {"faulty/animation_node_past_table", R"([{"index":0,"tracks":[0,1]},{"index":1,"tracks":[0]}])"},
+        {"faulty/animation_node_absent", R"([{"index":0,"tracks":[0,1]}])"},
+        {"faulty/animation_no_scene", "[]"},
+    };
+    for (const auto& [vector, expected] : shown) {
+        INFO(vector);
+        CHECK(decode(vector)["shown"]["animations"] == nlohmann::json::parse(expected));
+    }
+    CHECK(decode("faulty/animation_incomplete")["animations"][0]["tracks"][0]["missing"] ==
+          nlohmann::json::parse("[[7, 14]]"));
+    CHECK(decode("faulty/animation_name_not_utf8")["animations"][1]["name"] == "Lamp \xEF\xBF\xBD pulse \xEF\xBF\xBD");
 }
 
 #ifndef ELLICAST_FORMAT_TESTS_ONLY

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent format 1.3 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.4 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
@@ -17,7 +17,8 @@ from RFC 8259 and the rules of spec 18.2, their texture references and what a re
 the CONNECTIVITY packets of spec section 19: their checks, the pieces, and the exact triangle list
 decoded with a range decoder written here, candidates found by sorting every point, and the
 CONNECTIVITY_REPAIR packets of spec 19.5: their checks, the rows held and the source symbols solved for
-with the GF(2^8) code of section 17) so
+with the GF(2^8) code of section 17; for format 1.4 the ANIMATION packets of spec section 20: their checks
+and comparisons, the keys held by index, and the animations a receiver shows, spec 20.2) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -42,7 +43,11 @@ KNOWN_11 = {0x10: "SCENE", 0x11: "MATERIAL", 0x12: "TEXTURE_FRAGMENT"}
 KNOWN_12 = {0x20: "MANIFEST", 0x04: "POINTS_REPAIR"}
 # Format 1.3 (spec sections 4, 18 and 19).
 KNOWN_13 = {0x13: "MATERIAL_EXTENSIONS", 0x05: "CONNECTIVITY", 0x06: "CONNECTIVITY_REPAIR"}
-SCENE_TYPES = set(KNOWN_11) | {0x13}
+# Format 1.4 (spec sections 4 and 20).
+KNOWN_14 = {0x14: "ANIMATION"}
+SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14}
+PATHS = ("translation", "rotation", "scale")
+INTERPOLATIONS = ("LINEAR", "STEP", "CUBICSPLINE")
 NONE = 0xFFFF
 SLOTS = ("base_color", "metallic_roughness", "normal", "occlusion", "emissive")
 
@@ -1003,6 +1008,8 @@ class Receiver:
         self.scene_counts = None  # (node_count, mesh_count) of the SCENE packets taken
         self.nodes, self.meshes, self.materials, self.textures = {}, {}, {}, {}
         self.patches = {}  # format 1.3: material index -> (patch bytes, texture references)
+        self.animation_count = None  # format 1.4: that of the first ANIMATION packet accepted
+        self.animations = {}  # index -> dict(track_count, name (bytes), tracks: index -> dict(desc, keys))
         self.material_count = None  # that of the materials and patches held
         self.stream_id = None
         self.info = None
@@ -1022,7 +1029,8 @@ class Receiver:
         if self.stream_id is not None and h["stream_id"] != self.stream_id:
             return self.reject(offset, "stream mismatch")
         t = h["type"]
-        if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12 and t not in KNOWN_13) or not self.know_11):
+        if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12 and t not in KNOWN_13 and t not in KNOWN_14)
+                                  or not self.know_11):
             if not h["flags"] & 1:
                 return self.reject(offset, "unknown critical type")
             self.stream_id = h["stream_id"]
@@ -1039,6 +1047,8 @@ class Receiver:
             result = self.fragment(h, offset)
         elif t == 0x13:
             result = self.extensions(h, offset)
+        elif t == 0x14:
+            result = self.animation(h, offset)
         elif t == 0x20:
             # A decoder checks the layout and takes nothing (spec 16.2); verifying needs a key.
             if decode_manifest(h["payload"]) is None:
@@ -1408,6 +1418,111 @@ class Receiver:
             t["complete"], t["image"] = True, bytes(t["have"])
         return self.news(True)
 
+    def animation(self, h, offset):
+        """Spec 20.1: the packet's checks, then the comparisons in their order; keys are kept by index."""
+        p = h["payload"]
+        if len(p) < 24:
+            return self.reject(offset, "malformed payload")
+        index, table, track, track_count, node, path, interp, key_count, first, count, name_length = \
+            struct.unpack_from("<HHHHHBBIIHB", p, 0)
+        if path > 2 or interp > 2:
+            return self.reject(offset, "malformed payload")
+        c = 4 if path == 1 else 3  # a rotation is a quaternion x, y, z, w
+        v = 3 * c if interp == 2 else c  # a cubic spline key: in-tangent, value, out-tangent
+        # Python integers do not overflow: first + count is the true sum.
+        if len(p) != 24 + name_length + count * 4 * (1 + v) or index >= table or track >= track_count \
+                or key_count == 0 or (interp == 2 and key_count < 2) or count == 0 or first + count > key_count:
+            return self.reject(offset, "malformed payload")
+        name = p[24:24 + name_length]
+        keys = []  # each (time, value 1, .., value V)
+        for k in range(count):
+            key = struct.unpack_from("<%df" % (1 + v), p, 24 + name_length + 4 * (1 + v) * k)
+            # -0.0 < 0 is false in Python as in IEEE 754: a time of -0 is not negative.
+            if not finite(key) or key[0] < 0 or (keys and not key[0] > keys[-1][0]):
+                return self.reject(offset, "malformed payload")
+            keys.append(key)
+        if self.animation_count is not None and table != self.animation_count:
+            return self.reject(offset, "stream mismatch")
+        a = self.animations.get(index)
+        if a is not None and (a["track_count"] != track_count or a["name"] != name):  # names as bytes
+            return self.reject(offset, "stream mismatch")
+        t = a["tracks"].get(track) if a is not None else None
+        desc = (node, path, interp, key_count)
+        if t is not None and t["desc"] != desc:
+            return self.reject(offset, "stream mismatch")
+        held = t["keys"] if t is not None else {}
+        # Keys compare as numbers: Python's float equality has +0 == -0 (and no NaN got this far).
+        if any(first + k in held and held[first + k] != key for k, key in enumerate(keys)):
+            return self.reject(offset, "stream mismatch")
+        fresh = [k for k in range(count) if first + k not in held]
+        if not fresh:
+            return self.news(False)
+        self.animation_count = table
+        if a is None:
+            a = self.animations[index] = dict(track_count=track_count, name=name, tracks={})
+        if t is None:
+            t = a["tracks"][track] = dict(desc=desc, keys={})
+        for k in fresh:
+            t["keys"][first + k] = keys[k]
+        return self.news(True)
+
+    @staticmethod
+    def track_state(t):
+        """Spec 20.2: (complete, usable, times, values) of a track; times and values None until complete."""
+        key_count, keys = t["desc"][3], t["keys"]
+        if len(keys) < key_count:
+            return False, False, None, None
+        times = [keys[i][0] for i in range(key_count)]
+        values = [x for i in range(key_count) for x in keys[i][1:]]
+        return True, all(a < b for a, b in zip(times, times[1:])), times, values
+
+    def animation_complete(self, a):
+        return len(a["tracks"]) == a["track_count"] and all(self.track_state(t)[0] for t in a["tracks"].values())
+
+    def animations_json(self):
+        out = []
+        for k in sorted(self.animations):
+            a = self.animations[k]
+            tracks = []
+            for i in sorted(a["tracks"]):
+                t = a["tracks"][i]
+                node, path, interp, key_count = t["desc"]
+                complete, usable, times, values = self.track_state(t)
+                missing, cursor = [], 0
+                if not complete:
+                    for key in sorted(t["keys"]):
+                        if key > cursor:
+                            missing.append([cursor, key])
+                        cursor = key + 1
+                    if cursor < key_count:
+                        missing.append([cursor, key_count])
+                tracks.append(dict(index=i, node=node, path=PATHS[path], interpolation=INTERPOLATIONS[interp],
+                                   key_count=key_count, keys_held=len(t["keys"]), missing=missing, complete=complete,
+                                   usable=usable, times=times, values=values))
+            out.append(dict(index=k, name=a["name"].decode("utf-8", errors="replace"), track_count=a["track_count"],
+                            complete=self.animation_complete(a), tracks=tracks))
+        return out
+
+    def shown_animations(self, shown_nodes):
+        """Spec 20.2: each complete animation with its usable tracks over shown nodes, one per node and path
+        (the first kept); an animation left without a track is not shown."""
+        out = []
+        for k in sorted(self.animations):
+            a = self.animations[k]
+            if not self.animation_complete(a):
+                continue
+            kept, targets = [], set()
+            for i in sorted(a["tracks"]):
+                t = a["tracks"][i]
+                node, path = t["desc"][0], t["desc"][1]
+                if not self.track_state(t)[1] or node not in shown_nodes or (node, path) in targets:
+                    continue
+                targets.add((node, path))
+                kept.append(i)
+            if kept:
+                out.append(dict(index=k, tracks=kept))
+        return out
+
     def scene_json(self):
         nodes = [self.nodes[k] for k in sorted(self.nodes)]
         meshes = [self.meshes[k] for k in sorted(self.meshes)]
@@ -1437,7 +1552,8 @@ class Receiver:
                     material_extensions=[dict(index=k, patch=self.patches[k][0].decode("utf-8"),
                                               references=self.patches[k][1]) for k in sorted(self.patches)],
                     texture_count=self.textures[min(self.textures)]["desc"]["texture_count"] if self.textures else None,
-                    textures=textures, shown=self.shown())
+                    textures=textures, animation_count=self.animation_count, animations=self.animations_json(),
+                    shown=self.shown())
 
     def shown(self):
         """Spec 15.4 and 18.4: what a receiver shows."""
@@ -1481,7 +1597,8 @@ class Receiver:
                 mesh = self.nodes[k]["mesh"]
                 nodes.append(dict(index=k, mesh=mesh if mesh != NONE and mesh in self.meshes else None))
         return dict(textures=done, materials=materials, waiting=waiting, waiting_extensions=waiting_extensions,
-                    ignored_references=ignored, nodes=nodes)
+                    ignored_references=ignored, nodes=nodes,
+                    animations=self.shown_animations({n["index"] for n in nodes}))
 
 
 class RangeDecoder:
@@ -1641,7 +1758,7 @@ def decode(buf):
         result = r.add(h, offset)
         old.add(h, offset)
         name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or KNOWN_12.get(h["type"]) or \
-            KNOWN_13.get(h["type"]) or "UNKNOWN(0x%02X)" % h["type"]
+            KNOWN_13.get(h["type"]) or KNOWN_14.get(h["type"]) or "UNKNOWN(0x%02X)" % h["type"]
         plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
                           flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
                           object_id=h["object_id"], payload_length=h["payload_length"], result=result))

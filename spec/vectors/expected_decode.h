@@ -1,4 +1,4 @@
-// The expected decode of a conformance vector as JSON: what a format 1.3 decoder makes of a container
+// The expected decode of a conformance vector as JSON: what a format 1.4 decoder makes of a container
 // file (spec/format.md sections 10 and 11). The vector generator (make_vectors.cpp) writes it next to
 // each .ellc; tests/test_conformance.cpp recomputes it with the library and compares. The JSON layout
 // is described in spec/vectors/README.md.
@@ -239,10 +239,12 @@ inline nlohmann::json counters_json(const ReceiveCounters& c) {
 
 // ---- Format 1.1 scene (spec section 15) ----
 
-// The scene types of format 1.1 (SCENE, MATERIAL, TEXTURE_FRAGMENT) and 1.3 (MATERIAL_EXTENSIONS).
+// The scene types of format 1.1 (SCENE, MATERIAL, TEXTURE_FRAGMENT), 1.3 (MATERIAL_EXTENSIONS) and 1.4
+// (ANIMATION).
 inline bool is_scene_type(uint8_t type) {
     return type == uint8_t(PacketType::Scene) || type == uint8_t(PacketType::Material) ||
-           type == uint8_t(PacketType::TextureFragment) || type == uint8_t(PacketType::MaterialExtensions);
+           type == uint8_t(PacketType::TextureFragment) || type == uint8_t(PacketType::MaterialExtensions) ||
+           type == uint8_t(PacketType::Animation);
 }
 
 inline nlohmann::json none_or(uint16_t v) { return v == kNone ? nlohmann::json(nullptr) : nlohmann::json(v); }
@@ -336,6 +338,44 @@ inline nlohmann::json texture_json(const ReceivedStream::ReceivedTexture& t) {
             {"image_digest", t.complete ? nlohmann::json(bytes_digest(t.image)) : nlohmann::json(nullptr)}};
 }
 
+// Format 1.4 (spec 20.1, 20.2): an animation as received: its track count and name (of the first
+// packet of it accepted), and per received track its description, the keys held (and the ranges of
+// those missing), whether it is complete and usable, and, once complete, its keys: the times and the
+// values (V per key, in key order, as the packets carry them).
+inline nlohmann::json animation_json(uint16_t index, const ReceivedStream::ReceivedAnimation& a) {
+    using nlohmann::json;
+    static const char* paths[] = {"translation", "rotation", "scale"};
+    static const char* interpolations[] = {"LINEAR", "STEP", "CUBICSPLINE"};
+    json tracks = json::array();
+    for (const auto& [t, track] : a.tracks) {
+        json missing = json::array();
+        if (!track.complete) {
+            uint64_t cursor = 0;
+            for (const auto& [first, run] : track.runs) {
+                if (first > cursor) missing.push_back({cursor, first});
+                cursor = uint64_t(first) + run.times.size();
+            }
+            if (cursor < track.info.key_count) missing.push_back({cursor, track.info.key_count});
+        }
+        tracks.push_back({{"index", t},
+                          {"node", track.info.node},
+                          {"path", paths[static_cast<int>(track.info.path)]},
+                          {"interpolation", interpolations[static_cast<int>(track.info.interpolation)]},
+                          {"key_count", track.info.key_count},
+                          {"keys_held", track.keys_held},
+                          {"missing", missing},
+                          {"complete", track.complete},
+                          {"usable", track.usable},
+                          {"times", track.complete ? floats(track.times.data(), track.times.size()) : json(nullptr)},
+                          {"values", track.complete ? floats(track.values.data(), track.values.size()) : json(nullptr)}});
+    }
+    return {{"index", index},
+            {"name", replace_invalid_utf8(a.name)},
+            {"track_count", a.track_count},
+            {"complete", a.complete()},
+            {"tracks", tracks}};
+}
+
 // What a receiver shows of the scene (spec 15.4, 18.4): complete textures; materials whose texture
 // references on set 0 and whose patch's texture references are all complete, and whose patch arrived
 // when their has_extensions bit says they have one (the others wait: for a texture, named by slot or
@@ -382,6 +422,7 @@ inline nlohmann::json shown_json(const ReceivedStream& s) {
         if (shown) materials.push_back(index);
     }
     const auto& all = s.scene_nodes();
+    std::vector<uint16_t> shown_nodes;
     for (const auto& [index, n] : all) {
         uint16_t at = index;
         bool reaches = false;
@@ -397,9 +438,19 @@ inline nlohmann::json shown_json(const ReceivedStream& s) {
         if (!reaches) continue;
         const bool has_mesh = n.mesh != kNone && s.scene_meshes().count(n.mesh);
         nodes.push_back({{"index", index}, {"mesh", has_mesh ? json(n.mesh) : json(nullptr)}});
+        shown_nodes.push_back(index);
     }
+    // Format 1.4 (spec 20.2): the complete animations, each with the tracks it keeps over the nodes
+    // shown above.
+    json animations = json::array();
+    const auto node_shown = [&](uint16_t node) {
+        return std::find(shown_nodes.begin(), shown_nodes.end(), node) != shown_nodes.end();
+    };
+    for (const ShownAnimation& a : shown_animations(s, node_shown))
+        animations.push_back({{"index", a.index}, {"tracks", a.tracks}});
     return {{"textures", textures}, {"materials", materials}, {"waiting", waiting},
-            {"waiting_extensions", waiting_extensions}, {"ignored_references", ignored}, {"nodes", nodes}};
+            {"waiting_extensions", waiting_extensions}, {"ignored_references", ignored}, {"nodes", nodes},
+            {"animations", animations}};
 }
 
 inline nlohmann::json scene_json(const ReceivedStream& s) {
@@ -415,6 +466,8 @@ inline nlohmann::json scene_json(const ReceivedStream& s) {
     for (const auto& [index, m] : s.materials()) materials.push_back(material_json(m));
     for (const auto& [index, e] : s.material_extensions()) extensions.push_back(material_extensions_json(e));
     for (const auto& [index, t] : s.textures()) textures.push_back(texture_json(t));
+    json animations = json::array();
+    for (const auto& [index, a] : s.animations()) animations.push_back(animation_json(index, a));
     const bool scene = s.has_scene() || !s.scene_nodes().empty() || !s.scene_meshes().empty();
     return {{"node_count", scene ? json(s.scene_node_count()) : json(nullptr)},
             {"mesh_count", scene ? json(s.scene_mesh_count()) : json(nullptr)},
@@ -430,6 +483,9 @@ inline nlohmann::json scene_json(const ReceivedStream& s) {
             {"texture_count",
              s.textures().empty() ? json(nullptr) : json(s.textures().begin()->second.info.texture_count)},
             {"textures", textures},
+            // Format 1.4: that of the ANIMATION packets accepted (all agree, spec 20.1), null when none was.
+            {"animation_count", s.animation_count() ? json(*s.animation_count()) : json(nullptr)},
+            {"animations", animations},
             {"shown", shown_json(s)}};
 }
 
@@ -522,7 +578,7 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     out["container_error"] = contents.header_error == Error::Ok ? json(nullptr) : json(reason_name(contents.header_error));
 
     ReceivedStream stream;
-    // A format 1.0 decoder's view: the 1.1 and 1.3 scene types are unknown to it (spec section 9).
+    // A format 1.0 decoder's view: the 1.1, 1.3 and 1.4 scene types are unknown to it (spec section 9).
     ReceivedStream as_1_0;
     bool any_scene_packet = false;
     json packets = json::array();
@@ -572,8 +628,8 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     out["newest_minor"] = stream.newest_minor();
     out["stream_info"] = stream.info() ? stream_info_json(*stream.info(), stream.objects().size()) : json(nullptr);
     out["objects"] = objects_json(stream);
-    // Format 1.1: present when the file holds any SCENE, MATERIAL, TEXTURE_FRAGMENT or (format 1.3)
-    // MATERIAL_EXTENSIONS packet.
+    // Format 1.1: present when the file holds any SCENE, MATERIAL, TEXTURE_FRAGMENT, (format 1.3)
+    // MATERIAL_EXTENSIONS or (format 1.4) ANIMATION packet.
     out["scene"] = any_scene_packet ? scene_json(stream) : json(nullptr);
     if (any_scene_packet) {
         json info_1_0 = as_1_0.info() ? stream_info_json(*as_1_0.info(), as_1_0.objects().size()) : json(nullptr);

@@ -952,7 +952,7 @@ struct SceneStream {
     ScenePackets scene;
     Packets all() const {
         Packets out = geometry.all();
-        for (const auto* group : {&scene.scene, &scene.materials, &scene.textures})
+        for (const auto* group : {&scene.scene, &scene.materials, &scene.textures, &scene.animations})
             out.insert(out.end(), group->begin(), group->end());
         return out;
     }
@@ -3087,6 +3087,517 @@ void exact_repair_vectors(Writer& w) {
     }
 }
 
+// ------------------------------------------------------------------------------------------------
+// Format 1.4: animations (ANIMATION, spec 20). The car of the scene vectors (packet size 200) with two
+// animations; ANIMATION packets say 1.4, the other packets 1.1 as in the scene vectors.
+
+// Animation 0 "Drive": track 0 turns the front wheel (node 2) about z, LINEAR rotation, 16 keys (3
+// packets at packet size 200: keys 0..6, 7..13, 14..15); track 1 moves the car (node 0) forward in
+// hops, STEP translation, 4 keys (1 packet). Animation 1 "Lamp pulse": track 0 scales the lamp (node
+// 4), CUBICSPLINE, 5 keys (2 packets: keys 0..2, 3..4).
+SceneAnimation drive_animation() {
+    SceneAnimation drive;
+    drive.name = "Drive";
+    SceneAnimation::Track spin{2, AnimationPath::Rotation, Interpolation::Linear, {}, {}};
+    for (int k = 0; k < 16; ++k) {
+        spin.times.push_back(0.125f * float(k));
+        const double half = 0.25 * k;  // half the angle turned
+        for (float v : {0.0f, 0.0f, float(std::sin(half)), float(std::cos(half))}) spin.values.push_back(v);
+    }
+    SceneAnimation::Track hop{0, AnimationPath::Translation, Interpolation::Step, {}, {}};
+    for (int k = 0; k < 4; ++k) {
+        hop.times.push_back(0.5f * float(k));
+        for (float v : {1.0f + 0.5f * float(k), 0.0f, -2.0f}) hop.values.push_back(v);
+    }
+    drive.tracks = {spin, hop};
+    return drive;
+}
+
+SceneAnimation pulse_animation() {
+    SceneAnimation pulse;
+    pulse.name = "Lamp pulse";
+    SceneAnimation::Track grow{4, AnimationPath::Scale, Interpolation::CubicSpline, {}, {}};
+    for (int k = 0; k < 5; ++k) {
+        const double t = 0.25 * k;
+        grow.times.push_back(float(t));
+        const float value = float(1 + 0.5 * std::sin(M_PI * t)), tangent = float(0.5 * M_PI * std::cos(M_PI * t));
+        for (float v : {tangent, value, tangent})  // in-tangent, value, out-tangent: x, y, z each
+            for (int c = 0; c < 3; ++c) grow.values.push_back(v);
+    }
+    pulse.tracks = {grow};
+    return pulse;
+}
+
+SceneDescription animated_car() {
+    SceneDescription s = make_scene();
+    s.animations = {drive_animation(), pulse_animation()};
+    return s;
+}
+
+// Offsets in an ANIMATION packet (header included, spec 20.1).
+constexpr size_t kAnimIndex = kHeaderSize, kAnimCount = kHeaderSize + 2, kAnimTrack = kHeaderSize + 4,
+                 kAnimTrackCount = kHeaderSize + 6, kAnimNode = kHeaderSize + 8, kAnimPath = kHeaderSize + 10,
+                 kAnimInterpolation = kHeaderSize + 11, kAnimKeyCount = kHeaderSize + 12,
+                 kAnimFirstKey = kHeaderSize + 16, kAnimKeys = kHeaderSize + 20, kAnimReserved = kHeaderSize + 23;
+
+AnimationPiece piece_of(const Packet& p) {
+    AnimationPiece piece;
+    if (decode_animation_payload(payload_of(p), piece) != Error::Ok) {
+        std::cerr << "make_vectors: not an ANIMATION packet\n";
+        std::exit(1);
+    }
+    return piece;
+}
+
+// An ANIMATION packet written from a piece as given (format 1.4, stream-level, skippable).
+Packet animation_packet(const AnimationPiece& piece, uint32_t sequence) {
+    PacketHeader h;
+    h.version_minor = kAnimationMinor;
+    h.type = uint8_t(PacketType::Animation);
+    h.flags = kFlagSkippable;
+    h.stream_id = kStreamId;
+    h.sequence = sequence;
+    h.object_id = kStreamObjectId;
+    return write_packet(h, encode_animation_payload(piece));
+}
+
+// Keys [first, first + count) of track `track` of animation `animation` of `scene`, as one piece.
+AnimationPiece cut_piece(const SceneDescription& scene, uint16_t animation, uint16_t track, uint32_t first,
+                         uint32_t count) {
+    const SceneAnimation& a = scene.animations[animation];
+    const SceneAnimation::Track& t = a.tracks[track];
+    AnimationPiece piece;
+    piece.animation = animation;
+    piece.animation_count = uint16_t(scene.animations.size());
+    piece.track = track;
+    piece.track_count = uint16_t(a.tracks.size());
+    piece.name = a.name;
+    piece.info = {t.node, t.path, t.interpolation, uint32_t(t.times.size())};
+    piece.first_key = first;
+    const size_t per_key = animation_values_per_key(t.path, t.interpolation);
+    piece.times.assign(t.times.begin() + first, t.times.begin() + first + count);
+    piece.values.assign(t.values.begin() + std::ptrdiff_t(first * per_key),
+                        t.values.begin() + std::ptrdiff_t((first + count) * per_key));
+    return piece;
+}
+
+void put_f32(Packet& p, size_t at, float f) {
+    uint32_t v;
+    std::memcpy(&v, &f, 4);
+    put32(p, at, v);
+}
+
+void animation_vectors(Writer& w) {
+    const SceneDescription scene = animated_car();
+    const SceneStream base = make_scene_stream(scene, 200);
+    const Packets& anims = base.scene.animations;  // Drive 0: keys 0..6, 7..13, 14..15; Drive 1; Pulse: 0..2, 3..4
+    if (anims.size() != 6) {
+        std::cerr << "make_vectors: the animated car takes " << anims.size() << " ANIMATION packets, not 6\n";
+        std::exit(1);
+    }
+    const Packets stream = base.all();  // the animated car in stream order
+    const Packets before(stream.begin(), stream.end() - long(anims.size()));  // all but the ANIMATION packets
+    const char* kCar =
+        "the animated car of valid/animation (format 1.4: the car of valid/scene with animation 0 'Drive', a LINEAR "
+        "rotation of node 2 in 16 keys over 3 packets and a STEP translation of node 0 in 4 keys, and animation 1 "
+        "'Lamp pulse', a CUBICSPLINE scale of node 4 in 5 keys over 2 packets), packets in stream order";
+    {
+        Packets sent = before;
+        Packets shuffled = anims;
+        Rng rng(51);
+        for (size_t i = shuffled.size(); i > 1; --i) std::swap(shuffled[i - 1], shuffled[rng.below(i)]);
+        for (size_t i = 0; i < shuffled.size(); ++i) {
+            sent.push_back(shuffled[i]);
+            if (i == 1) sent.push_back(shuffled[i]);
+            if (i == 4) {
+                Packet again = shuffled[0];
+                restamp_packet(again, 900);
+                sent.push_back(again);
+            }
+        }
+        w.write("valid", "animation",
+                "format 1.4 (spec 20): the car of valid/scene with 2 animations: 'Drive' turns the front wheel (node "
+                "2; LINEAR rotation, 16 keys in 3 packets) and moves the car (node 0; STEP translation, 4 keys), "
+                "'Lamp pulse' scales the lamp (node 4; CUBICSPLINE, 5 keys of in-tangent, value, out-tangent in 2 "
+                "packets); the ANIMATION packets (version 1.4) after the others, shuffled, one sent twice and one "
+                "retransmitted with a new sequence number (duplicates); both animations complete and shown with "
+                "every track",
+                sent);
+    }
+
+    // ---- unusual ----
+    {
+        Packets sent = stream;
+        Packet copy = anims[3];  // Drive track 1 (STEP translation): every y is +0, key 0's time +0
+        AnimationPiece piece = piece_of(copy);
+        piece.times[0] = -0.0f;
+        for (float& v : piece.values)
+            if (v == 0.0f) v = -0.0f;
+        sent.push_back(animation_packet(piece, 1000));
+        w.write("unusual", "animation_negative_zero",
+                std::string(kCar) +
+                    ", then Drive's translation packet again (sequence 1000) with -0 where it had +0: the time of key "
+                    "0 and the y of every key: a duplicate, not a mismatch (spec 20.1: keys compare as numbers, +0 "
+                    "and -0 agree), and not malformed (-0 is not a negative time)",
+                sent);
+    }
+    {
+        Packets sent = anims;
+        sent.insert(sent.end(), before.begin(), before.end());
+        w.write("unusual", "animation_before_scene",
+                "the packets of the animated car with the 6 ANIMATION packets first, before the STREAM_INFO and the "
+                "SCENE packets: stream-level packets are not held (spec 15, 20), each is accepted when it arrives; "
+                "the animations are shown once the nodes they move have arrived (spec 20.2); decodes to the "
+                "animations of valid/animation",
+                sent);
+    }
+    {
+        // Drive's rotation track cut another way: keys 9..15, 0..4, 3..9 (5..8 new, 3, 4, 9 compared),
+        // then 2..6 (nothing new: a duplicate).
+        Packets sent = before;
+        uint32_t sequence = 1000;
+        for (auto [first, count] : std::vector<std::pair<uint32_t, uint32_t>>{{9, 7}, {0, 5}, {3, 7}, {2, 5}}) {
+            sent.push_back(animation_packet(cut_piece(scene, 0, 0, first, count), sequence++));
+            if (sent.back().size() > 200) {
+                std::cerr << "make_vectors: an ANIMATION packet larger than the packet size\n";
+                std::exit(1);
+            }
+        }
+        for (size_t i = 3; i < anims.size(); ++i) sent.push_back(anims[i]);
+        w.write("unusual", "animation_overlapping_keys",
+                "the animated car with Drive's rotation track (16 keys) in 4 packets that overlap, cut as no sender "
+                "cuts: keys 9..15, 0..4, 3..9 (accepted: it brings 5..8; its keys 3, 4 and 9 are compared with "
+                "those held and agree), then 2..6 (a duplicate: every key held); spec 20.1: keys are kept by index, "
+                "whatever packets carried them; decodes to the animations of valid/animation",
+                sent);
+    }
+    {
+        Packets sent = before;
+        for (Packet p : anims) {
+            p[kAnimReserved] = 0xA5;
+            reseal(p);
+            sent.push_back(p);
+        }
+        Packet again = anims[0];
+        again[kAnimReserved] = 0x5A;
+        reseal(again);
+        restamp_packet(again, 1000);
+        sent.push_back(again);
+        w.write("unusual", "animation_reserved",
+                "the animated car with the reserved byte (payload offset 23) of every ANIMATION packet set to A5, "
+                "and the first one again (sequence 1000) with 5A there: ignored when reading (spec 20.1), so the "
+                "repeat is a duplicate; decodes to the animations of valid/animation",
+                sent);
+    }
+    {
+        // The smallest tracks: one key (LINEAR, STEP), two keys for a cubic spline.
+        SceneDescription s = animated_car();
+        SceneAnimation pose;
+        pose.name = "Pose";
+        pose.tracks.push_back({1, AnimationPath::Translation, Interpolation::Step, {0.0f}, {0.0f, 0.75f, 0.0f}});
+        pose.tracks.push_back({4, AnimationPath::Scale, Interpolation::CubicSpline, {0.0f, 2.0f},
+                               {0, 0, 0, 1, 1, 1, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 2, 2, 2, 0, 0, 0}});
+        pose.tracks.push_back({3, AnimationPath::Rotation, Interpolation::Linear, {1.5f}, {0, 0, 1, 0}});
+        s.animations.push_back(pose);
+        const SceneStream t = make_scene_stream(s, 200);
+        w.write("unusual", "animation_smallest_tracks",
+                "the animated car with a third animation 'Pose' of the smallest tracks spec 20.1 allows: a STEP "
+                "translation of node 1 with 1 key, a CUBICSPLINE scale of node 4 with 2 keys (glTF's least), a LINEAR "
+                "rotation of node 3 with 1 key at time 1.5; each complete and usable (one key's times increase), "
+                "every animation shown",
+                t.all());
+    }
+
+    // ---- faulty: no rejection, but the stream is not complete or does not conform (spec 20.2) ----
+    {
+        Packets sent = stream;
+        sent.erase(sent.begin() + long(before.size()) + 1);  // Drive track 0, keys 7..13
+        w.write("faulty", "animation_incomplete",
+                std::string(kCar) +
+                    ", without the packet of keys 7..13 of Drive's rotation track: no rejection; the track holds 9 of "
+                    "16 keys (missing [7, 14)), Drive is not complete and not shown (spec 20.2: 'a receiver MUST NOT "
+                    "play part of one'); Lamp pulse is complete and shown; the stream is not complete",
+                sent);
+    }
+    {
+        Packets sent(stream.begin(), stream.end() - 2);  // both packets of Lamp pulse
+        w.write("faulty", "animation_lost",
+                std::string(kCar) +
+                    ", without the 2 packets of Lamp pulse: no rejection; animation_count says 2 and only Drive "
+                    "arrived; Drive is shown; the stream is not complete (spec 20.2: 'complete only when every "
+                    "animation of animation_count is complete')",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        Packet& last = sent[before.size() + 2];  // Drive track 0, keys 14..15 (times 1.75, 1.875)
+        AnimationPiece piece = piece_of(last);
+        piece.times = {0.8125f, 0.9375f};
+        last = with_payload(last, encode_animation_payload(piece));
+        w.write("faulty", "animation_track_unusable",
+                std::string(kCar) +
+                    ", with the times of keys 14 and 15 of Drive's rotation track (in its last packet) 0.8125 and "
+                    "0.9375: the packet is well formed (its own times increase), but key 14 comes before key 13 "
+                    "(1.625); no rejection; the track is complete and not usable, left out (spec 20.2); Drive shown "
+                    "with track 1 alone; the stream does not conform",
+                sent);
+    }
+    {
+        SceneDescription s = animated_car();
+        SceneAnimation::Track twin{2, AnimationPath::Rotation, Interpolation::Linear, {0.0f, 1.0f},
+                                   {0, 0, 0, 1, 0, 0, 1, 0}};
+        SceneAnimation::Track slide{2, AnimationPath::Translation, Interpolation::Step, {0.0f, 1.0f},
+                                    {0.4f, -0.3f, 0, 0.4f, -0.2f, 0}};
+        s.animations[0].tracks.push_back(twin);
+        s.animations[0].tracks.push_back(slide);
+        const SceneStream t = make_scene_stream(s, 200);
+        w.write("faulty", "animation_duplicate_target",
+                "the animated car with 2 more tracks in Drive: track 2, a LINEAR rotation of node 2 (2 keys), the "
+                "node and path of track 0, and track 3, a STEP translation of node 2 (2 keys): no rejection; track "
+                "2 is left out (spec 20.2: the same node and path as a track of a smaller index that is shown), track "
+                "3 shown (same node, other path): Drive shown with tracks 0, 1, 3; the stream does not conform",
+                t.all());
+    }
+    {
+        // The target of an unusable track is free: Drive's track 0 made unusable as in
+        // animation_track_unusable, and a track 2 with its node and path.
+        SceneDescription s = animated_car();
+        s.animations[0].tracks.push_back(
+            {2, AnimationPath::Rotation, Interpolation::Linear, {0.0f, 1.0f}, {0, 0, 0, 1, 0, 0, 1, 0}});
+        const SceneStream t = make_scene_stream(s, 200);
+        Packets sent = t.all();
+        bool edited = false;
+        for (Packet& p : sent)
+            if (p[6] == uint8_t(PacketType::Animation) && get16(p, kAnimIndex) == 0 && get16(p, kAnimTrack) == 0 &&
+                get32(p, kAnimFirstKey) == 14) {
+                AnimationPiece piece = piece_of(p);
+                piece.times = {0.8125f, 0.9375f};
+                p = with_payload(p, encode_animation_payload(piece));
+                edited = true;
+            }
+        if (!edited) std::exit(1);
+        w.write("faulty", "animation_duplicate_target_freed",
+                "the animated car with Drive's track 0 not usable (the times of its keys 14 and 15 0.8125 and "
+                "0.9375, as in faulty/animation_track_unusable) and a track 2, a LINEAR rotation of node 2 (2 keys), "
+                "its node and path: no rejection; track 0 is left out, so track 2 has no kept track of a smaller "
+                "index with its node and path and is kept (spec 20.2): Drive shown with tracks 1 and 2; the stream "
+                "does not conform (an unusable track, two tracks with one node and path)",
+                sent);
+    }
+    {
+        // Drive with a third track whose node is 5, in a table of 5 nodes (packetize_scene refuses it:
+        // cut it for node 4, then edit the node).
+        SceneDescription s = animated_car();
+        s.animations[0].tracks.push_back(
+            {4, AnimationPath::Translation, Interpolation::Linear, {0.0f, 2.0f}, {0, 1.5f, 0, 0, 1.75f, 0}});
+        const SceneStream t = make_scene_stream(s, 200);
+        Packets sent = t.all();
+        bool edited = false;
+        for (Packet& p : sent)
+            if (p[6] == uint8_t(PacketType::Animation) && get16(p, kAnimIndex) == 0 && get16(p, kAnimTrack) == 2) {
+                put16(p, kAnimNode, 5);
+                reseal(p);
+                edited = true;
+            }
+        if (!edited) std::exit(1);
+        w.write("faulty", "animation_node_past_table",
+                "the animated car with a third track in Drive, a LINEAR translation of node 5 (2 keys) in a table of "
+                "5 nodes (resealed): well formed (spec 20.1 does not check node against the SCENE table), no "
+                "rejection; the track is complete and usable but its node is not shown, so it is left out (spec "
+                "20.2); Drive shown with tracks 0 and 1; the stream does not conform",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        const size_t last_scene = base.geometry.all().size() + base.scene.scene.size() - 1;  // node 4, both meshes
+        sent.erase(sent.begin() + long(last_scene));
+        w.write("faulty", "animation_node_absent",
+                std::string(kCar) +
+                    ", without its last SCENE packet (node 4, the lamp, and both meshes): no rejection; Lamp pulse is "
+                    "complete but its only track moves node 4, whose record did not arrive: the track is left out and "
+                    "no track remains, so Lamp pulse is not shown (spec 20.2); Drive shown; the stream is not complete",
+                sent);
+    }
+    {
+        Packets sent = base.geometry.all();
+        sent.insert(sent.end(), anims.begin(), anims.end());
+        w.write("faulty", "animation_no_scene",
+                "the geometry of the car and its 6 ANIMATION packets, without any SCENE, MATERIAL or TEXTURE_FRAGMENT "
+                "packet: no rejection; both animations complete, none shown (spec 20.2: 'no SCENE packet at all: no "
+                "animation is shown'); the stream does not conform (a track's node has no node record)",
+                sent);
+    }
+    {
+        SceneDescription s = animated_car();
+        s.animations[1].name = std::string("Lamp \xFF pulse \xE2\x82");
+        const SceneStream t = make_scene_stream(s, 200);
+        w.write("faulty", "animation_name_not_utf8",
+                "the animated car with Lamp pulse named with bytes that are not UTF-8 (a lone FF, a cut three-byte "
+                "sequence E2 82 at the end): no rejection; the name shown as 'Lamp \\uFFFD pulse \\uFFFD' (spec 20.2 by "
+                "15: each maximal ill-formed subsequence one U+FFFD); both animations shown; the stream does not "
+                "conform",
+                t.all());
+    }
+
+    // ---- faulty: rejections. A copy of Drive's first packet (track 0, keys 0..6, times 0 .. 0.75) with
+    // one defect, sequence 1000, after the stream (resealed; a payload of another length gets its
+    // payload_length and checksum). Everything else decodes as in valid/animation. ----
+    const Packet& first = anims[0];
+    auto after_stream = [&](Packet copy) {
+        restamp_packet(copy, 1000);  // reseals
+        Packets sent = stream;
+        sent.push_back(copy);
+        return sent;
+    };
+    auto edited = [&](const std::function<void(Packet&)>& edit) {
+        Packet copy = first;
+        edit(copy);
+        reseal(copy);
+        return after_stream(copy);
+    };
+    auto rebuilt = [&](const std::function<void(AnimationPiece&)>& edit) {
+        AnimationPiece piece = piece_of(first);
+        edit(piece);
+        return after_stream(animation_packet(piece, 1000));
+    };
+    const std::string kCopy = std::string(kCar) + ", then a copy of Drive's first ANIMATION packet (track 0, keys 0..6) ";
+    {
+        std::vector<uint8_t> payload = payload_of(first);
+        payload.resize(20);
+        w.write("faulty", "animation_payload_short",
+                kCopy + "cut to a payload of 20 bytes, shorter than the 24 bytes of its fields: rejected, malformed "
+                        "payload (spec 20.1: 'payload_length MUST equal 24 + name_length + count * 4 * (1 + V)')",
+                after_stream(with_payload(first, payload)));
+    }
+    {
+        std::vector<uint8_t> payload = payload_of(first);
+        payload.push_back(0);
+        w.write("faulty", "animation_length_mismatch",
+                kCopy + "with one byte (00) more after its keys: rejected, malformed payload (spec 20.1: the length "
+                        "differs from 24 + name_length + count * 4 * (1 + V))",
+                after_stream(with_payload(first, payload)));
+    }
+    w.write("faulty", "animation_index_past_table",
+            kCopy + "saying animation 2 of animation_count 2: rejected, malformed payload (spec 20.1: 'animation >= "
+                    "animation_count')",
+            edited([](Packet& p) { put16(p, kAnimIndex, 2); }));
+    w.write("faulty", "animation_track_past_count",
+            kCopy + "saying track 2 of track_count 2: rejected, malformed payload (spec 20.1: 'track >= track_count')",
+            edited([](Packet& p) { put16(p, kAnimTrack, 2); }));
+    w.write("faulty", "animation_path_3",
+            kCopy + "with path 3 (0..2 defined): rejected, malformed payload (spec 20.1: 'path > 2')",
+            edited([](Packet& p) { p[kAnimPath] = 3; }));
+    w.write("faulty", "animation_interpolation_3",
+            kCopy + "with interpolation 3 (0..2 defined): rejected, malformed payload (spec 20.1: 'interpolation > 2')",
+            edited([](Packet& p) { p[kAnimInterpolation] = 3; }));
+    w.write("faulty", "animation_key_count_zero",
+            kCopy + "with key_count 0: rejected, malformed payload (spec 20.1: 'key_count is 0')",
+            edited([](Packet& p) { put32(p, kAnimKeyCount, 0); }));
+    {
+        AnimationPiece piece = piece_of(anims[4]);  // Lamp pulse, keys 0..2
+        piece.info.key_count = 1;
+        piece.times.resize(1);
+        piece.values.resize(9);
+        w.write("faulty", "animation_cubicspline_one_key",
+                std::string(kCar) +
+                    ", then a packet of Lamp pulse's CUBICSPLINE track (sequence 1000) with key_count 1 and its first "
+                    "key alone: rejected, malformed payload (spec 20.1: 'key_count ... below 2 with CUBICSPLINE, "
+                    "which glTF requires')",
+                after_stream(animation_packet(piece, 1000)));
+    }
+    {
+        std::vector<uint8_t> payload = payload_of(first);
+        payload.resize(24 + payload[22]);  // the fields and the name, no key
+        payload[20] = payload[21] = 0;
+        w.write("faulty", "animation_count_zero",
+                kCopy + "with count 0 and no key (a payload of 24 + 5 bytes, its length consistent): rejected, "
+                        "malformed payload (spec 20.1: 'count is 0')",
+                after_stream(with_payload(first, payload)));
+    }
+    w.write("faulty", "animation_keys_past_count",
+            kCopy + "with first_key 10: 10 + 7 keys = 17 > key_count 16: rejected, malformed payload (spec 20.1: "
+                    "'first_key + count > key_count')",
+            edited([](Packet& p) { put32(p, kAnimFirstKey, 10); }));
+    w.write("faulty", "animation_first_key_overflow",
+            kCopy + "with first_key 4294967293 = 2^32 - 3: first_key + count = 2^32 + 4, which is 4 in 32-bit "
+                    "arithmetic: rejected, malformed payload (spec 20.1: 'first_key + count > key_count (computed "
+                    "without overflow)')",
+            edited([](Packet& p) { put32(p, kAnimFirstKey, 4294967293u); }));
+    const size_t key_bytes = 4 * (1 + 4);
+    const size_t keys_at = kHeaderSize + 24 + 5;  // Drive's keys, after its 5-byte name
+    w.write("faulty", "animation_time_infinite",
+            kCopy + "with the time of its last key (6) +infinity: rejected, malformed payload (spec 20.1: 'a float "
+                    "is not finite')",
+            edited([&](Packet& p) { put32(p, keys_at + 6 * key_bytes, 0x7F800000u); }));
+    w.write("faulty", "animation_value_nan",
+            kCopy + "with the w of key 2's quaternion a NaN (7FC00000): rejected, malformed payload (spec 20.1: 'a "
+                    "float is not finite')",
+            edited([&](Packet& p) { put32(p, keys_at + 2 * key_bytes + 16, 0x7FC00000u); }));
+    w.write("faulty", "animation_time_negative",
+            kCopy + "with the time of key 0 -0.5 (the others 0.125 .. 0.75): rejected, malformed payload (spec 20.1: "
+                    "'a time is negative')",
+            edited([&](Packet& p) { put_f32(p, keys_at, -0.5f); }));
+    w.write("faulty", "animation_times_not_increasing",
+            kCopy + "with the time of key 4 0.375, that of key 3: rejected, malformed payload (spec 20.1: 'the times "
+                    "of the packet do not strictly increase')",
+            edited([&](Packet& p) { put_f32(p, keys_at + 4 * key_bytes, 0.375f); }));
+
+    w.write("faulty", "animation_count_contradicts",
+            kCopy + "saying animation_count 3 where every other says 2: rejected, stream mismatch (spec 20.1: its "
+                    "animation_count against the one kept)",
+            edited([](Packet& p) { put16(p, kAnimCount, 3); }));
+    w.write("faulty", "animation_track_count_contradicts",
+            kCopy + "saying track_count 3 where Drive's packets say 2: rejected, stream mismatch (spec 20.1)",
+            edited([](Packet& p) { put16(p, kAnimTrackCount, 3); }));
+    w.write("faulty", "animation_name_contradicts",
+            kCopy + "naming the animation 'drive' where it is 'Drive': rejected, stream mismatch (spec 20.1: names "
+                    "compared as bytes)",
+            edited([](Packet& p) { p[kHeaderSize + 24] = 'd'; }));
+    w.write("faulty", "animation_node_contradicts",
+            kCopy + "saying node 3 where track 0's packets say 2: rejected, stream mismatch (spec 20.1: the track's "
+                    "description)",
+            edited([](Packet& p) { put16(p, kAnimNode, 3); }));
+    w.write("faulty", "animation_path_contradicts",
+            kCopy + "rebuilt as a translation (path 0; V = 3: each key's x, y, z of the quaternion, a payload of "
+                    "24 + 5 + 7 x 16 bytes): well formed, rejected, stream mismatch (spec 20.1: the track's "
+                    "description)",
+            rebuilt([](AnimationPiece& a) {
+                a.info.path = AnimationPath::Translation;
+                std::vector<float> values;
+                for (size_t k = 0; k < a.times.size(); ++k)
+                    for (size_t c = 0; c < 3; ++c) values.push_back(a.values[4 * k + c]);
+                a.values = values;
+            }));
+    w.write("faulty", "animation_interpolation_contradicts",
+            kCopy + "saying interpolation 1 (STEP) where track 0's packets say 0 (LINEAR): rejected, stream mismatch "
+                    "(spec 20.1: the track's description)",
+            edited([](Packet& p) { p[kAnimInterpolation] = 1; }));
+    w.write("faulty", "animation_key_count_contradicts",
+            kCopy + "saying key_count 17 where track 0's packets say 16: rejected, stream mismatch (spec 20.1: the "
+                    "track's description)",
+            edited([](Packet& p) { put32(p, kAnimKeyCount, 17); }));
+    w.write("faulty", "animation_time_contradicts",
+            kCopy + "with the time of key 3 0.4375 where it was 0.375 (its times still increase): rejected, stream "
+                    "mismatch (spec 20.1: each of its keys against the key of the same index kept)",
+            edited([&](Packet& p) { put_f32(p, keys_at + 3 * key_bytes, 0.4375f); }));
+    {
+        // Before the track is complete: right after Drive's first packet (keys 0..6), a packet of keys
+        // 4..9 whose key 5 differs; keys 7..9 (new) are not kept either, they come with the next packet.
+        AnimationPiece piece = cut_piece(scene, 0, 0, 4, 6);
+        piece.values[(5 - 4) * 4 + 2] += 0.125f;
+        Packets sent = stream;
+        sent.insert(sent.begin() + long(before.size()) + 1, animation_packet(piece, 1000));
+        w.write("faulty", "animation_value_contradicts",
+                std::string(kCar) +
+                    ", with a packet of keys 4..9 of Drive's rotation track (sequence 1000) right after its first "
+                    "packet (keys 0..6), the z of key 5's quaternion 0.125 more: rejected, stream mismatch (spec "
+                    "20.1: a key against the key of the same index kept, also while the track is not complete), and "
+                    "nothing of it is kept (keys 7..9 arrive with the next packet); the animations as in "
+                    "valid/animation",
+                sent);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -3105,6 +3616,7 @@ int main(int argc, char** argv) {
     extensions_vectors(w);
     exact_vectors(w);
     exact_repair_vectors(w);
+    animation_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
