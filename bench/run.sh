@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reruns the benchmarks whose figures the README quotes and writes their output to bench/results/.
-#   bash bench/run.sh [encode|decode|quality|gallery|first-picture|full-quality|broadcast|compare ...]   (default: encode decode quality)
+#   bash bench/run.sh [encode|decode|quality|gallery|first-picture|full-quality|broadcast|compare|corpus ...]   (default: encode decode quality)
 # Speed figures are only meaningful on an otherwise idle machine: check `uptime` first.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -118,6 +118,15 @@ for what in "$@"; do
       rm -rf "$results/bunny" "$results/spot" && mkdir -p "$results/bunny" "$results/spot"
       "$build/ellicast" compare "$samples/meshes/bunny.ply" -o "$results/bunny" | tee "$results/bunny/stdout.txt"
       "$build/ellicast" compare "$samples/meshes/spot.obj" -o "$results/spot" | tee "$results/spot/stdout.txt" ;;
-    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, first-picture, full-quality, broadcast, compare)" >&2; exit 2 ;;
+    corpus)
+      # Real glTF assets through convert (issue 16): the shared samples, and $ELLICAST_CORPUS when set
+      # (e.g. a checkout of KhronosGroup/glTF-Sample-Assets/Models).
+      echo "== corpus: glTF assets through ellicast convert and the Khronos validator (bench/corpus.py)" >&2
+      folders=("$samples/gltf")
+      [ -n "${ELLICAST_CORPUS:-}" ] && folders+=("$ELLICAST_CORPUS")
+      python3 "$root/bench/corpus.py" "$build/ellicast" "$root/.cache/node/node_modules" "$results/corpus" "${folders[@]}" > /dev/null
+      rm -rf "$results/corpus/out"
+      cat "$results/corpus/corpus.md" ;;
+    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, first-picture, full-quality, broadcast, compare, corpus)" >&2; exit 2 ;;
   esac
 done
