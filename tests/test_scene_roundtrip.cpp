@@ -520,3 +520,19 @@ TEST_CASE("with a JPEG texture fragment lost the Duck gets the default material 
     REQUIRE(whole.scene.textures.size() == 1);
     CHECK(whole.scene.textures[0].image == samples::kJpegBaseline16);
 }
+
+TEST_CASE("a point cloud drawn with a normal-mapped material gets tangents too: the two-material sphere writes without a validator warning") {
+    const char* f = "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf";
+    if (!have_sample(f)) return;
+    const Asset in = load_asset(sample(f));
+    const Asset out = round_trip(in, 24);
+    const fs::path path = scratch_dir("point_tangents") / "sphere.glb";
+    std::vector<std::string> warnings;
+    std::string error;
+    REQUIRE_MESSAGE(write_asset(path.string(), out, AssetWriteOptions{}, warnings, error), error);
+    int errors = -1;
+    std::string report;
+    if (!validate_gltf(path, errors, report)) return;
+    CHECK_MESSAGE(errors == 0, report);
+    CHECK_MESSAGE(nlohmann::json::parse(report).value("numWarnings", -1) == 0, report);
+}

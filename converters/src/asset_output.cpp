@@ -286,14 +286,16 @@ private:
 
     // The primitive (without material) of object `o`, written once per dequantization and need of
     // tangents (a normal-mapped material: TANGENT from tangents.cpp, for an object with normals and
-    // texture coordinates).
+    // texture coordinates; a point set's points get a unit vector perpendicular to their normal, as
+    // a point has no surface to orient it along, so that the file declares its tangent space rather
+    // than leaving a viewer to generate one).
     std::optional<tinygltf::Primitive> object_primitive(size_t o, const std::optional<Dequantization>& dq,
                                                         int dq_key, bool tangents, const std::string& what) {
         auto key = std::make_tuple(o, dq_key, tangents);
         if (auto it = primitives_.find(key); it != primitives_.end()) return it->second;
         std::optional<tinygltf::Primitive> result;
         if (std::optional<Mesh> mesh = writable_object(asset_.objects[o], what, warnings_)) {
-            tangents = tangents && mesh->has_normals() && mesh->has_texcoords() && !mesh->triangles.empty();
+            tangents = tangents && mesh->has_normals() && mesh->has_texcoords();
             if (options_.draco && !mesh->is_point_set && !mesh->triangles.empty()) {
                 result = draco_primitive(*mesh, what, tangents);
             } else if (dq) {
