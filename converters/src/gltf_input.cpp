@@ -4,6 +4,7 @@
 // TINYGLTF_ENABLE_DRACO); KHR_mesh_quantization needs nothing more than normalized and integer
 // accessors read correctly (the dequantizing scale lives in the node transforms).
 #include "gltf_read.h"
+#include "ellicast/format.h"
 
 #include <algorithm>
 #include <cmath>
@@ -500,13 +501,9 @@ std::vector<uint8_t> read_file_bytes(const std::string& path) {
         if (!in) throw InputError(path + ": cannot be opened for reading");
         return {std::istreambuf_iterator<char>(in), {}};
     }
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) throw InputError(path + ": cannot be opened for reading");
-    const std::streamoff size = in.tellg();
-    if (size < 0) throw InputError(path + ": cannot tell its size");
-    std::vector<uint8_t> bytes(static_cast<size_t>(size));
-    in.seekg(0);
-    if (!in.read(reinterpret_cast<char*>(bytes.data()), size)) throw InputError(path + ": could not be read whole");
+    std::vector<uint8_t> bytes;
+    std::string message;
+    if (read_file(path, bytes, message) != Error::Ok) throw InputError(message);
     return bytes;
 }
 
