@@ -543,3 +543,68 @@ TEST_CASE("a material's KHR_texture_transform travels in its patch (format 1.3):
     CHECK(back.objects[0].texcoords == a.objects[0].texcoords);
     CHECK(nlohmann::json::parse(back.scene.materials[0].extensions) == expected);
 }
+
+TEST_CASE("glTF animation channels: every interpolation and a normalized rotation travel; channels the format cannot carry are named") {
+    // One triangle at node 0, animated by six channels over one buffer:
+    //   0 translation STEP (2 keys)          1 scale CUBICSPLINE (2 keys: 6 outputs)
+    //   2 translation again (glTF forbids)   3 morph target weights
+    //   4 rotation LINEAR, outputs as normalized shorts (KHR_mesh_quantization allows)
+    //   5 scale with times that go back
+    std::vector<uint8_t> bin;
+    auto put = [&](const void* p, size_t n) {
+        const auto* b = static_cast<const uint8_t*>(p);
+        bin.insert(bin.end(), b, b + n);
+        while (bin.size() % 4) bin.push_back(0);
+    };
+    const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const float times[2] = {0, 1}, back[2] = {1, 0.5f};
+    const float moves[6] = {0, 0, 0, 1, 2, 3};
+    float cubic[18] = {};
+    for (int i = 0; i < 18; ++i) cubic[i] = float(i % 3 == 1) + 0.5f * float(i / 9);
+    const int16_t quat[8] = {0, 0, 0, 32767, 0, 23170, 0, 23170};
+    put(pos, 36);     // 0
+    put(times, 8);    // 36
+    put(moves, 24);   // 44
+    put(cubic, 72);   // 68
+    put(quat, 16);    // 140
+    put(back, 8);     // 156 .. 164
+    const std::string gltf = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0,"name":"tri"}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+{"bufferView":1,"componentType":5126,"count":2,"type":"SCALAR","min":[0],"max":[1]},
+{"bufferView":2,"componentType":5126,"count":2,"type":"VEC3"},
+{"bufferView":3,"componentType":5126,"count":6,"type":"VEC3"},
+{"bufferView":4,"componentType":5122,"normalized":true,"count":2,"type":"VEC4"},
+{"bufferView":5,"componentType":5126,"count":2,"type":"SCALAR","min":[0.5],"max":[1]}],
+"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":8},
+{"buffer":0,"byteOffset":44,"byteLength":24},{"buffer":0,"byteOffset":68,"byteLength":72},
+{"buffer":0,"byteOffset":140,"byteLength":16},{"buffer":0,"byteOffset":156,"byteLength":8}],
+"animations":[{"name":"Everything","samplers":[
+{"input":1,"output":2,"interpolation":"STEP"},{"input":1,"output":3,"interpolation":"CUBICSPLINE"},
+{"input":1,"output":4},{"input":5,"output":2}],
+"channels":[{"sampler":0,"target":{"node":0,"path":"translation"}},{"sampler":1,"target":{"node":0,"path":"scale"}},
+{"sampler":0,"target":{"node":0,"path":"translation"}},{"sampler":0,"target":{"node":0,"path":"weights"}},
+{"sampler":2,"target":{"node":0,"path":"rotation"}},{"sampler":3,"target":{"node":0,"path":"scale"}}]}],
+"buffers":[{"byteLength":)" + std::to_string(bin.size()) + R"(,"uri":"data:application/octet-stream;base64,)" +
+                             base64(bin) + R"("}]})";
+    const auto dir = test::scratch_dir("animation_channels");
+    spit(dir / "animated.gltf", gltf);
+    const Asset a = load_asset((dir / "animated.gltf").string());
+    REQUIRE(a.scene.animations.size() == 1);
+    const SceneAnimation& anim = a.scene.animations[0];
+    CHECK(anim.name == "Everything");
+    REQUIRE(anim.tracks.size() == 3);
+    CHECK(anim.tracks[0].path == AnimationPath::Translation);
+    CHECK(anim.tracks[0].interpolation == Interpolation::Step);
+    CHECK(anim.tracks[0].values == std::vector<float>(moves, moves + 6));
+    CHECK(anim.tracks[1].path == AnimationPath::Scale);
+    CHECK(anim.tracks[1].interpolation == Interpolation::CubicSpline);
+    CHECK(anim.tracks[1].values.size() == 18);
+    CHECK(anim.tracks[2].path == AnimationPath::Rotation);
+    REQUIRE(anim.tracks[2].values.size() == 8);
+    CHECK(anim.tracks[2].values[3] == doctest::Approx(1.0));
+    CHECK(anim.tracks[2].values[5] == doctest::Approx(0.70710678).epsilon(1e-4));
+    CHECK(any_warning(a, "channel 2 (a second channel on the same node and path)"));
+    CHECK(any_warning(a, "channel 3 (morph target weights)"));
+    CHECK(any_warning(a, "channel 5: its key times are not finite, non-negative and strictly increasing"));
+}

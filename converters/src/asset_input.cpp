@@ -464,7 +464,15 @@ private:
                     continue;
                 }
                 try {
-                    out.tracks.push_back(read_track(anim, channel, node->second, what));
+                    SceneAnimation::Track track = read_track(anim, channel, node->second, what);
+                    if (std::any_of(out.tracks.begin(), out.tracks.end(), [&](const SceneAnimation::Track& t) {
+                            return t.node == track.node && t.path == track.path;
+                        })) {
+                        // glTF allows one channel per node and path; a receiver would leave it out (spec 20.2).
+                        dropped.push_back("channel " + std::to_string(c) + " (a second channel on the same node and path)");
+                        continue;
+                    }
+                    out.tracks.push_back(std::move(track));
                 } catch (const InputError& e) {
                     // A broken channel costs that channel, not the model.
                     warnings_.push_back(std::string(e.what()) + "; the channel is not sent");
