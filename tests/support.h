@@ -79,4 +79,14 @@ inline bool validate_gltf(const std::filesystem::path& file, int& errors, std::s
     return true;
 }
 
+// Checks that the validator finds neither an error nor a warning in `file` (skipped with a message
+// when it is not installed).
+inline void check_gltf_clean(const std::filesystem::path& file) {
+    int errors = -1;
+    std::string report;
+    if (!validate_gltf(file, errors, report)) return;
+    CHECK_MESSAGE(errors == 0, report);
+    CHECK_MESSAGE(nlohmann::json::parse(report).value("numWarnings", -1) == 0, report);
+}
+
 }  // namespace ellicast::test

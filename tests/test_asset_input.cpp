@@ -544,7 +544,7 @@ TEST_CASE("a material's KHR_texture_transform travels in its patch (format 1.3):
     CHECK(nlohmann::json::parse(back.scene.materials[0].extensions) == expected);
 }
 
-TEST_CASE("glTF animation channels: every interpolation and a normalized rotation travel; channels the format cannot carry are named") {
+TEST_CASE("glTF animation channels: every interpolation and a normalized rotation travel, and the channels the format cannot carry are named") {
     // One triangle at node 0, animated by six channels over one buffer:
     //   0 translation STEP (2 keys)          1 scale CUBICSPLINE (2 keys: 6 outputs)
     //   2 translation again (glTF forbids)   3 morph target weights
