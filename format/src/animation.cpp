@@ -148,9 +148,8 @@ Error ReceivedStream::take_animation(const PacketView& packet, uint64_t where) {
     if (cursor < end) gaps.emplace_back(cursor, end);
     uint64_t fresh = 0;
     for (auto [x, y] : gaps) fresh += y - x;
-    if (fresh == 0) {
-        if (!animation_count_) animation_count_ = a.animation_count;
-        ++counters_.duplicates;  // taken: a duplicate fixes the descriptions it carries, as an accepted one
+    if (fresh == 0) {  // every key held already (so its animation and track were accepted before)
+        ++counters_.duplicates;
         return Error::Ok;
     }
     const uint64_t memory = fresh * 4 * (1 + per_key) + gaps.size() * kHeldPacketCost;
