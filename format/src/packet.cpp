@@ -22,10 +22,12 @@ std::string packet_type_name(uint8_t type) {
     case 0x12: return "TEXTURE_FRAGMENT";
     case 0x13: return "MATERIAL_EXTENSIONS";
     case 0x14: return "ANIMATION";
+    case 0x15: return "SKIN";
     case 0x20: return "MANIFEST";
     case 0x04: return "POINTS_REPAIR";
     case 0x05: return "CONNECTIVITY";
     case 0x06: return "CONNECTIVITY_REPAIR";
+    case 0x07: return "JOINT_WEIGHTS";
     default: {
         char buf[24];
         std::snprintf(buf, sizeof buf, "UNKNOWN(0x%02X)", type);
@@ -35,7 +37,7 @@ std::string packet_type_name(uint8_t type) {
 }
 
 bool is_known_packet_type(uint8_t type) {
-    return (type >= 0x01 && type <= 0x06) || (type >= 0x10 && type <= 0x14) || type == 0x20;
+    return (type >= 0x01 && type <= 0x07) || (type >= 0x10 && type <= 0x15) || type == 0x20;
 }
 
 const char* error_name(Error e) {

@@ -66,6 +66,7 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
     case PacketType::MaterialExtensions: e = take_material_extensions(packet, where); break;
     case PacketType::TextureFragment: e = take_texture_fragment(packet, where); break;
     case PacketType::Animation: e = take_animation(packet, where); break;
+    case PacketType::Skin: e = take_skin(packet, where); break;
     case PacketType::Manifest: {
         // A decoder checks its layout and takes nothing from it: verifying signatures is the
         // job of the filter in front of it (spec 16.3), which needs the sender's key.
@@ -84,6 +85,17 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
             return reject(where, Error::MalformedPayload,
                           "POINTS_REPAIR of object " + std::to_string(h.object_id) +
                               ": its block (point_count, batch, source_count, row) is inconsistent or the payload too short");
+        e = take_object_packet(packet, where);
+        break;
+    }
+    case PacketType::JointWeights: {
+        // Step 11: a JOINT_WEIGHTS payload needs no stream info to be checked (spec 21.2).
+        JointWeightsRun run;
+        if (decode_joint_weights_payload(packet.payload, run) != Error::Ok)
+            return reject(where, Error::MalformedPayload,
+                          "JOINT_WEIGHTS of object " + std::to_string(h.object_id) +
+                              ": its count, joint size or an influence record (count, zero weight, weights not summing "
+                              "to 255, a joint named twice, records not ending with the payload) is malformed");
         e = take_object_packet(packet, where);
         break;
     }
@@ -183,6 +195,8 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
         return take_connectivity(object, packet, name, where);
     if (packet.header.type == static_cast<uint8_t>(PacketType::ConnectivityRepair))
         return take_connectivity_repair(object, packet, name, where);
+    if (packet.header.type == static_cast<uint8_t>(PacketType::JointWeights))
+        return take_joint_weights(object, packet, name, where);
     bool news = false;
     if (packet.header.type == static_cast<uint8_t>(PacketType::Ellipsoids)) {
         EllipsoidBatch batch;
@@ -521,7 +535,7 @@ void ReceivedStream::release_pending() {
 
 Error ReceivedStream::take_scene(const PacketView& packet, uint64_t where) {
     SceneBatch batch;
-    if (decode_scene_payload(packet.payload, batch) != Error::Ok)
+    if (decode_scene_payload(packet.payload, batch, packet.header.version_minor) != Error::Ok)
         return reject(where, Error::MalformedPayload, "SCENE payload inconsistent or out of range");
     if (has_scene() && (batch.node_count != scene_node_count_ || batch.mesh_count != scene_mesh_count_))
         return reject(where, Error::StreamMismatch, "SCENE table sizes contradict earlier SCENE packets");

@@ -101,6 +101,7 @@ std::vector<uint8_t> node_record(const SceneNode& n) {
         for (float f : n.rotation) put_f32(body, f);
         for (float f : n.scale) put_f32(body, f);
     }
+    if (n.skin != kNone) put_u16(body, n.skin);  // format 1.5 (spec 21): only when the node has one
     return body;
 }
 
@@ -138,7 +139,7 @@ std::vector<uint8_t> encode_scene_payload(const SceneBatch& batch) {
     return out;
 }
 
-Error decode_scene_payload(std::span<const uint8_t> payload, SceneBatch& out) {
+Error decode_scene_payload(std::span<const uint8_t> payload, SceneBatch& out, uint8_t version_minor) {
     Reader r(payload);
     SceneBatch batch;
     batch.node_count = r.u16();
@@ -167,6 +168,9 @@ Error decode_scene_payload(std::span<const uint8_t> payload, SceneBatch& out) {
                 for (float& f : n.rotation) f = body.f32();
                 for (float& f : n.scale) f = body.f32();
             }
+            // Format 1.5 (spec 21): a skin when the packet says 1.5 or later and at least two bytes
+            // follow the transform (in an older packet they are fields of a later version it knew not of).
+            if (version_minor >= kSkinMinor && !body.failed && body.left() >= 2) n.skin = body.u16();
             if (body.failed || n.index >= batch.node_count || n.parent == n.index ||
                 (n.parent != kNone && n.parent >= batch.node_count) || (n.mesh != kNone && n.mesh >= batch.mesh_count) ||
                 !all_finite(n.matrix) || !all_finite(n.translation) || !all_finite(n.rotation) || !all_finite(n.scale))
@@ -319,7 +323,7 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
     for (size_t i = 0; i < scene.nodes.size(); ++i) {
         const SceneNode& n = scene.nodes[i];
         if (n.index != i || n.parent == n.index || (n.parent != kNone && n.parent >= node_count) ||
-            (n.mesh != kNone && n.mesh >= mesh_count))
+            (n.mesh != kNone && n.mesh >= mesh_count) || (n.skin != kNone && (n.skin >= scene.skins.size() || n.mesh == kNone)))
             return Error::MalformedPayload;
     }
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
@@ -347,7 +351,8 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
     size_t used = kSceneHeaderSize;
     auto flush = [&]() {
         if (batch.nodes.empty() && batch.meshes.empty()) return;
-        packets.scene.push_back(emit(PacketType::Scene, encode_scene_payload(batch)));
+        const bool skinned = std::any_of(batch.nodes.begin(), batch.nodes.end(), [](const SceneNode& n) { return n.skin != kNone; });
+        packets.scene.push_back(emit(PacketType::Scene, encode_scene_payload(batch), skinned ? kSkinMinor : kFormatMinor));
         batch.nodes.clear();
         batch.meshes.clear();
         used = kSceneHeaderSize;
@@ -358,7 +363,7 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
         return true;
     };
     for (SceneNode n : scene.nodes) {
-        const size_t fixed = 3 + 7 + 1 + (n.has_matrix ? 64 : 40);
+        const size_t fixed = 3 + 7 + 1 + (n.has_matrix ? 64 : 40) + (n.skin != kNone ? 2 : 0);
         if (!fit_name(n.name, fixed)) return Error::MalformedPayload;
         const size_t size = fixed + n.name.size();
         if (used + size > capacity) flush();
@@ -453,6 +458,29 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
                                     track.values.begin() + std::ptrdiff_t((first + n) * per_key));
                 packets.animations.push_back(emit(PacketType::Animation, encode_animation_payload(piece), kAnimationMinor));
             }
+        }
+    }
+    // SKIN (format 1.5): each skin's joints in runs of as many as fit a packet.
+    if (scene.skins.size() > 0xFFFE) return Error::MalformedPayload;
+    for (size_t i = 0; i < scene.skins.size(); ++i) {
+        const SceneSkin& skin = scene.skins[i];
+        if (skin.joints.empty() || skin.joints.size() > 0xFFFF || (skin.skeleton != kNone && skin.skeleton >= node_count))
+            return Error::MalformedPayload;
+        SkinPiece piece;
+        piece.skin = static_cast<uint16_t>(i);
+        piece.skin_count = static_cast<uint16_t>(scene.skins.size());
+        piece.joint_count = static_cast<uint16_t>(skin.joints.size());
+        piece.skeleton = skin.skeleton;
+        piece.name = utf8_prefix(skin.name, kMaxName);
+        for (const SkinJoint& j : skin.joints)
+            if (j.node >= node_count || !all_finite(j.inverse_bind)) return Error::MalformedPayload;
+        if (capacity < kSkinHeaderSize + piece.name.size() + kSkinJointSize) return Error::MalformedPayload;
+        const size_t per_packet = (capacity - kSkinHeaderSize - piece.name.size()) / kSkinJointSize;
+        for (size_t first = 0; first < skin.joints.size(); first += per_packet) {
+            const size_t n = std::min(per_packet, skin.joints.size() - first);
+            piece.first_joint = static_cast<uint16_t>(first);
+            piece.joints.assign(skin.joints.begin() + std::ptrdiff_t(first), skin.joints.begin() + std::ptrdiff_t(first + n));
+            packets.skins.push_back(emit(PacketType::Skin, encode_skin_payload(piece), kSkinMinor));
         }
     }
     out = std::move(packets);

@@ -35,8 +35,11 @@ inline constexpr uint8_t kManifestMinor = 2;
 inline constexpr uint8_t kMaterialExtensionsMinor = 3;
 inline constexpr uint8_t kConnectivityMinor = 3;  // 1.3 added CONNECTIVITY (the exact layer, spec 19)
 inline constexpr uint8_t kAnimationMinor = 4;  // 1.4 added ANIMATION (spec 20)
+// 1.5 added SKIN, JOINT_WEIGHTS and the SCENE node record's skin (spec 21); SCENE packets say 1.5
+// only when a node record of theirs carries a skin.
+inline constexpr uint8_t kSkinMinor = 5;
 // The newest format version this library reads and writes (spec/format.md's version).
-inline constexpr uint8_t kSpecMinor = 4;
+inline constexpr uint8_t kSpecMinor = 5;
 
 inline constexpr std::array<uint8_t, 4> kPacketMagic = {0xE1, 'L', 'C', 'S'};
 inline constexpr size_t kHeaderSize = 20;                       // bytes before the payload
@@ -65,13 +68,15 @@ enum class PacketType : uint8_t {
     PointsRepair = 0x04,  // 1.2, skippable: a repair symbol of an erasure code over a block of points
     Connectivity = 0x05,  // 1.3, skippable: a piece of an object's coded original triangles (the exact layer)
     ConnectivityRepair = 0x06,  // 1.3, skippable: a repair symbol over an object's coded connectivity
+    JointWeights = 0x07,  // 1.5, skippable: the skin joints and weights of a run of an object's points
     Scene = 0x10,       // 1.1, skippable: nodes (hierarchy, names, transforms) and meshes (object + material)
     Material = 0x11,    // 1.1, skippable: one PBR material
     TextureFragment = 0x12,  // 1.1, skippable: a piece of one texture image, at its byte offset
     MaterialExtensions = 0x13,  // 1.3, skippable: a material's extensions and texture transforms (JSON)
     Animation = 0x14,   // 1.4, skippable: keys of one track of an animation
+    Skin = 0x15,        // 1.5, skippable: joints and inverse bind matrices of a skin
     Manifest = 0x20,    // 1.2, skippable: signed digests of the stream's other packets
-    // 0x00 is invalid; 0x07..0x0F reserved for geometry; 0x15..0x1F reserved for the scene;
+    // 0x00 is invalid; 0x08..0x0F reserved for geometry; 0x16..0x1F reserved for the scene;
     // 0x21..0x7F future; 0x80..0xFF experimental.
 };
 
@@ -368,6 +373,7 @@ struct SceneNode {
     std::array<float, 3> translation{0, 0, 0};
     std::array<float, 4> rotation{0, 0, 0, 1};  // quaternion x, y, z, w (glTF order)
     std::array<float, 3> scale{1, 1, 1};
+    uint16_t skin = kNone;  // format 1.5 (spec 21): index into the skin table
     bool operator==(const SceneNode&) const = default;
 };
 
@@ -515,6 +521,66 @@ struct SceneAnimation {
     std::vector<Track> tracks;
 };
 
+// Skins (format 1.5, spec 21). A joint: a node of the SCENE table and its inverse bind matrix.
+struct SkinJoint {
+    uint16_t node = 0;
+    std::array<float, 16> inverse_bind{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // column-major
+    bool operator==(const SkinJoint&) const = default;
+};
+
+// One SKIN packet's content: joints [first_joint, first_joint + joints.size()) of one skin.
+struct SkinPiece {
+    uint16_t skin = 0, skin_count = 0;
+    uint16_t joint_count = 0, first_joint = 0;
+    uint16_t skeleton = kNone;
+    std::string name;  // the skin's
+    std::vector<SkinJoint> joints;
+};
+inline constexpr size_t kSkinHeaderSize = 14;
+inline constexpr size_t kSkinJointSize = 66;
+std::vector<uint8_t> encode_skin_payload(const SkinPiece& piece);
+Error decode_skin_payload(std::span<const uint8_t> payload, SkinPiece& out);
+
+// A skin as a sender has it.
+struct SceneSkin {
+    std::string name;
+    uint16_t skeleton = kNone;
+    std::vector<SkinJoint> joints;
+};
+
+// The joints and weights of one point (spec 21.2): `count` influences (1..4), weights in 255ths,
+// each at least 1, summing to 255, joints distinct. Unused slots are 0.
+struct Influences {
+    uint8_t count = 0;
+    std::array<uint16_t, 4> joints{0, 0, 0, 0};
+    std::array<uint8_t, 4> weights{0, 0, 0, 0};
+    bool operator==(const Influences&) const = default;
+};
+// Whether an influence record keeps the rules of spec 21.2 (count 1..4, weights >= 1 summing to
+// 255, distinct joints, unused slots 0).
+bool valid_influences(const Influences& influences);
+// Weights (any non-negative numbers, one per joint) as a record: the four largest, rounded to 255ths
+// that sum to 255 (largest remainders first), influences rounding to 0 left out (the largest kept
+// when all do). Joints in the order given among equal weights. Empty (count 0) when no weight is
+// above 0.
+Influences quantize_influences(std::span<const uint16_t> joints, std::span<const float> weights);
+
+// One JOINT_WEIGHTS packet's content: the records of points [first_index, first_index + records.size()).
+struct JointWeightsRun {
+    uint32_t first_index = 0;
+    std::vector<Influences> records;
+};
+inline constexpr size_t kJointWeightsHeaderSize = 8;
+// Joint indices take one byte when every joint of the run is below 256, else two.
+std::vector<uint8_t> encode_joint_weights_payload(const JointWeightsRun& run);
+// The checks of spec 21.2 that need no stream info.
+Error decode_joint_weights_payload(std::span<const uint8_t> payload, JointWeightsRun& out);
+// The JOINT_WEIGHTS packets of object `object_id`, one record per point (`records.size()` must be
+// the object's point_count and every record valid), runs of as many points as fit the stream's
+// packet size, numbered from `first_sequence`, saying version 1.5.
+Error packetize_joint_weights(const StreamInfo& info, uint16_t object_id, const std::vector<Influences>& records,
+                              uint32_t stream_id, uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out);
+
 // Everything of the scene that travels besides geometry.
 struct SceneDescription {
     std::vector<SceneNode> nodes;  // node i has index i
@@ -526,10 +592,12 @@ struct SceneDescription {
     };
     std::vector<Texture> textures;
     std::vector<SceneAnimation> animations;  // format 1.4
+    std::vector<SceneSkin> skins;            // format 1.5: SceneNode::skin indexes it
 };
 
 std::vector<uint8_t> encode_scene_payload(const SceneBatch& batch);
-Error decode_scene_payload(std::span<const uint8_t> payload, SceneBatch& out);
+// `version_minor`: that of the packet; a node record's skin (spec 21) is read only from 1.5 on.
+Error decode_scene_payload(std::span<const uint8_t> payload, SceneBatch& out, uint8_t version_minor = kSpecMinor);
 std::vector<uint8_t> encode_material_payload(const Material& material);
 Error decode_material_payload(std::span<const uint8_t> payload, Material& out);
 std::vector<uint8_t> encode_material_extensions_payload(const MaterialExtensions& extensions);
@@ -544,6 +612,7 @@ struct ScenePackets {
     std::vector<uint16_t> extensions_too_large;   // materials whose patch did not fit a packet: sent without
     std::vector<std::vector<uint8_t>> textures;   // TEXTURE_FRAGMENT packets, texture by texture
     std::vector<std::vector<uint8_t>> animations; // ANIMATION packets, track by track (format 1.4)
+    std::vector<std::vector<uint8_t>> skins;      // SKIN packets, skin by skin (format 1.5)
 };
 
 // Cuts a scene description into packets of at most `packet_size` bytes, numbered from
@@ -771,6 +840,7 @@ struct ReceivedObject {
     std::map<uint32_t, ReceivedRepairBlock> repair_blocks;  // by first_index (format 1.2)
     uint64_t points_recovered = 0;                  // points that came through repair packets
     std::optional<ReceivedConnectivity> connectivity;  // format 1.3, once a CONNECTIVITY packet was taken
+    std::map<uint32_t, Influences> weights;         // format 1.5: influence records by point index
 };
 
 struct Rejection {
@@ -880,8 +950,21 @@ public:
     std::optional<uint16_t> animation_count() const { return animation_count_; }
     const std::map<uint16_t, ReceivedAnimation>& animations() const { return animations_; }
 
+    // Skins (format 1.5, spec 21): what has arrived, by skin index.
+    struct ReceivedSkin {
+        uint16_t joint_count = 0;
+        uint16_t skeleton = kNone;
+        std::string name;
+        std::map<uint16_t, SkinJoint> joints;  // by joint index
+        bool complete() const { return joints.size() == joint_count; }
+    };
+    std::optional<uint16_t> skin_count() const { return skin_count_; }
+    const std::map<uint16_t, ReceivedSkin>& skins() const { return skins_; }
+
 private:
     Error take_animation(const PacketView& packet, uint64_t where);
+    Error take_skin(const PacketView& packet, uint64_t where);
+    Error take_joint_weights(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_scene(const PacketView& packet, uint64_t where);
     Error take_material(const PacketView& packet, uint64_t where);
     Error take_material_extensions(const PacketView& packet, uint64_t where);
@@ -929,6 +1012,8 @@ private:
     size_t texture_bytes_ = 0;  // textures, patches and animation keys (the texture cap)
     std::optional<uint16_t> animation_count_;
     std::map<uint16_t, ReceivedAnimation> animations_;
+    std::optional<uint16_t> skin_count_;
+    std::map<uint16_t, ReceivedSkin> skins_;
 };
 
 // What a receiver shows of the animations (spec 20.2): each complete animation with the tracks it
