@@ -98,9 +98,10 @@ int run_convert(const ConvertArgs& a) {
                 encoded.packets.size(), encoded.stream_info_packets, encoded.ellipsoid_packets, encoded.scene_packets,
                 encoded.point_packets,
                 encoded.stream_info_bytes + encoded.ellipsoid_bytes + encoded.scene_bytes + encoded.point_bytes);
-    std::printf("scene: %zu nodes, %zu meshes, %zu objects, %zu materials, %zu textures, %zu animations\n",
+    std::printf("scene: %zu nodes, %zu meshes, %zu objects, %zu materials, %zu textures, %zu animations, %zu skins\n",
                 decoded.scene.nodes.size(), decoded.scene.meshes.size(), decoded.objects.size(),
-                decoded.scene.materials.size(), decoded.scene.textures.size(), decoded.scene.animations.size());
+                decoded.scene.materials.size(), decoded.scene.textures.size(), decoded.scene.animations.size(),
+                decoded.scene.skins.size());
     for (size_t i = 0; i < report.objects.size(); ++i) {
         const auto& o = report.objects[i];
         std::printf("  object %zu: %zu ellipsoids, %zu points -> %zu vertices, %zu faces%s\n", i, o.ellipsoids,

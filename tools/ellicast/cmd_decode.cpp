@@ -60,6 +60,8 @@ void print_scene_summary(const ReceivedStream& stream, const Asset& asset) {
     std::printf(", %zu of %s textures complete", textures_complete, total(texture_total, !stream.textures().empty()).c_str());
     if (stream.animation_count())
         std::printf(", %zu of %u animations shown", asset.scene.animations.size(), unsigned(*stream.animation_count()));
+    if (stream.skin_count())
+        std::printf(", %zu of %u skins shown", asset.scene.skins.size(), unsigned(*stream.skin_count()));
     std::printf("\n");
 }
 

@@ -110,9 +110,9 @@ int run_encode(const EncodeArgs& a) {
     }
     std::printf("objects %zu, ellipsoids %zu, points %zu\n", encoded.info.objects.size(), ellipsoids, points);
     if (with_scene)
-        std::printf("scene: %zu nodes, %zu meshes, %zu materials, %zu textures, %zu animations\n",
+        std::printf("scene: %zu nodes, %zu meshes, %zu materials, %zu textures, %zu animations, %zu skins\n",
                     asset.scene.nodes.size(), asset.scene.meshes.size(), asset.scene.materials.size(),
-                    asset.scene.textures.size(), asset.scene.animations.size());
+                    asset.scene.textures.size(), asset.scene.animations.size(), asset.scene.skins.size());
     std::printf("bytes: stream info %zu (%zu packets), base %zu (%zu packets), scene %zu (%zu packets), "
                 "detail %zu (%zu packets), repair %zu (%zu packets), file %zu\n",
                 out.stream_info_bytes, out.stream_info_packets, out.ellipsoid_bytes, out.ellipsoid_packets,

@@ -98,6 +98,13 @@ nlohmann::json to_json(const StreamReport& r, bool with_packets) {
             j["scene"]["animation_count"] = *count;
             j["scene"]["animations_complete"] = whole;
         }
+        if (const auto count = r.stream.skin_count()) {
+            size_t whole = 0;
+            for (const auto& [i, s] : r.stream.skins()) whole += s.complete();
+            j["scene"]["skins"] = r.stream.skins().size();
+            j["scene"]["skin_count"] = *count;
+            j["scene"]["skins_complete"] = whole;
+        }
     }
     json damaged = json::array();
     for (const auto& d : r.damaged)
@@ -194,6 +201,11 @@ void print_text(const StreamReport& r, bool with_packets) {
             size_t whole = 0;
             for (const auto& [i, a] : r.stream.animations()) whole += a.complete();
             out << ", animations (format 1.4) " << whole << " complete of " << *count;
+        }
+        if (const auto count = r.stream.skin_count()) {
+            size_t whole = 0;
+            for (const auto& [i, s] : r.stream.skins()) whole += s.complete();
+            out << ", skins (format 1.5) " << whole << " complete of " << *count;
         }
         out << "\n";
     }

@@ -5,6 +5,7 @@
 #include "ellicast/converters/image_file.h"
 
 #include <cstdio>
+#include <map>
 #include <set>
 
 namespace ellicast::cli {
@@ -234,6 +235,83 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
                 if (!targets.insert({info.node, int(info.path)}).second)
                     r.violations.push_back({std::nullopt, track + ": another track of the animation moves the same "
                                                               "property of node " + std::to_string(info.node)});
+            }
+        }
+    }
+    // Spec 21.3: skins complete, their nodes recorded, nodes naming skins in the table, every point of a
+    // skinned node's objects with a record, every record's joints inside the skins that use them.
+    {
+        const auto& skins = r.stream.skins();
+        if (const auto count = r.stream.skin_count()) {
+            std::string missing = missing_ranges(skins, *count);
+            if (!missing.empty()) r.violations.push_back({std::nullopt, "skins missing: " + missing});
+        }
+        auto recorded = [&](uint16_t node) {
+            return node < r.stream.scene_node_count() && r.stream.scene_nodes().count(node) > 0;
+        };
+        for (const auto& [index, skin] : skins) {
+            const std::string name = "skin " + std::to_string(index);
+            if (!is_valid_utf8(skin.name)) r.violations.push_back({std::nullopt, name + ": its name is not valid UTF-8"});
+            if (!skin.complete())
+                r.violations.push_back({std::nullopt, name + ": " + std::to_string(skin.joints.size()) + " of " +
+                                                          std::to_string(skin.joint_count) + " joints received"});
+            for (const auto& [j, joint] : skin.joints)
+                if (!recorded(joint.node))
+                    r.violations.push_back({std::nullopt, name + " joint " + std::to_string(j) + ": its node " +
+                                                              std::to_string(joint.node) + " has no node record"});
+            if (skin.skeleton != kNone && !recorded(skin.skeleton))
+                r.violations.push_back({std::nullopt, name + ": its skeleton node " + std::to_string(skin.skeleton) +
+                                                          " has no node record"});
+        }
+        // Objects of skinned nodes' meshes, with the smallest joint count of the skins that use them.
+        std::map<uint16_t, uint32_t> weighted;
+        for (const auto& [index, node] : r.stream.scene_nodes()) {
+            if (node.skin == kNone) continue;
+            const std::string name = "node " + std::to_string(index);
+            const auto count = r.stream.skin_count();
+            if (!count || node.skin >= *count)
+                r.violations.push_back({std::nullopt, name + ": it names skin " + std::to_string(node.skin) +
+                                                          ", past the skin table"});
+            if (node.mesh == kNone) {
+                r.violations.push_back({std::nullopt, name + ": it names a skin but has no mesh"});
+                continue;
+            }
+            const auto mesh = r.stream.scene_meshes().find(node.mesh);
+            if (mesh == r.stream.scene_meshes().end()) continue;  // reported as a missing mesh
+            const auto skin = skins.find(node.skin);
+            const uint32_t joints = skin == skins.end() ? 0x10000u : skin->second.joint_count;
+            for (const auto& p : mesh->second.primitives) {
+                auto [it, fresh] = weighted.try_emplace(p.object, joints);
+                if (!fresh) it->second = std::min(it->second, joints);
+            }
+        }
+        for (const auto& [o, joints] : weighted) {
+            if (o >= r.stream.objects().size() || !r.stream.objects()[o].info) continue;
+            const ReceivedObject& object = r.stream.objects()[o];
+            const std::string name = "object " + std::to_string(o);
+            if (object.weights.size() < object.info->point_count) {
+                std::string gaps;
+                uint32_t at = 0, shown = 0;
+                auto gap = [&](uint32_t from, uint32_t to) {
+                    if (from >= to || shown++ >= 8) return;
+                    gaps += (gaps.empty() ? "" : ", ") + std::to_string(from) + (to - from > 1 ? ".." + std::to_string(to - 1) : "");
+                };
+                for (const auto& [i, record] : object.weights) gap(at, i), at = i + 1;
+                gap(at, object.info->point_count);
+                r.violations.push_back({std::nullopt, name + ": a skinned node shows it, and " +
+                                                          std::to_string(object.info->point_count - object.weights.size()) +
+                                                          " of its points have no joint weights (" + gaps +
+                                                          (shown > 8 ? ", ..." : "") + ")"});
+            }
+            for (const auto& [i, record] : object.weights) {
+                bool past = false;
+                for (size_t k = 0; k < record.count; ++k) past |= record.joints[k] >= joints;
+                if (past) {
+                    r.violations.push_back({std::nullopt, name + " point " + std::to_string(i) +
+                                                              ": its weights name a joint past the " + std::to_string(joints) +
+                                                              " joints of a skin that uses it"});
+                    break;
+                }
             }
         }
     }
