@@ -215,6 +215,46 @@ TEST_CASE("the faulty vectors name the reason they must be rejected with") {
         {"animation_key_count_contradicts", "stream mismatch"},
         {"animation_time_contradicts", "stream mismatch"},
         {"animation_value_contradicts", "stream mismatch"},
+        {"skin_count_contradicts", "stream mismatch"},
+        {"skin_count_zero", "malformed payload"},
+        {"skin_first_joint_overflow", "malformed payload"},
+        {"skin_index_past_table", "malformed payload"},
+        {"skin_joint_contradicts_partly_new", "stream mismatch"},
+        {"skin_joint_count_contradicts", "stream mismatch"},
+        {"skin_joint_count_zero", "malformed payload"},
+        {"skin_joint_node_contradicts", "stream mismatch"},
+        {"skin_joints_past_count", "malformed payload"},
+        {"skin_length_mismatch", "malformed payload"},
+        {"skin_matrix_contradicts", "stream mismatch"},
+        {"skin_matrix_infinite", "malformed payload"},
+        {"skin_matrix_nan", "malformed payload"},
+        {"skin_name_contradicts", "stream mismatch"},
+        {"skin_node_skin_contradicts", "stream mismatch"},
+        {"skin_node_skin_dropped", "stream mismatch"},
+        {"skin_payload_short", "malformed payload"},
+        {"skin_skeleton_contradicts", "stream mismatch"},
+        {"skin_table_empty", "malformed payload"},
+        {"weights_contradicts_partly_new", "stream mismatch"},
+        {"weights_count_zero", "malformed payload"},
+        {"weights_held_out_of_range", "index out of range"},
+        {"weights_index_out_of_range", "index out of range"},
+        {"weights_index_overflow", "malformed payload"},
+        {"weights_joint_contradicts", "stream mismatch"},
+        {"weights_joint_size_3", "malformed payload"},
+        {"weights_joint_twice", "malformed payload"},
+        {"weights_malformed_before_stream_info", "malformed payload"},
+        {"weights_n_5", "malformed payload"},
+        {"weights_n_contradicts", "stream mismatch"},
+        {"weights_n_zero", "malformed payload"},
+        {"weights_order_contradicts", "stream mismatch"},
+        {"weights_payload_short", "malformed payload"},
+        {"weights_record_past_payload", "malformed payload"},
+        {"weights_sum_254", "malformed payload"},
+        {"weights_sum_wraps", "malformed payload"},
+        {"weights_trailing_byte", "malformed payload"},
+        {"weights_unknown_object", "unknown object"},
+        {"weights_weight_contradicts", "stream mismatch"},
+        {"weights_weight_zero", "malformed payload"},
     };
     for (const auto& [name, reason] : reasons) {
         INFO(name);
@@ -328,7 +368,7 @@ TEST_CASE("a texture with fragments missing is not complete and the material usi
 }
 
 TEST_CASE("a format 1.0 decoder skips the 1.1 scene packets of every scene vector and decodes the same objects") {
-    // (and the 1.3 and 1.4 ones: MATERIAL_EXTENSIONS, ANIMATION)
+    // (and the 1.3, 1.4 and 1.5 ones: MATERIAL_EXTENSIONS, ANIMATION, SKIN, JOINT_WEIGHTS)
     size_t checked = 0;
     for (const std::string set : {"valid", "unusual", "faulty"})
         for (const auto& file : vectors_in(set)) {
@@ -338,7 +378,8 @@ TEST_CASE("a format 1.0 decoder skips the 1.1 scene packets of every scene vecto
             size_t scene_packets = 0;
             for (const auto& p : j["packets"])
                 if (p["type"] == "SCENE" || p["type"] == "MATERIAL" || p["type"] == "TEXTURE_FRAGMENT" ||
-                    p["type"] == "MATERIAL_EXTENSIONS" || p["type"] == "ANIMATION")
+                    p["type"] == "MATERIAL_EXTENSIONS" || p["type"] == "ANIMATION" || p["type"] == "SKIN" ||
+                    p["type"] == "JOINT_WEIGHTS")
                     ++scene_packets;
             CHECK(j["as_1_0"]["same_objects"] == true);
             CHECK(j["as_1_0"]["counters"]["skipped"] == scene_packets);

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent format 1.4 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.5 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
@@ -18,7 +18,9 @@ the CONNECTIVITY packets of spec section 19: their checks, the pieces, and the e
 decoded with a range decoder written here, candidates found by sorting every point, and the
 CONNECTIVITY_REPAIR packets of spec 19.5: their checks, the rows held and the source symbols solved for
 with the GF(2^8) code of section 17; for format 1.4 the ANIMATION packets of spec section 20: their checks
-and comparisons, the keys held by index, and the animations a receiver shows, spec 20.2) so
+and comparisons, the keys held by index, and the animations a receiver shows, spec 20.2; for format 1.5 the
+SKIN and JOINT_WEIGHTS packets and the node record's skin of spec section 21: their checks and
+comparisons, the joints and influence records held, and the nodes a receiver shows skinned, spec 21.3) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -45,7 +47,9 @@ KNOWN_12 = {0x20: "MANIFEST", 0x04: "POINTS_REPAIR"}
 KNOWN_13 = {0x13: "MATERIAL_EXTENSIONS", 0x05: "CONNECTIVITY", 0x06: "CONNECTIVITY_REPAIR"}
 # Format 1.4 (spec sections 4 and 20).
 KNOWN_14 = {0x14: "ANIMATION"}
-SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14}
+# Format 1.5 (spec sections 4 and 21).
+KNOWN_15 = {0x15: "SKIN", 0x07: "JOINT_WEIGHTS"}
+SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14, 0x15}  # JOINT_WEIGHTS belongs to an object
 PATHS = ("translation", "rotation", "scale")
 INTERPOLATIONS = ("LINEAR", "STEP", "CUBICSPLINE")
 NONE = 0xFFFF
@@ -302,8 +306,9 @@ def finite(values):
     return all(math.isfinite(v) for v in values)
 
 
-def decode_scene(p):
-    """Spec 15.1: ((node_count, mesh_count), nodes, meshes) or None when malformed."""
+def decode_scene(p, minor=5):
+    """Spec 15.1: ((node_count, mesh_count), nodes, meshes) or None when malformed. `minor`: the packet's
+    version_minor (a node's skin is read only from 1.5 on, spec 21)."""
     if len(p) < 8:
         return None
     node_count, mesh_count, record_count = struct.unpack_from("<HHH", p, 0)
@@ -324,6 +329,10 @@ def decode_scene(p):
                 n["matrix"] = list(b.take("<16f"))
             else:
                 n["translation"], n["rotation"], n["scale"] = list(b.take("<3f")), list(b.take("<4f")), list(b.take("<3f"))
+            # Format 1.5 (spec 21): in a packet that says 1.5 or later, a u16 skin after the transform when
+            # two bytes follow it; a record without them (one stray byte is not a field) has none. Bytes
+            # after it, and any bytes after the transform in an older packet, are ignored.
+            n["skin"] = b.take("<H")[0] if minor >= 5 and not b.failed and len(b.data) - b.pos >= 2 else NONE
             floats = n.get("matrix", []) + n.get("translation", []) + n.get("rotation", []) + n.get("scale", [])
             if b.failed or index >= node_count or parent == index or (parent != NONE and parent >= node_count) \
                     or (mesh != NONE and mesh >= mesh_count) or not finite(floats):
@@ -361,7 +370,57 @@ def decode_material(p):
 
 
 def node_json(n):
-    return dict(n, parent=None if n["parent"] == NONE else n["parent"], mesh=None if n["mesh"] == NONE else n["mesh"])
+    return dict(n, parent=None if n["parent"] == NONE else n["parent"], mesh=None if n["mesh"] == NONE else n["mesh"],
+                skin=None if n["skin"] == NONE else n["skin"])
+
+
+def decode_skin(p):
+    """Spec 21.1: (skin, skin_count, joint_count, first_joint, skeleton, name bytes, joints) or None when
+    malformed; each joint (node, 16 matrix entries)."""
+    if len(p) < 14:
+        return None
+    skin, table, joint_count, first, count, skeleton, name_length = struct.unpack_from("<HHHHHHB", p, 0)
+    # Python integers do not overflow: first + count is the true sum.
+    if len(p) != 14 + name_length + 66 * count or skin >= table or joint_count == 0 or count == 0 \
+            or first + count > joint_count:
+        return None
+    joints = []
+    for k in range(count):
+        at = 14 + name_length + 66 * k
+        node = struct.unpack_from("<H", p, at)[0]
+        matrix = list(struct.unpack_from("<16f", p, at + 2))
+        if not finite(matrix):
+            return None
+        joints.append((node, matrix))
+    return skin, table, joint_count, first, skeleton, p[14:14 + name_length], joints
+
+
+def decode_joint_weights(p):
+    """Spec 21.2, the checks that need no stream info: (first_index, records) or None when malformed; each
+    record (joints, weights), n being their length."""
+    if len(p) < 8:
+        return None
+    first, count, size = struct.unpack_from("<IHB", p, 0)
+    if count == 0 or size not in (1, 2) or first + count > 2 ** 32 - 1:
+        return None
+    pos, records = 8, []
+    for _ in range(count):
+        if pos >= len(p):
+            return None
+        n = p[pos]
+        pos += 1
+        if not 1 <= n <= 4 or pos + n * (size + 1) > len(p):
+            return None
+        joints = [int.from_bytes(p[pos + size * k:pos + size * (k + 1)], "little") for k in range(n)]
+        pos += size * n
+        weights = list(p[pos:pos + n])
+        pos += n
+        if 0 in weights or sum(weights) != 255 or len(set(joints)) != n:
+            return None
+        records.append((joints, weights))
+    if pos != len(p):
+        return None
+    return first, records
 
 
 def material_json(m):
@@ -1010,6 +1069,8 @@ class Receiver:
         self.patches = {}  # format 1.3: material index -> (patch bytes, texture references)
         self.animation_count = None  # format 1.4: that of the first ANIMATION packet accepted
         self.animations = {}  # index -> dict(track_count, name (bytes), tracks: index -> dict(desc, keys))
+        self.skin_count = None  # format 1.5: that of the first SKIN packet accepted
+        self.skins = {}  # index -> dict(joint_count, skeleton, name (bytes), joints: index -> (node, matrix))
         self.material_count = None  # that of the materials and patches held
         self.stream_id = None
         self.info = None
@@ -1029,8 +1090,8 @@ class Receiver:
         if self.stream_id is not None and h["stream_id"] != self.stream_id:
             return self.reject(offset, "stream mismatch")
         t = h["type"]
-        if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12 and t not in KNOWN_13 and t not in KNOWN_14)
-                                  or not self.know_11):
+        if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12 and t not in KNOWN_13 and t not in KNOWN_14
+                                   and t not in KNOWN_15) or not self.know_11):
             if not h["flags"] & 1:
                 return self.reject(offset, "unknown critical type")
             self.stream_id = h["stream_id"]
@@ -1049,6 +1110,11 @@ class Receiver:
             result = self.extensions(h, offset)
         elif t == 0x14:
             result = self.animation(h, offset)
+        elif t == 0x15:
+            result = self.skin(h, offset)
+        elif t == 0x07 and decode_joint_weights(h["payload"]) is None:
+            # Spec 21.2: checked at step 11, before the packet can be held.
+            return self.reject(offset, "malformed payload")
         elif t == 0x20:
             # A decoder checks the layout and takes nothing (spec 16.2); verifying needs a key.
             if decode_manifest(h["payload"]) is None:
@@ -1079,7 +1145,8 @@ class Receiver:
                 return self.reject(offset, "stream mismatch")
         else:
             self.info, self.object_count = fields, count
-            self.objects = [dict(info=None, ellipsoids={}, points={}, blocks={}, recovered=0) for _ in range(count)]
+            self.objects = [dict(info=None, ellipsoids={}, points={}, blocks={}, recovered=0, weights={})
+                            for _ in range(count)]
             # Spec 11.1: held packets naming an object beyond the table are rejected now, in arrival order.
             for h, at in [x for x in self.held if x[0]["object_id"] >= count]:
                 self.counters["held"] -= 1
@@ -1128,6 +1195,8 @@ class Receiver:
             return self.connectivity(obj, h, offset)
         if h["type"] == 0x06:
             return self.connectivity_repair(obj, h, offset)
+        if h["type"] == 0x07:
+            return self.joint_weights(obj, h, offset)
         ellipsoids = h["type"] == 2
         record = 128 if ellipsoids else record_bits(self.info, obj["info"])
         batch = decode_batch(h["payload"], record)
@@ -1152,6 +1221,20 @@ class Receiver:
                 if b["rows"] and any(b["first"] <= i < b["first"] + b["count"] for i in fresh):
                     self.recover(obj, b)
         return "accepted" if fresh else "duplicate"
+
+    def joint_weights(self, obj, h, offset):
+        """Spec 21.2 with the object's entry: step 14, then each record against the one held (step 15)."""
+        first, records = decode_joint_weights(h["payload"])
+        if first + len(records) > obj["info"]["point_count"]:
+            return self.reject(offset, "index out of range")
+        held = obj["weights"]
+        # Identical records: the same n, joints (as numbers) and weights, in the same order.
+        if any(first + i in held and held[first + i] != r for i, r in enumerate(records)):
+            return self.reject(offset, "stream mismatch")
+        fresh = [i for i in range(len(records)) if first + i not in held]
+        for i in fresh:
+            held[first + i] = records[i]
+        return self.news(bool(fresh))
 
     def connectivity(self, obj, h, offset):
         """Spec 19.1, once the object's entry has arrived: pieces of the coded connectivity, keyed by byte
@@ -1326,7 +1409,7 @@ class Receiver:
 
     def scene(self, h, offset):
         """Spec 15.1."""
-        d = decode_scene(h["payload"])
+        d = decode_scene(h["payload"], h["minor"])
         if d is None:
             return self.reject(offset, "malformed payload")
         counts, nodes, meshes = d
@@ -1466,6 +1549,74 @@ class Receiver:
             t["keys"][first + k] = keys[k]
         return self.news(True)
 
+    def skin(self, h, offset):
+        """Spec 21.1: the packet's checks, then the comparisons in their order; joints are kept by index."""
+        d = decode_skin(h["payload"])
+        if d is None:
+            return self.reject(offset, "malformed payload")
+        index, table, joint_count, first, skeleton, name, joints = d
+        if self.skin_count is not None and table != self.skin_count:
+            return self.reject(offset, "stream mismatch")
+        k = self.skins.get(index)
+        if k is not None and (k["joint_count"], k["skeleton"], k["name"]) != (joint_count, skeleton, name):
+            return self.reject(offset, "stream mismatch")
+        held = k["joints"] if k is not None else {}
+        # Matrix entries compare as numbers: Python's float equality has +0 == -0 (and no NaN got this far).
+        if any(first + i in held and held[first + i] != j for i, j in enumerate(joints)):
+            return self.reject(offset, "stream mismatch")
+        fresh = [i for i in range(len(joints)) if first + i not in held]
+        if not fresh:
+            return self.news(False)
+        self.skin_count = table
+        if k is None:
+            k = self.skins[index] = dict(joint_count=joint_count, skeleton=skeleton, name=name, joints={})
+        for i in fresh:
+            k["joints"][first + i] = joints[i]
+        return self.news(True)
+
+    def skins_json(self):
+        out = []
+        for index in sorted(self.skins):
+            k = self.skins[index]
+            missing, cursor = [], 0
+            for j in sorted(k["joints"]):
+                if j > cursor:
+                    missing.append([cursor, j])
+                cursor = j + 1
+            if cursor < k["joint_count"]:
+                missing.append([cursor, k["joint_count"]])
+            out.append(dict(index=index, name=k["name"].decode("utf-8", errors="replace"), joint_count=k["joint_count"],
+                            skeleton=None if k["skeleton"] == NONE else k["skeleton"], joints_held=len(k["joints"]),
+                            missing=missing, complete=len(k["joints"]) == k["joint_count"],
+                            joints=[dict(index=j, node=k["joints"][j][0], matrix=k["joints"][j][1])
+                                    for j in sorted(k["joints"])]))
+        return out
+
+    def skinned(self, shown_nodes):
+        """Spec 21.3: the shown nodes (in order) shown skinned, each {node, skin}."""
+        def arrived(o):  # spec 15.4: its entry and at least one element of it
+            return o < len(self.objects) and self.objects[o]["info"] is not None and \
+                bool(self.objects[o]["ellipsoids"] or self.objects[o]["points"])
+
+        def weighted(o):  # a point held together with its record
+            return any(i in self.objects[o]["points"] for i in self.objects[o]["weights"])
+        out = []
+        for index in shown_nodes:
+            n = self.nodes[index]
+            k = self.skins.get(n["skin"])
+            if k is None or len(k["joints"]) != k["joint_count"]:
+                continue
+            if (k["skeleton"] != NONE and k["skeleton"] not in shown_nodes) or \
+                    any(node not in shown_nodes for node, _ in k["joints"].values()):
+                continue
+            if n["mesh"] not in self.meshes:
+                continue
+            objects = [p["object"] for p in self.meshes[n["mesh"]]["primitives"] if arrived(p["object"])]
+            if objects and all(weighted(o) and all(j < k["joint_count"] for joints, _ in self.objects[o]["weights"].values()
+                                                   for j in joints) for o in objects):
+                out.append(dict(node=index, skin=n["skin"]))
+        return out
+
     @staticmethod
     def track_state(t):
         """Spec 20.2: (complete, usable, times, values) of a track; times and values None until complete."""
@@ -1546,14 +1697,16 @@ class Receiver:
         sized = self.scene_counts not in (None, (0, 0))  # sizes 0 and 0 are listed as null (README)
         return dict(node_count=self.scene_counts[0] if sized else None,
                     mesh_count=self.scene_counts[1] if sized else None,
-                    nodes=[node_json(n) for n in nodes], meshes=meshes,
+                    nodes=[node_json(n) for n in nodes],
+                    meshes=[dict(m, primitives=[dict(object=q["object"], material=None if q["material"] == NONE
+                                                     else q["material"]) for q in m["primitives"]]) for m in meshes],
                     material_count=self.material_count,
                     materials=[material_json(self.materials[k]) for k in sorted(self.materials)],
                     material_extensions=[dict(index=k, patch=self.patches[k][0].decode("utf-8"),
                                               references=self.patches[k][1]) for k in sorted(self.patches)],
                     texture_count=self.textures[min(self.textures)]["desc"]["texture_count"] if self.textures else None,
                     textures=textures, animation_count=self.animation_count, animations=self.animations_json(),
-                    shown=self.shown())
+                    skin_count=self.skin_count, skins=self.skins_json(), shown=self.shown())
 
     def shown(self):
         """Spec 15.4 and 18.4: what a receiver shows."""
@@ -1596,9 +1749,10 @@ class Receiver:
             if reaches:
                 mesh = self.nodes[k]["mesh"]
                 nodes.append(dict(index=k, mesh=mesh if mesh != NONE and mesh in self.meshes else None))
+        shown_nodes = [n["index"] for n in nodes]
         return dict(textures=done, materials=materials, waiting=waiting, waiting_extensions=waiting_extensions,
-                    ignored_references=ignored, nodes=nodes,
-                    animations=self.shown_animations({n["index"] for n in nodes}))
+                    ignored_references=ignored, nodes=nodes, animations=self.shown_animations(set(shown_nodes)),
+                    skinned=self.skinned(shown_nodes))
 
 
 class RangeDecoder:
@@ -1744,6 +1898,9 @@ def objects_json(r):
                 o["exact_layer"] = obj["info"]["exact_layer"]
             if "connectivity" in obj:
                 o["connectivity"] = connectivity_json(obj)
+            # Format 1.5 (spec 21.2): the influence records held, listed when there is one (README).
+            if obj["weights"]:
+                o["weights"] = [dict(index=i, joints=j, weights=w) for i, (j, w) in sorted(obj["weights"].items())]
         objects.append(o)
     return objects
 
@@ -1758,7 +1915,8 @@ def decode(buf):
         result = r.add(h, offset)
         old.add(h, offset)
         name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or KNOWN_12.get(h["type"]) or \
-            KNOWN_13.get(h["type"]) or KNOWN_14.get(h["type"]) or "UNKNOWN(0x%02X)" % h["type"]
+            KNOWN_13.get(h["type"]) or KNOWN_14.get(h["type"]) or KNOWN_15.get(h["type"]) or \
+            "UNKNOWN(0x%02X)" % h["type"]
         plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
                           flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
                           object_id=h["object_id"], payload_length=h["payload_length"], result=result))
@@ -1770,8 +1928,10 @@ def decode(buf):
     any_scene = any(h["type"] in SCENE_TYPES for _, _, h in packets)
     out["scene"] = r.scene_json() if any_scene else None
     if any_scene:
+        # The same objects but for their format 1.5 influence records, which a 1.0 decoder skips (README).
+        geometry = [{k: v for k, v in o.items() if k != "weights"} for o in out["objects"]]
         out["as_1_0"] = dict(counters=old.counters, newest_minor=old.newest_minor,
-                             same_objects=info(old) == out["stream_info"] and objects_json(old) == out["objects"])
+                             same_objects=info(old) == out["stream_info"] and objects_json(old) == geometry)
     out["signed"] = authenticate(packets) if any(h["type"] == 0x20 for _, _, h in packets) else None
     return out, r
 

@@ -1,4 +1,4 @@
-// The expected decode of a conformance vector as JSON: what a format 1.4 decoder makes of a container
+// The expected decode of a conformance vector as JSON: what a format 1.5 decoder makes of a container
 // file (spec/format.md sections 10 and 11). The vector generator (make_vectors.cpp) writes it next to
 // each .ellc; tests/test_conformance.cpp recomputes it with the library and compares. The JSON layout
 // is described in spec/vectors/README.md.
@@ -226,6 +226,20 @@ inline nlohmann::json objects_json(const ReceivedStream& stream) {
             // one or that holds a connectivity, so that the decodes of streams without it stay as they were.
             if (oi.exact_layer || object.connectivity) o["exact_layer"] = oi.exact_layer;
             if (object.connectivity) o["connectivity"] = connectivity_json(stream, i);
+            // Format 1.5 (spec 21.2): the influence records held, by point index; listed only for an
+            // object that holds one, so that the decodes of streams without JOINT_WEIGHTS stay as they were.
+            if (!object.weights.empty()) {
+                json weights = json::array();
+                for (const auto& [index, r] : object.weights) {
+                    json joints = json::array(), w = json::array();
+                    for (size_t k = 0; k < r.count; ++k) {
+                        joints.push_back(r.joints[k]);
+                        w.push_back(r.weights[k]);
+                    }
+                    weights.push_back({{"index", index}, {"joints", joints}, {"weights", w}});
+                }
+                o["weights"] = weights;
+            }
         }
         objects.push_back(o);
     }
@@ -239,12 +253,12 @@ inline nlohmann::json counters_json(const ReceiveCounters& c) {
 
 // ---- Format 1.1 scene (spec section 15) ----
 
-// The scene types of format 1.1 (SCENE, MATERIAL, TEXTURE_FRAGMENT), 1.3 (MATERIAL_EXTENSIONS) and 1.4
-// (ANIMATION).
+// The scene types of format 1.1 (SCENE, MATERIAL, TEXTURE_FRAGMENT), 1.3 (MATERIAL_EXTENSIONS), 1.4
+// (ANIMATION) and 1.5 (SKIN; JOINT_WEIGHTS belongs to an object and is not one).
 inline bool is_scene_type(uint8_t type) {
     return type == uint8_t(PacketType::Scene) || type == uint8_t(PacketType::Material) ||
            type == uint8_t(PacketType::TextureFragment) || type == uint8_t(PacketType::MaterialExtensions) ||
-           type == uint8_t(PacketType::Animation);
+           type == uint8_t(PacketType::Animation) || type == uint8_t(PacketType::Skin);
 }
 
 inline nlohmann::json none_or(uint16_t v) { return v == kNone ? nlohmann::json(nullptr) : nlohmann::json(v); }
@@ -277,6 +291,7 @@ inline nlohmann::json node_json(const SceneNode& n) {
         j["rotation"] = floats(n.rotation.data(), 4);
         j["scale"] = floats(n.scale.data(), 3);
     }
+    j["skin"] = none_or(n.skin);  // format 1.5 (spec 21): null for a record without a skin or with 0xFFFF
     return j;
 }
 
@@ -376,6 +391,43 @@ inline nlohmann::json animation_json(uint16_t index, const ReceivedStream::Recei
             {"tracks", tracks}};
 }
 
+// Format 1.5 (spec 21.1): a skin as received: its joint count, skeleton and name (of the first packet
+// of it accepted), the joints held (and the ranges of those missing), whether it is complete, and every
+// joint held, in joint order: its node and its inverse bind matrix (16 floats, column-major).
+inline nlohmann::json skin_json(uint16_t index, const ReceivedStream::ReceivedSkin& k) {
+    using nlohmann::json;
+    json missing = json::array(), joints = json::array();
+    uint32_t cursor = 0;
+    for (const auto& [j, joint] : k.joints) {
+        if (j > cursor) missing.push_back({cursor, j});
+        cursor = uint32_t(j) + 1;
+        joints.push_back({{"index", j}, {"node", joint.node}, {"matrix", floats(joint.inverse_bind.data(), 16)}});
+    }
+    if (cursor < k.joint_count) missing.push_back({cursor, k.joint_count});
+    return {{"index", index},
+            {"name", replace_invalid_utf8(k.name)},
+            {"joint_count", k.joint_count},
+            {"skeleton", none_or(k.skeleton)},
+            {"joints_held", k.joints.size()},
+            {"missing", missing},
+            {"complete", k.complete()},
+            {"joints", joints}};
+}
+
+// Format 1.5 (spec 21.3): whether an object has arrived (15.4: its entry and at least one element of
+// it), and whether it is weighted (a point held together with that point's record).
+inline bool object_arrived(const ReceivedStream& s, uint16_t object) {
+    if (object >= s.objects().size()) return false;
+    const ReceivedObject& o = s.objects()[object];
+    return o.info && (!o.ellipsoids.empty() || !o.points.empty());
+}
+inline bool object_weighted(const ReceivedStream& s, uint16_t object) {
+    const ReceivedObject& o = s.objects()[object];
+    for (const auto& [index, r] : o.weights)
+        if (o.points.count(index)) return true;
+    return false;
+}
+
 // What a receiver shows of the scene (spec 15.4, 18.4): complete textures; materials whose texture
 // references on set 0 and whose patch's texture references are all complete, and whose patch arrived
 // when their has_extensions bit says they have one (the others wait: for a texture, named by slot or
@@ -448,9 +500,35 @@ inline nlohmann::json shown_json(const ReceivedStream& s) {
     };
     for (const ShownAnimation& a : shown_animations(s, node_shown))
         animations.push_back({{"index", a.index}, {"tracks", a.tracks}});
+    // Format 1.5 (spec 21.3): the nodes shown skinned, in node order: among the nodes shown above, those
+    // whose record names a complete skin whose joints' nodes (and skeleton, when not 0xFFFF) are shown,
+    // whose mesh record arrived and shows at least one arrived object, every arrived object of it
+    // weighted, and every joint index of the records held for those objects below the skin's joint_count.
+    json skinned = json::array();
+    for (uint16_t index : shown_nodes) {
+        const SceneNode& n = all.at(index);
+        if (n.skin == kNone) continue;
+        const auto skin = s.skins().find(n.skin);
+        if (skin == s.skins().end() || !skin->second.complete()) continue;
+        bool ok = skin->second.skeleton == kNone || node_shown(skin->second.skeleton);
+        for (const auto& [j, joint] : skin->second.joints) ok = ok && node_shown(joint.node);
+        const auto mesh = n.mesh == kNone ? s.scene_meshes().end() : s.scene_meshes().find(n.mesh);
+        bool any = false;
+        if (ok && mesh != s.scene_meshes().end()) {
+            for (const ScenePrimitive& p : mesh->second.primitives) {
+                if (!object_arrived(s, p.object)) continue;
+                any = true;
+                if (!object_weighted(s, p.object)) ok = false;
+                for (const auto& [i, r] : s.objects()[p.object].weights)
+                    for (size_t k = 0; k < r.count; ++k)
+                        if (r.joints[k] >= skin->second.joint_count) ok = false;
+            }
+        }
+        if (ok && any) skinned.push_back({{"node", index}, {"skin", n.skin}});
+    }
     return {{"textures", textures}, {"materials", materials}, {"waiting", waiting},
             {"waiting_extensions", waiting_extensions}, {"ignored_references", ignored}, {"nodes", nodes},
-            {"animations", animations}};
+            {"animations", animations}, {"skinned", skinned}};
 }
 
 inline nlohmann::json scene_json(const ReceivedStream& s) {
@@ -468,6 +546,8 @@ inline nlohmann::json scene_json(const ReceivedStream& s) {
     for (const auto& [index, t] : s.textures()) textures.push_back(texture_json(t));
     json animations = json::array();
     for (const auto& [index, a] : s.animations()) animations.push_back(animation_json(index, a));
+    json skins = json::array();
+    for (const auto& [index, k] : s.skins()) skins.push_back(skin_json(index, k));
     const bool scene = s.has_scene() || !s.scene_nodes().empty() || !s.scene_meshes().empty();
     return {{"node_count", scene ? json(s.scene_node_count()) : json(nullptr)},
             {"mesh_count", scene ? json(s.scene_mesh_count()) : json(nullptr)},
@@ -486,6 +566,9 @@ inline nlohmann::json scene_json(const ReceivedStream& s) {
             // Format 1.4: that of the ANIMATION packets accepted (all agree, spec 20.1), null when none was.
             {"animation_count", s.animation_count() ? json(*s.animation_count()) : json(nullptr)},
             {"animations", animations},
+            // Format 1.5: that of the SKIN packets accepted (all agree, spec 21.1), null when none was.
+            {"skin_count", s.skin_count() ? json(*s.skin_count()) : json(nullptr)},
+            {"skins", skins},
             {"shown", shown_json(s)}};
 }
 
@@ -578,7 +661,7 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     out["container_error"] = contents.header_error == Error::Ok ? json(nullptr) : json(reason_name(contents.header_error));
 
     ReceivedStream stream;
-    // A format 1.0 decoder's view: the 1.1, 1.3 and 1.4 scene types are unknown to it (spec section 9).
+    // A format 1.0 decoder's view: the types of 1.1 and later are unknown to it (spec section 9).
     ReceivedStream as_1_0;
     bool any_scene_packet = false;
     json packets = json::array();
@@ -629,13 +712,16 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     out["stream_info"] = stream.info() ? stream_info_json(*stream.info(), stream.objects().size()) : json(nullptr);
     out["objects"] = objects_json(stream);
     // Format 1.1: present when the file holds any SCENE, MATERIAL, TEXTURE_FRAGMENT, (format 1.3)
-    // MATERIAL_EXTENSIONS or (format 1.4) ANIMATION packet.
+    // MATERIAL_EXTENSIONS, (format 1.4) ANIMATION or (format 1.5) SKIN packet.
     out["scene"] = any_scene_packet ? scene_json(stream) : json(nullptr);
     if (any_scene_packet) {
         json info_1_0 = as_1_0.info() ? stream_info_json(*as_1_0.info(), as_1_0.objects().size()) : json(nullptr);
+        // The same objects but for their format 1.5 influence records, which a 1.0 decoder skips.
+        json geometry = out["objects"];
+        for (json& o : geometry) o.erase("weights");
         out["as_1_0"] = {{"counters", counters_json(as_1_0.counters())},
                          {"newest_minor", as_1_0.newest_minor()},
-                         {"same_objects", info_1_0 == out["stream_info"] && objects_json(as_1_0) == out["objects"]}};
+                         {"same_objects", info_1_0 == out["stream_info"] && objects_json(as_1_0) == geometry}};
     }
     // Format 1.2: present when the file holds any MANIFEST packet.
     const bool any_manifest = std::any_of(contents.packets.begin(), contents.packets.end(), [](const ContainerPacket& p) {

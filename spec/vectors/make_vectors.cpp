@@ -23,6 +23,7 @@
 #include <fstream>
 #include <iostream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 using namespace ellicast;
@@ -1091,8 +1092,8 @@ void scene_vectors(Writer& w) {
         for (const auto* group : {&base.scene.materials, &base.scene.textures}) sent.insert(sent.end(), group->begin(), group->end());
         w.write("unusual", "scene_newer_records",
                 "the first SCENE packet says format 1.2 and carries a record of the unknown kind 7 (skipped by its "
-                "length) and 6 unknown bytes appended to its first node record (ignored), spec 15.1; decodes to the "
-                "scene of valid/scene",
+                "length) and 6 unknown bytes appended to its first node record (ignored: a packet that says 1.2 "
+                "carries no skin field, spec 21), spec 15.1; decodes to the scene of valid/scene",
                 sent);
     }
     {
@@ -3598,6 +3599,867 @@ void animation_vectors(Writer& w) {
     }
 }
 
+// ------------------------------------------------------------------------------------------------
+// Format 1.5: skins (SKIN and JOINT_WEIGHTS, spec 21). The arm: 6 nodes (a root "Rig", a chain of 4
+// joints "Upper", "Lower", "Hand", "Finger", and "Arm", which shows mesh 0 with skin 0), one mesh of
+// one object (6 ellipsoids, 40 points with normals, packet size 200), one skin "Arm skin" of the 4
+// joint nodes 1..4 (skeleton node 1), and an influence record for every point. The geometry and the
+// SCENE packets without a skin field say 1.1, the SCENE packet with node 5's record 1.5, the SKIN and
+// JOINT_WEIGHTS packets 1.5.
+
+SceneDescription skinned_arm() {
+    SceneDescription s;
+    SceneNode rig;
+    rig.index = 0;
+    rig.name = "Rig";
+    rig.translation = {0, 0, -3};
+    SceneNode upper;
+    upper.index = 1;
+    upper.parent = 0;
+    upper.name = "Upper";
+    upper.translation = {0, -1, 0};
+    SceneNode lower;
+    lower.index = 2;
+    lower.parent = 1;
+    lower.name = "Lower";
+    lower.translation = {0, 0.75f, 0};
+    lower.rotation = {0, 0, 0.25881904f, 0.9659258f};  // 30 degrees about z
+    SceneNode hand;
+    hand.index = 3;
+    hand.parent = 2;
+    hand.name = "Hand";
+    hand.translation = {0, 0.75f, 0};
+    SceneNode finger;
+    finger.index = 4;
+    finger.parent = 3;
+    finger.name = "Finger";
+    finger.translation = {0, 0.5f, 0};
+    SceneNode arm;
+    arm.index = 5;
+    arm.parent = 0;
+    arm.mesh = 0;
+    arm.skin = 0;
+    arm.name = "Arm";
+    s.nodes = {rig, upper, lower, hand, finger, arm};
+    s.meshes = {{0, "Arm", {{0, kNone}}}};
+    SceneSkin skin;
+    skin.name = "Arm skin";
+    skin.skeleton = 1;
+    // Inverse bind matrices: the joints stand at y = -1, -0.25, 0.5, 1 of the rig in the bind pose.
+    for (auto [node, y] : std::vector<std::pair<uint16_t, float>>{{1, -1.0f}, {2, -0.25f}, {3, 0.5f}, {4, 1.0f}}) {
+        SkinJoint j;
+        j.node = node;
+        j.inverse_bind[13] = -y;  // column-major: the translation is in the last column
+        skin.joints.push_back(j);
+    }
+    s.skins = {skin};
+    return s;
+}
+
+// Every point's record: hat functions of its height along the arm over the 4 joints (1 to 4
+// influences), rounded by the library (spec 21.4); the top points follow the finger alone.
+std::vector<Influences> arm_weights(const StreamInfo& info, const ObjectContent& c) {
+    const ObjectInfo& o = info.objects[0];
+    std::vector<float> ys;
+    for (const QuantizedPoint& q : c.points) ys.push_back(dequantize_point(q, info, o).position[1]);
+    const auto [lo, hi] = std::minmax_element(ys.begin(), ys.end());
+    const float bottom = *lo, top = *hi;
+    std::vector<Influences> out;
+    for (float y : ys) {
+        const float t = 3.0f * (y - bottom) / (top - bottom);
+        std::vector<uint16_t> joints = {0, 1, 2, 3};
+        std::vector<float> weights;
+        for (int j = 0; j < 4; ++j) weights.push_back(std::max(0.0f, 1.6f - std::fabs(t - float(j))));
+        if (t > 2.85f) weights = {0, 0, 0, 1};
+        out.push_back(quantize_influences(joints, weights));
+    }
+    return out;
+}
+
+struct SkinStream {
+    Stream geometry;
+    ScenePackets scene;  // SCENE and SKIN packets
+    std::vector<Influences> records;
+    Packets weights;  // JOINT_WEIGHTS packets
+    Packets before_weights() const {
+        Packets out = geometry.all();
+        out.insert(out.end(), scene.scene.begin(), scene.scene.end());
+        out.insert(out.end(), scene.skins.begin(), scene.skins.end());
+        return out;
+    }
+    Packets all() const {
+        Packets out = before_weights();
+        out.insert(out.end(), weights.begin(), weights.end());
+        return out;
+    }
+};
+
+SkinStream make_skin_stream(const SceneDescription& scene) {
+    SkinStream s;
+    StreamInfo info = default_info({make_object({-1, -1, -1}, 2, 6, 40, kAttrNormal)}, 200);
+    Rng rng(61);
+    s.geometry.contents.push_back(make_content(info, info.objects[0], rng));
+    s.geometry.info = info;
+    if (packetize_stream(info, s.geometry.contents, kStreamId, s.geometry.packets) != Error::Ok) {
+        std::cerr << "make_vectors: packetize_stream failed\n";
+        std::exit(1);
+    }
+    uint32_t next = uint32_t(s.geometry.all().size());
+    if (packetize_scene(scene, 200, kStreamId, next, s.scene) != Error::Ok) {
+        std::cerr << "make_vectors: packetize_scene failed (skins)\n";
+        std::exit(1);
+    }
+    next += uint32_t(s.scene.scene.size() + s.scene.skins.size());
+    s.records = arm_weights(info, s.geometry.contents[0]);
+    if (packetize_joint_weights(info, 0, s.records, kStreamId, next, s.weights) != Error::Ok) {
+        std::cerr << "make_vectors: packetize_joint_weights failed\n";
+        std::exit(1);
+    }
+    return s;
+}
+
+// A SKIN packet written from a piece as given (format 1.5, stream-level, skippable).
+Packet skin_packet(const SkinPiece& piece, uint32_t sequence) {
+    PacketHeader h;
+    h.version_minor = kSkinMinor;
+    h.type = uint8_t(PacketType::Skin);
+    h.flags = kFlagSkippable;
+    h.stream_id = kStreamId;
+    h.sequence = sequence;
+    h.object_id = kStreamObjectId;
+    return write_packet(h, encode_skin_payload(piece));
+}
+
+SkinPiece skin_piece_of(const Packet& p) {
+    SkinPiece piece;
+    if (decode_skin_payload(payload_of(p), piece) != Error::Ok) {
+        std::cerr << "make_vectors: not a SKIN packet\n";
+        std::exit(1);
+    }
+    return piece;
+}
+
+// An influence record as bytes are written, also one that breaks spec 21.2 (n = joints.size()
+// unless given).
+struct RawRecord {
+    std::vector<uint16_t> joints;
+    std::vector<uint8_t> weights;
+    int n = -1;
+};
+RawRecord raw(const Influences& r) {
+    RawRecord out;
+    for (size_t k = 0; k < r.count; ++k) {
+        out.joints.push_back(r.joints[k]);
+        out.weights.push_back(r.weights[k]);
+    }
+    return out;
+}
+// A JOINT_WEIGHTS payload written as given: joints of `joint_size` bytes (the library writes 1 when
+// every joint is below 256), `count` as given (the records' number unless given).
+std::vector<uint8_t> weights_payload(uint32_t first, const std::vector<RawRecord>& records, uint8_t joint_size,
+                                     int count = -1) {
+    std::vector<uint8_t> out;
+    for (int i = 0; i < 4; ++i) out.push_back(uint8_t(first >> (8 * i)));
+    const uint16_t c = count < 0 ? uint16_t(records.size()) : uint16_t(count);
+    out.push_back(uint8_t(c));
+    out.push_back(uint8_t(c >> 8));
+    out.push_back(joint_size);
+    out.push_back(0);
+    for (const RawRecord& r : records) {
+        out.push_back(uint8_t(r.n < 0 ? r.joints.size() : size_t(r.n)));
+        for (uint16_t j : r.joints) {
+            out.push_back(uint8_t(j));
+            if (joint_size == 2) out.push_back(uint8_t(j >> 8));
+        }
+        for (uint8_t w : r.weights) out.push_back(w);
+    }
+    return out;
+}
+JointWeightsRun run_of(const Packet& p) {
+    JointWeightsRun run;
+    if (decode_joint_weights_payload(payload_of(p), run) != Error::Ok) {
+        std::cerr << "make_vectors: not a JOINT_WEIGHTS packet\n";
+        std::exit(1);
+    }
+    return run;
+}
+std::vector<RawRecord> raw_records(const JointWeightsRun& run) {
+    std::vector<RawRecord> out;
+    for (const Influences& r : run.records) out.push_back(raw(r));
+    return out;
+}
+// A JOINT_WEIGHTS packet (format 1.5, skippable) of object `object`.
+Packet weights_packet(uint16_t object, uint32_t sequence, const std::vector<uint8_t>& payload) {
+    PacketHeader h;
+    h.version_minor = kSkinMinor;
+    h.type = uint8_t(PacketType::JointWeights);
+    h.flags = kFlagSkippable;
+    h.stream_id = kStreamId;
+    h.sequence = sequence;
+    h.object_id = object;
+    return write_packet(h, payload);
+}
+
+// A SCENE packet of one node record, as the library writes it (a skin field only when the node has
+// a skin) followed by `extra` bytes in the record body; it says 1.5 when `minor` says so.
+Packet one_node_scene_packet(const SceneDescription& scene, SceneNode n, const std::vector<uint8_t>& extra,
+                             uint8_t minor, uint32_t sequence) {
+    SceneBatch batch{uint16_t(scene.nodes.size()), uint16_t(scene.meshes.size()), {n}, {}};
+    std::vector<uint8_t> payload = encode_scene_payload(batch);
+    // header (8), kind (1), length (2), body: the only record ends the payload.
+    payload.insert(payload.end(), extra.begin(), extra.end());
+    const uint16_t length = uint16_t(payload[9] | (payload[10] << 8)) + uint16_t(extra.size());
+    payload[9] = uint8_t(length);
+    payload[10] = uint8_t(length >> 8);
+    PacketHeader h;
+    h.version_minor = minor;
+    h.type = uint8_t(PacketType::Scene);
+    h.flags = kFlagSkippable;
+    h.stream_id = kStreamId;
+    h.sequence = sequence;
+    h.object_id = kStreamObjectId;
+    return write_packet(h, payload);
+}
+
+// `packets` with node `node`'s record edited in the SCENE packet that holds it (re-encoded; the
+// packet says 1.5 when a record of it then carries a skin).
+Packets edit_node(Packets packets, uint16_t node, const std::function<void(SceneNode&)>& edit) {
+    bool found = false;
+    for (Packet& p : packets) {
+        if (p[6] != uint8_t(PacketType::Scene)) continue;
+        SceneBatch batch;
+        if (decode_scene_payload(payload_of(p), batch) != Error::Ok) continue;
+        bool here = false;
+        for (SceneNode& n : batch.nodes)
+            if (n.index == node) {
+                edit(n);
+                here = true;
+            }
+        if (!here) continue;
+        p = with_payload(p, encode_scene_payload(batch));
+        const bool skinned = std::any_of(batch.nodes.begin(), batch.nodes.end(), [](const SceneNode& n) { return n.skin != kNone; });
+        p[5] = skinned ? kSkinMinor : kFormatMinor;
+        reseal(p);
+        found = true;
+    }
+    if (!found) {
+        std::cerr << "make_vectors: no SCENE packet holds node " << node << "\n";
+        std::exit(1);
+    }
+    return packets;
+}
+
+// Offsets in a SKIN packet (header included, spec 21.1).
+constexpr size_t kSkinIndex = kHeaderSize, kSkinCount = kHeaderSize + 2, kSkinJointCount = kHeaderSize + 4,
+                 kSkinFirstJoint = kHeaderSize + 6, kSkinJoints = kHeaderSize + 8, kSkinSkeleton = kHeaderSize + 10,
+                 kSkinReserved = kHeaderSize + 13, kSkinName = kHeaderSize + 14;
+// Offsets in a JOINT_WEIGHTS packet (header included, spec 21.2).
+constexpr size_t kWeightsFirst = kHeaderSize, kWeightsCount = kHeaderSize + 4, kWeightsJointSize = kHeaderSize + 6,
+                 kWeightsReserved = kHeaderSize + 7;
+
+void skin_vectors(Writer& w) {
+    const SceneDescription scene = skinned_arm();
+    const SkinStream base = make_skin_stream(scene);
+    const Packets& skins = base.scene.skins;     // joints 0..1, 2..3
+    const Packets& weights = base.weights;       // the records of points 0.., in runs
+    if (skins.size() != 2 || weights.size() < 2) {
+        std::cerr << "make_vectors: the arm takes " << skins.size() << " SKIN and " << weights.size()
+                  << " JOINT_WEIGHTS packets, not 2 and 2 or more\n";
+        std::exit(1);
+    }
+    const Packets stream = base.all();
+    const Packets head = base.before_weights();
+    const Packets geometry = base.geometry.all();
+    const size_t scene_at = geometry.size(), skins_at = scene_at + base.scene.scene.size(),
+                 weights_at = skins_at + skins.size();
+    const char* kArm =
+        "the skinned arm of valid/skin (format 1.5: 6 nodes, node 5 'Arm' showing mesh 0 (object 0: 6 ellipsoids, 40 "
+        "points with normals) with skin 0 'Arm skin' of 4 joints (nodes 1..4, skeleton node 1) in 2 SKIN packets, "
+        "and an influence record for every point in JOINT_WEIGHTS packets), packets in stream order";
+    const std::string arm = kArm;
+    w.write("valid", "skin",
+            "format 1.5 (spec 21): a skinned arm: 6 nodes (a root 'Rig', a chain of 4 joints 'Upper', 'Lower', "
+            "'Hand', 'Finger', and 'Arm', whose record names mesh 0 and skin 0: its SCENE packet says 1.5), mesh 0 "
+            "of object 0 (6 ellipsoids, 40 points with normals, packet size 200), skin 0 'Arm skin' (skeleton node "
+            "1) of the joint nodes 1..4 with their inverse bind matrices in 2 SKIN packets (joints 0..1, 2..3), and "
+            "a record of 1 to 4 influences for every point in JOINT_WEIGHTS packets with one-byte joints; packets "
+            "in stream order; the skin complete, every point weighted, node 5 shown skinned",
+            stream);
+
+    // ---- unusual ----
+    {
+        // The same records with two-byte joints, cut again into runs that fit the packet size of 200
+        // bytes (176 of payload: 8 of header and records of 1 + 3n bytes).
+        Packets sent = head;
+        uint32_t sequence = 800;
+        for (const Packet& p : weights) {
+            const std::vector<RawRecord> records = raw_records(run_of(p));
+            const uint32_t first = run_of(p).first_index;
+            size_t begin = 0;
+            while (begin < records.size()) {
+                size_t end = begin, size = 8;
+                while (end < records.size() && size + 1 + 3 * records[end].joints.size() <= 176)
+                    size += 1 + 3 * records[end++].joints.size();
+                const std::vector<RawRecord> part(records.begin() + long(begin), records.begin() + long(end));
+                sent.push_back(weights_packet(0, sequence++, weights_payload(first + uint32_t(begin), part, 2)));
+                begin = end;
+            }
+        }
+        w.write("unusual", "weights_joint_size_2",
+                arm + ", with the records of every JOINT_WEIGHTS packet written with two-byte joints (joint_size 2, "
+                      "although every joint is below 256), cut again into runs that fit the packet size (sequence "
+                      "800 on): the same records (spec 21.2); decodes as valid/skin",
+                sent);
+    }
+    {
+        Packets sent = skins;
+        sent.insert(sent.end(), weights.begin(), weights.end());
+        sent.insert(sent.end(), head.begin(), head.begin() + long(skins_at));
+        w.write("unusual", "skin_before_stream_info",
+                "the packets of the skinned arm with the 2 SKIN and the JOINT_WEIGHTS packets first, before the "
+                "STREAM_INFO and the SCENE packets: the SKIN packets are stream-level and accepted at once (spec 21), "
+                "the JOINT_WEIGHTS packets held like POINTS packets (spec 21.2, 11.2) and released in arrival order "
+                "when the STREAM_INFO arrives, then accepted; decodes as valid/skin",
+                sent);
+    }
+    {
+        Packets sent = geometry;
+        Packets rest(stream.begin() + long(scene_at), stream.end());
+        Rng rng(71);
+        for (size_t i = rest.size(); i > 1; --i) std::swap(rest[i - 1], rest[rng.below(i)]);
+        for (size_t i = 0; i < rest.size(); ++i) {
+            sent.push_back(rest[i]);
+            if (i == 1) sent.push_back(rest[i]);
+            if (i == 3) {
+                Packet again = rest[0];
+                restamp_packet(again, 900);
+                sent.push_back(again);
+            }
+        }
+        Packet again = skins[1];
+        restamp_packet(again, 901);
+        sent.push_back(again);
+        again = weights[0];
+        restamp_packet(again, 902);
+        sent.push_back(again);
+        w.write("unusual", "skin_shuffled_duplicates",
+                "the skinned arm with its SCENE, SKIN and JOINT_WEIGHTS packets shuffled after the geometry, the "
+                "second sent twice (byte-identical), the first again after the fourth with sequence number 900, and "
+                "the second SKIN packet and the first JOINT_WEIGHTS packet again at the end (sequence 901, 902): "
+                "duplicates (spec 21.1, 21.2: nothing new); decodes as valid/skin",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        JointWeightsRun run = run_of(weights[0]);
+        std::vector<RawRecord> records = raw_records(run);
+        records.resize(12);  // 12 records of at most 13 bytes fit the packet size with two-byte joints
+        sent.push_back(weights_packet(0, 1000, weights_payload(run.first_index, records, 2)));
+        w.write("unusual", "weights_joint_size_repeat",
+                arm + ", then the records of points 0..11 again (sequence 1000) written with two-byte joints: "
+                      "identical to those held (spec 21.2: joints compare as numbers, whatever joint_size carried "
+                      "them): a duplicate",
+                sent);
+    }
+    {
+        // Runs cut as no sender cuts: 10..29 (two-byte joints), 0..14 (0..9 new, 10..14 compared), then the
+        // rest from 30, then 5..34 (a duplicate).
+        Packets sent = head;
+        uint32_t sequence = 1000;
+        const uint32_t n = uint32_t(base.records.size());
+        for (auto [first, count, size] : std::vector<std::tuple<uint32_t, uint32_t, uint8_t>>{
+                 {10, 20, 2}, {0, 15, 1}, {30, n - 30, 1}, {5, 20, 1}}) {
+            std::vector<RawRecord> records;
+            for (uint32_t i = first; i < first + count; ++i) records.push_back(raw(base.records[i]));
+            sent.push_back(weights_packet(0, sequence++, weights_payload(first, records, size)));
+            if (sent.back().size() > 200) {
+                std::cerr << "make_vectors: a JOINT_WEIGHTS packet larger than the packet size\n";
+                std::exit(1);
+            }
+        }
+        w.write("unusual", "weights_overlapping_runs",
+                "the skinned arm with its records in 4 JOINT_WEIGHTS packets that overlap, cut as no sender cuts "
+                "(sequence 1000..1003): points 10..29 (two-byte joints), 0..14 (accepted: it brings 0..9; its records "
+                "of 10..14 are compared with those held and agree), 30..39, then 5..24 (a duplicate: every record "
+                "held); spec 21.2 keeps one record per point, whatever packets carried it; decodes as valid/skin",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        SkinPiece piece = skin_piece_of(skins[0]);
+        size_t zeros = 0;
+        for (SkinJoint& j : piece.joints)
+            for (float& v : j.inverse_bind)
+                if (v == 0.0f) {
+                    v = -0.0f;
+                    ++zeros;
+                }
+        if (zeros == 0) std::exit(1);
+        sent.push_back(skin_packet(piece, 1000));
+        w.write("unusual", "skin_negative_zero",
+                arm + ", then the first SKIN packet again (sequence 1000) with -0 for every +0 of its two inverse bind "
+                      "matrices: a duplicate, not a mismatch (spec 21.1: matrix entries compare as numbers, +0 and -0 "
+                      "agree)",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        for (size_t i = skins_at; i < sent.size(); ++i) {
+            Packet& p = sent[i];
+            p[i < weights_at ? kSkinReserved : kWeightsReserved] = 0xA5;
+            reseal(p);
+        }
+        Packet again = skins[0];
+        again[kSkinReserved] = 0x5A;
+        reseal(again);
+        restamp_packet(again, 1000);
+        sent.push_back(again);
+        w.write("unusual", "skin_reserved",
+                arm + ", with the reserved byte of every SKIN packet (payload offset 13) and of every JOINT_WEIGHTS "
+                      "packet (payload offset 7) set to A5, then the first SKIN packet again (sequence 1000) with 5A "
+                      "there: ignored when reading (spec 21.1, 21.2), so the repeat is a duplicate; decodes as "
+                      "valid/skin",
+                sent);
+    }
+    {
+        // Node 4's record with one stray byte after its transform: fewer than the two bytes of a skin field.
+        Packets sent = geometry;
+        sent.push_back(one_node_scene_packet(scene, scene.nodes[4], {0x00}, kSkinMinor, 1000));
+        sent.insert(sent.end(), stream.begin() + long(scene_at), stream.end());
+        w.write("unusual", "skin_node_stray_byte",
+                "the skinned arm with, before its SCENE packets, a SCENE packet (version 1.5, sequence 1000) of node "
+                "4's record followed by one stray byte 00 after its transform: fewer than the two bytes of a skin "
+                "field, so the record has no skin (spec 21: 'a record without those two bytes has no skin'; 15.1: "
+                "the byte is ignored) and compares equal to the record of the stream's SCENE packet, which is then a "
+                "duplicate for that node; decodes as valid/skin",
+                sent);
+    }
+    {
+        // Every record without a skin written first with an explicit skin field 0xFFFF (SCENE packets that say
+        // 1.5), then the stream's own SCENE packets, whose records of those nodes have no field.
+        Packets sent = geometry;
+        for (uint16_t i = 0; i < 5; ++i)
+            sent.push_back(one_node_scene_packet(scene, scene.nodes[i], {0xFF, 0xFF}, kSkinMinor, 1000 + i));
+        sent.insert(sent.end(), stream.begin() + long(scene_at), stream.end());
+        w.write("unusual", "skin_field_none",
+                "the skinned arm with, before its SCENE packets, one SCENE packet (version 1.5, sequence 1000..1004) "
+                "for each of nodes 0..4 whose record carries an explicit skin field FFFF (none); the stream's own "
+                "SCENE packets, whose records of those nodes have no skin field (as a 1.4 encoder writes them), then "
+                "agree with them (spec 21: 'a record without it comparing as 0xFFFF'): the first is a duplicate, the "
+                "one with node 5's record accepted; decodes as valid/skin",
+                sent);
+    }
+
+    // ---- faulty: no rejection, but the stream is not complete or does not conform (spec 21.3) ----
+    {
+        Packets sent = stream;
+        sent.erase(sent.begin() + long(skins_at) + 1);
+        w.write("faulty", "skin_incomplete",
+                arm + ", without the second SKIN packet (joints 2..3): no rejection; the skin holds 2 of 4 joints "
+                      "(missing [2, 4)), is not complete, and node 5 is shown unskinned (spec 21.3: 'its record names "
+                      "a skin ... and that skin is complete'); the stream is not complete",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        sent.erase(sent.begin() + long(skins_at), sent.begin() + long(weights_at));
+        w.write("faulty", "skin_lost",
+                arm + ", without both SKIN packets: no rejection; skin_count null, no skin; node 5 names skin 0 and is "
+                      "shown unskinned (spec 21.3); the stream is not complete",
+                sent);
+    }
+    w.write("faulty", "skin_index_past_count",
+            arm + ", with node 5's record naming skin 1 where skin_count is 1 (its SCENE packet re-encoded): no "
+                  "rejection (spec 21: the field is not checked against the skin table in SCENE); node 5 is shown "
+                  "unskinned; the stream does not conform ('every node whose record names a skin names one below "
+                  "skin_count')",
+            edit_node(stream, 5, [](SceneNode& n) { n.skin = 1; }));
+    w.write("faulty", "skin_node_without_mesh",
+            arm + ", with node 4's record (the finger, no mesh) naming skin 0 (its SCENE packet re-encoded, saying "
+                  "1.5): no rejection; node 4 has no mesh to skin, node 5 is shown skinned; the stream does not "
+                  "conform (spec 21.3: 'every node whose record names a skin ... has a mesh')",
+            edit_node(stream, 4, [](SceneNode& n) { n.skin = 0; }));
+    {
+        Packets sent = stream;
+        SkinPiece piece = skin_piece_of(skins[1]);
+        piece.joints[1].node = 6;
+        sent[skins_at + 1] = with_payload(skins[1], encode_skin_payload(piece));
+        w.write("faulty", "skin_joint_node_past_table",
+                arm + ", with joint 3's node 6 in a table of 6 nodes (the second SKIN packet re-encoded): no "
+                      "rejection (spec 21.1 does not check node against the SCENE table); node 6 has no record and is "
+                      "not shown, so node 5 is shown unskinned (21.3); the stream does not conform ('every joint's "
+                      "node ... is below the SCENE node_count and has a node record')",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        for (size_t k = 0; k < 2; ++k) {
+            Packet& p = sent[skins_at + k];
+            put16(p, kSkinSkeleton, 6);
+            reseal(p);
+        }
+        w.write("faulty", "skin_skeleton_past_table",
+                arm + ", with the skeleton node 6 in a table of 6 nodes in both SKIN packets (resealed): no "
+                      "rejection; the skeleton is not shown, so node 5 is shown unskinned (spec 21.3: 'and the "
+                      "skin's skeleton when it is not 0xFFFF'); the stream does not conform",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        for (size_t k = 0; k < 2; ++k) {
+            SkinPiece piece = skin_piece_of(skins[k]);
+            piece.name = std::string("Arm \xC0\xAF skin");
+            sent[skins_at + k] = with_payload(skins[k], encode_skin_payload(piece));
+        }
+        w.write("faulty", "skin_name_not_utf8",
+                arm + ", with the skin named with the bytes 'Arm C0 AF skin' (an overlong encoding of '/', two "
+                      "maximal ill-formed subsequences) in both SKIN packets: no rejection; the name shown as "
+                      "'Arm \\uFFFD\\uFFFD skin' (spec 21.1 by 15); node 5 shown skinned; the stream does not conform",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        JointWeightsRun run = run_of(weights[0]);
+        std::vector<RawRecord> records = raw_records(run);
+        size_t at = 0;
+        while (records[at].joints.size() < 2) ++at;
+        records[at].joints.back() = 4;  // joint 4 of a skin of 4 joints
+        sent[weights_at] = with_payload(weights[0], weights_payload(run.first_index, records, 1));
+        w.write("faulty", "weights_joint_past_count",
+                arm + ", with the last joint of point " + std::to_string(run.first_index + at) +
+                    "'s record 4, past the skin's 4 joints (the first JOINT_WEIGHTS packet re-encoded): no rejection "
+                    "(spec 21.2 does not check joints against a skin); node 5 is shown unskinned (21.3: 'every joint "
+                    "index in the records held for those objects is below the skin's joint_count'); the stream does "
+                    "not conform",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        sent.erase(sent.begin() + long(weights_at) + 1);
+        w.write("faulty", "weights_point_missing",
+                arm + ", without the second JOINT_WEIGHTS packet: no rejection; object 0 is weighted (a held point "
+                      "with its record), so node 5 is shown skinned (spec 21.3: each vertex gets the record of the "
+                      "nearest held point with a record), but the stream is not complete ('every point of every "
+                      "object shown by the mesh of a node whose record names a skin has its record')",
+                sent);
+    }
+    w.write("faulty", "weights_lost",
+            arm + ", without any JOINT_WEIGHTS packet: no rejection; object 0 is not weighted, so node 5 is shown "
+                  "unskinned (spec 21.3: 'every object its mesh shows is weighted'); the stream is not complete",
+            head);
+
+    // ---- faulty: SKIN rejections. A copy of the first SKIN packet (joints 0..1) with one defect,
+    // sequence 1000, after the stream (resealed; a payload of another length gets its payload_length
+    // and checksum). Everything else decodes as in valid/skin. ----
+    const Packet& first_skin = skins[0];
+    auto after_stream = [&](Packet copy) {
+        restamp_packet(copy, 1000);  // reseals
+        Packets sent = stream;
+        sent.push_back(copy);
+        return sent;
+    };
+    auto skin_edited = [&](const std::function<void(Packet&)>& edit) {
+        Packet copy = first_skin;
+        edit(copy);
+        reseal(copy);
+        return after_stream(copy);
+    };
+    auto skin_rebuilt = [&](const std::function<void(SkinPiece&)>& edit) {
+        SkinPiece piece = skin_piece_of(first_skin);
+        edit(piece);
+        return after_stream(skin_packet(piece, 1000));
+    };
+    const std::string kSkinCopy = arm + ", then a copy of the first SKIN packet (joints 0..1) ";
+    {
+        std::vector<uint8_t> payload = payload_of(first_skin);
+        payload.resize(13);
+        w.write("faulty", "skin_payload_short",
+                kSkinCopy + "cut to a payload of 13 bytes, shorter than its 14 bytes of fields: rejected, malformed "
+                            "payload (spec 21.1: 'payload_length MUST equal 14 + name_length + 66 * count')",
+                after_stream(with_payload(first_skin, payload)));
+    }
+    {
+        std::vector<uint8_t> payload = payload_of(first_skin);
+        payload.push_back(0);
+        w.write("faulty", "skin_length_mismatch",
+                kSkinCopy + "with one byte (00) more after its joints: rejected, malformed payload (spec 21.1: the "
+                            "length differs)",
+                after_stream(with_payload(first_skin, payload)));
+    }
+    w.write("faulty", "skin_index_past_table",
+            kSkinCopy + "saying skin 1 of skin_count 1: rejected, malformed payload (spec 21.1: 'skin >= skin_count')",
+            skin_edited([](Packet& p) { put16(p, kSkinIndex, 1); }));
+    w.write("faulty", "skin_table_empty",
+            kSkinCopy + "saying skin_count 0: rejected, malformed payload (spec 21.1: skin 0 >= skin_count 0)",
+            skin_edited([](Packet& p) { put16(p, kSkinCount, 0); }));
+    w.write("faulty", "skin_joint_count_zero",
+            kSkinCopy + "with joint_count 0: rejected, malformed payload (spec 21.1: 'joint_count is 0')",
+            skin_edited([](Packet& p) { put16(p, kSkinJointCount, 0); }));
+    {
+        std::vector<uint8_t> payload = payload_of(first_skin);
+        payload.resize(14 + payload[12]);  // the fields and the name, no joint
+        payload[8] = payload[9] = 0;
+        w.write("faulty", "skin_count_zero",
+                kSkinCopy + "with count 0 and no joint (a payload of 14 + 8 bytes: its length agrees): rejected, "
+                            "malformed payload (spec 21.1: 'count is 0')",
+                after_stream(with_payload(first_skin, payload)));
+    }
+    w.write("faulty", "skin_joints_past_count",
+            kSkinCopy + "with first_joint 3: 3 + 2 joints = 5 > joint_count 4: rejected, malformed payload (spec 21.1: "
+                        "'first_joint + count > joint_count')",
+            skin_edited([](Packet& p) { put16(p, kSkinFirstJoint, 3); }));
+    w.write("faulty", "skin_first_joint_overflow",
+            kSkinCopy + "with first_joint 65535: first_joint + count = 65537, which is 1 in 16-bit arithmetic: "
+                        "rejected, malformed payload (spec 21.1: 'computed without overflow')",
+            skin_edited([](Packet& p) { put16(p, kSkinFirstJoint, 65535); }));
+    const size_t joints_at = kSkinName + 8;  // after the 8-byte name "Arm skin"
+    w.write("faulty", "skin_matrix_infinite",
+            kSkinCopy + "with entry 15 of joint 1's inverse bind matrix -infinity (FF800000): rejected, malformed "
+                        "payload (spec 21.1: 'a float is not finite')",
+            skin_edited([&](Packet& p) { put32(p, joints_at + 66 + 2 + 4 * 15, 0xFF800000u); }));
+    w.write("faulty", "skin_matrix_nan",
+            kSkinCopy + "with entry 5 of joint 0's inverse bind matrix a NaN (7FC00000): rejected, malformed payload "
+                        "(spec 21.1: 'a float is not finite')",
+            skin_edited([&](Packet& p) { put32(p, joints_at + 2 + 4 * 5, 0x7FC00000u); }));
+    w.write("faulty", "skin_count_contradicts",
+            kSkinCopy + "saying skin_count 2 where the others say 1: rejected, stream mismatch (spec 21.1: its "
+                        "skin_count against the one kept)",
+            skin_edited([](Packet& p) { put16(p, kSkinCount, 2); }));
+    w.write("faulty", "skin_joint_count_contradicts",
+            kSkinCopy + "saying joint_count 5 where the skin's packets say 4: rejected, stream mismatch (spec 21.1)",
+            skin_edited([](Packet& p) { put16(p, kSkinJointCount, 5); }));
+    w.write("faulty", "skin_skeleton_contradicts",
+            kSkinCopy + "saying skeleton 0 where the skin's packets say 1: rejected, stream mismatch (spec 21.1)",
+            skin_edited([](Packet& p) { put16(p, kSkinSkeleton, 0); }));
+    w.write("faulty", "skin_name_contradicts",
+            kSkinCopy + "naming the skin 'arm skin' where it is 'Arm skin': rejected, stream mismatch (spec 21.1: "
+                        "names compared as bytes)",
+            skin_edited([](Packet& p) { p[kSkinName] = 'a'; }));
+    w.write("faulty", "skin_joint_node_contradicts",
+            kSkinCopy + "saying node 3 for joint 1 where it is node 2: rejected, stream mismatch (spec 21.1: each "
+                        "joint against the joint of the same index kept)",
+            skin_edited([&](Packet& p) { put16(p, joints_at + 66, 3); }));
+    w.write("faulty", "skin_matrix_contradicts",
+            kSkinCopy + "with entry 13 of joint 0's inverse bind matrix 1.5 where it is 1: rejected, stream mismatch "
+                        "(spec 21.1: the 16 matrix entries as numbers)",
+            skin_rebuilt([](SkinPiece& s) { s.joints[0].inverse_bind[13] = 1.5f; }));
+    {
+        // Before the skin is complete: right after the first SKIN packet (joints 0..1), a packet of
+        // joints 1..2 whose joint 1 differs; joint 2 (new) is not kept either, it comes with the next packet.
+        SkinPiece piece = skin_piece_of(first_skin);
+        SkinPiece second = skin_piece_of(skins[1]);
+        piece.first_joint = 1;
+        piece.joints = {piece.joints[1], second.joints[0]};
+        piece.joints[0].inverse_bind[0] = 2.0f;
+        Packets sent = stream;
+        sent.insert(sent.begin() + long(skins_at) + 1, skin_packet(piece, 1000));
+        w.write("faulty", "skin_joint_contradicts_partly_new",
+                arm + ", with a SKIN packet of joints 1..2 (sequence 1000) right after the first (joints 0..1), "
+                      "entry 0 of joint 1's matrix 2 where it is 1: rejected, stream mismatch (spec 21.1: also while "
+                      "the skin is not complete), and nothing of it is kept (joint 2, not held then, arrives with the "
+                      "next packet); the skin as in valid/skin",
+                sent);
+    }
+    {
+        SceneNode n = scene.nodes[5];
+        n.skin = 1;
+        Packets sent = stream;
+        sent.push_back(one_node_scene_packet(scene, n, {}, kSkinMinor, 1000));
+        w.write("faulty", "skin_node_skin_contradicts",
+                arm + ", then a SCENE packet (version 1.5, sequence 1000) of node 5's record naming skin 1 where it "
+                      "named skin 0: rejected, stream mismatch (spec 21: the field is compared like the record's other "
+                      "fields, 15.1)",
+                sent);
+    }
+    {
+        SceneNode n = scene.nodes[5];
+        n.skin = kNone;
+        Packets sent = stream;
+        sent.push_back(one_node_scene_packet(scene, n, {}, kFormatMinor, 1000));
+        w.write("faulty", "skin_node_skin_dropped",
+                arm + ", then a SCENE packet (version 1.1, sequence 1000) of node 5's record without the skin field, "
+                      "as a 1.4 encoder writes it: rejected, stream mismatch (spec 21: 'a record without it comparing "
+                      "as 0xFFFF', and node 5's names skin 0)",
+                sent);
+    }
+
+    // ---- faulty: JOINT_WEIGHTS rejections. A copy of the first JOINT_WEIGHTS packet with one defect,
+    // sequence 1000, after the stream (resealed; a payload of another length gets its payload_length
+    // and checksum), unless the row says otherwise. Everything else decodes as in valid/skin. ----
+    const Packet& first_weights = weights[0];
+    const JointWeightsRun run0 = run_of(first_weights);
+    const std::vector<RawRecord> records0 = raw_records(run0);
+    size_t multi = 0;  // the first record with at least 2 influences of different weights
+    while (records0[multi].joints.size() < 2 || records0[multi].weights[0] == records0[multi].weights[1]) ++multi;
+    const std::string kWeightsCopy = arm + ", then a copy of the first JOINT_WEIGHTS packet (points 0.." +
+                                     std::to_string(run0.records.size() - 1) + ") ";
+    auto weights_rebuilt = [&](const std::function<void(std::vector<RawRecord>&)>& edit, uint8_t joint_size = 1) {
+        std::vector<RawRecord> records = records0;
+        edit(records);
+        return with_payload(first_weights, weights_payload(run0.first_index, records, joint_size));
+    };
+    auto weights_edited = [&](const std::function<void(Packet&)>& edit) {
+        Packet copy = first_weights;
+        edit(copy);
+        reseal(copy);
+        return after_stream(copy);
+    };
+    const std::string at_multi = "point " + std::to_string(multi) + "'s record";
+    {
+        std::vector<uint8_t> payload = payload_of(first_weights);
+        payload.resize(7);
+        w.write("faulty", "weights_payload_short",
+                kWeightsCopy + "cut to a payload of 7 bytes, shorter than its 8 bytes of fields: rejected, malformed "
+                               "payload (spec 21.2: 'shorter than 8 bytes')",
+                after_stream(with_payload(first_weights, payload)));
+    }
+    w.write("faulty", "weights_count_zero",
+            kWeightsCopy + "with count 0 and no record (an 8-byte payload): rejected, malformed payload (spec 21.2: "
+                           "'count is 0')",
+            after_stream(with_payload(first_weights, weights_payload(0, {}, 1))));
+    w.write("faulty", "weights_joint_size_3",
+            kWeightsCopy + "with joint_size 3: rejected, malformed payload (spec 21.2: 'joint_size is neither 1 nor 2')",
+            weights_edited([](Packet& p) { p[kWeightsJointSize] = 3; }));
+    {
+        const uint32_t first = uint32_t(0x100000000ull - run0.records.size());
+        w.write("faulty", "weights_index_overflow",
+                kWeightsCopy + "with first_index " + std::to_string(first) + " = 2^32 - count: first_index + count = "
+                               "2^32 > 2^32 - 1 (0 in 32-bit arithmetic): rejected, malformed payload (spec 21.2: "
+                               "'computed without overflow'; checked at step 11, before the object's point_count)",
+                weights_edited([&](Packet& p) { put32(p, kWeightsFirst, first); }));
+    }
+    w.write("faulty", "weights_n_zero",
+            kWeightsCopy + "with point 0's record replaced by one of n 0 (one byte 00): rejected, malformed payload "
+                           "(spec 21.2: 'a record's n is 0')",
+            after_stream(weights_rebuilt([](std::vector<RawRecord>& r) { r[0] = RawRecord{{}, {}, 0}; })));
+    w.write("faulty", "weights_n_5",
+            kWeightsCopy + "with point 0's record replaced by one of 5 influences (joints 0..4, weights 51 each: "
+                           "distinct, summing to 255): rejected, malformed payload (spec 21.2: 'above 4')",
+            after_stream(weights_rebuilt([](std::vector<RawRecord>& r) {
+                r[0] = RawRecord{{0, 1, 2, 3, 4}, {51, 51, 51, 51, 51}};
+            })));
+    {
+        std::vector<uint8_t> payload = payload_of(first_weights);
+        payload.pop_back();
+        w.write("faulty", "weights_record_past_payload",
+                kWeightsCopy + "without its last byte (the last weight of its last record): rejected, malformed "
+                               "payload (spec 21.2: 'a record runs past the payload')",
+                after_stream(with_payload(first_weights, payload)));
+    }
+    {
+        std::vector<uint8_t> payload = payload_of(first_weights);
+        payload.push_back(0);
+        w.write("faulty", "weights_trailing_byte",
+                kWeightsCopy + "with one byte (00) more after its last record: rejected, malformed payload (spec "
+                               "21.2: 'bytes follow the last record')",
+                after_stream(with_payload(first_weights, payload)));
+    }
+    w.write("faulty", "weights_weight_zero",
+            kWeightsCopy + "with point 0's record replaced by joints 0, 1, 2 with weights 0, 200, 55 (summing to 255): "
+                           "rejected, malformed payload (spec 21.2: 'a weight is 0')",
+            after_stream(weights_rebuilt([](std::vector<RawRecord>& r) { r[0] = RawRecord{{0, 1, 2}, {0, 200, 55}}; })));
+    w.write("faulty", "weights_sum_254",
+            kWeightsCopy + "with point 0's record replaced by joints 0, 1 with weights 200, 54: rejected, malformed "
+                           "payload (spec 21.2: 'a record's weights do not sum to 255')",
+            after_stream(weights_rebuilt([](std::vector<RawRecord>& r) { r[0] = RawRecord{{0, 1}, {200, 54}}; })));
+    w.write("faulty", "weights_sum_wraps",
+            kWeightsCopy + "with point 0's record replaced by joints 0, 1, 2 with weights 255, 255, 1: they sum to 511, "
+                           "which is 255 in 8-bit arithmetic: rejected, malformed payload (spec 21.2: the weights do "
+                           "not sum to 255)",
+            after_stream(weights_rebuilt([](std::vector<RawRecord>& r) { r[0] = RawRecord{{0, 1, 2}, {255, 255, 1}}; })));
+    w.write("faulty", "weights_joint_twice",
+            kWeightsCopy + "with point 0's record replaced by joints 1, 2, 1 with weights 100, 100, 55: rejected, "
+                           "malformed payload (spec 21.2: 'a record names one joint twice')",
+            after_stream(weights_rebuilt([](std::vector<RawRecord>& r) { r[0] = RawRecord{{1, 2, 1}, {100, 100, 55}}; })));
+    {
+        Packet bad = weights_rebuilt([](std::vector<RawRecord>& r) { r[0] = RawRecord{{0, 1, 2}, {0, 200, 55}}; });
+        restamp_packet(bad, 1000);
+        Packets sent = {bad};
+        sent.insert(sent.end(), stream.begin(), stream.end());
+        w.write("faulty", "weights_malformed_before_stream_info",
+                "the skinned arm with, before its STREAM_INFO, the copy of faulty/weights_weight_zero (sequence "
+                "1000): rejected when it arrives, malformed payload (spec 21.2: the checks that need no stream info "
+                "are made at step 11, before a packet is held, 11.1); nothing held; the rest as in valid/skin",
+                sent);
+    }
+    {
+        Packet copy = first_weights;
+        put16(copy, 16, 1);  // object_id (header offset 16)
+        reseal(copy);
+        w.write("faulty", "weights_unknown_object",
+                kWeightsCopy + "sent for object 1 of a 1-object stream: rejected, unknown object (spec 21.2, 11.1 step "
+                               "12)",
+                after_stream(copy));
+    }
+    {
+        const JointWeightsRun last = run_of(weights.back());
+        Packet copy = weights.back();
+        put32(copy, kWeightsFirst, last.first_index + 1);
+        reseal(copy);
+        w.write("faulty", "weights_index_out_of_range",
+                arm + ", then a copy of the last JOINT_WEIGHTS packet (points " + std::to_string(last.first_index) +
+                    "..39) saying first_index " + std::to_string(last.first_index + 1) +
+                    " (sequence 1000): its last point 40 is not below point_count 40: rejected, index out of range "
+                    "(spec 21.2, 11.1 step 14)",
+                after_stream(copy));
+        restamp_packet(copy, 1000);
+        Packets sent = {copy};
+        sent.insert(sent.end(), stream.begin(), stream.end());
+        w.write("faulty", "weights_held_out_of_range",
+                "the skinned arm with, before its STREAM_INFO, the copy of faulty/weights_index_out_of_range (sequence "
+                "1000): well formed, so held (spec 21.2); when the STREAM_INFO releases it, rejected at its own "
+                "offset 12, index out of range (11.1 step 14); the rest as in valid/skin",
+                sent);
+    }
+    w.write("faulty", "weights_n_contradicts",
+            kWeightsCopy + "with " + at_multi + " replaced by its first joint alone, weight 255 (well formed): "
+                           "rejected, stream mismatch (spec 21.2: records identical only with the same n)",
+            after_stream(weights_rebuilt([&](std::vector<RawRecord>& r) {
+                r[multi] = RawRecord{{r[multi].joints[0]}, {255}};
+            })));
+    w.write("faulty", "weights_joint_contradicts",
+            kWeightsCopy + "with " + at_multi + "'s first joint replaced by a joint it does not name (well formed): "
+                           "rejected, stream mismatch (spec 21.2: the same joint indices)",
+            after_stream(weights_rebuilt([&](std::vector<RawRecord>& r) {
+                uint16_t other = 0;
+                while (std::find(r[multi].joints.begin(), r[multi].joints.end(), other) != r[multi].joints.end()) ++other;
+                r[multi].joints[0] = other;
+            })));
+    w.write("faulty", "weights_order_contradicts",
+            kWeightsCopy + "with " + at_multi + "'s first two influences swapped (each joint keeps its weight: the "
+                           "same influences in another order): rejected, stream mismatch (spec 21.2: 'the same joint "
+                           "indices in the same order ... and the same weights in the same order')",
+            after_stream(weights_rebuilt([&](std::vector<RawRecord>& r) {
+                std::swap(r[multi].joints[0], r[multi].joints[1]);
+                std::swap(r[multi].weights[0], r[multi].weights[1]);
+            })));
+    w.write("faulty", "weights_weight_contradicts",
+            kWeightsCopy + "with " + at_multi + "'s first two weights swapped (the joints in place; still summing to "
+                           "255): rejected, stream mismatch (spec 21.2: the same weights in the same order)",
+            after_stream(weights_rebuilt([&](std::vector<RawRecord>& r) {
+                std::swap(r[multi].weights[0], r[multi].weights[1]);
+            })));
+    {
+        // Before the second run arrives: right after the first JOINT_WEIGHTS packet, one of the last 4 points
+        // of its run and the first 4 of the next, the first of them with its record changed.
+        const uint32_t n0 = uint32_t(run0.records.size());
+        std::vector<RawRecord> records;
+        for (uint32_t i = n0 - 4; i < n0 + 4; ++i) records.push_back(raw(base.records[i]));
+        records[0] = RawRecord{{records[0].joints[0]}, {255}};
+        if (base.records[n0 - 4].count == 1) records[0] = RawRecord{{uint16_t(records[0].joints[0] ^ 1)}, {255}};
+        Packets sent = stream;
+        sent.insert(sent.begin() + long(weights_at) + 1, weights_packet(0, 1000, weights_payload(n0 - 4, records, 1)));
+        w.write("faulty", "weights_contradicts_partly_new",
+                arm + ", with a JOINT_WEIGHTS packet of points " + std::to_string(n0 - 4) + ".." +
+                    std::to_string(n0 + 3) + " (sequence 1000) right after the first (points 0.." +
+                    std::to_string(n0 - 1) + "), point " + std::to_string(n0 - 4) +
+                    "'s record changed: rejected, stream mismatch (spec 21.2), and nothing of it is kept (the records "
+                    "of points " + std::to_string(n0) + ".." + std::to_string(n0 + 3) +
+                    ", not held then, arrive with the next packet); as valid/skin",
+                sent);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -3617,6 +4479,7 @@ int main(int argc, char** argv) {
     exact_vectors(w);
     exact_repair_vectors(w);
     animation_vectors(w);
+    skin_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
