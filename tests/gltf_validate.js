@@ -1,5 +1,5 @@
 // Runs the Khronos glTF-Validator on one file and prints a one-line JSON summary:
-//   {"numErrors": N, "numWarnings": M, "errors": [first error messages]}
+//   {"numErrors": N, "numWarnings": M, "errors": [first error messages], "warnings": [warning codes]}
 // Usage: NODE_PATH=<checkout>/.cache/node/node_modules node tests/gltf_validate.js FILE.glb|FILE.gltf
 const fs = require('fs');
 const path = require('path');
@@ -23,7 +23,8 @@ validator
   })
   .then((report) => {
     const errors = report.issues.messages.filter((m) => m.severity === 0).map((m) => m.code + ' ' + m.pointer + ': ' + m.message);
-    console.log(JSON.stringify({ numErrors: report.issues.numErrors, numWarnings: report.issues.numWarnings, errors: errors.slice(0, 10) }));
+    const warnings = report.issues.messages.filter((m) => m.severity === 1).map((m) => m.code);
+    console.log(JSON.stringify({ numErrors: report.issues.numErrors, numWarnings: report.issues.numWarnings, errors: errors.slice(0, 10), warnings: warnings }));
   })
   .catch((e) => {
     console.log(JSON.stringify({ numErrors: -1, errors: [String(e)] }));

@@ -152,17 +152,23 @@ TEST_CASE("an instanced mesh is one set of objects: the milk truck's two wheel n
     CHECK_FALSE(any_warning(a, "animation"));
 }
 
-TEST_CASE("the Fox comes in its bind pose with its whole node tree and its animations, and the skin they need is named") {
+TEST_CASE("the Fox comes with its whole node tree, its animations, its skin and the weights of every vertex") {
     if (!have_sample("gltf/Fox/Fox.gltf")) return;
     Asset a = load_asset(sample("gltf/Fox/Fox.gltf"));
     CHECK(a.scene.nodes.size() == 26);
     REQUIRE(a.objects.size() == 1);
     CHECK(a.objects[0].positions.size() == 1728);
-    CHECK(any_warning(a, "skin"));
+    CHECK_FALSE(any_warning(a, "skin"));
     CHECK(a.scene.animations.size() == 3);
-    CHECK(any_warning(a, "move joints of a skin, which is not sent"));
-    CHECK(any_warning(a, "JOINTS_0"));
-    CHECK(any_warning(a, "WEIGHTS_0"));
+    CHECK_FALSE(any_warning(a, "JOINTS_0"));
+    CHECK_FALSE(any_warning(a, "WEIGHTS_0"));
+    // Format 1.5: the skin (24 joints, every one a node of the scene) and JOINTS_0 / WEIGHTS_0.
+    REQUIRE(a.scene.skins.size() == 1);
+    CHECK(a.scene.skins[0].joints.size() == 24);
+    CHECK(std::count_if(a.scene.nodes.begin(), a.scene.nodes.end(), [](const SceneNode& n) { return n.skin == 0; }) == 1);
+    REQUIRE(a.weights.size() == 1);
+    CHECK(a.weights[0].joints.size() == 1728);
+    CHECK(a.weights[0].weights.size() == 1728);
     REQUIRE(a.scene.materials.size() == 1);
     CHECK(a.scene.materials[0].roughness == doctest::Approx(0.58));
 }

@@ -100,6 +100,7 @@ public:
         read_materials();
         for (int old : order) add_node(old);
         if (asset_.objects.empty()) throw InputError(path_ + ": the scene holds no triangle or point primitive to send");
+        asset_.weights.resize(asset_.objects.size());
         read_animations();
     }
 
@@ -174,7 +175,6 @@ private:
             if (!std::isfinite(v)) throw InputError(where + ": its rotation has a non-finite value");
         for (float v : out.scale)
             if (!std::isfinite(v)) throw InputError(where + ": its scale has a non-finite value");
-        if (node.skin >= 0) warnings_.push_back(where + ": its skin is not sent; the mesh is sent in its bind pose");
         if (!node.weights.empty()) warnings_.push_back(where + ": its morph target weights are not sent");
         for (const auto& [name, value] : node.extensions) {
             (void)value;
@@ -184,6 +184,18 @@ private:
             if (size_t(node.mesh) >= model_.meshes.size())
                 throw InputError(where + ": refers to mesh " + std::to_string(node.mesh) + ", which does not exist");
             out.mesh = mesh_index(node.mesh, where);
+        }
+        if (node.skin >= 0) {
+            // Format 1.5 (spec 21): the skin travels when the node shows a mesh whose objects carry
+            // weights, and its joints are nodes of the scene.
+            if (out.mesh == kNone) {
+                warnings_.push_back(where + ": skinned, but without a mesh ellicast sends; its skin is not sent");
+            } else if (!mesh_weighted(out.mesh)) {
+                warnings_.push_back(where + ": skinned, but its mesh's primitives have no JOINTS_0 and WEIGHTS_0 that "
+                                    "ellicast can send; its skin is not sent (the mesh is sent in its bind pose)");
+            } else {
+                out.skin = skin_index(node.skin, where);
+            }
         }
         asset_.scene.nodes.push_back(std::move(out));
     }
@@ -225,6 +237,100 @@ private:
         return index;
     }
 
+    // Whether every object of asset mesh `m` carries weights.
+    bool mesh_weighted(uint16_t m) const {
+        for (const auto& p : asset_.scene.meshes[m].primitives)
+            if (p.object >= asset_.weights.size() || asset_.weights[p.object].empty()) return false;
+        return true;
+    }
+
+    // The asset skin of glTF skin `s` (read once, at its first use); kNone, with a warning, when it
+    // cannot be sent.
+    uint16_t skin_index(int s, const std::string& where) {
+        if (auto it = skin_map_.find(s); it != skin_map_.end()) return it->second;
+        uint16_t index = kNone;
+        try {
+            if (size_t(s) >= model_.skins.size())
+                throw InputError(where + ": refers to skin " + std::to_string(s) + ", which does not exist");
+            const tinygltf::Skin& skin = model_.skins[size_t(s)];
+            const std::string what = path_ + ": skin " + std::to_string(s) + (skin.name.empty() ? "" : " (" + skin.name + ")");
+            SceneSkin out;
+            out.name = wire_name(skin.name, what, warnings_);
+            if (skin.joints.empty() || skin.joints.size() > 0xFFFF)
+                throw InputError(what + ": " + std::to_string(skin.joints.size()) + " joints (1 to 65535 can be sent)");
+            std::vector<double> matrices;
+            if (skin.inverseBindMatrices >= 0) {
+                int components = 0;
+                matrices = read_accessor(model_, skin.inverseBindMatrices, what + " inverseBindMatrices", components);
+                if (components != 16 || matrices.size() != 16 * skin.joints.size())
+                    throw InputError(what + ": its inverseBindMatrices accessor is not a MAT4 per joint");
+            }
+            for (size_t j = 0; j < skin.joints.size(); ++j) {
+                auto node = new_node_.find(skin.joints[j]);
+                if (node == new_node_.end())
+                    throw InputError(what + ": joint " + std::to_string(j) + " (node " + std::to_string(skin.joints[j]) +
+                                     ") is not a node of the scene");
+                SkinJoint joint;
+                joint.node = node->second;
+                if (!matrices.empty())
+                    for (size_t k = 0; k < 16; ++k) {
+                        joint.inverse_bind[k] = float(matrices[16 * j + k]);
+                        if (!std::isfinite(joint.inverse_bind[k]))
+                            throw InputError(what + ": the inverse bind matrix of joint " + std::to_string(j) + " is not finite");
+                    }
+                out.joints.push_back(joint);
+            }
+            if (skin.skeleton >= 0) {
+                if (auto node = new_node_.find(skin.skeleton); node != new_node_.end()) out.skeleton = node->second;
+                else warnings_.push_back(what + ": its skeleton node " + std::to_string(skin.skeleton) +
+                                         " is not in the scene; sent without it");
+            }
+            if (asset_.scene.skins.size() >= kMaxTable) throw InputError(path_ + ": more than 65534 skins");
+            index = uint16_t(asset_.scene.skins.size());
+            asset_.scene.skins.push_back(std::move(out));
+        } catch (const InputError& e) {
+            warnings_.push_back(std::string(e.what()) + "; the skin is not sent (its meshes are sent in their bind pose)");
+        }
+        skin_map_[s] = index;
+        return index;
+    }
+
+    // JOINTS_0 and WEIGHTS_0 of a primitive, per vertex of `mesh` (as primitive_to_mesh made it), or
+    // empty with a warning naming what is wrong.
+    VertexWeights read_weights(const tinygltf::Primitive& prim, const Mesh& mesh, const std::string& where) {
+        VertexWeights out;
+        auto j = prim.attributes.find("JOINTS_0"), w = prim.attributes.find("WEIGHTS_0");
+        if (j == prim.attributes.end() && w == prim.attributes.end()) return out;
+        try {
+            if (j == prim.attributes.end() || w == prim.attributes.end())
+                throw InputError(where + ": JOINTS_0 without WEIGHTS_0 or the other way round");
+            if (mesh.is_point_set && prim.indices >= 0)
+                throw InputError(where + ": an indexed point primitive's weights");
+            int jc = 0, wc = 0;
+            const std::vector<double> joints = read_accessor(model_, j->second, where + " JOINTS_0", jc);
+            const std::vector<double> weights = read_accessor(model_, w->second, where + " WEIGHTS_0", wc);
+            const size_t n = mesh.positions.size();
+            if (jc != 4 || wc != 4 || joints.size() != 4 * n || weights.size() != 4 * n)
+                throw InputError(where + ": JOINTS_0 and WEIGHTS_0 are not VEC4 of the vertex count");
+            out.joints.resize(n);
+            out.weights.resize(n);
+            for (size_t i = 0; i < n; ++i)
+                for (size_t k = 0; k < 4; ++k) {
+                    const double jv = joints[4 * i + k], wv = weights[4 * i + k];
+                    if (!(jv >= 0) || jv > 0xFFFF || jv != std::floor(jv))
+                        throw InputError(where + ": JOINTS_0 of vertex " + std::to_string(i) + " is not a joint index");
+                    if (!std::isfinite(wv) || wv < 0)
+                        throw InputError(where + ": WEIGHTS_0 of vertex " + std::to_string(i) + " is negative or not finite");
+                    out.joints[i][k] = uint16_t(jv);
+                    out.weights[i][k] = float(wv);
+                }
+        } catch (const InputError& e) {
+            warnings_.push_back(std::string(e.what()) + "; the weights are not sent");
+            return {};
+        }
+        return out;
+    }
+
     // The object of a primitive: primitives with the same accessors and mode are one object.
     int object_index(const tinygltf::Primitive& prim, const std::string& name, const std::string& where) {
         auto key = std::make_tuple(prim.attributes, prim.indices, prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode,
@@ -232,7 +338,9 @@ private:
         if (auto it = object_map_.find(key); it != object_map_.end()) return it->second;
         for (const auto& [attr, accessor] : prim.attributes) {
             (void)accessor;
-            if (attr == "POSITION" || attr == "NORMAL" || attr == "TEXCOORD_0" || attr == "COLOR_0") continue;
+            if (attr == "POSITION" || attr == "NORMAL" || attr == "TEXCOORD_0" || attr == "COLOR_0" ||
+                attr == "JOINTS_0" || attr == "WEIGHTS_0")
+                continue;
             not_carried_attributes_[attr] = true;
         }
         Mesh mesh;
@@ -247,6 +355,8 @@ private:
             } else {
                 if (asset_.objects.size() >= kMaxObjects) throw InputError(path_ + ": more than 65535 objects");
                 result = int(asset_.objects.size());
+                asset_.weights.resize(asset_.objects.size());
+                asset_.weights.push_back(read_weights(prim, mesh, where));
                 asset_.objects.push_back(std::move(mesh));
             }
         }
@@ -480,14 +590,6 @@ private:
             }
             if (!dropped.empty())
                 warnings_.push_back(where + ": not sent: " + join(dropped));
-            // Skins are not carried: an animation of joints plays, but moves no mesh.
-            std::set<int> joints;
-            for (const auto& skin : model_.skins) joints.insert(skin.joints.begin(), skin.joints.end());
-            size_t on_joints = 0;
-            for (const auto& channel : anim.channels) on_joints += joints.count(channel.target_node);
-            if (on_joints > 0)
-                warnings_.push_back(where + ": " + std::to_string(on_joints) + " of its channels move joints of a skin, "
-                                    "which is not sent: they play, but the skinned mesh stays in its bind pose");
             if (out.tracks.size() > 0xFFFF) throw InputError(where + ": more than 65535 channels");
             if (out.tracks.empty()) {
                 warnings_.push_back(where + ": nothing of it can be sent; the animation is left out");
@@ -569,9 +671,6 @@ private:
 
     // Whole-file things ellicast does not carry.
     void warn_not_carried() {
-        if (!model_.skins.empty())
-            warnings_.push_back(path_ + ": " + std::to_string(model_.skins.size()) +
-                                " skin(s) not sent; skinned meshes are sent in their bind pose");
         if (!model_.cameras.empty())
             warnings_.push_back(path_ + ": " + std::to_string(model_.cameras.size()) + " camera(s) not sent");
         if (!model_.lights.empty())
@@ -606,6 +705,7 @@ private:
     std::vector<int> node_order_;
     std::map<int, uint16_t> new_node_;
     std::map<int, uint16_t> mesh_map_;
+    std::map<int, uint16_t> skin_map_;
     std::map<std::tuple<std::map<std::string, int>, int, int, bool>, int> object_map_;
     std::map<std::tuple<int, uint16_t, uint16_t, uint16_t, uint16_t>, uint16_t> texture_map_;
     std::map<int, std::vector<uint8_t>> view_images_;

@@ -290,13 +290,21 @@ private:
     // a point has no surface to orient it along, so that the file declares its tangent space rather
     // than leaving a viewer to generate one).
     std::optional<tinygltf::Primitive> object_primitive(size_t o, const std::optional<Dequantization>& dq,
-                                                        int dq_key, bool tangents, const std::string& what) {
-        auto key = std::make_tuple(o, dq_key, tangents);
+                                                        int dq_key, bool tangents, const std::string& what,
+                                                        bool skinned = false) {
+        // A skinned object (format 1.5) is written plain: Draco may reorder its vertices away from
+        // their weights, and a dequantizing wrapper node would not move with the skeleton.
+        auto key = std::make_tuple(o, skinned ? -2 : dq_key, tangents);
         if (auto it = primitives_.find(key); it != primitives_.end()) return it->second;
         std::optional<tinygltf::Primitive> result;
         if (std::optional<Mesh> mesh = writable_object(asset_.objects[o], what, warnings_)) {
             tangents = tangents && mesh->has_normals() && mesh->has_texcoords();
-            if (options_.draco && !mesh->is_point_set && !mesh->triangles.empty()) {
+            if (skinned) {
+                result = add_primitive(model_, *mesh);
+                if (tangents)
+                    result->attributes["TANGENT"] = add_float_attribute(model_, mesh_tangents(*mesh), TINYGLTF_TYPE_VEC4, false);
+                add_weights(*result, asset_.weights[o]);
+            } else if (options_.draco && !mesh->is_point_set && !mesh->triangles.empty()) {
                 result = draco_primitive(*mesh, what, tangents);
             } else if (dq) {
                 result = quantized_primitive(*mesh, *dq);
@@ -522,7 +530,8 @@ private:
         if (auto it = mesh_out_.find(mi); it != mesh_out_.end()) return it->second;
         const SceneMesh& m = asset_.scene.meshes[mi];
         const std::string label = path_ + ": mesh " + std::to_string(mi) + (m.name.empty() ? "" : " (" + m.name + ")");
-        std::optional<Dequantization> dq = mesh_dequantization(m);
+        const bool skinned = skinned_meshes_.count(mi) > 0;
+        std::optional<Dequantization> dq = skinned ? std::nullopt : mesh_dequantization(m);
         tinygltf::Mesh g;
         g.name = m.name;
         for (size_t p = 0; p < m.primitives.size(); ++p) {
@@ -536,7 +545,7 @@ private:
             const int material = primitive_material(sp.material, asset_.objects[sp.object], what);
             // A tangent space: for a normal map, also one in an extension, and for anisotropy.
             const bool normal_mapped = material >= 0 && material_patch::needs_tangents(model_.materials[size_t(material)]);
-            auto prim = object_primitive(sp.object, dq, dq ? int(mi) : -1, normal_mapped, what);
+            auto prim = object_primitive(sp.object, dq, dq ? int(mi) : -1, normal_mapped, what, skinned);
             if (!prim) continue;
             prim->material = material;
             g.primitives.push_back(std::move(*prim));
@@ -645,6 +654,7 @@ private:
                 out[i] = int(model_.nodes.size());
                 model_.nodes.emplace_back();
             }
+        plan_skins(ok, out);
         for (size_t i = 0; i < nodes.size(); ++i) {
             if (!ok[i]) continue;
             const SceneNode& n = nodes[i];
@@ -658,6 +668,7 @@ private:
                                         ", which is not in the scene; written without it");
                 } else if (int mesh = gltf_mesh(n.mesh); mesh >= 0) {
                     attach_mesh(g, mesh);
+                    if (n.skin != kNone && skinned_meshes_.count(n.mesh)) g.skin = skin_out_.at(n.skin);
                 }
             }
             model_.nodes[size_t(out[i])] = std::move(g);
@@ -730,6 +741,105 @@ private:
         }
     }
 
+    // Skins (format 1.5): which meshes are written skinned and the glTF skins, over the written nodes
+    // (out[i]: the glTF node of asset node i, -1 when not written). A mesh is skinned when every
+    // written node showing it names a skin that can be written (its joints and skeleton written)
+    // and every present object of it has weights per vertex; a mesh shown both skinned and not, or
+    // whose weights name joints past a skin, is written unskinned with a warning.
+    void plan_skins(const std::vector<bool>& ok, const std::vector<int>& out) {
+        const auto& nodes = asset_.scene.nodes;
+        const auto& skins = asset_.scene.skins;
+        std::vector<int> writable(skins.size(), 1);
+        for (size_t s = 0; s < skins.size(); ++s) {
+            if (skins[s].joints.empty()) writable[s] = 0;
+            for (const SkinJoint& j : skins[s].joints)
+                if (j.node >= nodes.size() || out[j.node] < 0) writable[s] = 0;
+            if (skins[s].skeleton != kNone && (skins[s].skeleton >= nodes.size() || out[skins[s].skeleton] < 0))
+                writable[s] = 0;
+        }
+        std::map<size_t, std::vector<size_t>> users;  // asset mesh -> written nodes showing it
+        for (size_t i = 0; i < nodes.size(); ++i)
+            if (ok[i] && nodes[i].mesh != kNone && nodes[i].mesh < asset_.scene.meshes.size()) users[nodes[i].mesh].push_back(i);
+        for (const auto& [mesh, shown_by] : users) {
+            size_t with_skin = 0;
+            uint16_t joints = 0xFFFF;
+            for (size_t i : shown_by)
+                if (nodes[i].skin != kNone) {
+                    ++with_skin;
+                    joints = nodes[i].skin < skins.size() && writable[nodes[i].skin]
+                                 ? std::min<uint16_t>(joints, uint16_t(skins[nodes[i].skin].joints.size()))
+                                 : 0;
+                }
+            if (with_skin == 0) continue;
+            const std::string what = path_ + ": mesh " + std::to_string(mesh);
+            std::string why;
+            if (with_skin < shown_by.size()) why = "it is shown both by skinned nodes and by nodes without a skin";
+            else if (joints == 0) why = "a skin of its nodes names a node that is not written";
+            for (const auto& p : asset_.scene.meshes[mesh].primitives) {
+                if (!why.empty() || !object_present(p.object)) continue;
+                const VertexWeights* w = p.object < asset_.weights.size() ? &asset_.weights[p.object] : nullptr;
+                if (!w || w->joints.size() != asset_.objects[p.object].positions.size() ||
+                    w->weights.size() != w->joints.size()) {
+                    why = "object " + std::to_string(p.object) + " has no weights per vertex";
+                    continue;
+                }
+                for (size_t v = 0; v < w->joints.size() && why.empty(); ++v)
+                    for (size_t k = 0; k < 4; ++k)
+                        if (w->weights[v][k] > 0 && w->joints[v][k] >= joints) {
+                            why = "the weights of object " + std::to_string(p.object) + " name joint " +
+                                  std::to_string(w->joints[v][k]) + ", past its skin's " + std::to_string(joints);
+                            break;
+                        }
+            }
+            if (!why.empty()) {
+                warnings_.push_back(what + " is written without skinning (its nodes in the bind pose): " + why);
+                continue;
+            }
+            skinned_meshes_.insert(mesh);
+            for (size_t i : shown_by) write_skin(nodes[i].skin, out);
+        }
+    }
+
+    // The glTF skin of asset skin `s` (written once).
+    void write_skin(uint16_t s, const std::vector<int>& out) {
+        if (skin_out_.count(s)) return;
+        const SceneSkin& skin = asset_.scene.skins[s];
+        tinygltf::Skin g;
+        g.name = skin.name;
+        std::vector<float> matrices;
+        for (const SkinJoint& j : skin.joints) {
+            g.joints.push_back(out[j.node]);
+            matrices.insert(matrices.end(), j.inverse_bind.begin(), j.inverse_bind.end());
+        }
+        if (skin.skeleton != kNone) g.skeleton = out[skin.skeleton];
+        const int view = add_buffer_view(model_, matrices.data(), matrices.size() * sizeof(float), 0);
+        g.inverseBindMatrices = add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, skin.joints.size());
+        skin_out_[s] = int(model_.skins.size());
+        model_.skins.push_back(std::move(g));
+    }
+
+    // JOINTS_0 (unsigned byte when every joint is below 256, else unsigned short) and WEIGHTS_0
+    // (float) of a primitive.
+    void add_weights(tinygltf::Primitive& prim, const VertexWeights& w) {
+        uint16_t top = 0;
+        for (const auto& j : w.joints)
+            for (uint16_t x : j) top = std::max(top, x);
+        if (top < 256) {
+            std::vector<uint8_t> bytes;
+            for (const auto& j : w.joints)
+                for (uint16_t x : j) bytes.push_back(uint8_t(x));
+            const int view = add_buffer_view(model_, bytes.data(), bytes.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
+            prim.attributes["JOINTS_0"] =
+                add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, w.joints.size());
+        } else {
+            const int view = add_buffer_view(model_, w.joints.data(), w.joints.size() * sizeof(w.joints[0]),
+                                             TINYGLTF_TARGET_ARRAY_BUFFER);
+            prim.attributes["JOINTS_0"] =
+                add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, w.joints.size());
+        }
+        prim.attributes["WEIGHTS_0"] = add_float_attribute(model_, w.weights, TINYGLTF_TYPE_VEC4, false);
+    }
+
     // Shows glTF mesh `mesh` at node `g` (index `at`): directly, or through a child node holding
     // the dequantizing transform of a quantized mesh.
     void attach_mesh(tinygltf::Node& g, int mesh) {
@@ -796,6 +906,8 @@ private:
     std::set<std::string> used_extensions_;  // extensions the materials' patches use (spec 18)
     std::map<uint16_t, int> untextured_;
     std::map<std::tuple<size_t, int, bool>, std::optional<tinygltf::Primitive>> primitives_;
+    std::set<size_t> skinned_meshes_;   // asset meshes written with JOINTS_0 / WEIGHTS_0
+    std::map<uint16_t, int> skin_out_;  // asset skin -> glTF skin
     std::map<size_t, int> mesh_out_;
     std::map<int, Dequantization> dequantization_;
     std::vector<int> parent_;

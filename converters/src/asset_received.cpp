@@ -2,6 +2,8 @@
 // down to what holds together, with the decoded objects.
 #include "ellicast/converters/asset.h"
 
+#include "skin_weights.h"
+
 #include <algorithm>
 #include <map>
 #include <set>
@@ -25,6 +27,11 @@ std::string texture_missing(const ReceivedStream& stream, uint16_t index) {
 // nodes written (node_map: stream node -> written node). What is not shown yet is named.
 void received_animations(const ReceivedStream& stream, const std::map<uint16_t, uint16_t>& node_map, Asset& asset,
                          std::vector<std::string>& warnings);
+
+// Skins (format 1.5, spec 21.3): the written nodes whose skin can be shown keep it (renumbered), the
+// others lose it with a warning saying why; weighted objects get per-vertex weights.
+void received_skins(const ReceivedStream& stream, const std::map<uint16_t, uint16_t>& node_map, Asset& asset,
+                    std::vector<std::string>& warnings);
 
 // A name as it can be shown and written (glTF is UTF-8 JSON): ill-formed UTF-8 replaced by U+FFFD
 // (spec 15.1), with a warning.
@@ -201,6 +208,7 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
         asset.scene.nodes.push_back(std::move(out));
     }
     received_animations(stream, node_map, asset, warnings);
+    received_skins(stream, node_map, asset, warnings);
     const size_t node_count = stream.scene_node_count();
     if (nodes.size() < node_count || cut_off)
         warnings.push_back(std::to_string(node_count - nodes.size()) + " of " + std::to_string(node_count) +
@@ -278,6 +286,77 @@ void received_animations(const ReceivedStream& stream, const std::map<uint16_t, 
         warnings.push_back(std::to_string(*count - stream.animations().size()) + " of " + std::to_string(*count) +
                            " animations did not arrive at all");
 }
+
+void received_skins(const ReceivedStream& stream, const std::map<uint16_t, uint16_t>& node_map, Asset& asset,
+                    std::vector<std::string>& warnings) {
+    // Weighted objects (a held point with its record) and the largest joint index of their records.
+    asset.weights.assign(asset.objects.size(), {});
+    std::map<size_t, uint16_t> max_joint;
+    for (size_t o = 0; o < asset.objects.size() && o < stream.objects().size(); ++o) {
+        if (asset.objects[o].positions.empty()) continue;
+        asset.weights[o] = skin_weights::vertex_weights(asset.objects[o], stream, o);
+        if (asset.weights[o].empty()) continue;
+        uint16_t m = 0;
+        for (const auto& [i, r] : stream.objects()[o].weights)
+            for (size_t k = 0; k < r.count; ++k) m = std::max(m, r.joints[k]);
+        max_joint[o] = m;
+    }
+    std::map<uint16_t, uint16_t> skin_map;  // stream skin -> written skin
+    for (SceneNode& node : asset.scene.nodes) {
+        if (node.skin == kNone) continue;
+        const uint16_t skin = node.skin;
+        node.skin = kNone;
+        const std::string what = "node " + std::to_string(node.index) + (node.name.empty() ? "" : " (" + node.name + ")");
+        std::string why;
+        auto s = stream.skins().find(skin);
+        if (s == stream.skins().end()) {
+            why = "its skin " + std::to_string(skin) + " has not arrived";
+        } else if (!s->second.complete()) {
+            why = "its skin " + std::to_string(skin) + " has " + std::to_string(s->second.joints.size()) + " of its " +
+                  std::to_string(s->second.joint_count) + " joints";
+        } else if (node.mesh == kNone) {
+            why = "its mesh is not shown";
+        } else {
+            for (const auto& [j, joint] : s->second.joints)
+                if (!node_map.count(joint.node)) {
+                    why = "the node " + std::to_string(joint.node) + " of joint " + std::to_string(j) + " is not shown";
+                    break;
+                }
+            if (why.empty() && s->second.skeleton != kNone && !node_map.count(s->second.skeleton))
+                why = "its skeleton node " + std::to_string(s->second.skeleton) + " is not shown";
+            bool any = false;
+            for (const auto& p : asset.scene.meshes[node.mesh].primitives) {
+                if (!why.empty()) break;
+                if (p.object >= asset.objects.size() || asset.objects[p.object].positions.empty()) continue;
+                any = true;
+                if (asset.weights[p.object].empty())
+                    why = "no weights of object " + std::to_string(p.object) + " have arrived";
+                else if (max_joint[p.object] >= s->second.joint_count)
+                    why = "the weights of object " + std::to_string(p.object) + " name joint " +
+                          std::to_string(max_joint[p.object]) + ", past the skin's " +
+                          std::to_string(s->second.joint_count) + " joints";
+            }
+            if (why.empty() && !any) why = "none of its mesh's objects has arrived";
+        }
+        if (!why.empty()) {
+            warnings.push_back(what + " is shown without its skin (in the bind pose): " + why);
+            continue;
+        }
+        auto [it, fresh] = skin_map.try_emplace(skin, uint16_t(asset.scene.skins.size()));
+        if (fresh) {
+            SceneSkin out;
+            out.name = shown_name(s->second.name, "skin " + std::to_string(skin), warnings);
+            out.skeleton = s->second.skeleton == kNone ? kNone : node_map.at(s->second.skeleton);
+            for (const auto& [j, joint] : s->second.joints) out.joints.push_back({node_map.at(joint.node), joint.inverse_bind});
+            asset.scene.skins.push_back(std::move(out));
+        }
+        node.skin = it->second;
+    }
+    if (const auto count = stream.skin_count(); count && stream.skins().size() < *count)
+        warnings.push_back(std::to_string(*count - stream.skins().size()) + " of " + std::to_string(*count) +
+                           " skins did not arrive at all");
+}
+
 }  // namespace
 
 }  // namespace ellicast

@@ -2,6 +2,8 @@
 // transmission order; decode_asset rebuilds objects and scene from what arrived.
 #include "ellicast/converters/asset_stream.h"
 
+#include "skin_weights.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -54,7 +56,23 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
     take(scene.materials, out.scene_packets, out.scene_bytes);
     take(scene.textures, out.scene_packets, out.scene_bytes);
     take(scene.animations, out.scene_packets, out.scene_bytes);
+    take(scene.skins, out.scene_packets, out.scene_bytes);
     take(stream.points, out.point_packets, out.point_bytes);
+    // Format 1.5: the skin weights of every point of each weighted object (spec 21.2), after the points.
+    std::vector<std::vector<uint8_t>> weights;
+    for (size_t i = 0; i < out.encoded.contents.size() && with_scene; ++i) {
+        if (i >= asset.weights.size() || asset.weights[i].empty()) continue;
+        const ObjectInfo& object = out.encoded.info.objects[i];
+        const std::vector<Influences> records = skin_weights::point_records(
+            asset.objects[i], asset.weights[i], out.encoded.contents[i].points, out.encoded.info, object);
+        if (records.empty()) continue;
+        if (Error e = packetize_joint_weights(out.encoded.info, uint16_t(i), records, stream_id, 0, weights);
+            e != Error::Ok) {
+            error = std::string("could not cut the skin weights into packets: ") + error_name(e);
+            return false;
+        }
+    }
+    take(weights, out.weight_packets, out.weight_bytes);
     // Format 1.3: each object's exact layer (spec 19), after its points.
     std::vector<std::vector<uint8_t>> connectivity;
     for (size_t i = 0; i < out.encoded.contents.size(); ++i) {

@@ -50,6 +50,7 @@ int component_count(int type) {
         case TINYGLTF_TYPE_VEC2: return 2;
         case TINYGLTF_TYPE_VEC3: return 3;
         case TINYGLTF_TYPE_VEC4: return 4;
+        case TINYGLTF_TYPE_MAT4: return 16;  // columns of 4 components need no padding (glTF 3.6.2.4)
         default: return 0;
     }
 }

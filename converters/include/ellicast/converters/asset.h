@@ -18,10 +18,21 @@
 
 namespace ellicast {
 
+// Skin joints and weights per vertex of an object (glTF JOINTS_0 / WEIGHTS_0): joint indices into
+// the skin's joint list, weights summing to 1 (unused slots 0).
+struct VertexWeights {
+    std::vector<std::array<uint16_t, 4>> joints;
+    std::vector<std::array<float, 4>> weights;
+    bool empty() const { return joints.empty(); }
+};
+
 struct Asset {
     // Object i of the stream, in its mesh's local frame. At the receiver an object with no
     // positions is one that has not arrived: write_asset leaves it out.
     std::vector<Mesh> objects;
+    // Format 1.5 (spec 21): weights[i], when present and not empty, holds one entry per vertex of
+    // objects[i]. Nodes name their skin in scene.nodes[n].skin, skins are in scene.skins.
+    std::vector<VertexWeights> weights;
     // Nodes, meshes (primitive -> object + material), materials, textures (image file bytes).
     SceneDescription scene;
     // What was dropped, repaired or ignored, one sentence each.
