@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <random>
 #include <fstream>
+#include <functional>
 #include <iterator>
 
 #include <fcntl.h>
@@ -83,6 +84,12 @@ inline std::vector<uint8_t> resealed(std::vector<uint8_t> p) {
     const uint32_t crc = crc32c(p.data(), body);
     for (int i = 0; i < 4; ++i) p[body + i] = uint8_t(crc >> (8 * i));
     return p;
+}
+
+// A packet with its payload changed by `edit` and its checksum recomputed: what a sender could send.
+inline std::vector<uint8_t> edited(std::vector<uint8_t> packet, const std::function<void(uint8_t*)>& edit) {
+    edit(packet.data() + kHeaderSize);
+    return resealed(std::move(packet));
 }
 
 // Writes `packets` as a stream file.

@@ -3,7 +3,10 @@
 #pragma once
 
 #include "ellicast/converters/asset.h"
+#include "ellicast/converters/asset_stream.h"
 #include "support.h"
+
+#include <functional>
 
 #include <Eigen/Dense>
 
@@ -23,6 +26,23 @@ inline constexpr const char* kGltfSamples[] = {
     "gltf/VertexColorTest/VertexColorTest.gltf",
     "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf"};
 inline std::string sample(const std::string& rel) { return (shared_samples() / rel).string(); }
+
+// What a receiver makes of `packets` without those for which lost(index) holds, decoded at grid
+// `grid`; `out`, when given, gets the stream it held.
+inline Asset received_without(const std::vector<std::vector<uint8_t>>& packets, const std::function<bool(size_t)>& lost,
+                              uint32_t grid, ReceivedStream* out = nullptr) {
+    ReceivedStream stream;
+    for (size_t i = 0; i < packets.size(); ++i)
+        if (!lost(i)) REQUIRE(stream.add_packet(packets[i], i) == Error::Ok);
+    Asset asset;
+    StreamDecodeReport report;
+    std::string error;
+    DecodeOptions decoding;
+    decoding.grid_resolution = grid;
+    REQUIRE_MESSAGE(decode_asset(stream, decoding, asset, report, error), error);
+    if (out) *out = std::move(stream);
+    return asset;
+}
 
 // The image bytes a texture reference of `a` shows (empty when none).
 inline std::vector<uint8_t> referenced_image(const Asset& a, const TextureRef& ref) {

@@ -24,16 +24,7 @@ EncodeOptions coarse() {
 bool is_animation(const std::vector<uint8_t>& p) { return p.size() > 6 && p[6] == 0x14; }
 
 Asset decode_without(const EncodedAsset& encoded, const std::function<bool(size_t)>& lost) {
-    ReceivedStream stream;
-    for (size_t i = 0; i < encoded.packets.size(); ++i)
-        if (!lost(i)) REQUIRE(stream.add_packet(encoded.packets[i], i) == Error::Ok);
-    Asset out;
-    StreamDecodeReport report;
-    std::string error;
-    DecodeOptions decoding;
-    decoding.grid_resolution = 24;
-    REQUIRE_MESSAGE(decode_asset(stream, decoding, out, report, error), error);
-    return out;
+    return received_without(encoded.packets, lost, 24);
 }
 
 void check_valid_without_warnings(const Asset& asset, const fs::path& path) {

@@ -56,11 +56,6 @@ ScenePackets packetize(const SceneDescription& scene, size_t packet_size = 400) 
     return packets;
 }
 
-// A packet with its payload changed by `edit` and its checksum recomputed: what a sender could send.
-std::vector<uint8_t> edited(std::vector<uint8_t> packet, const std::function<void(uint8_t*)>& edit) {
-    edit(packet.data() + kHeaderSize);
-    return test::resealed(std::move(packet));
-}
 
 void put_f32_at(uint8_t* p, float f) { std::memcpy(p, &f, 4); }
 
@@ -144,7 +139,7 @@ TEST_CASE("ANIMATION packets that are malformed or contradict earlier ones are r
         CAPTURE(c.what);
         ReceivedStream stream;
         REQUIRE(stream.add_packet(first, 0) == Error::Ok);
-        CHECK(stream.add_packet(edited(first, c.edit), 1) == c.expected);
+        CHECK(stream.add_packet(test::edited(first, c.edit), 1) == c.expected);
         CHECK(stream.counters().accepted == 1);
         // What was accepted stays.
         CHECK(stream.animations().at(0).tracks.at(0).keys_held > 0);
@@ -155,7 +150,7 @@ TEST_CASE("ANIMATION packets that are malformed or contradict earlier ones are r
         return p[kHeaderSize + 4] == 1 && p[kHeaderSize] == 0;  // animation 0, track 1: values end in -0
     });
     REQUIRE(stream.add_packet(step, 0) == Error::Ok);
-    const auto plus_zero = edited(step, [](uint8_t* p) { put_f32_at(p + 24 + 4 + 4 + 8, 0.0f); });
+    const auto plus_zero = test::edited(step, [](uint8_t* p) { put_f32_at(p + 24 + 4 + 4 + 8, 0.0f); });
     CHECK(stream.add_packet(plus_zero, 1) == Error::Ok);
     CHECK(stream.counters().duplicates == 1);
 }
@@ -168,7 +163,7 @@ TEST_CASE("a track whose times go back across packets is complete but not usable
         return p[kHeaderSize] == 0 && p[kHeaderSize + 4] == 0 && p[kHeaderSize + 16] != 0;
     });
     REQUIRE(second != packets.animations.end());
-    *second = edited(*second, [](uint8_t* p) {
+    *second = test::edited(*second, [](uint8_t* p) {
         const uint16_t count = uint16_t(p[20] | p[21] << 8);
         for (uint16_t k = 0; k < count; ++k) put_f32_at(p + 24 + 4 + size_t(k) * 20, 0.001f * float(k));  // after the name "Spin"
     });

@@ -4,6 +4,7 @@
 // its patch and the patch's textures; repeats, contradictions), and the converters: an asset per
 // ratified material extension, made from the Duck sample, comes back from a stream with the same
 // extension JSON, byte-identical images and a file the Khronos validator accepts.
+#include "scene_compare.h"
 #include "support.h"
 
 #include "ellicast/converters/asset.h"
@@ -59,17 +60,7 @@ std::vector<std::vector<uint8_t>> packets_of(const Asset& asset) {
 // What a receiver makes of `packets` (those for which keep(type) holds).
 Asset received(const std::vector<std::vector<uint8_t>>& packets, const std::function<bool(uint8_t)>& keep,
                ReceivedStream* out = nullptr) {
-    ReceivedStream stream;
-    for (size_t i = 0; i < packets.size(); ++i)
-        if (keep(packets[i][6])) REQUIRE(stream.add_packet(packets[i], i) == Error::Ok);
-    Asset asset;
-    StreamDecodeReport report;
-    std::string error;
-    DecodeOptions decoding;
-    decoding.grid_resolution = 32;
-    REQUIRE_MESSAGE(decode_asset(stream, decoding, asset, report, error), error);
-    if (out) *out = std::move(stream);
-    return asset;
+    return received_without(packets, [&](size_t i) { return !keep(packets[i][6]); }, 32, out);
 }
 
 bool any_of(const std::vector<std::string>& warnings, const std::string& needle) {

@@ -57,10 +57,6 @@ ScenePackets packetize(const SceneDescription& scene, size_t packet_size = 1200)
     return packets;
 }
 
-std::vector<uint8_t> edited(std::vector<uint8_t> packet, const std::function<void(uint8_t*)>& edit) {
-    edit(packet.data() + kHeaderSize);
-    return test::resealed(std::move(packet));
-}
 
 // A one-object stream of `points` points (no attributes), its info and its packets.
 struct SmallStream {
@@ -208,7 +204,7 @@ TEST_CASE("SKIN packets that are malformed or contradict earlier ones are reject
     for (const Case& c : cases) {
         INFO(c.what);
         ReceivedStream stream;
-        CHECK(stream.add_packet(edited(first, c.edit), 0) == c.expected);
+        CHECK(stream.add_packet(test::edited(first, c.edit), 0) == c.expected);
         CHECK(stream.skins().empty());
     }
     // Comparisons against what was accepted: each rejects the packet and keeps the first.
@@ -223,7 +219,7 @@ TEST_CASE("SKIN packets that are malformed or contradict earlier ones are reject
         INFO(c.what);
         ReceivedStream stream;
         REQUIRE(stream.add_packet(first, 0) == Error::Ok);
-        CHECK(stream.add_packet(edited(first, c.edit), 1) == c.expected);
+        CHECK(stream.add_packet(test::edited(first, c.edit), 1) == c.expected);
         CHECK(stream.skins().at(0).joints.at(0) == skinned_scene().skins[0].joints[0]);
         CHECK(stream.counters().rejected == 1);
     }
@@ -232,7 +228,7 @@ TEST_CASE("SKIN packets that are malformed or contradict earlier ones are reject
     REQUIRE(stream.add_packet(first, 0) == Error::Ok);
     const size_t negative_zero = joints_at + 2 * 66 + 2;  // joint 2's matrix entry 0
     REQUIRE(first[kHeaderSize + negative_zero + 3] == 0x80);
-    CHECK(stream.add_packet(edited(first, [&](uint8_t* p) { p[negative_zero + 3] = 0; }), 1) == Error::Ok);
+    CHECK(stream.add_packet(test::edited(first, [&](uint8_t* p) { p[negative_zero + 3] = 0; }), 1) == Error::Ok);
     CHECK(stream.counters().duplicates == 1);
 }
 
