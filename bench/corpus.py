@@ -55,6 +55,17 @@ def census(doc):
     }
 
 
+def validate(path, node_modules):
+    """The Khronos validator's [errors, warnings, warning codes] for a file, or None without it."""
+    check = subprocess.run(['node', os.path.join(os.path.dirname(__file__), '..', 'tests', 'gltf_validate.js'), path],
+                           capture_output=True, text=True, env=dict(os.environ, NODE_PATH=node_modules))
+    try:
+        verdict = json.loads(check.stdout)
+        return [verdict.get('numErrors'), verdict.get('numWarnings'), sorted(set(verdict.get('warnings', [])))]
+    except ValueError:
+        return None
+
+
 def main():
     ellicast, node_modules, out_dir = sys.argv[1:4]
     folders = sys.argv[4:]
@@ -95,13 +106,8 @@ def main():
                 row['stream_bytes'] = int(line.split(', ')[-1].split()[0])
         row['out_bytes'] = os.path.getsize(out)
         row['out'] = census(gltf_json(out))
-        check = subprocess.run(['node', os.path.join(os.path.dirname(__file__), '..', 'tests', 'gltf_validate.js'), out],
-                               capture_output=True, text=True, env=dict(os.environ, NODE_PATH=node_modules))
-        try:
-            verdict = json.loads(check.stdout)
-            row['validator'] = [verdict.get('numErrors'), verdict.get('numWarnings')]
-        except ValueError:
-            row['validator'] = None
+        row['validator'] = validate(out, node_modules)
+        row['validator_in'] = validate(path, node_modules)
         rows.append(row)
 
     with open(os.path.join(out_dir, 'corpus.json'), 'w') as f:
@@ -111,7 +117,7 @@ def main():
         a, b = row['in'][key], row['out'][key]
         return f'{a}' if a == b else f'**{a} -> {b}**'
 
-    lines = ['| asset | in / stream / out (KB) | time (s) | validator errors / warnings | nodes | materials | images | '
+    lines = ['| asset | in / stream / out (KB) | time (s) | validator errors / warnings (of the output) | nodes | materials | images | '
              'animations (channels) | skins | morph prims | dropped or changed (warnings) |',
              '|---|---|---:|---|---|---|---|---|---|---|---|']
     for row in rows:
@@ -119,8 +125,11 @@ def main():
             lines.append(f"| {row['asset']} | {row.get('in_bytes', 0) / 1024:.0f} / - / - | {row.get('seconds', '-')} | "
                          f"not converted | | | | | | | {row['error']} |")
             continue
-        v = row['validator']
-        verdict = f'{v[0]} / {v[1]}' if v else 'validator absent'
+        v, s = row['validator'], row.get('validator_in')
+        verdict = f'{v[0]} / {v[1]}' + (f" ({', '.join(v[2])})" if v[2] else '') if v else 'validator absent'
+        if v and s and v[2]:
+            # Say whether the source has the same warnings (a faithful copy keeps a source's quirks).
+            verdict += '; the source has ' + ('them too' if set(v[2]) <= set(s[2]) else ', '.join(s[2]) or 'none')
         warnings = '; '.join(w.split(': ', 1)[-1] for w in row['warnings'])
         if len(warnings) > 300:
             warnings = warnings[:297] + '...'

@@ -1,5 +1,5 @@
 // Runs the Khronos glTF-Validator on one file and prints a one-line JSON summary:
-//   {"numErrors": N, "numWarnings": M, "errors": [first error messages], "warnings": [warning codes]}
+//   {"numErrors": N, "numWarnings": M, "errors": [first error messages], "warnings": [the distinct warning codes]}
 // Usage: NODE_PATH=<checkout>/.cache/node/node_modules node tests/gltf_validate.js FILE.glb|FILE.gltf
 const fs = require('fs');
 const path = require('path');
@@ -11,7 +11,7 @@ const bytes = new Uint8Array(fs.readFileSync(file));
 validator
   .validateBytes(bytes, {
     uri: path.basename(file),
-    maxIssues: 100,
+    maxIssues: 0,  // unlimited: a source with many errors still shows its warnings
     externalResourceFunction: (uri) =>
       new Promise((resolve, reject) => {
         try {
@@ -23,7 +23,7 @@ validator
   })
   .then((report) => {
     const errors = report.issues.messages.filter((m) => m.severity === 0).map((m) => m.code + ' ' + m.pointer + ': ' + m.message);
-    const warnings = report.issues.messages.filter((m) => m.severity === 1).map((m) => m.code);
+    const warnings = [...new Set(report.issues.messages.filter((m) => m.severity === 1).map((m) => m.code))];
     console.log(JSON.stringify({ numErrors: report.issues.numErrors, numWarnings: report.issues.numWarnings, errors: errors.slice(0, 10), warnings: warnings }));
   })
   .catch((e) => {
