@@ -4,6 +4,7 @@
 #include "scene_compare.h"
 #include "support.h"
 
+#include <ellicast/broadcast/reception.h>
 #include "ellicast/converters/asset_stream.h"
 
 #include <algorithm>
@@ -191,4 +192,26 @@ TEST_CASE("a skin the format cannot carry is named, and its mesh sent in the bin
         return w.find("shown both by skinned nodes and by nodes without a skin") != std::string::npos;
     }));
     check_gltf_clean(dir / "twin.glb");
+}
+
+TEST_CASE("a receiver waiting for the Fox is not done before its last SKIN and JOINT_WEIGHTS packets (or animation keys)") {
+    if (!have_sample(kFox)) return;
+    const Asset in = load_asset(sample(kFox));
+    EncodedAsset encoded;
+    std::string error;
+    REQUIRE_MESSAGE(encode_asset(in, coarse(), 1, true, encoded, error), error);
+    // Every packet but one of a kind, then that one: complete only with it.
+    for (PacketType held_back : {PacketType::Skin, PacketType::JointWeights, PacketType::Animation}) {
+        CAPTURE(int(held_back));
+        size_t last = encoded.packets.size();
+        for (size_t i = 0; i < encoded.packets.size(); ++i)
+            if (is_type(encoded.packets[i], held_back)) last = i;
+        REQUIRE(last < encoded.packets.size());
+        broadcast::Reception reception;
+        for (size_t i = 0; i < encoded.packets.size(); ++i)
+            if (i != last) reception.take(encoded.packets[i]);
+        CHECK_FALSE(reception.complete());
+        reception.take(encoded.packets[last]);
+        CHECK(reception.complete());
+    }
 }

@@ -233,6 +233,24 @@ bool stream_complete(const ReceivedStream& stream) {
     if (!textures.empty() && textures.size() < textures.begin()->second.info.texture_count) return false;
     for (const auto& [index, texture] : textures)
         if (!texture.complete) return false;
+    // Format 1.4: every animation whole (spec 20.2).
+    if (const auto count = stream.animation_count(); count && stream.animations().size() < *count) return false;
+    for (const auto& [index, animation] : stream.animations())
+        if (!animation.complete()) return false;
+    // Format 1.5 (spec 21.3): every skin whole, and a record for every point of the objects a skinned
+    // node shows.
+    if (const auto count = stream.skin_count(); count && stream.skins().size() < *count) return false;
+    for (const auto& [index, skin] : stream.skins())
+        if (!skin.complete()) return false;
+    for (const auto& [index, node] : stream.scene_nodes()) {
+        if (node.skin == kNone || node.mesh == kNone) continue;
+        const auto mesh = stream.scene_meshes().find(node.mesh);
+        if (mesh == stream.scene_meshes().end()) return false;
+        for (const auto& p : mesh->second.primitives)
+            if (p.object < stream.objects().size() && stream.objects()[p.object].info &&
+                stream.objects()[p.object].weights.size() < stream.objects()[p.object].info->point_count)
+                return false;
+    }
     return true;
 }
 
