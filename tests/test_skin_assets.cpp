@@ -170,7 +170,7 @@ TEST_CASE("the Fox stays in its bind pose, and says why, until its skin and weig
     check_gltf_clean(dir / "half.glb", kFoxWarnings);
 }
 
-TEST_CASE("a skin the format cannot carry is named, and its mesh sent in the bind pose") {
+TEST_CASE("a mesh shown by a skinned node and by a node without a skin is written unskinned, with a warning") {
     // A mesh shown by a skinned node and by a node without a skin: one glTF mesh cannot be both, so
     // the writer writes it unskinned and says so.
     if (!have_sample(kFox)) return;
