@@ -94,10 +94,14 @@ int run_convert(const ConvertArgs& a) {
 
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s -> %s\n", a.input.c_str(), a.output.c_str());
-    std::printf("stream: %zu packets (%zu stream info, %zu ellipsoids, %zu scene, %zu points), %zu bytes\n",
+    // Every packet of the stream counts: the repair packets, the exact layer and the skin weights too.
+    size_t all_bytes = 0;
+    for (const auto& p : encoded.packets) all_bytes += p.size();
+    std::printf("stream: %zu packets (%zu stream info, %zu ellipsoids, %zu scene, %zu points, %zu skin weights, "
+                "%zu exact layer, %zu repair), %zu bytes\n",
                 encoded.packets.size(), encoded.stream_info_packets, encoded.ellipsoid_packets, encoded.scene_packets,
-                encoded.point_packets,
-                encoded.stream_info_bytes + encoded.ellipsoid_bytes + encoded.scene_bytes + encoded.point_bytes);
+                encoded.point_packets, encoded.weight_packets, encoded.connectivity_packets, encoded.repair_packets,
+                all_bytes);
     std::printf("scene: %zu nodes, %zu meshes, %zu objects, %zu materials, %zu textures, %zu animations, %zu skins\n",
                 decoded.scene.nodes.size(), decoded.scene.meshes.size(), decoded.objects.size(),
                 decoded.scene.materials.size(), decoded.scene.textures.size(), decoded.scene.animations.size(),
@@ -109,8 +113,8 @@ int run_convert(const ConvertArgs& a) {
                     o.exact ? " (exact: the original triangles)" : o.has_surface ? "" : " (point set)");
     }
     const uint64_t in_bytes = model_files_size(a.input), out_bytes = model_files_size(a.output);
-    const size_t stream_bytes =
-        encoded.stream_info_bytes + encoded.ellipsoid_bytes + encoded.scene_bytes + encoded.point_bytes;
+    size_t stream_bytes = 0;
+    for (const auto& p : encoded.packets) stream_bytes += p.size();
     auto times = [&](double n) {
         char text[32];
         std::snprintf(text, sizeof text, in_bytes > 0 ? "%.2fx the input" : "input size unknown",
