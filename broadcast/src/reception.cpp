@@ -242,15 +242,9 @@ bool stream_complete(const ReceivedStream& stream) {
     if (const auto count = stream.skin_count(); count && stream.skins().size() < *count) return false;
     for (const auto& [index, skin] : stream.skins())
         if (!skin.complete()) return false;
-    for (const auto& [index, node] : stream.scene_nodes()) {
-        if (node.skin == kNone || node.mesh == kNone) continue;
-        const auto mesh = stream.scene_meshes().find(node.mesh);
-        if (mesh == stream.scene_meshes().end()) return false;
-        for (const auto& p : mesh->second.primitives)
-            if (p.object < stream.objects().size() && stream.objects()[p.object].info &&
-                stream.objects()[p.object].weights.size() < stream.objects()[p.object].info->point_count)
-                return false;
-    }
+    for (const auto& [o, joints] : skinned_objects(stream))
+        if (o < stream.objects().size() && stream.objects()[o].weights.size() < stream.objects()[o].info->point_count)
+            return false;
     return true;
 }
 

@@ -100,7 +100,6 @@ public:
         read_materials();
         for (int old : order) add_node(old);
         if (asset_.objects.empty()) throw InputError(path_ + ": the scene holds no triangle or point primitive to send");
-        asset_.weights.resize(asset_.objects.size());
         read_animations();
     }
 
@@ -355,8 +354,7 @@ private:
             } else {
                 if (asset_.objects.size() >= kMaxObjects) throw InputError(path_ + ": more than 65535 objects");
                 result = int(asset_.objects.size());
-                asset_.weights.resize(asset_.objects.size());
-                asset_.weights.push_back(read_weights(prim, mesh, where));
+                asset_.weights.push_back(read_weights(prim, mesh, where));  // weights[i] belongs to objects[i]
                 asset_.objects.push_back(std::move(mesh));
             }
         }

@@ -237,14 +237,7 @@ void put32(std::vector<uint8_t>& out, uint32_t v) {
 }
 // The header of an exact-layer packet (skippable, per object, version 1.3).
 PacketHeader layer_header(PacketType type, uint32_t stream_id, uint32_t sequence, uint16_t object_id) {
-    PacketHeader h;
-    h.version_minor = kConnectivityMinor;
-    h.type = uint8_t(type);
-    h.flags = kFlagSkippable;
-    h.stream_id = stream_id;
-    h.sequence = sequence;
-    h.object_id = object_id;
-    return h;
+    return skippable_header(type, kConnectivityMinor, stream_id, sequence, object_id);
 }
 
 uint32_t get32(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }

@@ -66,6 +66,18 @@ const char* error_name(Error e) {
     return "unknown error";
 }
 
+PacketHeader skippable_header(PacketType type, uint8_t minor, uint32_t stream_id, uint32_t sequence,
+                              uint16_t object_id) {
+    PacketHeader h;
+    h.version_minor = minor;
+    h.type = static_cast<uint8_t>(type);
+    h.flags = kFlagSkippable;
+    h.stream_id = stream_id;
+    h.sequence = sequence;
+    h.object_id = object_id;
+    return h;
+}
+
 std::vector<uint8_t> write_packet(PacketHeader header, std::span<const uint8_t> payload) {
     std::vector<uint8_t> out;
     out.reserve(kPacketOverhead + payload.size());

@@ -197,14 +197,9 @@ Error packetize_repairs(const StreamInfo& info, uint16_t object_id, const std::v
             packet.block = block;
             packet.row = static_cast<uint8_t>(row);
             packet.symbol = repair_symbol(sources, row);
-            PacketHeader h;
-            h.version_minor = 2;
-            h.type = static_cast<uint8_t>(PacketType::PointsRepair);
-            h.flags = kFlagSkippable;
-            h.stream_id = stream_id;
-            h.sequence = sequence++;
-            h.object_id = object_id;
-            out.push_back(write_packet(h, encode_repair_payload(packet)));
+            out.push_back(write_packet(skippable_header(PacketType::PointsRepair, kRepairMinor, stream_id, sequence++,
+                                                        object_id),
+                                       encode_repair_payload(packet)));
         }
     }
     return Error::Ok;

@@ -335,14 +335,7 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
     ScenePackets packets;
     uint32_t sequence = first_sequence;
     auto emit = [&](PacketType type, const std::vector<uint8_t>& payload, uint8_t minor = kFormatMinor) {
-        PacketHeader h;
-        h.version_minor = minor;
-        h.type = static_cast<uint8_t>(type);
-        h.flags = kFlagSkippable;
-        h.stream_id = stream_id;
-        h.sequence = sequence++;
-        h.object_id = kStreamObjectId;
-        return write_packet(h, payload);
+        return write_packet(skippable_header(type, minor, stream_id, sequence++, kStreamObjectId), payload);
     };
 
     // SCENE: whole records, as many as fit each packet. A name is shortened when its record would

@@ -252,17 +252,27 @@ Error packetize_joint_weights(const StreamInfo& info, uint16_t object_id, const 
         JointWeightsRun run;
         run.first_index = static_cast<uint32_t>(first);
         run.records.assign(records.begin() + std::ptrdiff_t(first), records.begin() + std::ptrdiff_t(first + n));
-        PacketHeader h;
-        h.version_minor = kSkinMinor;
-        h.type = static_cast<uint8_t>(PacketType::JointWeights);
-        h.flags = kFlagSkippable;
-        h.stream_id = stream_id;
-        h.sequence = sequence++;
-        h.object_id = object_id;
-        out.push_back(write_packet(h, encode_joint_weights_payload(run)));
+        out.push_back(write_packet(skippable_header(PacketType::JointWeights, kSkinMinor, stream_id, sequence++, object_id),
+                                   encode_joint_weights_payload(run)));
         first += n;
     }
     return Error::Ok;
+}
+
+std::map<uint16_t, uint32_t> skinned_objects(const ReceivedStream& stream) {
+    std::map<uint16_t, uint32_t> out;
+    for (const auto& [index, node] : stream.scene_nodes()) {
+        if (node.skin == kNone || node.mesh == kNone) continue;
+        const auto mesh = stream.scene_meshes().find(node.mesh);
+        if (mesh == stream.scene_meshes().end()) continue;
+        const auto skin = stream.skins().find(node.skin);
+        const uint32_t joints = skin == stream.skins().end() ? 0x10000u : skin->second.joint_count;
+        for (const auto& p : mesh->second.primitives) {
+            auto [it, fresh] = out.try_emplace(p.object, joints);
+            if (!fresh) it->second = std::min(it->second, joints);
+        }
+    }
+    return out;
 }
 
 Error ReceivedStream::take_joint_weights(ReceivedObject& object, const PacketView& packet, const std::string& name,

@@ -263,8 +263,6 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
                 r.violations.push_back({std::nullopt, name + ": its skeleton node " + std::to_string(skin.skeleton) +
                                                           " has no node record"});
         }
-        // Objects of skinned nodes' meshes, with the smallest joint count of the skins that use them.
-        std::map<uint16_t, uint32_t> weighted;
         for (const auto& [index, node] : r.stream.scene_nodes()) {
             if (node.skin == kNone) continue;
             const std::string name = "node " + std::to_string(index);
@@ -272,20 +270,10 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             if (!count || node.skin >= *count)
                 r.violations.push_back({std::nullopt, name + ": it names skin " + std::to_string(node.skin) +
                                                           ", past the skin table"});
-            if (node.mesh == kNone) {
-                r.violations.push_back({std::nullopt, name + ": it names a skin but has no mesh"});
-                continue;
-            }
-            const auto mesh = r.stream.scene_meshes().find(node.mesh);
-            if (mesh == r.stream.scene_meshes().end()) continue;  // reported as a missing mesh
-            const auto skin = skins.find(node.skin);
-            const uint32_t joints = skin == skins.end() ? 0x10000u : skin->second.joint_count;
-            for (const auto& p : mesh->second.primitives) {
-                auto [it, fresh] = weighted.try_emplace(p.object, joints);
-                if (!fresh) it->second = std::min(it->second, joints);
-            }
+            if (node.mesh == kNone) r.violations.push_back({std::nullopt, name + ": it names a skin but has no mesh"});
         }
-        for (const auto& [o, joints] : weighted) {
+        // Objects of skinned nodes' meshes (a missing mesh record is reported as such above).
+        for (const auto& [o, joints] : skinned_objects(r.stream)) {
             if (o >= r.stream.objects().size() || !r.stream.objects()[o].info) continue;
             const ReceivedObject& object = r.stream.objects()[o];
             const std::string name = "object " + std::to_string(o);

@@ -30,6 +30,7 @@ inline constexpr uint8_t kFormatMinor = 1;  // 1.1 added SCENE, MATERIAL, TEXTUR
 // 1.2 added MANIFEST (signed streams). Only MANIFEST packets say 1.2: every other packet keeps the
 // minor version whose layout it follows, so a 1.1 decoder reads a signed stream as it always did.
 inline constexpr uint8_t kManifestMinor = 2;
+inline constexpr uint8_t kRepairMinor = 2;  // 1.2 also added POINTS_REPAIR (spec 17)
 // 1.3 added MATERIAL_EXTENSIONS (a material's extensions as a JSON patch, spec 18); those packets
 // say 1.3, MATERIAL packets keep saying 1.1 (bit 0 of their flags byte is read whatever they say).
 inline constexpr uint8_t kMaterialExtensionsMinor = 3;
@@ -157,6 +158,10 @@ struct PacketView {
 // Serializes a packet: header (payload_length taken from payload.size()), payload, CRC-32C.
 // Requires payload.size() <= kMaxPacketSize - kPacketOverhead.
 std::vector<uint8_t> write_packet(PacketHeader header, std::span<const uint8_t> payload);
+// The header of a skippable packet of a type a later minor version added (every type but
+// STREAM_INFO, ELLIPSOIDS and POINTS), saying version 1.`minor`.
+PacketHeader skippable_header(PacketType type, uint8_t minor, uint32_t stream_id, uint32_t sequence,
+                              uint16_t object_id);
 
 // Parses the packet at the start of `bytes`, which may continue with other data (a container).
 // Checks magic, major version, type, declared length against kMaxPacketSize and against the bytes
@@ -1015,6 +1020,11 @@ private:
     std::optional<uint16_t> skin_count_;
     std::map<uint16_t, ReceivedSkin> skins_;
 };
+
+// The objects a receiver waits for joint weights of (spec 21.3): those of the meshes of the node
+// records that name a skin, each with the smallest joint count of those skins (0x10000 for a skin
+// that has not arrived). A node whose mesh record has not arrived adds nothing.
+std::map<uint16_t, uint32_t> skinned_objects(const ReceivedStream& stream);
 
 // What a receiver shows of the animations (spec 20.2): each complete animation with the tracks it
 // keeps, in index order: a track is left out when it is not usable, when node_shown(its node) is
