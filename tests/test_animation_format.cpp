@@ -26,13 +26,13 @@ SceneDescription animated_scene() {
     }
     SceneAnimation spin;
     spin.name = "Spin";
-    SceneAnimation::Track turn{1, AnimationPath::Rotation, Interpolation::Linear, {}, {}};
+    SceneAnimation::Track turn{1, AnimationPath::Rotation, Interpolation::Linear, 0, {}, {}};
     for (int k = 0; k < 300; ++k) {
         const float a = 0.01f * float(k);
         turn.times.push_back(0.04f * float(k));
         for (float v : {0.0f, std::sin(a), 0.0f, std::cos(a)}) turn.values.push_back(v);
     }
-    SceneAnimation::Track hop{0, AnimationPath::Translation, Interpolation::Step, {}, {}};
+    SceneAnimation::Track hop{0, AnimationPath::Translation, Interpolation::Step, 0, {}, {}};
     for (int k = 0; k < 5; ++k) {
         hop.times.push_back(float(k));
         for (float v : {float(k), 0.5f * float(k % 2), -0.0f}) hop.values.push_back(v);
@@ -40,7 +40,7 @@ SceneDescription animated_scene() {
     spin.tracks = {turn, hop};
     SceneAnimation grow;
     grow.name = "Grow \xc3\xbc";
-    SceneAnimation::Track scale{1, AnimationPath::Scale, Interpolation::CubicSpline, {}, {}};
+    SceneAnimation::Track scale{1, AnimationPath::Scale, Interpolation::CubicSpline, 0, {}, {}};
     for (int k = 0; k < 40; ++k) {
         scale.times.push_back(0.1f * float(k) + 0.5f);
         for (int v = 0; v < 9; ++v) scale.values.push_back(v % 3 == 1 ? 1.0f + 0.01f * float(k) : 0.0f);

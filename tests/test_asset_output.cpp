@@ -398,8 +398,8 @@ TEST_CASE("write_asset leaves out what does not hold together and still writes a
     Mesh wrong_normals = tri;
     wrong_normals.normals = {{0, 0, 1}};  // one normal for three vertices
     a.objects = {tri, bad, wrong_normals, Mesh{}};
-    SceneMesh m0{0, "ok", {{0, 0}, {1, kNone}, {2, 5}, {3, kNone}, {9, kNone}}};
-    SceneMesh m1{1, "empty", {{3, kNone}}};
+    SceneMesh m0{0, "ok", {{0, 0}, {1, kNone}, {2, 5}, {3, kNone}, {9, kNone}}, {}};
+    SceneMesh m1{1, "empty", {{3, kNone}}, {}};
     a.scene.meshes = {m0, m1};
     SceneNode root;
     root.index = 0;
@@ -470,7 +470,7 @@ TEST_CASE("write_asset writes a texture as what its bytes are (the stream's imag
     tri.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     tri.texcoords = {{0, 0}, {1, 0}, {0, 1}};
     tri.triangles = {{0, 1, 2}};
-    SceneMesh mesh{0, "tris", {}};
+    SceneMesh mesh{0, "tris", {}, {}};
     for (uint16_t i = 0; i < 4; ++i) {
         a.objects.push_back(tri);
         mesh.primitives.push_back({i, i});
@@ -551,7 +551,7 @@ TEST_CASE("a normal-mapped material's primitives get tangents along u, perpendic
     Mesh plain = upright;  // drawn without a normal texture: no tangents
     Asset a;
     a.objects = {upright, mirrored, plain};
-    a.scene.meshes = {SceneMesh{0, "squares", {{0, 0}, {1, 0}, {2, 1}}}};
+    a.scene.meshes = {SceneMesh{0, "squares", {{0, 0}, {1, 0}, {2, 1}}, {}}};
     SceneNode root;
     root.mesh = 0;
     a.scene.nodes = {root};

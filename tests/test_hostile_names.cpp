@@ -42,7 +42,7 @@ TEST_CASE("a stream whose node, mesh and material names are not UTF-8 decodes, w
     node.name = "bad\xFF\xFEname";
     node.mesh = 0;
     asset.scene.nodes = {node};
-    asset.scene.meshes = {SceneMesh{0, "\xC3", {{0, 0}}}};
+    asset.scene.meshes = {SceneMesh{0, "\xC3", {{0, 0}}, {}}};
     Material material;
     material.name = "surrogate \xED\xA0\x80";
     asset.scene.materials = {material};

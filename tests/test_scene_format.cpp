@@ -75,7 +75,7 @@ TEST_CASE("a scene, its materials and a texture come back whole from shuffled, d
     CHECK(rs.counters().duplicates == copy.size());
     REQUIRE(rs.scene_nodes().size() == scene.nodes.size());
     for (const auto& n : scene.nodes) CHECK(rs.scene_nodes().at(n.index) == n);
-    CHECK(rs.scene_meshes().at(0) == SceneMesh{0, "truck", {{0, 0}, {1, kNone}}});
+    CHECK(rs.scene_meshes().at(0) == SceneMesh{0, "truck", {{0, 0}, {1, kNone}}, {}});
     Material expected = scene.materials[0];
     expected.material_count = 1;
     CHECK(rs.materials().at(0) == expected);

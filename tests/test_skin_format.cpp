@@ -28,7 +28,7 @@ SceneDescription skinned_scene() {
     }
     scene.nodes[0].mesh = 0;
     scene.nodes[0].skin = 0;
-    scene.meshes.push_back({0, "body", {{0, kNone}}});
+    scene.meshes.push_back({0, "body", {{0, kNone}}, {}});
     SceneSkin arm;
     arm.name = "Arm \xc3\xa4";
     arm.skeleton = 1;

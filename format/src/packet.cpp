@@ -28,6 +28,8 @@ std::string packet_type_name(uint8_t type) {
     case 0x05: return "CONNECTIVITY";
     case 0x06: return "CONNECTIVITY_REPAIR";
     case 0x07: return "JOINT_WEIGHTS";
+    case 0x08: return "MORPH_DELTAS";
+    case 0x16: return "MORPH_ANIMATION";
     default: {
         char buf[24];
         std::snprintf(buf, sizeof buf, "UNKNOWN(0x%02X)", type);
@@ -37,7 +39,7 @@ std::string packet_type_name(uint8_t type) {
 }
 
 bool is_known_packet_type(uint8_t type) {
-    return (type >= 0x01 && type <= 0x07) || (type >= 0x10 && type <= 0x15) || type == 0x20;
+    return (type >= 0x01 && type <= 0x08) || (type >= 0x10 && type <= 0x16) || type == 0x20;
 }
 
 const char* error_name(Error e) {

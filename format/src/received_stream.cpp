@@ -67,6 +67,7 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
     case PacketType::TextureFragment: e = take_texture_fragment(packet, where); break;
     case PacketType::Animation: e = take_animation(packet, where); break;
     case PacketType::Skin: e = take_skin(packet, where); break;
+    case PacketType::MorphAnimation: e = take_morph_animation(packet, where); break;
     case PacketType::Manifest: {
         // A decoder checks its layout and takes nothing from it: verifying signatures is the
         // job of the filter in front of it (spec 16.3), which needs the sender's key.
@@ -96,6 +97,17 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
                           "JOINT_WEIGHTS of object " + std::to_string(h.object_id) +
                               ": its count, joint size or an influence record (count, zero weight, weights not summing "
                               "to 255, a joint named twice, records not ending with the payload) is malformed");
+        e = take_object_packet(packet, where);
+        break;
+    }
+    case PacketType::MorphDeltas: {
+        // Step 11: a MORPH_DELTAS payload needs no stream info to be checked (spec 22.1).
+        MorphDeltasRun run;
+        if (decode_morph_deltas_payload(packet.payload, run) != Error::Ok)
+            return reject(where, Error::MalformedPayload,
+                          "MORPH_DELTAS of object " + std::to_string(h.object_id) +
+                              ": its count, target count, attributes, length or a displacement that is not finite is "
+                              "malformed");
         e = take_object_packet(packet, where);
         break;
     }
@@ -197,6 +209,8 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
         return take_connectivity_repair(object, packet, name, where);
     if (packet.header.type == static_cast<uint8_t>(PacketType::JointWeights))
         return take_joint_weights(object, packet, name, where);
+    if (packet.header.type == static_cast<uint8_t>(PacketType::MorphDeltas))
+        return take_morph_deltas(object, packet, name, where);
     bool news = false;
     if (packet.header.type == static_cast<uint8_t>(PacketType::Ellipsoids)) {
         EllipsoidBatch batch;

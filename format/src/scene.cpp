@@ -114,6 +114,10 @@ std::vector<uint8_t> mesh_record(const SceneMesh& m) {
         put_u16(body, p.object);
         put_u16(body, p.material);
     }
+    if (!m.weights.empty()) {  // format 1.6 (spec 22): only when the mesh has targets
+        put_u8(body, static_cast<uint8_t>(m.weights.size()));
+        for (float w : m.weights) put_f32(body, w);
+    }
     return body;
 }
 
@@ -187,6 +191,15 @@ Error decode_scene_payload(std::span<const uint8_t> payload, SceneBatch& out, ui
                 p.object = body.u16();
                 p.material = body.u16();
                 m.primitives.push_back(p);
+            }
+            // Format 1.6 (spec 22): targets when the packet says 1.6 or later and a byte follows the
+            // primitives; then every weight must follow, finite.
+            if (version_minor >= kMorphMinor && !body.failed && body.left() >= 1) {
+                const size_t targets = body.u8();
+                if (targets * 4 > body.left()) return Error::MalformedPayload;
+                m.weights.resize(targets);
+                for (float& w : m.weights) w = body.f32();
+                if (!all_finite(m.weights)) return Error::MalformedPayload;
             }
             if (body.failed) return Error::MalformedPayload;
             batch.meshes.push_back(std::move(m));
@@ -327,7 +340,8 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
             return Error::MalformedPayload;
     }
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
-        if (scene.meshes[i].index != i) return Error::MalformedPayload;
+        if (scene.meshes[i].index != i || scene.meshes[i].weights.size() > 255 || !all_finite(scene.meshes[i].weights))
+            return Error::MalformedPayload;
         for (const auto& p : scene.meshes[i].primitives)
             if (p.material != kNone && p.material >= scene.materials.size()) return Error::MalformedPayload;
     }
@@ -345,7 +359,9 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
     auto flush = [&]() {
         if (batch.nodes.empty() && batch.meshes.empty()) return;
         const bool skinned = std::any_of(batch.nodes.begin(), batch.nodes.end(), [](const SceneNode& n) { return n.skin != kNone; });
-        packets.scene.push_back(emit(PacketType::Scene, encode_scene_payload(batch), skinned ? kSkinMinor : kFormatMinor));
+        const bool morphed = std::any_of(batch.meshes.begin(), batch.meshes.end(), [](const SceneMesh& m) { return !m.weights.empty(); });
+        packets.scene.push_back(emit(PacketType::Scene, encode_scene_payload(batch),
+                                     morphed ? kMorphMinor : skinned ? kSkinMinor : kFormatMinor));
         batch.nodes.clear();
         batch.meshes.clear();
         used = kSceneHeaderSize;
@@ -364,7 +380,7 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
         used += size;
     }
     for (SceneMesh m : scene.meshes) {
-        const size_t fixed = 3 + 2 + 1 + 2 + 4 * m.primitives.size();
+        const size_t fixed = 3 + 2 + 1 + 2 + 4 * m.primitives.size() + (m.weights.empty() ? 0 : 1 + 4 * m.weights.size());
         if (!fit_name(m.name, fixed)) return Error::MalformedPayload;
         const size_t size = fixed + m.name.size();
         if (used + size > capacity) flush();
@@ -418,38 +434,64 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
             packets.textures.push_back(emit(PacketType::TextureFragment, encode_texture_fragment_payload(f)));
         }
     }
-    // ANIMATION (format 1.4): each track's keys in runs of as many as fit a packet.
+    // ANIMATION (format 1.4): each track's keys in runs of as many as fit a packet. An animation's
+    // weights tracks form a morph animation (format 1.6, spec 22.5), which joins the ANIMATION of its
+    // other tracks or, when it has none, stands alone.
     if (scene.animations.size() > 0xFFFF) return Error::MalformedPayload;
+    std::vector<uint16_t> animation_index(scene.animations.size(), kNone), morph_index(scene.animations.size(), kNone);
+    size_t animation_count = 0, morph_count = 0;
     for (size_t i = 0; i < scene.animations.size(); ++i) {
-        const SceneAnimation& animation = scene.animations[i];
-        if (animation.tracks.empty() || animation.tracks.size() > 0xFFFF) return Error::MalformedPayload;
-        AnimationPiece piece;
-        piece.animation = static_cast<uint16_t>(i);
-        piece.animation_count = static_cast<uint16_t>(scene.animations.size());
-        piece.track_count = static_cast<uint16_t>(animation.tracks.size());
-        piece.name = utf8_prefix(animation.name, kMaxName);
-        for (size_t t = 0; t < animation.tracks.size(); ++t) {
-            const SceneAnimation::Track& track = animation.tracks[t];
-            const size_t per_key = animation_values_per_key(track.path, track.interpolation);
-            const size_t keys = track.times.size();
-            if (keys == 0 || keys > 0xFFFFFFFFull || track.values.size() != keys * per_key ||
-                (track.interpolation == Interpolation::CubicSpline && keys < 2) || track.node >= node_count ||
-                !all_finite(track.times) || !all_finite(track.values))
-                return Error::MalformedPayload;
-            for (size_t k = 0; k < keys; ++k)
-                if (track.times[k] < 0 || (k > 0 && !(track.times[k] > track.times[k - 1]))) return Error::MalformedPayload;
-            piece.track = static_cast<uint16_t>(t);
-            piece.info = {track.node, track.path, track.interpolation, static_cast<uint32_t>(keys)};
-            const size_t key_bytes = 4 * (1 + per_key);
-            if (capacity < kAnimationHeaderSize + piece.name.size() + key_bytes) return Error::MalformedPayload;
-            const size_t per_packet = std::min<size_t>(0xFFFF, (capacity - kAnimationHeaderSize - piece.name.size()) / key_bytes);
-            for (size_t first = 0; first < keys; first += per_packet) {
-                const size_t n = std::min(per_packet, keys - first);
-                piece.first_key = static_cast<uint32_t>(first);
-                piece.times.assign(track.times.begin() + std::ptrdiff_t(first), track.times.begin() + std::ptrdiff_t(first + n));
-                piece.values.assign(track.values.begin() + std::ptrdiff_t(first * per_key),
-                                    track.values.begin() + std::ptrdiff_t((first + n) * per_key));
-                packets.animations.push_back(emit(PacketType::Animation, encode_animation_payload(piece), kAnimationMinor));
+        const auto& tracks = scene.animations[i].tracks;
+        const size_t weights = size_t(std::count_if(tracks.begin(), tracks.end(),
+                                                    [](const auto& t) { return t.path == AnimationPath::Weights; }));
+        if (tracks.empty() || weights > 0xFFFF || tracks.size() - weights > 0xFFFF) return Error::MalformedPayload;
+        if (weights < tracks.size()) animation_index[i] = static_cast<uint16_t>(animation_count++);
+        if (weights > 0) morph_index[i] = static_cast<uint16_t>(morph_count++);
+    }
+    if (animation_count > 0xFFFF || morph_count > 0xFFFF) return Error::MalformedPayload;
+    for (const bool morph : {false, true}) {  // every ANIMATION packet, then every MORPH_ANIMATION packet
+        for (size_t i = 0; i < scene.animations.size(); ++i) {
+            const SceneAnimation& animation = scene.animations[i];
+            const uint16_t index = morph ? morph_index[i] : animation_index[i];
+            if (index == kNone) continue;
+            AnimationPiece piece;
+            piece.animation = index;
+            piece.animation_count = static_cast<uint16_t>(morph ? morph_count : animation_count);
+            piece.joins = morph ? animation_index[i] : kNone;
+            // A morph animation that joins one is written under that one's name (spec 22.2).
+            piece.name = morph && piece.joins != kNone ? std::string() : utf8_prefix(animation.name, kMaxName);
+            std::vector<const SceneAnimation::Track*> tracks;
+            for (const auto& t : animation.tracks)
+                if ((t.path == AnimationPath::Weights) == morph) tracks.push_back(&t);
+            piece.track_count = static_cast<uint16_t>(tracks.size());
+            const size_t header = morph ? kMorphAnimationHeaderSize : kAnimationHeaderSize;
+            for (size_t t = 0; t < tracks.size(); ++t) {
+                const SceneAnimation::Track& track = *tracks[t];
+                if (morph && track.targets == 0) return Error::MalformedPayload;
+                const size_t per_key = animation_values_per_key(track.path, track.interpolation, track.targets);
+                const size_t keys = track.times.size();
+                if (keys == 0 || keys > 0xFFFFFFFFull || track.values.size() != keys * per_key ||
+                    (track.interpolation == Interpolation::CubicSpline && keys < 2) || track.node >= node_count ||
+                    !all_finite(track.times) || !all_finite(track.values))
+                    return Error::MalformedPayload;
+                for (size_t k = 0; k < keys; ++k)
+                    if (track.times[k] < 0 || (k > 0 && !(track.times[k] > track.times[k - 1]))) return Error::MalformedPayload;
+                piece.track = static_cast<uint16_t>(t);
+                piece.info = {track.node, track.path, track.interpolation, static_cast<uint32_t>(keys),
+                              morph ? track.targets : uint8_t(0)};
+                const size_t key_bytes = 4 * (1 + per_key);
+                if (capacity < header + piece.name.size() + key_bytes) return Error::MalformedPayload;
+                const size_t per_packet = std::min<size_t>(0xFFFF, (capacity - header - piece.name.size()) / key_bytes);
+                for (size_t first = 0; first < keys; first += per_packet) {
+                    const size_t n = std::min(per_packet, keys - first);
+                    piece.first_key = static_cast<uint32_t>(first);
+                    piece.times.assign(track.times.begin() + std::ptrdiff_t(first), track.times.begin() + std::ptrdiff_t(first + n));
+                    piece.values.assign(track.values.begin() + std::ptrdiff_t(first * per_key),
+                                        track.values.begin() + std::ptrdiff_t((first + n) * per_key));
+                    packets.animations.push_back(
+                        morph ? emit(PacketType::MorphAnimation, encode_morph_animation_payload(piece), kMorphMinor)
+                              : emit(PacketType::Animation, encode_animation_payload(piece), kAnimationMinor));
+                }
             }
         }
     }

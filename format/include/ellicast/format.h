@@ -39,8 +39,11 @@ inline constexpr uint8_t kAnimationMinor = 4;  // 1.4 added ANIMATION (spec 20)
 // 1.5 added SKIN, JOINT_WEIGHTS and the SCENE node record's skin (spec 21); SCENE packets say 1.5
 // only when a node record of theirs carries a skin.
 inline constexpr uint8_t kSkinMinor = 5;
+// 1.6 added MORPH_DELTAS, MORPH_ANIMATION and the SCENE mesh record's targets (spec 22); SCENE
+// packets say 1.6 only when a mesh record of theirs carries targets.
+inline constexpr uint8_t kMorphMinor = 6;
 // The newest format version this library reads and writes (spec/format.md's version).
-inline constexpr uint8_t kSpecMinor = 5;
+inline constexpr uint8_t kSpecMinor = 6;
 
 inline constexpr std::array<uint8_t, 4> kPacketMagic = {0xE1, 'L', 'C', 'S'};
 inline constexpr size_t kHeaderSize = 20;                       // bytes before the payload
@@ -70,14 +73,16 @@ enum class PacketType : uint8_t {
     Connectivity = 0x05,  // 1.3, skippable: a piece of an object's coded original triangles (the exact layer)
     ConnectivityRepair = 0x06,  // 1.3, skippable: a repair symbol over an object's coded connectivity
     JointWeights = 0x07,  // 1.5, skippable: the skin joints and weights of a run of an object's points
+    MorphDeltas = 0x08,   // 1.6, skippable: the morph target displacements of a run of an object's points
     Scene = 0x10,       // 1.1, skippable: nodes (hierarchy, names, transforms) and meshes (object + material)
     Material = 0x11,    // 1.1, skippable: one PBR material
     TextureFragment = 0x12,  // 1.1, skippable: a piece of one texture image, at its byte offset
     MaterialExtensions = 0x13,  // 1.3, skippable: a material's extensions and texture transforms (JSON)
     Animation = 0x14,   // 1.4, skippable: keys of one track of an animation
     Skin = 0x15,        // 1.5, skippable: joints and inverse bind matrices of a skin
+    MorphAnimation = 0x16,  // 1.6, skippable: keys of one track of morph target weights
     Manifest = 0x20,    // 1.2, skippable: signed digests of the stream's other packets
-    // 0x00 is invalid; 0x08..0x0F reserved for geometry; 0x16..0x1F reserved for the scene;
+    // 0x00 is invalid; 0x09..0x0F reserved for geometry; 0x17..0x1F reserved for the scene;
     // 0x21..0x7F future; 0x80..0xFF experimental.
 };
 
@@ -393,6 +398,9 @@ struct SceneMesh {
     uint16_t index = 0;
     std::string name;
     std::vector<ScenePrimitive> primitives;
+    // Format 1.6 (spec 22): one default weight per morph target (glTF mesh.weights); empty for a
+    // mesh without targets. At most 255.
+    std::vector<float> weights;
     bool operator==(const SceneMesh&) const = default;
 };
 
@@ -484,7 +492,8 @@ struct TextureFragment {
 inline constexpr size_t kTextureFragmentHeaderSize = 28;
 
 // Animations (format 1.4, spec 20). A track moves one property of one node over keys.
-enum class AnimationPath : uint8_t { Translation = 0, Rotation = 1, Scale = 2 };
+// Weights (morph target weights, format 1.6) travels in MORPH_ANIMATION packets only (spec 22.2).
+enum class AnimationPath : uint8_t { Translation = 0, Rotation = 1, Scale = 2, Weights = 3 };
 enum class Interpolation : uint8_t { Linear = 0, Step = 1, CubicSpline = 2 };
 
 // What every packet of a track repeats.
@@ -493,15 +502,18 @@ struct AnimationTrackInfo {
     AnimationPath path = AnimationPath::Translation;
     Interpolation interpolation = Interpolation::Linear;
     uint32_t key_count = 0;
+    uint8_t targets = 0;  // Weights: the weights per value, C (1..255); 0 for the other paths
     bool operator==(const AnimationTrackInfo&) const = default;
 };
 
-// f32 values per key: C (3, or 4 for rotation), three times that for cubic splines.
-size_t animation_values_per_key(AnimationPath path, Interpolation interpolation);
+// f32 values per key: C (3, or 4 for rotation, `targets` for weights), three times that for cubic
+// splines.
+size_t animation_values_per_key(AnimationPath path, Interpolation interpolation, size_t targets = 0);
 
 // One ANIMATION packet's content: keys [first_key, first_key + times.size()) of one track.
 struct AnimationPiece {
     uint16_t animation = 0, animation_count = 0;
+    uint16_t joins = kNone;  // MORPH_ANIMATION only: the ANIMATION this morph animation joins
     uint16_t track = 0, track_count = 0;
     std::string name;  // the animation's
     AnimationTrackInfo info;
@@ -512,6 +524,11 @@ struct AnimationPiece {
 inline constexpr size_t kAnimationHeaderSize = 24;
 std::vector<uint8_t> encode_animation_payload(const AnimationPiece& piece);
 Error decode_animation_payload(std::span<const uint8_t> payload, AnimationPiece& out);
+// MORPH_ANIMATION (format 1.6, spec 22.2): the same content for a track of weights (info.path
+// Weights, info.targets C) of a morph animation, which joins the ANIMATION `joins` or stands alone.
+inline constexpr size_t kMorphAnimationHeaderSize = 26;
+std::vector<uint8_t> encode_morph_animation_payload(const AnimationPiece& piece);
+Error decode_morph_animation_payload(std::span<const uint8_t> payload, AnimationPiece& out);
 
 // An animation as a sender has it: tracks of whole key lists.
 struct SceneAnimation {
@@ -520,9 +537,12 @@ struct SceneAnimation {
         uint16_t node = 0;
         AnimationPath path = AnimationPath::Translation;
         Interpolation interpolation = Interpolation::Linear;
+        uint8_t targets = 0;  // Weights (format 1.6): weights per value
         std::vector<float> times;
         std::vector<float> values;
     };
+    // Tracks of every path: packetize_scene sends translation, rotation and scale tracks as
+    // ANIMATION packets and weights tracks as MORPH_ANIMATION packets (spec 22.2, 22.5).
     std::vector<Track> tracks;
 };
 
@@ -586,6 +606,30 @@ Error decode_joint_weights_payload(std::span<const uint8_t> payload, JointWeight
 Error packetize_joint_weights(const StreamInfo& info, uint16_t object_id, const std::vector<Influences>& records,
                               uint32_t stream_id, uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out);
 
+// Morph targets (format 1.6, spec 22.1): the displacements of a run of an object's points. `values`
+// holds, per point, per target, the position displacement (attributes bit 0) and then the normal
+// displacement (bit 1), 3 f32 each.
+inline constexpr uint8_t kMorphPosition = 1, kMorphNormal = 2;
+struct MorphDeltasRun {
+    uint32_t first_index = 0;
+    uint16_t count = 0;
+    uint8_t target_count = 0;
+    uint8_t attributes = 0;
+    std::vector<float> values;
+};
+inline constexpr size_t kMorphDeltasHeaderSize = 8;
+// f32 values of one point's record: target_count * 3 * (attributes bits set).
+size_t morph_record_values(uint8_t target_count, uint8_t attributes);
+std::vector<uint8_t> encode_morph_deltas_payload(const MorphDeltasRun& run);
+// The checks of spec 22.1 that need no stream info.
+Error decode_morph_deltas_payload(std::span<const uint8_t> payload, MorphDeltasRun& out);
+// The MORPH_DELTAS packets of object `object_id`: `values` holds one record per point of the
+// object (point_count * morph_record_values(...) finite values), cut into runs of as many points as
+// fit the stream's packet size, numbered from `first_sequence`, saying version 1.6.
+Error packetize_morph_deltas(const StreamInfo& info, uint16_t object_id, uint8_t target_count, uint8_t attributes,
+                             const std::vector<float>& values, uint32_t stream_id, uint32_t first_sequence,
+                             std::vector<std::vector<uint8_t>>& out);
+
 // Everything of the scene that travels besides geometry.
 struct SceneDescription {
     std::vector<SceneNode> nodes;  // node i has index i
@@ -616,7 +660,8 @@ struct ScenePackets {
                                                   // its MATERIAL_EXTENSIONS packet when it has one
     std::vector<uint16_t> extensions_too_large;   // materials whose patch did not fit a packet: sent without
     std::vector<std::vector<uint8_t>> textures;   // TEXTURE_FRAGMENT packets, texture by texture
-    std::vector<std::vector<uint8_t>> animations; // ANIMATION packets, track by track (format 1.4)
+    std::vector<std::vector<uint8_t>> animations; // ANIMATION packets, track by track (format 1.4), then
+                                                  // MORPH_ANIMATION packets (format 1.6)
     std::vector<std::vector<uint8_t>> skins;      // SKIN packets, skin by skin (format 1.5)
 };
 
@@ -846,6 +891,10 @@ struct ReceivedObject {
     uint64_t points_recovered = 0;                  // points that came through repair packets
     std::optional<ReceivedConnectivity> connectivity;  // format 1.3, once a CONNECTIVITY packet was taken
     std::map<uint32_t, Influences> weights;         // format 1.5: influence records by point index
+    // Format 1.6 (spec 22.1): the target count and attributes of the first MORPH_DELTAS packet
+    // accepted, and the displacement records (morph_record_values each) by point index.
+    uint8_t morph_targets = 0, morph_attributes = 0;
+    std::map<uint32_t, std::vector<float>> morph;
 };
 
 struct Rejection {
@@ -936,6 +985,7 @@ public:
     struct ReceivedAnimation {
         uint16_t track_count = 0;
         std::string name;
+        uint16_t joins = kNone;  // morph animations (format 1.6): the ANIMATION it joins
         struct Track {
             AnimationTrackInfo info;
             // Disjoint runs of keys that arrived: first key -> times (and values, V per key).
@@ -966,8 +1016,18 @@ public:
     std::optional<uint16_t> skin_count() const { return skin_count_; }
     const std::map<uint16_t, ReceivedSkin>& skins() const { return skins_; }
 
+    // Morph animations (format 1.6, spec 22.2): what has arrived, by morph animation index (tracks
+    // of path Weights).
+    std::optional<uint16_t> morph_animation_count() const { return morph_animation_count_; }
+    const std::map<uint16_t, ReceivedAnimation>& morph_animations() const { return morph_animations_; }
+
 private:
     Error take_animation(const PacketView& packet, uint64_t where);
+    Error take_morph_animation(const PacketView& packet, uint64_t where);
+    // The comparisons, memory cap and keeping of spec 20.1 / 22.2 for a decoded piece.
+    Error take_keys(const AnimationPiece& piece, std::optional<uint16_t>& table_count,
+                    std::map<uint16_t, ReceivedAnimation>& table, const char* type, uint64_t where);
+    Error take_morph_deltas(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_skin(const PacketView& packet, uint64_t where);
     Error take_joint_weights(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_scene(const PacketView& packet, uint64_t where);
@@ -1019,6 +1079,8 @@ private:
     std::map<uint16_t, ReceivedAnimation> animations_;
     std::optional<uint16_t> skin_count_;
     std::map<uint16_t, ReceivedSkin> skins_;
+    std::optional<uint16_t> morph_animation_count_;
+    std::map<uint16_t, ReceivedAnimation> morph_animations_;
 };
 
 // The objects a receiver waits for joint weights of (spec 21.3): those of the meshes of the node
@@ -1031,11 +1093,28 @@ std::map<uint16_t, uint32_t> skinned_objects(const ReceivedStream& stream);
 // false, or when a kept track of a smaller index of that animation has its node and path; an
 // animation with no track left is not shown.
 struct ShownAnimation {
-    uint16_t index = 0;
-    std::vector<uint16_t> tracks;
+    uint16_t index = 0;        // ANIMATION index, or the morph animation's when `morph_only`
+    bool morph_only = false;   // format 1.6: a morph animation that stands alone
+    std::vector<uint16_t> tracks;  // of the ANIMATION
+    std::vector<std::pair<uint16_t, uint16_t>> morph_tracks;  // (morph animation, track), as written
 };
+// Format 1.6 (spec 22.4): `node_targets(node)` is the target count of the node's mesh when that
+// mesh is shown with its targets, else 0 (no morph track is kept when it is not given). An ANIMATION
+// is shown only once every morph animation of the table has taken a packet and those joining it are
+// complete; the morph animations standing alone come after the ANIMATION table, in index order.
 std::vector<ShownAnimation> shown_animations(const ReceivedStream& stream,
-                                             const std::function<bool(uint16_t node)>& node_shown);
+                                             const std::function<bool(uint16_t node)>& node_shown,
+                                             const std::function<unsigned(uint16_t node)>& node_targets = {});
+
+// The objects a receiver waits for displacement records of (spec 22.4): those of the meshes whose
+// records carry targets, each with the target count of such a mesh (the smallest, when several).
+std::map<uint16_t, uint8_t> morph_target_objects(const ReceivedStream& stream);
+// Whether the receiver holds a point of `object` together with its displacement record (spec 22.3).
+bool morphed(const ReceivedObject& object);
+// Whether mesh `mesh` is shown with its targets (spec 22.4), given which of its objects are shown
+// (`object_shown`): it has targets and every object it shows is morphed with that count.
+bool mesh_shows_targets(const ReceivedStream& stream, const SceneMesh& mesh,
+                        const std::function<bool(uint16_t object)>& object_shown);
 
 // The exact triangle list of object `object` (spec 19.2, 19.4): Ok when every point of it and its
 // whole connectivity are held and it decodes; Truncated (with `why`) while something is missing;

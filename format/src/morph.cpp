@@ -1,0 +1,172 @@
+// Morph targets (format 1.6, spec 22): MORPH_DELTAS payloads, and what a receiver keeps of them.
+// (MORPH_ANIMATION is in animation.cpp, beside ANIMATION; the mesh record's targets in scene.cpp.)
+#include "ellicast/format.h"
+
+#include "bytes.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace ellicast {
+
+using namespace detail;
+
+size_t morph_record_values(uint8_t target_count, uint8_t attributes) {
+    return size_t(target_count) * 3 * size_t(std::popcount(static_cast<unsigned>(attributes & 3u)));
+}
+
+std::vector<uint8_t> encode_morph_deltas_payload(const MorphDeltasRun& run) {
+    std::vector<uint8_t> out;
+    out.reserve(kMorphDeltasHeaderSize + 4 * run.values.size());
+    put_u32(out, run.first_index);
+    put_u16(out, run.count);
+    put_u8(out, run.target_count);
+    put_u8(out, run.attributes);
+    for (float f : run.values) put_f32(out, f);
+    return out;
+}
+
+Error decode_morph_deltas_payload(std::span<const uint8_t> payload, MorphDeltasRun& out) {
+    if (payload.size() < kMorphDeltasHeaderSize) return Error::MalformedPayload;
+    const uint8_t* p = payload.data();
+    MorphDeltasRun run;
+    run.first_index = get_u32(p);
+    run.count = get_u16(p + 4);
+    run.target_count = p[6];
+    run.attributes = p[7];
+    if (run.count == 0 || run.target_count == 0 || run.attributes == 0 || (run.attributes & ~3u) != 0)
+        return Error::MalformedPayload;
+    const size_t per_point = morph_record_values(run.target_count, run.attributes);
+    if (payload.size() != kMorphDeltasHeaderSize + 4 * per_point * run.count) return Error::MalformedPayload;
+    if (uint64_t(run.first_index) + run.count > 0xFFFFFFFFull) return Error::MalformedPayload;
+    run.values.resize(per_point * run.count);
+    for (size_t i = 0; i < run.values.size(); ++i) {
+        const float x = get_f32(p + kMorphDeltasHeaderSize + 4 * i);
+        if (!std::isfinite(x)) return Error::MalformedPayload;
+        run.values[i] = x;
+    }
+    out = std::move(run);
+    return Error::Ok;
+}
+
+Error packetize_morph_deltas(const StreamInfo& info, uint16_t object_id, uint8_t target_count, uint8_t attributes,
+                             const std::vector<float>& values, uint32_t stream_id, uint32_t first_sequence,
+                             std::vector<std::vector<uint8_t>>& out) {
+    if (object_id >= info.objects.size() || target_count == 0 || attributes == 0 || (attributes & ~3u) != 0 ||
+        info.packet_size < kMinPacketSize)
+        return Error::MalformedPayload;
+    const size_t points = info.objects[object_id].point_count;
+    const size_t per_point = morph_record_values(target_count, attributes);
+    if (points == 0 || values.size() != points * per_point) return Error::MalformedPayload;
+    for (float f : values)
+        if (!std::isfinite(f)) return Error::MalformedPayload;
+    const size_t capacity = info.packet_size - kPacketOverhead - kMorphDeltasHeaderSize;
+    const size_t per_packet = std::min<size_t>(0xFFFF, capacity / (4 * per_point));
+    if (per_packet == 0) return Error::MalformedPayload;  // one point's record is larger than a packet
+    uint32_t sequence = first_sequence;
+    for (size_t first = 0; first < points; first += per_packet) {
+        const size_t n = std::min(per_packet, points - first);
+        MorphDeltasRun run;
+        run.first_index = static_cast<uint32_t>(first);
+        run.count = static_cast<uint16_t>(n);
+        run.target_count = target_count;
+        run.attributes = attributes;
+        run.values.assign(values.begin() + std::ptrdiff_t(first * per_point),
+                          values.begin() + std::ptrdiff_t((first + n) * per_point));
+        out.push_back(write_packet(skippable_header(PacketType::MorphDeltas, kMorphMinor, stream_id, sequence++, object_id),
+                                   encode_morph_deltas_payload(run)));
+    }
+    return Error::Ok;
+}
+
+Error ReceivedStream::take_morph_deltas(ReceivedObject& object, const PacketView& packet, const std::string& name,
+                                        uint64_t where) {
+    MorphDeltasRun run;
+    if (decode_morph_deltas_payload(packet.payload, run) != Error::Ok)
+        return reject(where, Error::MalformedPayload,
+                      name + ": its count, target count, attributes, length or a displacement is malformed");
+    const uint64_t end = uint64_t(run.first_index) + run.count;
+    if (end > object.info->point_count)
+        return reject(where, Error::IndexOutOfRange,
+                      name + ": points " + std::to_string(run.first_index) + "+" + std::to_string(run.count) + " of " +
+                          std::to_string(object.info->point_count));
+    // Comparisons (spec 22.1), in order: the object's target count and attributes, then the records.
+    if (object.morph_targets != 0 &&
+        (object.morph_targets != run.target_count || object.morph_attributes != run.attributes))
+        return reject(where, Error::StreamMismatch,
+                      name + ": " + std::to_string(run.target_count) + " targets with attributes " +
+                          std::to_string(run.attributes) + " contradict the " + std::to_string(object.morph_targets) +
+                          " with attributes " + std::to_string(object.morph_attributes) + " of earlier packets");
+    const size_t per_point = morph_record_values(run.target_count, run.attributes);
+    uint64_t fresh = 0, runs = 0;
+    bool in_run = false;
+    for (size_t i = 0; i < run.count; ++i) {
+        auto it = object.morph.find(static_cast<uint32_t>(run.first_index + i));
+        if (it == object.morph.end()) {
+            ++fresh;
+            if (!in_run) ++runs;
+            in_run = true;
+            continue;
+        }
+        in_run = false;
+        // As numbers: +0 and -0 agree (== does so).
+        if (!std::equal(it->second.begin(), it->second.end(), run.values.begin() + std::ptrdiff_t(i * per_point)))
+            return reject(where, Error::StreamMismatch,
+                          name + ": the displacements of point " + std::to_string(run.first_index + i) +
+                              " differ from those received before");
+    }
+    if (fresh == 0) {
+        ++counters_.duplicates;
+        return Error::Ok;
+    }
+    const uint64_t memory = fresh * 4 * per_point + runs * kHeldPacketCost;
+    if (texture_bytes_ + memory > limits_.max_texture_bytes)
+        return reject(where, Error::MalformedPayload,
+                      name + ": the stream's textures, animations and morph targets exceed this receiver's " +
+                          std::to_string(limits_.max_texture_bytes) + "-byte memory limit for them");
+    object.morph_targets = run.target_count;
+    object.morph_attributes = run.attributes;
+    for (size_t i = 0; i < run.count; ++i)
+        object.morph.try_emplace(static_cast<uint32_t>(run.first_index + i),
+                                 run.values.begin() + std::ptrdiff_t(i * per_point),
+                                 run.values.begin() + std::ptrdiff_t((i + 1) * per_point));
+    texture_bytes_ += memory;
+    ++counters_.accepted;
+    return Error::Ok;
+}
+
+std::map<uint16_t, uint8_t> morph_target_objects(const ReceivedStream& stream) {
+    std::map<uint16_t, uint8_t> out;
+    for (const auto& [index, mesh] : stream.scene_meshes()) {
+        if (mesh.weights.empty()) continue;
+        const auto targets = static_cast<uint8_t>(mesh.weights.size());
+        for (const auto& p : mesh.primitives) {
+            auto [it, fresh] = out.try_emplace(p.object, targets);
+            if (!fresh) it->second = std::min(it->second, targets);
+        }
+    }
+    return out;
+}
+
+bool morphed(const ReceivedObject& object) {
+    for (const auto& [index, record] : object.morph)
+        if (object.points.count(index)) return true;
+    return false;
+}
+
+bool mesh_shows_targets(const ReceivedStream& stream, const SceneMesh& mesh,
+                        const std::function<bool(uint16_t object)>& object_shown) {
+    if (mesh.weights.empty()) return false;
+    bool any = false;
+    for (const auto& p : mesh.primitives) {
+        if (!object_shown(p.object)) continue;
+        if (p.object >= stream.objects().size()) return false;
+        const ReceivedObject& o = stream.objects()[p.object];
+        if (o.morph_targets != mesh.weights.size() || !morphed(o)) return false;
+        any = true;
+    }
+    return any;
+}
+
+}  // namespace ellicast
