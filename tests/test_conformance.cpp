@@ -19,6 +19,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <sys/wait.h>
 #include <vector>
 
@@ -255,6 +256,52 @@ TEST_CASE("the faulty vectors name the reason they must be rejected with") {
         {"weights_unknown_object", "unknown object"},
         {"weights_weight_contradicts", "stream mismatch"},
         {"weights_weight_zero", "malformed payload"},
+        {"morph_animation_count_contradicts", "stream mismatch"},
+        {"morph_animation_count_zero", "malformed payload"},
+        {"morph_animation_cubicspline_one_key", "malformed payload"},
+        {"morph_animation_first_key_overflow", "malformed payload"},
+        {"morph_animation_index_past_table", "malformed payload"},
+        {"morph_animation_interpolation_3", "malformed payload"},
+        {"morph_animation_interpolation_contradicts", "stream mismatch"},
+        {"morph_animation_joins_contradicts", "stream mismatch"},
+        {"morph_animation_key_count_contradicts", "stream mismatch"},
+        {"morph_animation_key_count_zero", "malformed payload"},
+        {"morph_animation_keys_past_count", "malformed payload"},
+        {"morph_animation_length_mismatch", "malformed payload"},
+        {"morph_animation_name_contradicts", "stream mismatch"},
+        {"morph_animation_node_contradicts", "stream mismatch"},
+        {"morph_animation_payload_short", "malformed payload"},
+        {"morph_animation_target_count_contradicts", "stream mismatch"},
+        {"morph_animation_target_count_zero", "malformed payload"},
+        {"morph_animation_time_infinite", "malformed payload"},
+        {"morph_animation_time_negative", "malformed payload"},
+        {"morph_animation_times_not_increasing", "malformed payload"},
+        {"morph_animation_track_count_contradicts", "stream mismatch"},
+        {"morph_animation_track_past_count", "malformed payload"},
+        {"morph_animation_weight_contradicts", "stream mismatch"},
+        {"morph_animation_weight_nan", "malformed payload"},
+        {"morph_deltas_attributes_bit_6", "malformed payload"},
+        {"morph_deltas_attributes_contradicts", "stream mismatch"},
+        {"morph_deltas_attributes_zero", "malformed payload"},
+        {"morph_deltas_contradicts_partly_new", "stream mismatch"},
+        {"morph_deltas_count_zero", "malformed payload"},
+        {"morph_deltas_held_out_of_range", "index out of range"},
+        {"morph_deltas_index_out_of_range", "index out of range"},
+        {"morph_deltas_index_overflow", "malformed payload"},
+        {"morph_deltas_length_mismatch", "malformed payload"},
+        {"morph_deltas_malformed_before_stream_info", "malformed payload"},
+        {"morph_deltas_payload_short", "malformed payload"},
+        {"morph_deltas_target_count_contradicts", "stream mismatch"},
+        {"morph_deltas_target_count_zero", "malformed payload"},
+        {"morph_deltas_unknown_object", "unknown object"},
+        {"morph_deltas_value_contradicts", "stream mismatch"},
+        {"morph_deltas_value_nan", "malformed payload"},
+        {"morph_mesh_target_count_contradicts", "stream mismatch"},
+        {"morph_mesh_targets_dropped", "stream mismatch"},
+        {"morph_mesh_targets_in_1_5_packet", "stream mismatch"},
+        {"morph_mesh_weight_contradicts", "stream mismatch"},
+        {"morph_mesh_weight_infinite", "malformed payload"},
+        {"morph_mesh_weights_short", "malformed payload"},
     };
     for (const auto& [name, reason] : reasons) {
         INFO(name);
@@ -368,7 +415,8 @@ TEST_CASE("a texture with fragments missing is not complete and the material usi
 }
 
 TEST_CASE("a format 1.0 decoder skips the 1.1 scene packets of every scene vector and decodes the same objects") {
-    // (and the 1.3, 1.4 and 1.5 ones: MATERIAL_EXTENSIONS, ANIMATION, SKIN, JOINT_WEIGHTS)
+    // (and the 1.3, 1.4, 1.5 and 1.6 ones: MATERIAL_EXTENSIONS, ANIMATION, SKIN, JOINT_WEIGHTS, MORPH_ANIMATION,
+    // MORPH_DELTAS)
     size_t checked = 0;
     for (const std::string set : {"valid", "unusual", "faulty"})
         for (const auto& file : vectors_in(set)) {
@@ -379,7 +427,7 @@ TEST_CASE("a format 1.0 decoder skips the 1.1 scene packets of every scene vecto
             for (const auto& p : j["packets"])
                 if (p["type"] == "SCENE" || p["type"] == "MATERIAL" || p["type"] == "TEXTURE_FRAGMENT" ||
                     p["type"] == "MATERIAL_EXTENSIONS" || p["type"] == "ANIMATION" || p["type"] == "SKIN" ||
-                    p["type"] == "JOINT_WEIGHTS")
+                    p["type"] == "JOINT_WEIGHTS" || p["type"] == "MORPH_ANIMATION" || p["type"] == "MORPH_DELTAS")
                     ++scene_packets;
             CHECK(j["as_1_0"]["same_objects"] == true);
             CHECK(j["as_1_0"]["counters"]["skipped"] == scene_packets);
@@ -391,7 +439,16 @@ TEST_CASE("a format 1.0 decoder skips the 1.1 scene packets of every scene vecto
 TEST_CASE("the animation vectors: every animation of valid/animation comes back whole from the unusual ones, and a "
           "receiver shows what spec 20.2 says") {
     auto decode = [](const std::string& vector) {
-        return conformance::expected_decode(read_bytes(vectors_dir() / (vector + ".ellc")))["scene"];
+        auto scene = conformance::expected_decode(read_bytes(vectors_dir() / (vector + ".ellc")))["scene"];
+        // Without a MORPH_ANIMATION packet (format 1.6) no animation shows a morph track: `shown` lists each
+        // animation's index and ANIMATION tracks only.
+        for (auto& a : scene["shown"]["animations"]) {
+            CHECK(a["morph_only"] == false);
+            CHECK(a["morph_tracks"].empty());
+            a.erase("morph_only");
+            a.erase("morph_tracks");
+        }
+        return scene;
     };
     const auto valid = decode("valid/animation");
     REQUIRE(valid["animation_count"] == 2);
@@ -431,6 +488,73 @@ TEST_CASE("the animation vectors: every animation of valid/animation comes back 
     CHECK(decode("faulty/animation_incomplete")["animations"][0]["tracks"][0]["missing"] ==
           nlohmann::json::parse("[[7, 14]]"));
     CHECK(decode("faulty/animation_name_not_utf8")["animations"][1]["name"] == "Lamp \xEF\xBF\xBD pulse \xEF\xBF\xBD");
+}
+
+TEST_CASE("the morph vectors: the unusual ones decode to the targets and morph animations of valid/morph, and a "
+          "receiver shows what spec 22.4 says") {
+    auto decode = [](const std::string& vector) {
+        return conformance::expected_decode(read_bytes(vectors_dir() / (vector + ".ellc")));
+    };
+    const auto valid = decode("valid/morph");
+    const auto& scene = valid["scene"];
+    REQUIRE(scene["morph_animation_count"] == 2);
+    CHECK(scene["meshes"][0]["weights"] == nlohmann::json::parse("[0.25, 0.0]"));
+    CHECK(scene["meshes"][1]["weights"].empty());
+    CHECK(valid["objects"][0]["morph"]["target_count"] == 2);
+    CHECK(valid["objects"][0]["morph"]["attributes"] == 3);
+    CHECK(valid["objects"][0]["morph"]["records"].size() == 20);
+    CHECK(valid["objects"][0]["morph"]["records"][0]["values"].size() == 2 * 2 * 3);
+    CHECK(!valid["objects"][1].contains("morph"));
+    CHECK(scene["morph_animations"][0]["joins"] == 0);
+    CHECK(scene["morph_animations"][1]["joins"].is_null());
+    for (const auto& a : scene["morph_animations"]) {
+        CHECK(a["complete"] == true);
+        for (const auto& t : a["tracks"]) CHECK(t["usable"] == true);
+    }
+    CHECK(scene["shown"]["morphed"] == nlohmann::json::parse("[0]"));
+    const auto shown = nlohmann::json::parse(R"([{"index":0,"tracks":[0],"morph_only":false,"morph_tracks":[[0,0],[0,1]]},
+                                                 {"index":1,"tracks":[],"morph_only":true,"morph_tracks":[[1,0]]}])");
+    CHECK(scene["shown"]["animations"] == shown);
+    CHECK(valid["as_1_0"]["same_objects"] == true);
+    for (const char* same : {"unusual/morph_newer_minor", "unusual/morph_trailing_bytes_1_5",
+                             "unusual/morph_before_stream_info", "unusual/morph_shuffled_duplicates",
+                             "unusual/morph_negative_zero", "unusual/morph_reserved", "unusual/morph_overlapping_runs",
+                             "unusual/morph_mesh_target_count_0"}) {
+        INFO(same);
+        const auto j = decode(same);
+        CHECK(j["rejections"].empty());
+        CHECK(j["objects"] == valid["objects"]);
+        CHECK(j["scene"]["meshes"] == scene["meshes"]);
+        CHECK(j["scene"]["morph_animations"] == scene["morph_animations"]);
+        CHECK(j["scene"]["shown"] == scene["shown"]);
+    }
+    // What is shown with its targets and which morph tracks are kept, and why (spec 22.4).
+    const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+        {"faulty/morph_deltas_incomplete", "[0]", R"([[0,[0],[[0,0],[0,1]]],[1,[],[[1,0]]]])"},
+        {"faulty/morph_deltas_lost", "[]", R"([[0,[0],[]]])"},
+        {"faulty/morph_points_lost", "[]", R"([[0,[0],[]]])"},
+        {"faulty/morph_target_count_differs", "[]", R"([[0,[0],[]]])"},
+        {"faulty/morph_animation_incomplete", "[0]", R"([[1,[],[[1,0]]]])"},
+        {"faulty/morph_animation_lost", "[0]", "[]"},
+        {"faulty/morph_joined_animation_lost", "[0]", R"([[1,[],[[1,0]]]])"},
+        {"faulty/morph_joins_past_table", "[0]", R"([[0,[0],[]],[1,[],[[1,0]]]])"},
+        {"faulty/morph_track_node_without_mesh", "[0]", R"([[0,[0],[[0,0],[0,1]]]])"},
+        {"faulty/morph_track_target_count_differs", "[0]", R"([[0,[0],[[0,0],[0,1]]]])"},
+        {"faulty/morph_track_unusable", "[0]", R"([[0,[0],[[0,1]]],[1,[],[[1,0]]]])"},
+        {"faulty/morph_duplicate_node", "[0]", R"([[0,[0],[[0,0],[0,1]]],[1,[],[[1,0]]]])"},
+        {"faulty/morph_duplicate_node_across_joined", "[0]", R"([[0,[0],[[0,0],[0,1]]],[1,[],[[1,0]]]])"},
+        {"unusual/morph_two_join_one", "[0]", R"([[0,[0],[[0,0],[2,0]]],[1,[],[[1,0]]]])"},
+        {"unusual/morph_weights_only", "[0]", R"([[0,[],[[0,0],[0,1]]],[1,[],[[1,0]]]])"},
+    };
+    for (const auto& [vector, morphed, animations] : cases) {
+        INFO(vector);
+        const auto j = decode(vector);
+        CHECK(j["scene"]["shown"]["morphed"] == nlohmann::json::parse(morphed));
+        nlohmann::json brief = nlohmann::json::array();
+        for (const auto& a : j["scene"]["shown"]["animations"])
+            brief.push_back({a["index"], a["tracks"], a["morph_tracks"]});
+        CHECK(brief == nlohmann::json::parse(animations));
+    }
 }
 
 #ifndef ELLICAST_FORMAT_TESTS_ONLY

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent format 1.5 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.6 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
@@ -20,7 +20,10 @@ CONNECTIVITY_REPAIR packets of spec 19.5: their checks, the rows held and the so
 with the GF(2^8) code of section 17; for format 1.4 the ANIMATION packets of spec section 20: their checks
 and comparisons, the keys held by index, and the animations a receiver shows, spec 20.2; for format 1.5 the
 SKIN and JOINT_WEIGHTS packets and the node record's skin of spec section 21: their checks and
-comparisons, the joints and influence records held, and the nodes a receiver shows skinned, spec 21.3) so
+comparisons, the joints and influence records held, and the nodes a receiver shows skinned, spec 21.3; for
+format 1.6 the MORPH_DELTAS and MORPH_ANIMATION packets and the mesh record's target field of spec section 22:
+their checks and comparisons, the displacement records and morph keys held, the meshes a receiver shows with
+their targets and the morph tracks it plays, spec 22.4) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -49,7 +52,9 @@ KNOWN_13 = {0x13: "MATERIAL_EXTENSIONS", 0x05: "CONNECTIVITY", 0x06: "CONNECTIVI
 KNOWN_14 = {0x14: "ANIMATION"}
 # Format 1.5 (spec sections 4 and 21).
 KNOWN_15 = {0x15: "SKIN", 0x07: "JOINT_WEIGHTS"}
-SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14, 0x15}  # JOINT_WEIGHTS belongs to an object
+# Format 1.6 (spec sections 4 and 22).
+KNOWN_16 = {0x16: "MORPH_ANIMATION", 0x08: "MORPH_DELTAS"}
+SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14, 0x15, 0x16}  # JOINT_WEIGHTS and MORPH_DELTAS belong to an object
 PATHS = ("translation", "rotation", "scale")
 INTERPOLATIONS = ("LINEAR", "STEP", "CUBICSPLINE")
 NONE = 0xFFFF
@@ -306,9 +311,9 @@ def finite(values):
     return all(math.isfinite(v) for v in values)
 
 
-def decode_scene(p, minor=5):
+def decode_scene(p, minor=6):
     """Spec 15.1: ((node_count, mesh_count), nodes, meshes) or None when malformed. `minor`: the packet's
-    version_minor (a node's skin is read only from 1.5 on, spec 21)."""
+    version_minor (a node's skin is read only from 1.5 on, spec 21; a mesh's targets only from 1.6 on, spec 22)."""
     if len(p) < 8:
         return None
     node_count, mesh_count, record_count = struct.unpack_from("<HHH", p, 0)
@@ -345,7 +350,19 @@ def decode_scene(p, minor=5):
             prims = [dict(zip(("object", "material"), b.take("<HH"))) for _ in range(count)]
             if b.failed or index >= mesh_count:
                 return None
-            meshes.append(dict(index=index, name=name, primitives=prims))
+            # Format 1.6 (spec 22): in a packet that says 1.6 or later, when at least one byte follows the
+            # primitives, a u8 target_count and that many f32 default weights, which MUST all be there and be
+            # finite. A record without the field has 0 targets; bytes after it (or after the primitives in an
+            # older packet) are ignored.
+            weights = []
+            if minor >= 6 and len(b.data) - b.pos >= 1:
+                (targets,) = b.take("<B")
+                if len(b.data) - b.pos < 4 * targets:
+                    return None
+                weights = list(b.take("<%df" % targets)) if targets else []
+                if not finite(weights):
+                    return None
+            meshes.append(dict(index=index, name=name, primitives=prims, weights=weights))
         # other kinds: skipped by their length
     if pos != len(p):
         return None
@@ -421,6 +438,47 @@ def decode_joint_weights(p):
     if pos != len(p):
         return None
     return first, records
+
+
+def decode_morph_deltas(p):
+    """Spec 22.1, the checks that need no stream info: (first_index, target_count, attributes, records) or None
+    when malformed; each record the list of its 3 * a * target_count values."""
+    if len(p) < 8:
+        return None
+    first, count, targets, attributes = struct.unpack_from("<IHBB", p, 0)
+    if count == 0 or targets == 0 or attributes == 0 or attributes & ~3:
+        return None
+    per_point = 3 * bin(attributes).count("1") * targets
+    # Python integers do not overflow: first + count is the true sum.
+    if len(p) != 8 + 4 * per_point * count or first + count > 2 ** 32 - 1:
+        return None
+    values = list(struct.unpack_from("<%df" % (per_point * count), p, 8))
+    if not finite(values):
+        return None
+    return first, targets, attributes, [values[per_point * i:per_point * (i + 1)] for i in range(count)]
+
+
+def decode_morph_animation(p):
+    """Spec 22.2: (animation, animation_count, track, track_count, joins, name bytes, desc, first_key, keys) or
+    None when malformed; desc = (node, target_count C, interpolation, key_count), each key (time, V weights)."""
+    if len(p) < 26:
+        return None
+    index, table, track, track_count, node, joins, c, interp, count, key_count, first, name_length = \
+        struct.unpack_from("<HHHHHHBBHIIB", p, 0)
+    if c == 0 or interp > 2:  # checked before the length, which depends on them through V
+        return None
+    v = 3 * c if interp == 2 else c  # a cubic spline key: the in-tangents, the values, the out-tangents
+    if len(p) != 26 + name_length + count * 4 * (1 + v) or index >= table or track >= track_count \
+            or key_count == 0 or (interp == 2 and key_count < 2) or count == 0 or first + count > key_count:
+        return None
+    keys = []
+    for k in range(count):
+        key = struct.unpack_from("<%df" % (1 + v), p, 26 + name_length + 4 * (1 + v) * k)
+        # -0.0 < 0 is false in Python as in IEEE 754: a time of -0 is not negative.
+        if not finite(key) or key[0] < 0 or (keys and not key[0] > keys[-1][0]):
+            return None
+        keys.append(key)
+    return index, table, track, track_count, joins, p[26:26 + name_length], (node, c, interp, key_count), first, keys
 
 
 def material_json(m):
@@ -1071,6 +1129,9 @@ class Receiver:
         self.animations = {}  # index -> dict(track_count, name (bytes), tracks: index -> dict(desc, keys))
         self.skin_count = None  # format 1.5: that of the first SKIN packet accepted
         self.skins = {}  # index -> dict(joint_count, skeleton, name (bytes), joints: index -> (node, matrix))
+        self.morph_count = None  # format 1.6: that of the first MORPH_ANIMATION packet accepted
+        # index -> dict(track_count, joins, name (bytes), tracks: index -> dict(desc (node, C, interp, key_count), keys))
+        self.morphs = {}
         self.material_count = None  # that of the materials and patches held
         self.stream_id = None
         self.info = None
@@ -1091,7 +1152,7 @@ class Receiver:
             return self.reject(offset, "stream mismatch")
         t = h["type"]
         if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12 and t not in KNOWN_13 and t not in KNOWN_14
-                                   and t not in KNOWN_15) or not self.know_11):
+                                   and t not in KNOWN_15 and t not in KNOWN_16) or not self.know_11):
             if not h["flags"] & 1:
                 return self.reject(offset, "unknown critical type")
             self.stream_id = h["stream_id"]
@@ -1112,8 +1173,13 @@ class Receiver:
             result = self.animation(h, offset)
         elif t == 0x15:
             result = self.skin(h, offset)
+        elif t == 0x16:
+            result = self.morph_animation(h, offset)
         elif t == 0x07 and decode_joint_weights(h["payload"]) is None:
             # Spec 21.2: checked at step 11, before the packet can be held.
+            return self.reject(offset, "malformed payload")
+        elif t == 0x08 and decode_morph_deltas(h["payload"]) is None:
+            # Spec 22.1: checked at step 11, before the packet can be held.
             return self.reject(offset, "malformed payload")
         elif t == 0x20:
             # A decoder checks the layout and takes nothing (spec 16.2); verifying needs a key.
@@ -1145,8 +1211,8 @@ class Receiver:
                 return self.reject(offset, "stream mismatch")
         else:
             self.info, self.object_count = fields, count
-            self.objects = [dict(info=None, ellipsoids={}, points={}, blocks={}, recovered=0, weights={})
-                            for _ in range(count)]
+            self.objects = [dict(info=None, ellipsoids={}, points={}, blocks={}, recovered=0, weights={},
+                                 morph={}, morph_kind=None) for _ in range(count)]
             # Spec 11.1: held packets naming an object beyond the table are rejected now, in arrival order.
             for h, at in [x for x in self.held if x[0]["object_id"] >= count]:
                 self.counters["held"] -= 1
@@ -1197,6 +1263,8 @@ class Receiver:
             return self.connectivity_repair(obj, h, offset)
         if h["type"] == 0x07:
             return self.joint_weights(obj, h, offset)
+        if h["type"] == 0x08:
+            return self.morph_deltas(obj, h, offset)
         ellipsoids = h["type"] == 2
         record = 128 if ellipsoids else record_bits(self.info, obj["info"])
         batch = decode_batch(h["payload"], record)
@@ -1234,6 +1302,25 @@ class Receiver:
         fresh = [i for i in range(len(records)) if first + i not in held]
         for i in fresh:
             held[first + i] = records[i]
+        return self.news(bool(fresh))
+
+    def morph_deltas(self, obj, h, offset):
+        """Spec 22.1 with the object's entry: step 14, then the target count and attributes and each record
+        against those held (step 15)."""
+        first, targets, attributes, records = decode_morph_deltas(h["payload"])
+        if first + len(records) > obj["info"]["point_count"]:
+            return self.reject(offset, "index out of range")
+        if obj["morph_kind"] is not None and obj["morph_kind"] != (targets, attributes):
+            return self.reject(offset, "stream mismatch")
+        held = obj["morph"]
+        # Records compare value by value as numbers: Python's float equality has +0 == -0.
+        if any(first + i in held and held[first + i] != r for i, r in enumerate(records)):
+            return self.reject(offset, "stream mismatch")
+        fresh = [i for i in range(len(records)) if first + i not in held]
+        if fresh:
+            obj["morph_kind"] = (targets, attributes)
+            for i in fresh:
+                held[first + i] = records[i]
         return self.news(bool(fresh))
 
     def connectivity(self, obj, h, offset):
@@ -1549,6 +1636,36 @@ class Receiver:
             t["keys"][first + k] = keys[k]
         return self.news(True)
 
+    def morph_animation(self, h, offset):
+        """Spec 22.2: the packet's checks, then the comparisons in their order (as for ANIMATION, 20.1); keys
+        are kept by index."""
+        d = decode_morph_animation(h["payload"])
+        if d is None:
+            return self.reject(offset, "malformed payload")
+        index, table, track, track_count, joins, name, desc, first, keys = d
+        if self.morph_count is not None and table != self.morph_count:
+            return self.reject(offset, "stream mismatch")
+        a = self.morphs.get(index)
+        if a is not None and (a["track_count"], a["joins"], a["name"]) != (track_count, joins, name):
+            return self.reject(offset, "stream mismatch")
+        t = a["tracks"].get(track) if a is not None else None
+        if t is not None and t["desc"] != desc:
+            return self.reject(offset, "stream mismatch")
+        held = t["keys"] if t is not None else {}
+        if any(first + k in held and held[first + k] != key for k, key in enumerate(keys)):
+            return self.reject(offset, "stream mismatch")
+        fresh = [k for k in range(len(keys)) if first + k not in held]
+        if not fresh:
+            return self.news(False)
+        self.morph_count = table
+        if a is None:
+            a = self.morphs[index] = dict(track_count=track_count, joins=joins, name=name, tracks={})
+        if t is None:
+            t = a["tracks"][track] = dict(desc=desc, keys={})
+        for k in fresh:
+            t["keys"][first + k] = keys[k]
+        return self.news(True)
+
     def skin(self, h, offset):
         """Spec 21.1: the packet's checks, then the comparisons in their order; joints are kept by index."""
         d = decode_skin(h["payload"])
@@ -1630,14 +1747,17 @@ class Receiver:
     def animation_complete(self, a):
         return len(a["tracks"]) == a["track_count"] and all(self.track_state(t)[0] for t in a["tracks"].values())
 
-    def animations_json(self):
+    def animations_json(self, morph=False):
+        """The ANIMATION table (spec 20), or with `morph` the morph animation table (spec 22.2), whose tracks
+        have a target count in place of a path and whose animations say what they join."""
         out = []
-        for k in sorted(self.animations):
-            a = self.animations[k]
+        table = self.morphs if morph else self.animations
+        for k in sorted(table):
+            a = table[k]
             tracks = []
             for i in sorted(a["tracks"]):
                 t = a["tracks"][i]
-                node, path, interp, key_count = t["desc"]
+                node, path, interp, key_count = t["desc"]  # for a morph track, `path` is its target count C
                 complete, usable, times, values = self.track_state(t)
                 missing, cursor = [], 0
                 if not complete:
@@ -1647,20 +1767,68 @@ class Receiver:
                         cursor = key + 1
                     if cursor < key_count:
                         missing.append([cursor, key_count])
-                tracks.append(dict(index=i, node=node, path=PATHS[path], interpolation=INTERPOLATIONS[interp],
-                                   key_count=key_count, keys_held=len(t["keys"]), missing=missing, complete=complete,
-                                   usable=usable, times=times, values=values))
-            out.append(dict(index=k, name=a["name"].decode("utf-8", errors="replace"), track_count=a["track_count"],
-                            complete=self.animation_complete(a), tracks=tracks))
+                track = dict(index=i, node=node, interpolation=INTERPOLATIONS[interp], key_count=key_count,
+                             keys_held=len(t["keys"]), missing=missing, complete=complete, usable=usable, times=times,
+                             values=values)
+                if morph:
+                    track["target_count"] = path
+                else:
+                    track["path"] = PATHS[path]
+                tracks.append(track)
+            entry = dict(index=k, name=a["name"].decode("utf-8", errors="replace"), track_count=a["track_count"],
+                         complete=self.animation_complete(a), tracks=tracks)
+            if morph:
+                entry["joins"] = None if a["joins"] == NONE else a["joins"]
+            out.append(entry)
         return out
 
+    def object_arrived(self, o):
+        """Spec 15.4: an object has arrived with its entry and at least one element of it."""
+        return o < len(self.objects) and self.objects[o]["info"] is not None and \
+            bool(self.objects[o]["ellipsoids"] or self.objects[o]["points"])
+
+    def shown_with_targets(self, mesh):
+        """Spec 22.4: a mesh record with target_count > 0 that is shown (15.4: at least one of its objects has
+        arrived) and every arrived object of which is morphed (22.3: a point held together with its record)
+        with that target_count (the one kept for the object, 22.1)."""
+        targets = len(mesh["weights"])
+        objects = [p["object"] for p in mesh["primitives"] if self.object_arrived(p["object"])]
+        return targets > 0 and bool(objects) and all(
+            self.objects[o]["morph_kind"] is not None and self.objects[o]["morph_kind"][0] == targets and
+            any(i in self.objects[o]["points"] for i in self.objects[o]["morph"]) for o in objects)
+
     def shown_animations(self, shown_nodes):
-        """Spec 20.2: each complete animation with its usable tracks over shown nodes, one per node and path
-        (the first kept); an animation left without a track is not shown."""
+        """Spec 20.2 and 22.4: each complete animation with its usable tracks over shown nodes, one per node and
+        path (the first kept), and the kept tracks of the complete morph animations that join it; then the
+        complete morph animations that stand alone. An animation left without a track is not shown."""
+        def node_targets(node):  # the target count of the node's mesh when it is shown with its targets, else 0
+            mesh = self.meshes.get(self.nodes[node]["mesh"]) if node in self.nodes else None
+            return len(mesh["weights"]) if mesh is not None and self.shown_with_targets(mesh) else 0
+
+        def morph_tracks(indices):
+            """The kept tracks of morph animations `indices` (in that order, then track order), written into one
+            animation: usable, on a shown node whose mesh is shown with the track's C targets, one per node."""
+            kept, nodes = [], set()
+            for m in indices:
+                for i in sorted(self.morphs[m]["tracks"]):
+                    t = self.morphs[m]["tracks"][i]
+                    node, c = t["desc"][0], t["desc"][1]
+                    if not self.track_state(t)[1] or node not in shown_nodes or node_targets(node) != c \
+                            or node in nodes:
+                        continue
+                    nodes.add(node)
+                    kept.append([m, i])
+            return kept
+
+        # Once a MORPH_ANIMATION packet was taken, an animation of A waits until every morph animation of the
+        # morph table has taken a packet and those that join it are complete (spec 22.4).
+        table_known = self.morph_count is None or all(m in self.morphs for m in range(self.morph_count))
         out = []
         for k in sorted(self.animations):
             a = self.animations[k]
-            if not self.animation_complete(a):
+            joining = [m for m in sorted(self.morphs) if self.morphs[m]["joins"] == k]
+            if not self.animation_complete(a) or not table_known or \
+                    not all(self.animation_complete(self.morphs[m]) for m in joining):
                 continue
             kept, targets = [], set()
             for i in sorted(a["tracks"]):
@@ -1670,8 +1838,14 @@ class Receiver:
                     continue
                 targets.add((node, path))
                 kept.append(i)
-            if kept:
-                out.append(dict(index=k, tracks=kept))
+            morphs = morph_tracks(joining)
+            if kept or morphs:
+                out.append(dict(index=k, tracks=kept, morph_only=False, morph_tracks=morphs))
+        for m in sorted(self.morphs):
+            if self.morphs[m]["joins"] == NONE and self.animation_complete(self.morphs[m]):
+                morphs = morph_tracks([m])
+                if morphs:
+                    out.append(dict(index=m, tracks=[], morph_only=True, morph_tracks=morphs))
         return out
 
     def scene_json(self):
@@ -1706,7 +1880,8 @@ class Receiver:
                                               references=self.patches[k][1]) for k in sorted(self.patches)],
                     texture_count=self.textures[min(self.textures)]["desc"]["texture_count"] if self.textures else None,
                     textures=textures, animation_count=self.animation_count, animations=self.animations_json(),
-                    skin_count=self.skin_count, skins=self.skins_json(), shown=self.shown())
+                    skin_count=self.skin_count, skins=self.skins_json(), morph_animation_count=self.morph_count,
+                    morph_animations=self.animations_json(morph=True), shown=self.shown())
 
     def shown(self):
         """Spec 15.4 and 18.4: what a receiver shows."""
@@ -1752,7 +1927,8 @@ class Receiver:
         shown_nodes = [n["index"] for n in nodes]
         return dict(textures=done, materials=materials, waiting=waiting, waiting_extensions=waiting_extensions,
                     ignored_references=ignored, nodes=nodes, animations=self.shown_animations(set(shown_nodes)),
-                    skinned=self.skinned(shown_nodes))
+                    skinned=self.skinned(shown_nodes),
+                    morphed=[k for k in sorted(self.meshes) if self.shown_with_targets(self.meshes[k])])
 
 
 class RangeDecoder:
@@ -1901,6 +2077,11 @@ def objects_json(r):
             # Format 1.5 (spec 21.2): the influence records held, listed when there is one (README).
             if obj["weights"]:
                 o["weights"] = [dict(index=i, joints=j, weights=w) for i, (j, w) in sorted(obj["weights"].items())]
+            # Format 1.6 (spec 22.1): the target count, attributes and displacement records held, listed when
+            # there is one (README).
+            if obj["morph"]:
+                o["morph"] = dict(target_count=obj["morph_kind"][0], attributes=obj["morph_kind"][1],
+                                  records=[dict(index=i, values=v) for i, v in sorted(obj["morph"].items())])
         objects.append(o)
     return objects
 
@@ -1915,7 +2096,7 @@ def decode(buf):
         result = r.add(h, offset)
         old.add(h, offset)
         name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or KNOWN_12.get(h["type"]) or \
-            KNOWN_13.get(h["type"]) or KNOWN_14.get(h["type"]) or KNOWN_15.get(h["type"]) or \
+            KNOWN_13.get(h["type"]) or KNOWN_14.get(h["type"]) or KNOWN_15.get(h["type"]) or KNOWN_16.get(h["type"]) or \
             "UNKNOWN(0x%02X)" % h["type"]
         plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
                           flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
@@ -1928,8 +2109,9 @@ def decode(buf):
     any_scene = any(h["type"] in SCENE_TYPES for _, _, h in packets)
     out["scene"] = r.scene_json() if any_scene else None
     if any_scene:
-        # The same objects but for their format 1.5 influence records, which a 1.0 decoder skips (README).
-        geometry = [{k: v for k, v in o.items() if k != "weights"} for o in out["objects"]]
+        # The same objects but for their format 1.5 influence records and format 1.6 displacement records,
+        # which a 1.0 decoder skips (README).
+        geometry = [{k: v for k, v in o.items() if k not in ("weights", "morph")} for o in out["objects"]]
         out["as_1_0"] = dict(counters=old.counters, newest_minor=old.newest_minor,
                              same_objects=info(old) == out["stream_info"] and objects_json(old) == geometry)
     out["signed"] = authenticate(packets) if any(h["type"] == 0x20 for _, _, h in packets) else None

@@ -1,4 +1,4 @@
-// The expected decode of a conformance vector as JSON: what a format 1.5 decoder makes of a container
+// The expected decode of a conformance vector as JSON: what a format 1.6 decoder makes of a container
 // file (spec/format.md sections 10 and 11). The vector generator (make_vectors.cpp) writes it next to
 // each .ellc; tests/test_conformance.cpp recomputes it with the library and compares. The JSON layout
 // is described in spec/vectors/README.md.
@@ -240,6 +240,17 @@ inline nlohmann::json objects_json(const ReceivedStream& stream) {
                 }
                 o["weights"] = weights;
             }
+            // Format 1.6 (spec 22.1): the target count and attributes kept for the object and the
+            // displacement records held, by point index; listed only for an object that holds one, so
+            // that the decodes of streams without MORPH_DELTAS stay as they were.
+            if (!object.morph.empty()) {
+                json records = json::array();
+                for (const auto& [index, values] : object.morph)
+                    records.push_back({{"index", index}, {"values", floats(values.data(), values.size())}});
+                o["morph"] = {{"target_count", object.morph_targets},
+                              {"attributes", object.morph_attributes},
+                              {"records", records}};
+            }
         }
         objects.push_back(o);
     }
@@ -254,11 +265,13 @@ inline nlohmann::json counters_json(const ReceiveCounters& c) {
 // ---- Format 1.1 scene (spec section 15) ----
 
 // The scene types of format 1.1 (SCENE, MATERIAL, TEXTURE_FRAGMENT), 1.3 (MATERIAL_EXTENSIONS), 1.4
-// (ANIMATION) and 1.5 (SKIN; JOINT_WEIGHTS belongs to an object and is not one).
+// (ANIMATION), 1.5 (SKIN; JOINT_WEIGHTS belongs to an object and is not one) and 1.6 (MORPH_ANIMATION;
+// MORPH_DELTAS belongs to an object and is not one).
 inline bool is_scene_type(uint8_t type) {
     return type == uint8_t(PacketType::Scene) || type == uint8_t(PacketType::Material) ||
            type == uint8_t(PacketType::TextureFragment) || type == uint8_t(PacketType::MaterialExtensions) ||
-           type == uint8_t(PacketType::Animation) || type == uint8_t(PacketType::Skin);
+           type == uint8_t(PacketType::Animation) || type == uint8_t(PacketType::Skin) ||
+           type == uint8_t(PacketType::MorphAnimation);
 }
 
 inline nlohmann::json none_or(uint16_t v) { return v == kNone ? nlohmann::json(nullptr) : nlohmann::json(v); }
@@ -391,6 +404,42 @@ inline nlohmann::json animation_json(uint16_t index, const ReceivedStream::Recei
             {"tracks", tracks}};
 }
 
+// Format 1.6 (spec 22.2): a morph animation as received, as animation_json gives an animation, with
+// the ANIMATION it joins (null when it stands alone) and, per track, its target count C instead of a path.
+inline nlohmann::json morph_animation_json(uint16_t index, const ReceivedStream::ReceivedAnimation& a) {
+    using nlohmann::json;
+    static const char* interpolations[] = {"LINEAR", "STEP", "CUBICSPLINE"};
+    json tracks = json::array();
+    for (const auto& [t, track] : a.tracks) {
+        json missing = json::array();
+        if (!track.complete) {
+            uint64_t cursor = 0;
+            for (const auto& [first, run] : track.runs) {
+                if (first > cursor) missing.push_back({cursor, first});
+                cursor = uint64_t(first) + run.times.size();
+            }
+            if (cursor < track.info.key_count) missing.push_back({cursor, track.info.key_count});
+        }
+        tracks.push_back({{"index", t},
+                          {"node", track.info.node},
+                          {"target_count", track.info.targets},
+                          {"interpolation", interpolations[static_cast<int>(track.info.interpolation)]},
+                          {"key_count", track.info.key_count},
+                          {"keys_held", track.keys_held},
+                          {"missing", missing},
+                          {"complete", track.complete},
+                          {"usable", track.usable},
+                          {"times", track.complete ? floats(track.times.data(), track.times.size()) : json(nullptr)},
+                          {"values", track.complete ? floats(track.values.data(), track.values.size()) : json(nullptr)}});
+    }
+    return {{"index", index},
+            {"name", replace_invalid_utf8(a.name)},
+            {"track_count", a.track_count},
+            {"joins", none_or(a.joins)},
+            {"complete", a.complete()},
+            {"tracks", tracks}};
+}
+
 // Format 1.5 (spec 21.1): a skin as received: its joint count, skeleton and name (of the first packet
 // of it accepted), the joints held (and the ranges of those missing), whether it is complete, and every
 // joint held, in joint order: its node and its inverse bind matrix (16 floats, column-major).
@@ -426,6 +475,12 @@ inline bool object_weighted(const ReceivedStream& s, uint16_t object) {
     for (const auto& [index, r] : o.weights)
         if (o.points.count(index)) return true;
     return false;
+}
+// Format 1.6 (spec 22.4): whether a mesh whose record arrived is shown with its targets: its record
+// carries targets, at least one of its objects has arrived (15.4: the mesh is shown), and every arrived
+// object of it is morphed (22.3: a point held with its record) with the mesh's target count.
+inline bool mesh_shown_with_targets(const ReceivedStream& s, const SceneMesh& mesh) {
+    return mesh_shows_targets(s, mesh, [&](uint16_t object) { return object_arrived(s, object); });
 }
 
 // What a receiver shows of the scene (spec 15.4, 18.4): complete textures; materials whose texture
@@ -498,8 +553,24 @@ inline nlohmann::json shown_json(const ReceivedStream& s) {
     const auto node_shown = [&](uint16_t node) {
         return std::find(shown_nodes.begin(), shown_nodes.end(), node) != shown_nodes.end();
     };
-    for (const ShownAnimation& a : shown_animations(s, node_shown))
-        animations.push_back({{"index", a.index}, {"tracks", a.tracks}});
+    // Format 1.6 (spec 22.4): the meshes shown with their targets, in index order; a morph track is kept
+    // only on a shown node whose mesh is one of them with the track's target count.
+    json morphed = json::array();
+    for (const auto& [index, m] : s.scene_meshes())
+        if (mesh_shown_with_targets(s, m)) morphed.push_back(index);
+    const auto node_targets = [&](uint16_t node) -> unsigned {
+        const auto n = all.find(node);
+        if (n == all.end() || n->second.mesh == kNone) return 0;
+        const auto m = s.scene_meshes().find(n->second.mesh);
+        if (m == s.scene_meshes().end() || !mesh_shown_with_targets(s, m->second)) return 0;
+        return unsigned(m->second.weights.size());
+    };
+    for (const ShownAnimation& a : shown_animations(s, node_shown, node_targets)) {
+        json morph_tracks = json::array();
+        for (const auto& [m, t] : a.morph_tracks) morph_tracks.push_back({m, t});
+        animations.push_back(
+            {{"index", a.index}, {"tracks", a.tracks}, {"morph_only", a.morph_only}, {"morph_tracks", morph_tracks}});
+    }
     // Format 1.5 (spec 21.3): the nodes shown skinned, in node order: among the nodes shown above, those
     // whose record names a complete skin whose joints' nodes (and skeleton, when not 0xFFFF) are shown,
     // whose mesh record arrived and shows at least one arrived object, every arrived object of it
@@ -528,7 +599,7 @@ inline nlohmann::json shown_json(const ReceivedStream& s) {
     }
     return {{"textures", textures}, {"materials", materials}, {"waiting", waiting},
             {"waiting_extensions", waiting_extensions}, {"ignored_references", ignored}, {"nodes", nodes},
-            {"animations", animations}, {"skinned", skinned}};
+            {"animations", animations}, {"skinned", skinned}, {"morphed", morphed}};
 }
 
 inline nlohmann::json scene_json(const ReceivedStream& s) {
@@ -539,7 +610,11 @@ inline nlohmann::json scene_json(const ReceivedStream& s) {
     for (const auto& [index, m] : s.scene_meshes()) {
         json prims = json::array();
         for (const auto& p : m.primitives) prims.push_back({{"object", p.object}, {"material", none_or(p.material)}});
-        meshes.push_back({{"index", m.index}, {"name", replace_invalid_utf8(m.name)}, {"primitives", prims}});
+        // Format 1.6 (spec 22): the default weights, one per target ([] for a mesh without targets).
+        meshes.push_back({{"index", m.index},
+                          {"name", replace_invalid_utf8(m.name)},
+                          {"primitives", prims},
+                          {"weights", floats(m.weights.data(), m.weights.size())}});
     }
     for (const auto& [index, m] : s.materials()) materials.push_back(material_json(m));
     for (const auto& [index, e] : s.material_extensions()) extensions.push_back(material_extensions_json(e));
@@ -548,6 +623,8 @@ inline nlohmann::json scene_json(const ReceivedStream& s) {
     for (const auto& [index, a] : s.animations()) animations.push_back(animation_json(index, a));
     json skins = json::array();
     for (const auto& [index, k] : s.skins()) skins.push_back(skin_json(index, k));
+    json morph_animations = json::array();
+    for (const auto& [index, a] : s.morph_animations()) morph_animations.push_back(morph_animation_json(index, a));
     const bool scene = s.has_scene() || !s.scene_nodes().empty() || !s.scene_meshes().empty();
     return {{"node_count", scene ? json(s.scene_node_count()) : json(nullptr)},
             {"mesh_count", scene ? json(s.scene_mesh_count()) : json(nullptr)},
@@ -569,6 +646,9 @@ inline nlohmann::json scene_json(const ReceivedStream& s) {
             // Format 1.5: that of the SKIN packets accepted (all agree, spec 21.1), null when none was.
             {"skin_count", s.skin_count() ? json(*s.skin_count()) : json(nullptr)},
             {"skins", skins},
+            // Format 1.6: that of the MORPH_ANIMATION packets accepted (all agree, spec 22.2), null when none was.
+            {"morph_animation_count", s.morph_animation_count() ? json(*s.morph_animation_count()) : json(nullptr)},
+            {"morph_animations", morph_animations},
             {"shown", shown_json(s)}};
 }
 
@@ -712,13 +792,17 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     out["stream_info"] = stream.info() ? stream_info_json(*stream.info(), stream.objects().size()) : json(nullptr);
     out["objects"] = objects_json(stream);
     // Format 1.1: present when the file holds any SCENE, MATERIAL, TEXTURE_FRAGMENT, (format 1.3)
-    // MATERIAL_EXTENSIONS, (format 1.4) ANIMATION or (format 1.5) SKIN packet.
+    // MATERIAL_EXTENSIONS, (format 1.4) ANIMATION, (format 1.5) SKIN or (format 1.6) MORPH_ANIMATION packet.
     out["scene"] = any_scene_packet ? scene_json(stream) : json(nullptr);
     if (any_scene_packet) {
         json info_1_0 = as_1_0.info() ? stream_info_json(*as_1_0.info(), as_1_0.objects().size()) : json(nullptr);
-        // The same objects but for their format 1.5 influence records, which a 1.0 decoder skips.
+        // The same objects but for their format 1.5 influence records and format 1.6 displacement
+        // records, which a 1.0 decoder skips.
         json geometry = out["objects"];
-        for (json& o : geometry) o.erase("weights");
+        for (json& o : geometry) {
+            o.erase("weights");
+            o.erase("morph");
+        }
         out["as_1_0"] = {{"counters", counters_json(as_1_0.counters())},
                          {"newest_minor", as_1_0.newest_minor()},
                          {"same_objects", info_1_0 == out["stream_info"] && objects_json(as_1_0) == geometry}};

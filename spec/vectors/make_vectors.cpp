@@ -911,7 +911,7 @@ SceneDescription make_scene() {
     lamp.name = "Lampe \xC3\xBC";  // UTF-8
     lamp.translation = {0, 1.5f, 0};
     s.nodes = {root, body, front, back, lamp};
-    s.meshes = {{0, "Body", {{0, 0}}}, {1, "Wheel", {{1, 1}}}};
+    s.meshes = {{0, "Body", {{0, 0}}, {}}, {1, "Wheel", {{1, 1}}, {}}};
 
     Material paint;
     paint.name = "Paint";
@@ -3099,13 +3099,13 @@ void exact_repair_vectors(Writer& w) {
 SceneAnimation drive_animation() {
     SceneAnimation drive;
     drive.name = "Drive";
-    SceneAnimation::Track spin{2, AnimationPath::Rotation, Interpolation::Linear, {}, {}};
+    SceneAnimation::Track spin{2, AnimationPath::Rotation, Interpolation::Linear, 0, {}, {}};
     for (int k = 0; k < 16; ++k) {
         spin.times.push_back(0.125f * float(k));
         const double half = 0.25 * k;  // half the angle turned
         for (float v : {0.0f, 0.0f, float(std::sin(half)), float(std::cos(half))}) spin.values.push_back(v);
     }
-    SceneAnimation::Track hop{0, AnimationPath::Translation, Interpolation::Step, {}, {}};
+    SceneAnimation::Track hop{0, AnimationPath::Translation, Interpolation::Step, 0, {}, {}};
     for (int k = 0; k < 4; ++k) {
         hop.times.push_back(0.5f * float(k));
         for (float v : {1.0f + 0.5f * float(k), 0.0f, -2.0f}) hop.values.push_back(v);
@@ -3117,7 +3117,7 @@ SceneAnimation drive_animation() {
 SceneAnimation pulse_animation() {
     SceneAnimation pulse;
     pulse.name = "Lamp pulse";
-    SceneAnimation::Track grow{4, AnimationPath::Scale, Interpolation::CubicSpline, {}, {}};
+    SceneAnimation::Track grow{4, AnimationPath::Scale, Interpolation::CubicSpline, 0, {}, {}};
     for (int k = 0; k < 5; ++k) {
         const double t = 0.25 * k;
         grow.times.push_back(float(t));
@@ -3295,10 +3295,10 @@ void animation_vectors(Writer& w) {
         SceneDescription s = animated_car();
         SceneAnimation pose;
         pose.name = "Pose";
-        pose.tracks.push_back({1, AnimationPath::Translation, Interpolation::Step, {0.0f}, {0.0f, 0.75f, 0.0f}});
-        pose.tracks.push_back({4, AnimationPath::Scale, Interpolation::CubicSpline, {0.0f, 2.0f},
+        pose.tracks.push_back({1, AnimationPath::Translation, Interpolation::Step, 0, {0.0f}, {0.0f, 0.75f, 0.0f}});
+        pose.tracks.push_back({4, AnimationPath::Scale, Interpolation::CubicSpline, 0, {0.0f, 2.0f},
                                {0, 0, 0, 1, 1, 1, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 2, 2, 2, 0, 0, 0}});
-        pose.tracks.push_back({3, AnimationPath::Rotation, Interpolation::Linear, {1.5f}, {0, 0, 1, 0}});
+        pose.tracks.push_back({3, AnimationPath::Rotation, Interpolation::Linear, 0, {1.5f}, {0, 0, 1, 0}});
         s.animations.push_back(pose);
         const SceneStream t = make_scene_stream(s, 200);
         w.write("unusual", "animation_smallest_tracks",
@@ -3345,9 +3345,9 @@ void animation_vectors(Writer& w) {
     }
     {
         SceneDescription s = animated_car();
-        SceneAnimation::Track twin{2, AnimationPath::Rotation, Interpolation::Linear, {0.0f, 1.0f},
+        SceneAnimation::Track twin{2, AnimationPath::Rotation, Interpolation::Linear, 0, {0.0f, 1.0f},
                                    {0, 0, 0, 1, 0, 0, 1, 0}};
-        SceneAnimation::Track slide{2, AnimationPath::Translation, Interpolation::Step, {0.0f, 1.0f},
+        SceneAnimation::Track slide{2, AnimationPath::Translation, Interpolation::Step, 0, {0.0f, 1.0f},
                                     {0.4f, -0.3f, 0, 0.4f, -0.2f, 0}};
         s.animations[0].tracks.push_back(twin);
         s.animations[0].tracks.push_back(slide);
@@ -3364,7 +3364,7 @@ void animation_vectors(Writer& w) {
         // animation_track_unusable, and a track 2 with its node and path.
         SceneDescription s = animated_car();
         s.animations[0].tracks.push_back(
-            {2, AnimationPath::Rotation, Interpolation::Linear, {0.0f, 1.0f}, {0, 0, 0, 1, 0, 0, 1, 0}});
+            {2, AnimationPath::Rotation, Interpolation::Linear, 0, {0.0f, 1.0f}, {0, 0, 0, 1, 0, 0, 1, 0}});
         const SceneStream t = make_scene_stream(s, 200);
         Packets sent = t.all();
         bool edited = false;
@@ -3390,7 +3390,7 @@ void animation_vectors(Writer& w) {
         // cut it for node 4, then edit the node).
         SceneDescription s = animated_car();
         s.animations[0].tracks.push_back(
-            {4, AnimationPath::Translation, Interpolation::Linear, {0.0f, 2.0f}, {0, 1.5f, 0, 0, 1.75f, 0}});
+            {4, AnimationPath::Translation, Interpolation::Linear, 0, {0.0f, 2.0f}, {0, 1.5f, 0, 0, 1.75f, 0}});
         const SceneStream t = make_scene_stream(s, 200);
         Packets sent = t.all();
         bool edited = false;
@@ -3641,7 +3641,7 @@ SceneDescription skinned_arm() {
     arm.skin = 0;
     arm.name = "Arm";
     s.nodes = {rig, upper, lower, hand, finger, arm};
-    s.meshes = {{0, "Arm", {{0, kNone}}}};
+    s.meshes = {{0, "Arm", {{0, kNone}}, {}}};
     SceneSkin skin;
     skin.name = "Arm skin";
     skin.skeleton = 1;
@@ -4460,6 +4460,990 @@ void skin_vectors(Writer& w) {
     }
 }
 
+
+// ------------------------------------------------------------------------------------------------
+// Format 1.6: morph targets (MORPH_DELTAS and MORPH_ANIMATION, the SCENE mesh record's targets, spec
+// 22). The morphing face: two objects at packet size 300 (object 0, 6 ellipsoids and 20 points with
+// normals; object 1, 4 ellipsoids and 12 points with normals); 4 nodes ("Stage", the root; "Face" and
+// "Mirror", which both show mesh 0; "Box", which shows mesh 1); mesh 0 "Face" of object 0 with 2
+// targets and default weights 0.25, 0; mesh 1 "Box" of object 1 without targets; the displacements
+// (position and normal) of every point of object 0; animation "Talk" (a translation of node 1 in one
+// ANIMATION packet, and weights of nodes 1 and 3 in morph animation 0, which joins it) and morph
+// animation 1 "Blink" (weights of node 1), which stands alone. The geometry says 1.1, the SCENE
+// packet (which carries mesh 0's target field) 1.6, the ANIMATION packet 1.4, the MORPH_ANIMATION
+// and MORPH_DELTAS packets 1.6.
+
+SceneDescription morphing_face(bool talk_moves_node = true) {
+    SceneDescription s;
+    SceneNode stage;
+    stage.index = 0;
+    stage.name = "Stage";
+    stage.translation = {0, 0, -3};
+    SceneNode face;
+    face.index = 1;
+    face.parent = 0;
+    face.mesh = 0;
+    face.name = "Face";
+    face.translation = {-1, 0, 0};
+    SceneNode box;
+    box.index = 2;
+    box.parent = 0;
+    box.mesh = 1;
+    box.name = "Box";
+    box.translation = {1, 0, 0};
+    SceneNode mirror;
+    mirror.index = 3;
+    mirror.parent = 0;
+    mirror.mesh = 0;
+    mirror.name = "Mirror";
+    mirror.translation = {0, 1.5f, 0};
+    s.nodes = {stage, face, box, mirror};
+    s.meshes = {{0, "Face", {{0, kNone}}, {0.25f, 0.0f}}, {1, "Box", {{1, kNone}}, {}}};
+    // Talk: node 1 slides (ANIMATION 0), and its weights and node 3's move with it (morph animation 0).
+    SceneAnimation talk;
+    talk.name = "Talk";
+    SceneAnimation::Track slide{1, AnimationPath::Translation, Interpolation::Linear, 0, {0, 1, 2},
+                                {-1, 0, 0, -1, 0.25f, 0, -1, 0, 0}};
+    SceneAnimation::Track mouth{1, AnimationPath::Weights, Interpolation::Linear, 2, {}, {}};
+    for (int k = 0; k < 24; ++k) {
+        mouth.times.push_back(0.125f * float(k));
+        mouth.values.push_back(float(0.5 + 0.5 * std::sin(k / 3.0)));
+        mouth.values.push_back(float(k % 4) * 0.25f);
+    }
+    SceneAnimation::Track echo{3, AnimationPath::Weights, Interpolation::Step, 2, {0, 1, 2}, {1, 0, 0, 1, 0.5f, 0.5f}};
+    talk.tracks = {slide, mouth, echo};
+    if (!talk_moves_node) talk.tracks.erase(talk.tracks.begin());
+    SceneAnimation blink;
+    blink.name = "Blink";
+    blink.tracks.push_back({1, AnimationPath::Weights, Interpolation::Linear, 2, {0, 0.25f, 0.5f}, {0, 0, 0, 1, 0, 0}});
+    s.animations = {talk, blink};
+    return s;
+}
+
+// The displacement record of every point of object 0, `targets` targets (target 0 lifts the points by
+// 0.1 x^2 and tilts their normals, target 1 pushes them 0.15 along their normals, target 2, when
+// asked for, moves them 0.05 along z), with the position (attributes bit 0) and normal (bit 1) parts.
+std::vector<float> face_displacements(const StreamInfo& info, const ObjectContent& c, uint8_t targets,
+                                      uint8_t attributes) {
+    std::vector<float> out;
+    for (const QuantizedPoint& q : c.points) {
+        const SurfacePoint p = dequantize_point(q, info, info.objects[0]);
+        const double x = p.position[0];
+        for (uint8_t t = 0; t < targets; ++t) {
+            std::array<double, 3> move{}, turn{};
+            if (t == 0) {
+                move = {0, 0.1 * x * x, 0};
+                turn = {-0.2 * x, 0, 0};
+            } else if (t == 1) {
+                move = {0.15 * p.normal[0], 0.15 * p.normal[1], 0.15 * p.normal[2]};
+            } else {
+                move = {0, 0, 0.05};
+            }
+            if (attributes & kMorphPosition)
+                for (double v : move) out.push_back(float(v));
+            if (attributes & kMorphNormal)
+                for (double v : turn) out.push_back(float(v));
+        }
+    }
+    return out;
+}
+
+struct MorphStream {
+    Stream geometry;
+    ScenePackets scene;  // SCENE; ANIMATION then MORPH_ANIMATION packets in scene.animations
+    Packets deltas;      // MORPH_DELTAS of object 0
+    Packets animations() const {  // the ANIMATION packets
+        Packets out;
+        for (const Packet& p : scene.animations)
+            if (p[6] == uint8_t(PacketType::Animation)) out.push_back(p);
+        return out;
+    }
+    Packets morph_animations() const {  // the MORPH_ANIMATION packets
+        Packets out;
+        for (const Packet& p : scene.animations)
+            if (p[6] == uint8_t(PacketType::MorphAnimation)) out.push_back(p);
+        return out;
+    }
+    Packets before_deltas() const {
+        Packets out = geometry.all();
+        out.insert(out.end(), scene.scene.begin(), scene.scene.end());
+        out.insert(out.end(), scene.animations.begin(), scene.animations.end());
+        return out;
+    }
+    Packets all() const {
+        Packets out = before_deltas();
+        out.insert(out.end(), deltas.begin(), deltas.end());
+        return out;
+    }
+};
+
+MorphStream make_morph_stream(const SceneDescription& scene, uint8_t targets = 2, uint8_t attributes = 3) {
+    MorphStream s;
+    StreamInfo info = default_info({make_object({-1, -1, -1}, 2, 6, 20, kAttrNormal),
+                                    make_object({-0.5f, -0.5f, -0.5f}, 1, 4, 12, kAttrNormal)},
+                                   300);
+    Rng rng(83);
+    for (const ObjectInfo& o : info.objects) s.geometry.contents.push_back(make_content(info, o, rng));
+    s.geometry.info = info;
+    if (packetize_stream(info, s.geometry.contents, kStreamId, s.geometry.packets) != Error::Ok) {
+        std::cerr << "make_vectors: packetize_stream failed (morph)\n";
+        std::exit(1);
+    }
+    uint32_t next = uint32_t(s.geometry.all().size());
+    if (packetize_scene(scene, 300, kStreamId, next, s.scene) != Error::Ok) {
+        std::cerr << "make_vectors: packetize_scene failed (morph)\n";
+        std::exit(1);
+    }
+    next += uint32_t(s.scene.scene.size() + s.scene.animations.size());
+    const std::vector<float> values = face_displacements(info, s.geometry.contents[0], targets, attributes);
+    if (packetize_morph_deltas(info, 0, targets, attributes, values, kStreamId, next, s.deltas) != Error::Ok) {
+        std::cerr << "make_vectors: packetize_morph_deltas failed\n";
+        std::exit(1);
+    }
+    return s;
+}
+
+// A MORPH_ANIMATION packet written from a piece as given (format 1.6, stream-level, skippable).
+Packet morph_animation_packet(const AnimationPiece& piece, uint32_t sequence) {
+    return write_packet(skippable_header(PacketType::MorphAnimation, kMorphMinor, kStreamId, sequence, kStreamObjectId),
+                        encode_morph_animation_payload(piece));
+}
+AnimationPiece morph_piece_of(const Packet& p) {
+    AnimationPiece piece;
+    if (decode_morph_animation_payload(payload_of(p), piece) != Error::Ok) {
+        std::cerr << "make_vectors: not a MORPH_ANIMATION packet\n";
+        std::exit(1);
+    }
+    return piece;
+}
+// A MORPH_DELTAS packet (format 1.6, skippable) of object `object` around a payload as given.
+Packet deltas_packet(uint16_t object, uint32_t sequence, const std::vector<uint8_t>& payload) {
+    return write_packet(skippable_header(PacketType::MorphDeltas, kMorphMinor, kStreamId, sequence, object), payload);
+}
+MorphDeltasRun deltas_run_of(const Packet& p) {
+    MorphDeltasRun run;
+    if (decode_morph_deltas_payload(payload_of(p), run) != Error::Ok) {
+        std::cerr << "make_vectors: not a MORPH_DELTAS packet\n";
+        std::exit(1);
+    }
+    return run;
+}
+// The run of points [first, first + count) of `values` (records of `per_point` values each).
+MorphDeltasRun deltas_run(const std::vector<float>& values, uint32_t first, uint16_t count, uint8_t targets,
+                          uint8_t attributes) {
+    const size_t per_point = morph_record_values(targets, attributes);
+    MorphDeltasRun run;
+    run.first_index = first;
+    run.count = count;
+    run.target_count = targets;
+    run.attributes = attributes;
+    run.values.assign(values.begin() + long(first * per_point), values.begin() + long((first + count) * per_point));
+    return run;
+}
+// Every record of object 0, concatenated from the stream's MORPH_DELTAS packets.
+std::vector<float> all_deltas(const Packets& deltas) {
+    std::vector<float> out;
+    for (const Packet& p : deltas) {
+        const MorphDeltasRun run = deltas_run_of(p);
+        out.insert(out.end(), run.values.begin(), run.values.end());
+    }
+    return out;
+}
+
+// The bytes of a mesh record's target field (spec 22): target_count (that of `weights` unless given)
+// and the weights.
+std::vector<uint8_t> target_field(const std::vector<float>& weights, int count = -1) {
+    std::vector<uint8_t> out = {uint8_t(count < 0 ? weights.size() : size_t(count))};
+    for (float w : weights) {
+        uint32_t u;
+        std::memcpy(&u, &w, 4);
+        for (int i = 0; i < 4; ++i) out.push_back(uint8_t(u >> (8 * i)));
+    }
+    return out;
+}
+// A SCENE packet (saying 1.`minor`) of one mesh record: its index, name and primitives, then `tail`
+// (a target field, or any bytes) in the record body.
+Packet one_mesh_scene_packet(const SceneDescription& scene, SceneMesh m, const std::vector<uint8_t>& tail,
+                             uint8_t minor, uint32_t sequence) {
+    m.weights.clear();
+    SceneBatch batch{uint16_t(scene.nodes.size()), uint16_t(scene.meshes.size()), {}, {m}};
+    std::vector<uint8_t> payload = encode_scene_payload(batch);
+    payload.insert(payload.end(), tail.begin(), tail.end());
+    const uint16_t length = uint16_t(payload[9] | (payload[10] << 8)) + uint16_t(tail.size());
+    payload[9] = uint8_t(length);
+    payload[10] = uint8_t(length >> 8);
+    return write_packet(skippable_header(PacketType::Scene, minor, kStreamId, sequence, kStreamObjectId), payload);
+}
+// `payload` (a SCENE payload) with `extra` bytes appended to the body of its record of kind `kind`
+// and index `index`.
+std::vector<uint8_t> append_to_record(std::vector<uint8_t> payload, uint8_t kind, uint16_t index,
+                                      const std::vector<uint8_t>& extra) {
+    const size_t records = size_t(payload[4] | (payload[5] << 8));
+    size_t at = 8;
+    for (size_t r = 0; r < records; ++r) {
+        const size_t length = size_t(payload[at + 1] | (payload[at + 2] << 8));
+        if (payload[at] == kind && uint16_t(payload[at + 3] | (payload[at + 4] << 8)) == index) {
+            payload.insert(payload.begin() + long(at + 3 + length), extra.begin(), extra.end());
+            payload[at + 1] = uint8_t(length + extra.size());
+            payload[at + 2] = uint8_t((length + extra.size()) >> 8);
+            return payload;
+        }
+        at += 3 + length;
+    }
+    std::cerr << "make_vectors: no such record\n";
+    std::exit(1);
+}
+
+// Offsets in a MORPH_DELTAS packet (header included, spec 22.1).
+constexpr size_t kDeltasFirst = kHeaderSize, kDeltasCount = kHeaderSize + 4, kDeltasTargets = kHeaderSize + 6,
+                 kDeltasAttributes = kHeaderSize + 7, kDeltasRecords = kHeaderSize + 8;
+// Offsets in a MORPH_ANIMATION packet (header included, spec 22.2).
+constexpr size_t kMorphIndex = kHeaderSize, kMorphCount = kHeaderSize + 2, kMorphTrack = kHeaderSize + 4,
+                 kMorphTrackCount = kHeaderSize + 6, kMorphNode = kHeaderSize + 8, kMorphJoins = kHeaderSize + 10,
+                 kMorphTargets = kHeaderSize + 12, kMorphInterpolation = kHeaderSize + 13,
+                 kMorphKeys = kHeaderSize + 14, kMorphKeyCount = kHeaderSize + 16, kMorphFirstKey = kHeaderSize + 20,
+                 kMorphNameLength = kHeaderSize + 24, kMorphReserved = kHeaderSize + 25, kMorphName = kHeaderSize + 26;
+
+void morph_vectors(Writer& w) {
+    const SceneDescription scene = morphing_face();
+    const MorphStream base = make_morph_stream(scene);
+    const Packets anims = base.animations();         // Talk's translation
+    const Packets morphs = base.morph_animations();  // morph 0 track 0 keys 0..19, 20..23; morph 0 track 1; morph 1
+    const Packets& deltas = base.deltas;             // points 0..4, 5..9, 10..14, 15..19
+    if (anims.size() != 1 || morphs.size() != 4 || deltas.size() != 4) {
+        std::cerr << "make_vectors: the morphing face takes " << anims.size() << " ANIMATION, " << morphs.size()
+                  << " MORPH_ANIMATION and " << deltas.size() << " MORPH_DELTAS packets, not 1, 4 and 4\n";
+        std::exit(1);
+    }
+    const Packets stream = base.all();
+    const Packets geometry = base.geometry.all();
+    const size_t scene_at = geometry.size(), anim_at = scene_at + base.scene.scene.size(), morph_at = anim_at + 1,
+                 deltas_at = morph_at + morphs.size();
+    const std::string face =
+        "the morphing face of valid/morph (format 1.6: mesh 0 'Face' of object 0 with 2 targets, default weights "
+        "0.25 and 0, shown by nodes 1 'Face' and 3 'Mirror'; mesh 1 'Box' of object 1 without targets; the "
+        "displacements of object 0's 20 points in 4 MORPH_DELTAS packets; animation 0 'Talk' joined by morph "
+        "animation 0 (tracks on nodes 1 and 3), and morph animation 1 'Blink' standing alone), packets in stream order";
+    w.write("valid", "morph",
+            "format 1.6 (spec 22): the morphing face: objects 0 (6 ellipsoids, 20 points with normals) and 1 (4 "
+            "ellipsoids, 12 points with normals), packet size 300; nodes 0 'Stage' (root), 1 'Face' and 3 'Mirror' "
+            "(mesh 0), 2 'Box' (mesh 1); mesh 0 'Face' of object 0 whose record carries 2 targets with default "
+            "weights 0.25, 0 (its SCENE packet says 1.6), mesh 1 'Box' of object 1 without targets; object 0's "
+            "displacement records (position and normal of both targets) in 4 MORPH_DELTAS packets; animation 0 "
+            "'Talk' (a LINEAR translation of node 1, one ANIMATION packet) joined by morph animation 0 (empty name: "
+            "a LINEAR track of 24 keys on node 1 in 2 packets, a STEP track of 3 keys on node 3), and morph animation "
+            "1 'Blink' (a LINEAR track of 3 keys on node 1), which stands alone; packets in stream order; mesh 0 "
+            "shown with its targets, Talk shown with its track and both morph tracks, Blink written after it",
+            stream);
+
+    // ---- unusual ----
+    {
+        Packets sent = stream;
+        bool found = false;
+        for (size_t i = scene_at; i < anim_at; ++i) {
+            SceneBatch batch;
+            if (decode_scene_payload(payload_of(sent[i]), batch, sent[i][5]) != Error::Ok) std::exit(1);
+            if (std::none_of(batch.meshes.begin(), batch.meshes.end(), [](const SceneMesh& m) { return m.index == 0; }))
+                continue;
+            sent[i] = with_payload(sent[i], append_to_record(payload_of(sent[i]), 2, 0, {0xE1, 0xE2, 0xE3, 0xE4}));
+            sent[i][5] = 7;
+            reseal(sent[i]);
+            found = true;
+        }
+        if (!found) std::exit(1);
+        w.write("unusual", "morph_newer_minor",
+                face + ", with the SCENE packet that holds mesh 0's record saying 1.7 and 4 bytes E1 E2 E3 E4 after "
+                       "that record's default weights: fields of a later version, ignored (spec 15.1: 'ignores bytes "
+                       "after the fields it knows at the end of a record body'; spec 9: a newer minor is decoded as "
+                       "far as it is known); decodes as valid/morph but for newest_minor 7",
+                sent);
+    }
+    {
+        Packets sent = geometry;
+        sent.push_back(one_mesh_scene_packet(scene, scene.meshes[1], target_field({1.0f, 0.0f}), kSkinMinor, 1000));
+        sent.insert(sent.end(), stream.begin() + long(scene_at), stream.end());
+        w.write("unusual", "morph_trailing_bytes_1_5",
+                face + ", with, before its SCENE packet, a SCENE packet saying 1.5 (sequence 1000) of mesh 1's "
+                       "record followed by the 9 bytes 02 0000803F 00000000 (what a target field of 2 targets, "
+                       "weights 1 and 0, would be): in a packet that says 1.5 they are fields of a later version, "
+                       "ignored, not targets (spec 22: 'A decoder reads the field only in a SCENE packet that says "
+                       "version 1.6 or later'), so mesh 1 has no targets, and the stream's SCENE packet, whose mesh 1 "
+                       "record has no field, agrees with it; decodes as valid/morph",
+                sent);
+    }
+    {
+        Packets sent = morphs;
+        sent.insert(sent.end(), deltas.begin(), deltas.end());
+        sent.insert(sent.end(), stream.begin(), stream.begin() + long(morph_at));
+        w.write("unusual", "morph_before_stream_info",
+                face + ", with its 4 MORPH_ANIMATION and 4 MORPH_DELTAS packets first, before the STREAM_INFO, the "
+                       "SCENE and the ANIMATION packets: the MORPH_ANIMATION packets are stream-level and accepted "
+                       "when they arrive (spec 22), the MORPH_DELTAS packets held like POINTS packets (spec 22.1, "
+                       "11.2) and released in arrival order when the STREAM_INFO arrives, then accepted; decodes as "
+                       "valid/morph",
+                sent);
+    }
+    {
+        Packets sent = geometry;
+        Packets rest(stream.begin() + long(scene_at), stream.end());
+        Rng rng(89);
+        for (size_t i = rest.size(); i > 1; --i) std::swap(rest[i - 1], rest[rng.below(i)]);
+        for (size_t i = 0; i < rest.size(); ++i) {
+            sent.push_back(rest[i]);
+            if (i == 1) sent.push_back(rest[i]);
+            if (i == 3) {
+                Packet again = rest[0];
+                restamp_packet(again, 900);
+                sent.push_back(again);
+            }
+        }
+        Packet again = morphs[1];
+        restamp_packet(again, 901);
+        sent.push_back(again);
+        again = deltas[2];
+        restamp_packet(again, 902);
+        sent.push_back(again);
+        w.write("unusual", "morph_shuffled_duplicates",
+                face + ", with its SCENE, ANIMATION, MORPH_ANIMATION and MORPH_DELTAS packets shuffled after the "
+                       "geometry (seeded), the second of them sent twice (byte-identical), the first again after the "
+                       "fourth with sequence number 900, and the second MORPH_ANIMATION packet and the third "
+                       "MORPH_DELTAS packet again at the end (sequence 901, 902): 4 duplicates (spec 22.1, 22.2: "
+                       "nothing new); decodes as valid/morph",
+                sent);
+    }
+    {
+        const MorphStream normals = make_morph_stream(scene, 2, kMorphNormal);
+        w.write("unusual", "morph_normal_only",
+                "the morphing face of valid/morph with displacement records of normals only (attributes 2, spec "
+                "22.1: 6 values a point, 11 points a packet: 2 MORPH_DELTAS packets), the normal displacements of "
+                "valid/morph; mesh 0 is shown with its targets, its position displacements 0 ('a displacement the "
+                "record lacks is 0', spec 22.4)",
+                normals.all());
+    }
+    {
+        SceneDescription s = scene;
+        SceneAnimation::Track& blink = s.animations[1].tracks[0];
+        blink.interpolation = Interpolation::CubicSpline;
+        // Per key: the in-tangents, the values, the out-tangents of both weights.
+        blink.values = {0, 0, 0, 0, 0, 4, 0, 0, 0, 1, 0, 0, 0, -4, 0, 0, 0, 0};
+        w.write("unusual", "morph_cubicspline",
+                "the morphing face of valid/morph with Blink's track CUBICSPLINE (V = 3C = 6: the in-tangents, the "
+                "values and the out-tangents of both weights per key, spec 22.2; 3 keys, one packet of 26 + 5 + 3 x "
+                "28 bytes of payload); complete, usable and shown as in valid/morph",
+                make_morph_stream(s).all());
+    }
+    w.write("unusual", "morph_weights_only",
+            "the morphing face of valid/morph without Talk's translation track: an asset whose animations move "
+            "weights only. No ANIMATION packet; morph animation 0 'Talk' (its name sent: it joins nothing) and "
+            "morph animation 1 'Blink' both stand alone (joins FFFF) and are written after the (empty) ANIMATION "
+            "table in morph animation order (spec 22.4); every morph track kept",
+            make_morph_stream(morphing_face(false)).all());
+    {
+        Packets sent = stream;
+        // The first MORPH_DELTAS packet with -0 for +0.
+        MorphDeltasRun run = deltas_run_of(deltas[0]);
+        size_t zeros = 0;
+        for (float& v : run.values)
+            if (v == 0.0f) v = -0.0f, ++zeros;
+        // Morph animation 0's STEP track (node 3): weights 1, 0, 0, 1, 0.5, 0.5, the time of key 0 0.
+        AnimationPiece echo = morph_piece_of(morphs[2]);
+        for (float& v : echo.values)
+            if (v == 0.0f) v = -0.0f, ++zeros;
+        echo.times[0] = -0.0f;
+        if (zeros < 3) std::exit(1);
+        sent.push_back(deltas_packet(0, 1000, encode_morph_deltas_payload(run)));
+        sent.push_back(morph_animation_packet(echo, 1001));
+        sent.push_back(one_mesh_scene_packet(scene, scene.meshes[0], target_field({0.25f, -0.0f}), kMorphMinor, 1002));
+        w.write("unusual", "morph_negative_zero",
+                face + ", then (sequence 1000..1002) the first MORPH_DELTAS packet with -0 for every +0 of its "
+                       "records, the packet of morph animation 0's track 1 with -0 for its +0 weights and for the time "
+                       "of key 0, and a SCENE packet (1.6) of mesh 0's record with default weights 0.25 and -0: three "
+                       "duplicates, not mismatches (spec 22.1, 22.2, 22: values compare as numbers, +0 and -0 agree), "
+                       "and not malformed (a time of -0 is not negative)",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        for (size_t i = morph_at; i < deltas_at; ++i) {
+            sent[i][kMorphReserved] = 0xA5;
+            reseal(sent[i]);
+        }
+        Packet again = morphs[0];
+        again[kMorphReserved] = 0x5A;
+        reseal(again);
+        restamp_packet(again, 1000);
+        sent.push_back(again);
+        w.write("unusual", "morph_reserved",
+                face + ", with the reserved byte (payload offset 25) of every MORPH_ANIMATION packet A5 (resealed), "
+                       "then the first one again (sequence 1000) with 5A there: ignored when reading (spec 22.2), so "
+                       "the repeat is a duplicate; decodes as valid/morph",
+                sent);
+    }
+    const std::vector<float> records = all_deltas(deltas);
+    {
+        // Runs cut as no sender cuts (at most 5 points, as the packet size allows).
+        Packets sent = base.before_deltas();
+        uint32_t sequence = 1000;
+        for (auto [first, count] : std::vector<std::pair<uint32_t, uint16_t>>{
+                 {3, 5}, {0, 5}, {8, 5}, {13, 5}, {15, 5}, {5, 5}})
+            sent.push_back(deltas_packet(0, sequence++, encode_morph_deltas_payload(deltas_run(records, first, count, 2, 3))));
+        w.write("unusual", "morph_overlapping_runs",
+                face + ", with object 0's records in 6 MORPH_DELTAS packets that overlap, cut as no sender cuts "
+                       "(sequence 1000..1005): points 3..7, 0..4 (accepted: it brings 0..2; its records of 3 and 4 "
+                       "are compared with those held and agree), 8..12, 13..17, 15..19 (accepted: it brings 18 and "
+                       "19), then 5..9 (a duplicate: every record held); spec 22.1 keeps one record per point, "
+                       "whatever packets carried it; decodes as valid/morph",
+                sent);
+    }
+    {
+        Packets sent = geometry;
+        sent.push_back(one_mesh_scene_packet(scene, scene.meshes[1], {0x00}, kMorphMinor, 1000));
+        sent.insert(sent.end(), stream.begin() + long(scene_at), stream.end());
+        w.write("unusual", "morph_mesh_target_count_0",
+                face + ", with, before its SCENE packet, a SCENE packet (1.6, sequence 1000) of mesh 1's record "
+                       "carrying an explicit target field of target_count 0 (one byte 00, no weight): a record with "
+                       "0 targets, which compares equal to the stream's mesh 1 record without the field (spec 22: 'a "
+                       "record without the field comparing as 0 targets'); decodes as valid/morph",
+                sent);
+    }
+    {
+        // Morph animation 0's two tracks split into two morph animations that both join Talk.
+        Packets sent(stream.begin(), stream.begin() + long(morph_at));
+        for (size_t i = 0; i < morphs.size(); ++i) {
+            AnimationPiece piece = morph_piece_of(morphs[i]);
+            piece.animation_count = 3;
+            if (piece.animation == 0) {
+                piece.track_count = 1;
+                if (piece.track == 1) piece.animation = 2, piece.track = 0;
+            }
+            sent.push_back(morph_animation_packet(piece, get32(morphs[i], 12)));
+        }
+        sent.insert(sent.end(), deltas.begin(), deltas.end());
+        w.write("unusual", "morph_two_join_one",
+                face + ", with morph animation 0's two tracks sent as two morph animations that both join Talk "
+                       "(animation_count 3 in every MORPH_ANIMATION packet): morph animation 0 with the track of node "
+                       "1, morph animation 2 with the track of node 3 (each track_count 1, joins 0, an empty name), "
+                       "and Blink as morph animation 1: Talk is shown once every morph animation of the table has "
+                       "taken a packet and both that join it are complete, with its track and the morph tracks of "
+                       "morph animations 0 then 2 (spec 22.4: 'taken in morph animation order, then track order')",
+                sent);
+    }
+
+    // ---- faulty: no rejection, but the stream is not complete or does not conform (spec 22.4) ----
+    {
+        Packets sent = stream;
+        sent.erase(sent.begin() + long(deltas_at) + 2);
+        w.write("faulty", "morph_deltas_incomplete",
+                face + ", without the third MORPH_DELTAS packet (points 10..14): no rejection; object 0 is morphed "
+                       "(a held point with its record), so mesh 0 is shown with its targets (spec 22.3: each vertex "
+                       "gets the record of the nearest held point with one), but the stream is not complete ('every "
+                       "point of every object shown by a mesh whose record carries target_count > 0 has its "
+                       "displacement record')",
+                sent);
+    }
+    w.write("faulty", "morph_deltas_lost",
+            face + ", without any MORPH_DELTAS packet: no rejection; object 0 is not morphed, so mesh 0 is shown in "
+                   "its base shape (spec 22.4), every morph track is left out ('whose mesh is not shown with its "
+                   "targets'): Talk shown with its own track only, Blink not written (no track kept); the stream is "
+                   "not complete",
+            base.before_deltas());
+    {
+        Packets sent;
+        for (const Packet& p : stream)
+            if (!(p[6] == uint8_t(PacketType::Points) && get16(p, 16) == 0)) sent.push_back(p);
+        w.write("faulty", "morph_points_lost",
+                face + ", without object 0's POINTS packets: no rejection; object 0 has arrived (its ellipsoids) and "
+                       "every displacement record is held, but no point: it is not morphed (spec 22.3: 'when the "
+                       "receiver holds at least one of its points together with that point's displacement record'), "
+                       "so mesh 0 is shown in its base shape and every morph track is left out, as in "
+                       "faulty/morph_deltas_lost; the stream is not complete",
+                sent);
+    }
+    {
+        const MorphStream three = make_morph_stream(scene, 3, 3);
+        Packets sent = base.before_deltas();
+        sent.insert(sent.end(), three.deltas.begin(), three.deltas.end());
+        w.write("faulty", "morph_target_count_differs",
+                face + ", with object 0's MORPH_DELTAS packets of 3 targets (a third target moving every point 0.05 "
+                       "along z; 3 points a packet, 7 packets) where mesh 0's record carries 2: no rejection; object 0 "
+                       "is morphed with 3 targets, so mesh 0 is not shown with its targets ('every object it shows is "
+                       "morphed with that target_count') and the morph tracks (C = 2) are left out; the stream does not "
+                       "conform ('every object shown by a mesh with target_count > 0 has MORPH_DELTAS packets with "
+                       "that target_count')",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        std::vector<float> values;
+        for (uint32_t i = 0; i < 12; ++i)
+            for (float v : {0.0f, 0.05f, 0.0f, 0.0f, -0.05f, 0.0f}) values.push_back(v);
+        Packets box;
+        if (packetize_morph_deltas(base.geometry.info, 1, 2, kMorphPosition, values, kStreamId, 1000, box) != Error::Ok)
+            std::exit(1);
+        sent.insert(sent.end(), box.begin(), box.end());
+        w.write("faulty", "morph_deltas_unshown_object",
+                face + ", with MORPH_DELTAS packets of object 1 too (2 targets, positions only, every point moved "
+                       "0.05 up by target 0 and down by target 1; sequence 1000 on), whose mesh 1 record carries no "
+                       "targets: no rejection; object 1 holds its records, mesh 1 is shown as before (no targets); "
+                       "the stream does not conform ('an object with MORPH_DELTAS packets is shown by a mesh whose "
+                       "record carries its target_count')",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        sent.erase(sent.begin() + long(morph_at) + 1);
+        w.write("faulty", "morph_animation_incomplete",
+                face + ", without the second packet of morph animation 0's track 0 (keys 20..23): no rejection; morph "
+                       "animation 0 is not complete and not shown, and Talk, which it joins, is not shown either "
+                       "(spec 22.4: 'an animation of A that it joins is not shown either: a receiver MUST NOT play "
+                       "part of one'); Blink shown; the stream is not complete",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        sent.erase(sent.begin() + long(morph_at) + 3);
+        w.write("faulty", "morph_animation_lost",
+                face + ", without Blink's MORPH_ANIMATION packet: no rejection; the morph table (animation_count 2) "
+                       "has morph animation 1 without a packet, so a receiver cannot know whether it joins Talk: Talk "
+                       "is not shown (spec 22.4: 'shown only when, besides, every morph animation of the morph table "
+                       "has taken a packet'); nothing is shown; the stream is not complete",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        sent.erase(sent.begin() + long(anim_at));
+        w.write("faulty", "morph_joined_animation_lost",
+                face + ", without Talk's ANIMATION packet: no rejection; morph animation 0 is complete and joins "
+                       "animation 0, which never arrives (no ANIMATION packet at all, animation_count null): its "
+                       "tracks are not shown (spec 22.4: 'if j is not below the ANIMATION animation_count or j never "
+                       "arrives, they are not shown'); Blink shown; the stream does not conform ('every joins that is "
+                       "not 0xFFFF is below the ANIMATION animation_count')",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        for (size_t i = morph_at; i < morph_at + 3; ++i) {
+            put16(sent[i], kMorphJoins, 1);
+            reseal(sent[i]);
+        }
+        w.write("faulty", "morph_joins_past_table",
+                face + ", with morph animation 0's 3 packets saying joins 1 where the ANIMATION animation_count is 1 "
+                       "(resealed): no rejection (spec 22.2 does not check joins against the ANIMATION table); its "
+                       "tracks are not shown, Talk is shown with its own track (no morph animation joins it), Blink "
+                       "as before; the stream does not conform",
+                sent);
+    }
+    auto blink_edited = [&](const std::function<void(Packet&)>& edit) {
+        Packets sent = stream;
+        edit(sent[morph_at + 3]);
+        reseal(sent[morph_at + 3]);
+        return sent;
+    };
+    w.write("faulty", "morph_track_node_past_table",
+            face + ", with Blink's track on node 4 in a table of 4 nodes (resealed): no rejection (spec 22.2 does not "
+                   "check node against the SCENE table); the track is left out (its node is not shown, spec 22.4) and "
+                   "Blink, left without a track, is not written; the stream does not conform ('its node is below the "
+                   "SCENE node_count, has a node record')",
+            blink_edited([](Packet& p) { put16(p, kMorphNode, 4); }));
+    w.write("faulty", "morph_track_node_without_mesh",
+            face + ", with Blink's track on node 0 'Stage', which has no mesh (resealed): no rejection; the track is "
+                   "left out ('has no mesh', spec 22.4), Blink not written; the stream does not conform ('names a mesh "
+                   "whose target_count is the track's C')",
+            blink_edited([](Packet& p) { put16(p, kMorphNode, 0); }));
+    w.write("faulty", "morph_track_mesh_without_targets",
+            face + ", with Blink's track on node 2 'Box', whose mesh 1 has no targets (resealed): no rejection; the "
+                   "track is left out ('whose mesh is not shown with its targets'), Blink not written; the stream "
+                   "does not conform",
+            blink_edited([](Packet& p) { put16(p, kMorphNode, 2); }));
+    {
+        AnimationPiece piece = morph_piece_of(morphs[3]);
+        piece.info.targets = 3;
+        std::vector<float> values;
+        for (size_t k = 0; k < piece.times.size(); ++k) {
+            values.push_back(piece.values[2 * k]);
+            values.push_back(piece.values[2 * k + 1]);
+            values.push_back(0.5f);
+        }
+        piece.values = values;
+        Packets sent = stream;
+        sent[morph_at + 3] = morph_animation_packet(piece, get32(morphs[3], 12));
+        w.write("faulty", "morph_track_target_count_differs",
+                face + ", with Blink's track carrying 3 weights a key (target_count 3, a third weight 0.5; re-encoded) "
+                       "where node 1's mesh has 2 targets: no rejection; the track is left out ('has another "
+                       "target_count than the track's C'), Blink not written; the stream does not conform",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        Packet& p = sent[morph_at + 1];  // keys 20..23, after key 19 at time 2.375
+        for (int k = 0; k < 4; ++k) put_f32(p, kMorphName + 12 * size_t(k), 0.25f + 0.125f * float(k));
+        reseal(p);
+        w.write("faulty", "morph_track_unusable",
+                face + ", with the times of keys 20..23 of morph animation 0's track 0, in its second packet "
+                       "(resealed), 0.25, 0.375, 0.5, 0.625: increasing within the packet, before key 19's 2.375: no "
+                       "rejection; the track is complete and not usable, left out (spec 22.4): Talk shown with its "
+                       "track and morph animation 0's track 1 only; the stream does not conform",
+                sent);
+    }
+    {
+        SceneDescription s = scene;
+        s.animations[0].tracks.push_back({1, AnimationPath::Weights, Interpolation::Linear, 2, {0, 1}, {1, 1, 0, 0}});
+        w.write("faulty", "morph_duplicate_node",
+                "the morphing face of valid/morph with a third track in morph animation 0 (joining Talk): track 2, a "
+                "LINEAR track of 2 keys on node 1, the node of its track 0: no rejection; track 2 is left out (spec "
+                "22.4: 'a morph track with the same node as a track kept before it in the same written animation'); "
+                "Talk shown with morph tracks (0, 0) and (0, 1); the stream does not conform",
+                make_morph_stream(s).all());
+    }
+    {
+        // A morph animation 2 joining Talk too, with a track on node 1.
+        Packets sent(stream.begin(), stream.begin() + long(morph_at));
+        for (size_t i = 0; i < morphs.size(); ++i) {
+            AnimationPiece piece = morph_piece_of(morphs[i]);
+            piece.animation_count = 3;
+            sent.push_back(morph_animation_packet(piece, get32(morphs[i], 12)));
+        }
+        AnimationPiece extra = morph_piece_of(morphs[2]);  // node 3's STEP track, 3 keys
+        extra.animation = 2;
+        extra.animation_count = 3;
+        extra.track = 0;
+        extra.track_count = 1;
+        extra.info.node = 1;
+        sent.push_back(morph_animation_packet(extra, 1000));
+        sent.insert(sent.end(), deltas.begin(), deltas.end());
+        w.write("faulty", "morph_duplicate_node_across_joined",
+                face + ", with a morph animation 2 that joins Talk too (animation_count 3 in every MORPH_ANIMATION "
+                       "packet; sequence 1000, after the others): one STEP track of 3 keys on node 1, which morph "
+                       "animation 0's track 0 moves: no rejection; Talk's morph tracks are taken in morph animation "
+                       "order, then track order (spec 22.4), so morph animation 2's track is left out: Talk shown with "
+                       "morph tracks (0, 0) and (0, 1); the stream does not conform ('no two morph tracks written into "
+                       "one animation have the same node')",
+                sent);
+    }
+    {
+        AnimationPiece piece = morph_piece_of(morphs[3]);
+        piece.name = std::string("Bl\xFFink");
+        Packets sent = stream;
+        sent[morph_at + 3] = morph_animation_packet(piece, get32(morphs[3], 12));
+        w.write("faulty", "morph_name_not_utf8",
+                face + ", with Blink named with the bytes 'Bl FF ink' (re-encoded): no rejection; the name shown as "
+                       "'Bl\\uFFFDink' (spec 22.2 by 15); Blink written with its track; the stream does not conform",
+                sent);
+    }
+
+    // ---- faulty: the mesh record's target field (spec 22, 15.1). A SCENE packet of mesh 0's record
+    // (sequence 1000) after the stream; everything else decodes as in valid/morph. ----
+    auto after_stream = [&](Packet copy) {
+        restamp_packet(copy, 1000);  // reseals
+        Packets sent = stream;
+        sent.push_back(copy);
+        return sent;
+    };
+    const std::string kMesh = face + ", then a SCENE packet (sequence 1000) of mesh 0's record ";
+    w.write("faulty", "morph_mesh_weights_short",
+            kMesh + "(1.6) whose target field says 2 targets and holds one weight (0.25): the body ends before the "
+                    "weights it must hold: rejected, malformed payload (spec 22: 'then 4 * target_count bytes of "
+                    "weights MUST follow')",
+            after_stream(one_mesh_scene_packet(scene, scene.meshes[0], target_field({0.25f}, 2), kMorphMinor, 1000)));
+    w.write("faulty", "morph_mesh_weight_infinite",
+            kMesh + "(1.6) with default weights 0.25 and +infinity: rejected, malformed payload (spec 22: 'a weight "
+                    "that is not finite makes the payload malformed')",
+            after_stream(one_mesh_scene_packet(scene, scene.meshes[0],
+                                               target_field({0.25f, std::numeric_limits<float>::infinity()}),
+                                               kMorphMinor, 1000)));
+    w.write("faulty", "morph_mesh_target_count_contradicts",
+            kMesh + "(1.6) with 3 targets (default weights 0.25, 0, 0) where it has 2: rejected, stream mismatch "
+                    "(spec 22: 'a 1.6 decoder compares it like the record's other fields: the target_count as a "
+                    "value')",
+            after_stream(one_mesh_scene_packet(scene, scene.meshes[0], target_field({0.25f, 0, 0}), kMorphMinor, 1000)));
+    w.write("faulty", "morph_mesh_weight_contradicts",
+            kMesh + "(1.6) with default weights 0.5 and 0 where they are 0.25 and 0: rejected, stream mismatch (spec "
+                    "22: the weights compared as numbers)",
+            after_stream(one_mesh_scene_packet(scene, scene.meshes[0], target_field({0.5f, 0}), kMorphMinor, 1000)));
+    w.write("faulty", "morph_mesh_targets_dropped",
+            kMesh + "without the target field, saying 1.1, as a 1.5 encoder writes it: rejected, stream mismatch "
+                    "(spec 22: 'a record without the field comparing as 0 targets', and mesh 0's record carries 2)",
+            after_stream(one_mesh_scene_packet(scene, scene.meshes[0], {}, kFormatMinor, 1000)));
+    w.write("faulty", "morph_mesh_targets_in_1_5_packet",
+            kMesh + "with the target field of valid/morph (2 targets, 0.25 and 0) in a packet that says 1.5: the "
+                    "decoder does not read it (spec 22: 'only in a SCENE packet that says version 1.6 or later'), so "
+                    "the record has 0 targets and contradicts mesh 0's 2: rejected, stream mismatch",
+            after_stream(one_mesh_scene_packet(scene, scene.meshes[0], target_field({0.25f, 0}), kSkinMinor, 1000)));
+
+    // ---- faulty: MORPH_DELTAS rejections. A copy of the first MORPH_DELTAS packet (points 0..4) with one
+    // defect, sequence 1000, after the stream (resealed; a payload of another length gets its
+    // payload_length and checksum), unless the row says otherwise. ----
+    const Packet& first_deltas = deltas[0];
+    const std::string kDeltasCopy = face + ", then a copy of the first MORPH_DELTAS packet (points 0..4) ";
+    auto deltas_edited = [&](const std::function<void(Packet&)>& edit) {
+        Packet copy = first_deltas;
+        edit(copy);
+        reseal(copy);
+        return after_stream(copy);
+    };
+    auto deltas_head = [&](const std::function<void(std::vector<uint8_t>&)>& edit) {
+        std::vector<uint8_t> payload = payload_of(first_deltas);
+        payload.resize(8);
+        edit(payload);
+        return after_stream(with_payload(first_deltas, payload));
+    };
+    {
+        std::vector<uint8_t> payload = payload_of(first_deltas);
+        payload.resize(7);
+        w.write("faulty", "morph_deltas_payload_short",
+                kDeltasCopy + "cut to a payload of 7 bytes: rejected, malformed payload (spec 22.1: 'shorter than 8 "
+                              "bytes')",
+                after_stream(with_payload(first_deltas, payload)));
+    }
+    w.write("faulty", "morph_deltas_count_zero",
+            kDeltasCopy + "with count 0 and no record (an 8-byte payload: its length agrees): rejected, malformed "
+                          "payload (spec 22.1: 'count is 0')",
+            deltas_head([](std::vector<uint8_t>& p) { p[4] = p[5] = 0; }));
+    w.write("faulty", "morph_deltas_target_count_zero",
+            kDeltasCopy + "with target_count 0 and no record (an 8-byte payload: 8 + 5 x 0 bytes, its length agrees): "
+                          "rejected, malformed payload (spec 22.1: 'target_count is 0')",
+            deltas_head([](std::vector<uint8_t>& p) { p[6] = 0; }));
+    w.write("faulty", "morph_deltas_attributes_zero",
+            kDeltasCopy + "with attributes 0 and no record (an 8-byte payload: a = 0, its length agrees): rejected, "
+                          "malformed payload (spec 22.1: 'attributes is 0')",
+            deltas_head([](std::vector<uint8_t>& p) { p[7] = 0; }));
+    w.write("faulty", "morph_deltas_attributes_bit_6",
+            kDeltasCopy + "with attributes 43 (bits 0, 1 and 6; bits 0 and 1 give its length): rejected, malformed "
+                          "payload (spec 22.1: 'has a bit of 2..7 set')",
+            deltas_edited([](Packet& p) { p[kDeltasAttributes] = 0x43; }));
+    {
+        std::vector<uint8_t> payload = payload_of(first_deltas);
+        payload.push_back(0);
+        w.write("faulty", "morph_deltas_length_mismatch",
+                kDeltasCopy + "with one byte (00) more after its records: rejected, malformed payload (spec 22.1: "
+                              "'payload_length MUST equal 8 + count * 12 * a * target_count')",
+                after_stream(with_payload(first_deltas, payload)));
+    }
+    w.write("faulty", "morph_deltas_index_overflow",
+            kDeltasCopy + "with first_index 4294967291 = 2^32 - 5: first_index + count = 2^32 > 2^32 - 1 (0 in 32-bit "
+                          "arithmetic): rejected, malformed payload (spec 22.1: 'computed without overflow'; at step "
+                          "11, before the object's point_count is looked at)",
+            deltas_edited([](Packet& p) { put32(p, kDeltasFirst, 0xFFFFFFFBu); }));
+    // Point 2's record: 12 values; its target 1 position y is value 7.
+    const size_t nan_at = kDeltasRecords + 4 * (2 * 12 + 7);
+    w.write("faulty", "morph_deltas_value_nan",
+            kDeltasCopy + "with the y of point 2's target 1 position displacement NaN (7FC00000): rejected, malformed "
+                          "payload (spec 22.1: 'a value is not finite')",
+            deltas_edited([&](Packet& p) { put32(p, nan_at, 0x7FC00000u); }));
+    {
+        Packet bad = first_deltas;
+        put32(bad, nan_at, 0x7FC00000u);
+        reseal(bad);
+        restamp_packet(bad, 1000);
+        Packets sent = {bad};
+        sent.insert(sent.end(), stream.begin(), stream.end());
+        w.write("faulty", "morph_deltas_malformed_before_stream_info",
+                "the morphing face of valid/morph with, before its STREAM_INFO, the copy of faulty/morph_deltas_value_nan "
+                "(sequence 1000): rejected when it arrives, malformed payload (spec 22.1: the checks that need no "
+                "stream info are made at step 11, before a packet is held, 11.1); nothing held; the rest as in "
+                "valid/morph",
+                sent);
+    }
+    w.write("faulty", "morph_deltas_unknown_object",
+            kDeltasCopy + "sent for object 2 of a 2-object stream: rejected, unknown object (spec 22.1, 11.1 step 12)",
+            deltas_edited([](Packet& p) { put16(p, 16, 2); }));
+    {
+        const MorphDeltasRun last = deltas_run_of(deltas.back());
+        Packet copy = deltas.back();
+        put32(copy, kDeltasFirst, last.first_index + 1);
+        reseal(copy);
+        w.write("faulty", "morph_deltas_index_out_of_range",
+                face + ", then a copy of the last MORPH_DELTAS packet (points " + std::to_string(last.first_index) +
+                    "..19) saying first_index " + std::to_string(last.first_index + 1) +
+                    " (sequence 1000): its last point 20 is not below point_count 20: rejected, index out of range "
+                    "(spec 22.1: 'a point first_index + count - 1 at or past the object's point_count'; 11.1 step 14)",
+                after_stream(copy));
+        restamp_packet(copy, 1000);
+        Packets sent = {copy};
+        sent.insert(sent.end(), stream.begin(), stream.end());
+        w.write("faulty", "morph_deltas_held_out_of_range",
+                "the morphing face of valid/morph with, before its STREAM_INFO, the copy of "
+                "faulty/morph_deltas_index_out_of_range (sequence 1000): well formed, so held (spec 22.1); when the "
+                "STREAM_INFO releases it, rejected at its own offset 12, index out of range (11.1 step 14); the rest "
+                "as in valid/morph",
+                sent);
+    }
+    {
+        const MorphStream three = make_morph_stream(scene, 3, 3);
+        const std::vector<float> values3 = all_deltas(three.deltas);
+        w.write("faulty", "morph_deltas_target_count_contradicts",
+                face + ", then a MORPH_DELTAS packet (sequence 1000) of points 0..2 with 3 targets (the records of "
+                       "faulty/morph_target_count_differs) where object 0's packets say 2: rejected, stream mismatch "
+                       "(spec 22.1: 'its target_count and attributes against those kept for its object')",
+                after_stream(deltas_packet(0, 1000, encode_morph_deltas_payload(deltas_run(values3, 0, 3, 3, 3)))));
+        const std::vector<float> positions = all_deltas(make_morph_stream(scene, 2, kMorphPosition).deltas);
+        w.write("faulty", "morph_deltas_attributes_contradicts",
+                face + ", then a MORPH_DELTAS packet (sequence 1000) of points 0..4 with attributes 1 (their position "
+                       "displacements alone) where object 0's packets say 3: rejected, stream mismatch (spec 22.1)",
+                after_stream(deltas_packet(0, 1000,
+                                           encode_morph_deltas_payload(deltas_run(positions, 0, 5, 2, kMorphPosition)))));
+    }
+    w.write("faulty", "morph_deltas_value_contradicts",
+            kDeltasCopy + "with the y of point 2's target 1 position displacement 0.5 more: rejected, stream mismatch "
+                          "(spec 22.1: 'each record for a point whose record the decoder holds against that record')",
+            after_stream([&] {
+                MorphDeltasRun run = deltas_run_of(first_deltas);
+                run.values[2 * 12 + 7] += 0.5f;
+                return with_payload(first_deltas, encode_morph_deltas_payload(run));
+            }()));
+    {
+        MorphDeltasRun run = deltas_run(records, 3, 5, 2, 3);
+        run.values[0] += 0.25f;  // point 3's target 0 position x
+        Packets sent = stream;
+        sent.insert(sent.begin() + long(deltas_at) + 1, deltas_packet(0, 1000, encode_morph_deltas_payload(run)));
+        w.write("faulty", "morph_deltas_contradicts_partly_new",
+                face + ", with a MORPH_DELTAS packet of points 3..7 (sequence 1000) right after the first (points "
+                       "0..4), point 3's record changed (its target 0 position x 0.25 more): rejected, stream mismatch "
+                       "(spec 22.1), and nothing of it is kept (the records of points 5..7, not held then, arrive with "
+                       "the next packet); as valid/morph",
+                sent);
+    }
+
+    // ---- faulty: MORPH_ANIMATION rejections. A copy of the first MORPH_ANIMATION packet (morph animation
+    // 0, track 0, keys 0..19, times 0 .. 2.375, an empty name) with one defect, sequence 1000, after the
+    // stream, unless the row says otherwise. ----
+    const Packet& first_morph = morphs[0];
+    const std::string kMorphCopy =
+        face + ", then a copy of the first MORPH_ANIMATION packet (morph animation 0, track 0, keys 0..19) ";
+    auto morph_edited = [&](const std::function<void(Packet&)>& edit) {
+        Packet copy = first_morph;
+        edit(copy);
+        reseal(copy);
+        return after_stream(copy);
+    };
+    auto morph_rebuilt = [&](const std::function<void(AnimationPiece&)>& edit) {
+        AnimationPiece piece = morph_piece_of(first_morph);
+        edit(piece);
+        return after_stream(morph_animation_packet(piece, 1000));
+    };
+    auto key_at = [](size_t k) { return kMorphName + 12 * k; };  // key k of the copy (no name, V = 2)
+    {
+        std::vector<uint8_t> payload = payload_of(first_morph);
+        payload.resize(25);
+        w.write("faulty", "morph_animation_payload_short",
+                kMorphCopy + "cut to a payload of 25 bytes: rejected, malformed payload (spec 22.2: 'shorter than 26 "
+                             "bytes')",
+                after_stream(with_payload(first_morph, payload)));
+    }
+    {
+        std::vector<uint8_t> payload = payload_of(first_morph);
+        payload.push_back(0);
+        w.write("faulty", "morph_animation_length_mismatch",
+                kMorphCopy + "with one byte (00) more after its keys: rejected, malformed payload (spec 22.2: "
+                             "'payload_length MUST equal 26 + name_length + count * 4 * (1 + V)')",
+                after_stream(with_payload(first_morph, payload)));
+    }
+    w.write("faulty", "morph_animation_index_past_table",
+            kMorphCopy + "saying animation 2 of animation_count 2: rejected, malformed payload (spec 22.2: 'animation "
+                         ">= animation_count')",
+            morph_edited([](Packet& p) { put16(p, kMorphIndex, 2); }));
+    w.write("faulty", "morph_animation_track_past_count",
+            kMorphCopy + "saying track 2 of track_count 2: rejected, malformed payload (spec 22.2: 'track >= "
+                         "track_count')",
+            morph_edited([](Packet& p) { put16(p, kMorphTrack, 2); }));
+    w.write("faulty", "morph_animation_target_count_zero",
+            kMorphCopy + "with target_count 0: rejected, malformed payload (spec 22.2: 'target_count is 0'; checked "
+                         "before the length, which depends on it)",
+            morph_edited([](Packet& p) { p[kMorphTargets] = 0; }));
+    w.write("faulty", "morph_animation_interpolation_3",
+            kMorphCopy + "with interpolation 3: rejected, malformed payload (spec 22.2: 'interpolation > 2')",
+            morph_edited([](Packet& p) { p[kMorphInterpolation] = 3; }));
+    w.write("faulty", "morph_animation_key_count_zero",
+            kMorphCopy + "with key_count 0: rejected, malformed payload (spec 22.2: 'key_count is 0')",
+            morph_edited([](Packet& p) { put32(p, kMorphKeyCount, 0); }));
+    {
+        AnimationPiece piece = morph_piece_of(morphs[3]);  // Blink
+        piece.info.interpolation = Interpolation::CubicSpline;
+        piece.info.key_count = 1;
+        piece.times = {0};
+        piece.values = {0, 0, 0, 0, 0, 4};
+        w.write("faulty", "morph_animation_cubicspline_one_key",
+                face + ", then a MORPH_ANIMATION packet of Blink's track (sequence 1000) saying CUBICSPLINE with "
+                       "key_count 1 and that key alone (first_key 0, count 1): rejected, malformed payload (spec 22.2: "
+                       "'or below 2 with CUBICSPLINE')",
+                after_stream(morph_animation_packet(piece, 1000)));
+    }
+    {
+        std::vector<uint8_t> payload = payload_of(first_morph);
+        payload.resize(26);  // the fields, an empty name, no key
+        payload[14] = payload[15] = 0;
+        w.write("faulty", "morph_animation_count_zero",
+                kMorphCopy + "with count 0 and no key (a payload of 26 bytes: its length agrees): rejected, malformed "
+                             "payload (spec 22.2: 'count is 0')",
+                after_stream(with_payload(first_morph, payload)));
+    }
+    w.write("faulty", "morph_animation_keys_past_count",
+            kMorphCopy + "with first_key 10: 10 + 20 = 30 > key_count 24: rejected, malformed payload (spec 22.2)",
+            morph_edited([](Packet& p) { put32(p, kMorphFirstKey, 10); }));
+    w.write("faulty", "morph_animation_first_key_overflow",
+            kMorphCopy + "with first_key 4294967293 = 2^32 - 3: first_key + count = 2^32 + 17, which is 17 in 32-bit "
+                         "arithmetic: rejected, malformed payload (spec 22.2: 'computed without overflow')",
+            morph_edited([](Packet& p) { put32(p, kMorphFirstKey, 0xFFFFFFFDu); }));
+    w.write("faulty", "morph_animation_time_infinite",
+            kMorphCopy + "with the time of its last key (19) +infinity (7F800000; the times still increase): "
+                         "rejected, malformed payload (spec 22.2: 'a float is not finite')",
+            morph_edited([&](Packet& p) { put32(p, key_at(19), 0x7F800000u); }));
+    w.write("faulty", "morph_animation_weight_nan",
+            kMorphCopy + "with the second weight of key 2 NaN (7FC00000): rejected, malformed payload (spec 22.2)",
+            morph_edited([&](Packet& p) { put32(p, key_at(2) + 8, 0x7FC00000u); }));
+    w.write("faulty", "morph_animation_time_negative",
+            kMorphCopy + "with the time of key 0 -0.5 (the others 0.125 .. 2.375): rejected, malformed payload (spec "
+                         "22.2: 'a time is negative')",
+            morph_edited([&](Packet& p) { put_f32(p, key_at(0), -0.5f); }));
+    w.write("faulty", "morph_animation_times_not_increasing",
+            kMorphCopy + "with the time of key 4 0.375, that of key 3: rejected, malformed payload (spec 22.2: 'the "
+                         "times of the packet do not strictly increase')",
+            morph_edited([&](Packet& p) { put_f32(p, key_at(4), 0.375f); }));
+    w.write("faulty", "morph_animation_count_contradicts",
+            kMorphCopy + "saying animation_count 3 where the others say 2: rejected, stream mismatch (spec 22.2: its "
+                         "animation_count against the one kept)",
+            morph_edited([](Packet& p) { put16(p, kMorphCount, 3); }));
+    w.write("faulty", "morph_animation_track_count_contradicts",
+            kMorphCopy + "saying track_count 3 where morph animation 0's packets say 2: rejected, stream mismatch "
+                         "(spec 22.2)",
+            morph_edited([](Packet& p) { put16(p, kMorphTrackCount, 3); }));
+    w.write("faulty", "morph_animation_joins_contradicts",
+            kMorphCopy + "saying joins FFFF (standing alone) where morph animation 0's packets say 0: rejected, stream "
+                         "mismatch (spec 22.2: 'its track_count, joins and name')",
+            morph_edited([](Packet& p) { put16(p, kMorphJoins, kNone); }));
+    w.write("faulty", "morph_animation_name_contradicts",
+            kMorphCopy + "naming its morph animation 'Talk' (re-encoded) where morph animation 0's packets carry an "
+                         "empty name: rejected, stream mismatch (spec 22.2: names compared as bytes)",
+            morph_rebuilt([](AnimationPiece& a) { a.name = "Talk"; }));
+    w.write("faulty", "morph_animation_node_contradicts",
+            kMorphCopy + "saying node 3 where track 0's packets say 1: rejected, stream mismatch (spec 22.2: its "
+                         "track's description)",
+            morph_edited([](Packet& p) { put16(p, kMorphNode, 3); }));
+    w.write("faulty", "morph_animation_target_count_contradicts",
+            face + ", then a MORPH_ANIMATION packet (sequence 1000) of keys 0..9 of morph animation 0's track 0 "
+                   "with target_count 3 (its weights and a third 0 per key; well formed) where the track's packets say "
+                   "2: rejected, stream mismatch (spec 22.2: the track's description)",
+            morph_rebuilt([](AnimationPiece& a) {
+                a.info.targets = 3;
+                a.times.resize(10);
+                std::vector<float> values;
+                for (size_t k = 0; k < 10; ++k)
+                    for (float v : {a.values[2 * k], a.values[2 * k + 1], 0.0f}) values.push_back(v);
+                a.values = values;
+            }));
+    w.write("faulty", "morph_animation_interpolation_contradicts",
+            kMorphCopy + "saying interpolation 1 (STEP; the same V) where track 0's packets say 0: rejected, stream "
+                         "mismatch (spec 22.2)",
+            morph_edited([](Packet& p) { p[kMorphInterpolation] = 1; }));
+    w.write("faulty", "morph_animation_key_count_contradicts",
+            kMorphCopy + "saying key_count 25 where track 0's packets say 24: rejected, stream mismatch (spec 22.2)",
+            morph_edited([](Packet& p) { put32(p, kMorphKeyCount, 25); }));
+    w.write("faulty", "morph_animation_weight_contradicts",
+            kMorphCopy + "with the first weight of key 3 0.125 more: rejected, stream mismatch (spec 22.2: each key "
+                         "against the key of the same index kept, the time and every weight as numbers)",
+            morph_rebuilt([](AnimationPiece& a) { a.values[6] += 0.125f; }));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -4480,6 +5464,7 @@ int main(int argc, char** argv) {
     exact_repair_vectors(w);
     animation_vectors(w);
     skin_vectors(w);
+    morph_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
