@@ -9,6 +9,9 @@
 #include <sys/wait.h>
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <vector>
 #include <string>
 
 namespace ellicast::test {
@@ -93,6 +96,27 @@ inline void check_gltf_clean(const std::filesystem::path& file, const std::vecto
         other += std::find(allowed.begin(), allowed.end(), code) == allowed.end();
     CHECK_MESSAGE(other == 0, report);
     CHECK_MESSAGE(nlohmann::json::parse(report).value("numWarnings", -1) >= 0, report);
+}
+
+// The bytes of a file (empty when it cannot be read).
+inline std::vector<uint8_t> read_bytes(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// `bytes` in base64 (RFC 4648, with padding): for data: URIs of test assets.
+inline std::string base64(const std::vector<uint8_t>& bytes) {
+    static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (size_t i = 0; i < bytes.size(); i += 3) {
+        const uint32_t n = uint32_t(bytes[i]) << 16 | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
+                           (i + 2 < bytes.size() ? bytes[i + 2] : 0);
+        out += digits[n >> 18 & 63];
+        out += digits[n >> 12 & 63];
+        out += i + 1 < bytes.size() ? digits[n >> 6 & 63] : '=';
+        out += i + 2 < bytes.size() ? digits[n & 63] : '=';
+    }
+    return out;
 }
 
 }  // namespace ellicast::test

@@ -22,16 +22,11 @@ namespace {
 
 bool patch_ok(const std::string& text) { return check_material_patch(text) == Error::Ok; }
 
-std::vector<uint8_t> slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
 // The Duck sample with `edit` applied to its glTF JSON, read as an asset (its .bin and PNG beside it).
 Asset edited_duck(const fs::path& dir, const std::string& name, const std::function<void(nlohmann::json&)>& edit) {
     for (const char* file : {"Duck0.bin", "DuckCM.png"})
         if (!fs::exists(dir / file)) fs::copy_file(shared_samples() / "gltf/Duck" / file, dir / file);
-    auto json = nlohmann::json::parse(slurp(shared_samples() / "gltf/Duck/Duck.gltf"));
+    auto json = nlohmann::json::parse(read_bytes(shared_samples() / "gltf/Duck/Duck.gltf"));
     edit(json);
     std::ofstream(dir / (name + ".gltf"), std::ios::binary) << json.dump();
     return load_asset((dir / (name + ".gltf")).string());
@@ -179,7 +174,7 @@ TEST_CASE("every ratified material extension comes back from a stream with the s
           "valid file") {
     if (!have_sample("gltf/Duck/Duck.gltf")) return;
     const fs::path dir = scratch_dir("material_extensions");
-    const std::vector<uint8_t> png = slurp(shared_samples() / "gltf/Duck/DuckCM.png");
+    const std::vector<uint8_t> png = read_bytes(shared_samples() / "gltf/Duck/DuckCM.png");
     const nlohmann::json texture = {{"index", 0}};
     const nlohmann::json transformed = {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0}}, {"scale", {2, 2}}}}}}};
     const std::vector<std::pair<std::string, nlohmann::json>> extensions = {

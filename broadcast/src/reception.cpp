@@ -245,6 +245,15 @@ bool stream_complete(const ReceivedStream& stream) {
     for (const auto& [o, joints] : skinned_objects(stream))
         if (o < stream.objects().size() && stream.objects()[o].weights.size() < stream.objects()[o].info->point_count)
             return false;
+    // Format 1.6 (spec 22.4): every morph animation whole, and displacements for every point of the
+    // objects a mesh with targets shows.
+    if (const auto count = stream.morph_animation_count(); count && stream.morph_animations().size() < *count)
+        return false;
+    for (const auto& [index, animation] : stream.morph_animations())
+        if (!animation.complete()) return false;
+    for (const auto& [o, targets] : morph_target_objects(stream))
+        if (o < stream.objects().size() && stream.objects()[o].morph.size() < stream.objects()[o].info->point_count)
+            return false;
     return true;
 }
 

@@ -174,7 +174,9 @@ private:
             if (!std::isfinite(v)) throw InputError(where + ": its rotation has a non-finite value");
         for (float v : out.scale)
             if (!std::isfinite(v)) throw InputError(where + ": its scale has a non-finite value");
-        if (!node.weights.empty()) warnings_.push_back(where + ": its morph target weights are not sent");
+        if (!node.weights.empty())
+            warnings_.push_back(where + ": its own morph target weights (overriding its mesh's) are not sent; its mesh's "
+                                "default weights are");
         for (const auto& [name, value] : node.extensions) {
             (void)value;
             warnings_.push_back(where + ": extension " + name + " of the node is not sent");
@@ -222,6 +224,7 @@ private:
             }
             out.primitives.push_back(sp);
         }
+        read_targets(gmesh, out, path_ + ": " + label);
         uint16_t index = kNone;
         if (out.primitives.empty()) {
             warnings_.push_back(where + ": its mesh " + label + " has no primitive ellicast can send; the node is sent "
@@ -234,6 +237,88 @@ private:
         }
         mesh_map_[m] = index;
         return index;
+    }
+
+    // Format 1.6 (spec 22): the mesh's targets travel when every object it sends carries as many
+    // targets as the mesh has; then its default weights go into its record.
+    void read_targets(const tinygltf::Mesh& gmesh, SceneMesh& out, const std::string& where) {
+        size_t targets = 0;
+        for (const auto& prim : gmesh.primitives) targets = std::max(targets, prim.targets.size());
+        if (targets == 0 || out.primitives.empty()) return;
+        std::string problem;
+        if (targets > 255) problem = std::to_string(targets) + " morph targets (at most 255 can be sent)";
+        for (const auto& p : out.primitives)
+            if (problem.empty() && (p.object >= asset_.morphs.size() || asset_.morphs[p.object].targets != targets))
+                problem = "a primitive without " + std::to_string(targets) + " morph targets that can be sent";
+        if (!problem.empty()) {
+            warnings_.push_back(where + ": " + problem + "; its morph targets are not sent (the base shape is)");
+            for (const auto& p : out.primitives)
+                if (p.object < asset_.morphs.size()) asset_.morphs[p.object] = {};
+            return;
+        }
+        out.weights.assign(targets, 0.0f);
+        if (!gmesh.weights.empty() && gmesh.weights.size() != targets)
+            warnings_.push_back(where + ": " + std::to_string(gmesh.weights.size()) + " default weights for " +
+                                std::to_string(targets) + " morph targets; sent as 0");
+        else
+            for (size_t t = 0; t < gmesh.weights.size(); ++t) {
+                out.weights[t] = float(gmesh.weights[t]);
+                if (!std::isfinite(out.weights[t])) {
+                    warnings_.push_back(where + ": a default weight is not finite; sent as 0");
+                    out.weights[t] = 0.0f;
+                }
+            }
+    }
+
+    // The morph targets of a primitive per vertex of `mesh` (as primitive_to_mesh made it): POSITION
+    // and NORMAL displacements (0 where a target lacks one). Empty, with a warning, when one is not
+    // usable. TANGENT displacements are not sent (named in a warning).
+    VertexMorph read_morph(const tinygltf::Primitive& prim, const Mesh& mesh, const std::string& where) {
+        VertexMorph out;
+        if (prim.targets.empty()) return out;
+        try {
+            if (prim.targets.size() > 255)
+                throw InputError(where + ": " + std::to_string(prim.targets.size()) + " morph targets (at most 255 can be sent)");
+            if (mesh.is_point_set && prim.indices >= 0) throw InputError(where + ": an indexed point primitive's morph targets");
+            bool tangents = false;
+            for (const auto& target : prim.targets) {
+                if (target.count("POSITION")) out.attributes |= kMorphPosition;
+                if (target.count("NORMAL") && !mesh.normals.empty()) out.attributes |= kMorphNormal;
+                tangents |= target.count("TANGENT") > 0;
+            }
+            if (tangents) warnings_.push_back(where + ": the TANGENT displacements of its morph targets are not sent");
+            if (out.attributes == 0) out.attributes = kMorphPosition;  // only tangents: a target of zeros
+            out.targets = uint8_t(prim.targets.size());
+            const size_t n = mesh.positions.size();
+            const size_t per = morph_record_values(out.targets, out.attributes);
+            out.values.assign(per * n, 0.0f);
+            for (size_t t = 0; t < prim.targets.size(); ++t) {
+                size_t offset = 3 * (out.attributes == (kMorphPosition | kMorphNormal) ? 2 : 1) * t;
+                for (const uint8_t bit : {kMorphPosition, kMorphNormal}) {
+                    if (!(out.attributes & bit)) continue;
+                    const char* name = bit == kMorphPosition ? "POSITION" : "NORMAL";
+                    auto it = prim.targets[t].find(name);
+                    if (it != prim.targets[t].end()) {
+                        int components = 0;
+                        const std::string what = where + " target " + std::to_string(t) + " " + name;
+                        const std::vector<double> d = read_accessor(model_, it->second, what, components);
+                        if (components != 3 || d.size() != 3 * n)
+                            throw InputError(what + ": not a VEC3 of the vertex count");
+                        for (size_t v = 0; v < n; ++v)
+                            for (size_t k = 0; k < 3; ++k) {
+                                const float x = float(d[3 * v + k]);
+                                if (!std::isfinite(x)) throw InputError(what + ": a displacement is not finite");
+                                out.values[v * per + offset + k] = x;
+                            }
+                    }
+                    offset += 3;
+                }
+            }
+        } catch (const InputError& e) {
+            warnings_.push_back(std::string(e.what()) + "; its morph targets are not sent");
+            return {};
+        }
+        return out;
     }
 
     // Whether every object of asset mesh `m` carries weights.
@@ -333,7 +418,7 @@ private:
     // The object of a primitive: primitives with the same accessors and mode are one object.
     int object_index(const tinygltf::Primitive& prim, const std::string& name, const std::string& where) {
         auto key = std::make_tuple(prim.attributes, prim.indices, prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode,
-                                   prim.extensions.count("KHR_draco_mesh_compression") > 0);
+                                   prim.extensions.count("KHR_draco_mesh_compression") > 0, prim.targets);
         if (auto it = object_map_.find(key); it != object_map_.end()) return it->second;
         for (const auto& [attr, accessor] : prim.attributes) {
             (void)accessor;
@@ -355,6 +440,7 @@ private:
                 if (asset_.objects.size() >= kMaxObjects) throw InputError(path_ + ": more than 65535 objects");
                 result = int(asset_.objects.size());
                 asset_.weights.push_back(read_weights(prim, mesh, where));  // weights[i] belongs to objects[i]
+                asset_.morphs.push_back(read_morph(prim, mesh, where));     // and morphs[i]
                 asset_.objects.push_back(std::move(mesh));
             }
         }
@@ -563,10 +649,6 @@ private:
                 const tinygltf::AnimationChannel& channel = anim.channels[c];
                 const std::string what = where + " channel " + std::to_string(c);
                 const auto node = new_node_.find(channel.target_node);
-                if (channel.target_path == "weights") {
-                    dropped.push_back("channel " + std::to_string(c) + " (morph target weights)");
-                    continue;
-                }
                 if (channel.target_node < 0 || node == new_node_.end()) {
                     dropped.push_back("channel " + std::to_string(c) + " (no node of the scene)");
                     continue;
@@ -605,7 +687,15 @@ private:
         if (channel.target_path == "translation") track.path = AnimationPath::Translation;
         else if (channel.target_path == "rotation") track.path = AnimationPath::Rotation;
         else if (channel.target_path == "scale") track.path = AnimationPath::Scale;
+        else if (channel.target_path == "weights") track.path = AnimationPath::Weights;
         else throw InputError(what + ": path " + quoted_input(channel.target_path) + " is not glTF's");
+        if (track.path == AnimationPath::Weights) {
+            // Format 1.6 (spec 22.5): the node's mesh must carry its morph targets.
+            const uint16_t mesh = asset_.scene.nodes[node].mesh;
+            if (mesh == kNone || asset_.scene.meshes[mesh].weights.empty())
+                throw InputError(what + ": it moves morph target weights of a node whose mesh's morph targets are not sent");
+            track.targets = uint8_t(asset_.scene.meshes[mesh].weights.size());
+        }
         if (channel.sampler < 0 || size_t(channel.sampler) >= anim.samplers.size())
             throw InputError(what + ": refers to sampler " + std::to_string(channel.sampler) + ", which does not exist");
         const tinygltf::AnimationSampler& sampler = anim.samplers[size_t(channel.sampler)];
@@ -618,11 +708,11 @@ private:
         if (components != 1) throw InputError(what + ": its input accessor is not SCALAR");
         int value_components = 0;
         const std::vector<double> values = read_accessor(model_, sampler.output, what + " output", value_components);
-        const size_t want = track.path == AnimationPath::Rotation ? 4 : 3;
-        if (size_t(value_components) != want)
+        const size_t want = track.path == AnimationPath::Weights ? track.targets : track.path == AnimationPath::Rotation ? 4 : 3;
+        if (track.path == AnimationPath::Weights ? value_components != 1 : size_t(value_components) != want)
             throw InputError(what + ": its output accessor has " + std::to_string(value_components) +
-                             " components, the path needs " + std::to_string(want));
-        const size_t per_key = animation_values_per_key(track.path, track.interpolation);
+                             " components, the path needs " + (track.path == AnimationPath::Weights ? std::string("1 (SCALAR)") : std::to_string(want)));
+        const size_t per_key = animation_values_per_key(track.path, track.interpolation, track.targets);
         if (times.empty() || values.size() != times.size() * per_key)
             throw InputError(what + ": " + std::to_string(times.size()) + " keys but " +
                              std::to_string(values.size() / want) + " output elements (" +
@@ -704,7 +794,7 @@ private:
     std::map<int, uint16_t> new_node_;
     std::map<int, uint16_t> mesh_map_;
     std::map<int, uint16_t> skin_map_;
-    std::map<std::tuple<std::map<std::string, int>, int, int, bool>, int> object_map_;
+    std::map<std::tuple<std::map<std::string, int>, int, int, bool, std::vector<std::map<std::string, int>>>, int> object_map_;
     std::map<std::tuple<int, uint16_t, uint16_t, uint16_t, uint16_t>, uint16_t> texture_map_;
     std::map<int, std::vector<uint8_t>> view_images_;
     std::map<int, image_file::Format> image_formats_;  // checked_image's answers

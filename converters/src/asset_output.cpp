@@ -291,19 +291,22 @@ private:
     // than leaving a viewer to generate one).
     std::optional<tinygltf::Primitive> object_primitive(size_t o, const std::optional<Dequantization>& dq,
                                                         int dq_key, bool tangents, const std::string& what,
-                                                        bool skinned = false) {
+                                                        bool skinned = false, uint8_t targets = 0) {
         // A skinned object (format 1.5) is written plain: Draco may reorder its vertices away from
-        // their weights, and a dequantizing wrapper node would not move with the skeleton.
-        auto key = std::make_tuple(o, skinned ? -2 : dq_key, tangents);
+        // their weights, and a dequantizing wrapper node would not move with the skeleton. So is an
+        // object with morph targets (format 1.6): its displacements are per vertex, in its frame.
+        const bool plain = skinned || targets > 0;
+        auto key = std::make_tuple(o, plain ? -2 - int(skinned) - 2 * int(targets) : dq_key, tangents);
         if (auto it = primitives_.find(key); it != primitives_.end()) return it->second;
         std::optional<tinygltf::Primitive> result;
         if (std::optional<Mesh> mesh = writable_object(asset_.objects[o], what, warnings_)) {
             tangents = tangents && mesh->has_normals() && mesh->has_texcoords();
-            if (skinned) {
+            if (plain) {
                 result = add_primitive(model_, *mesh);
                 if (tangents)
                     result->attributes["TANGENT"] = add_float_attribute(model_, mesh_tangents(*mesh), TINYGLTF_TYPE_VEC4, false);
-                add_weights(*result, asset_.weights[o]);
+                if (skinned) add_weights(*result, asset_.weights[o]);
+                if (targets > 0) add_targets(*result, *mesh, asset_.morphs[o]);
             } else if (options_.draco && !mesh->is_point_set && !mesh->triangles.empty()) {
                 result = draco_primitive(*mesh, what, tangents);
             } else if (dq) {
@@ -531,9 +534,11 @@ private:
         const SceneMesh& m = asset_.scene.meshes[mi];
         const std::string label = path_ + ": mesh " + std::to_string(mi) + (m.name.empty() ? "" : " (" + m.name + ")");
         const bool skinned = skinned_meshes_.count(mi) > 0;
-        std::optional<Dequantization> dq = skinned ? std::nullopt : mesh_dequantization(m);
+        const uint8_t targets = mesh_targets(mi, label);
+        std::optional<Dequantization> dq = skinned || targets ? std::nullopt : mesh_dequantization(m);
         tinygltf::Mesh g;
         g.name = m.name;
+        if (targets) g.weights.assign(m.weights.begin(), m.weights.end());
         for (size_t p = 0; p < m.primitives.size(); ++p) {
             const ScenePrimitive& sp = m.primitives[p];
             const std::string what = label + " primitive " + std::to_string(p) + " (object " + std::to_string(sp.object) + ")";
@@ -545,7 +550,7 @@ private:
             const int material = primitive_material(sp.material, asset_.objects[sp.object], what);
             // A tangent space: for a normal map, also one in an extension, and for anisotropy.
             const bool normal_mapped = material >= 0 && material_patch::needs_tangents(model_.materials[size_t(material)]);
-            auto prim = object_primitive(sp.object, dq, dq ? int(mi) : -1, normal_mapped, what, skinned);
+            auto prim = object_primitive(sp.object, dq, dq ? int(mi) : -1, normal_mapped, what, skinned, targets);
             if (!prim) continue;
             prim->material = material;
             g.primitives.push_back(std::move(*prim));
@@ -559,7 +564,56 @@ private:
             if (dq) dequantization_[index] = *dq;
         }
         mesh_out_[mi] = index;
+        mesh_targets_out_[index] = targets;
         return index;
+    }
+
+    // Format 1.6: the morph targets asset mesh `mi` is written with: its count when it has default
+    // weights and every present object of it has as many targets per vertex; else 0, with a warning.
+    uint8_t mesh_targets(size_t mi, const std::string& label) {
+        const SceneMesh& m = asset_.scene.meshes[mi];
+        if (m.weights.empty()) return 0;
+        for (const ScenePrimitive& p : m.primitives) {
+            if (!object_present(p.object)) continue;
+            const Mesh& object = asset_.objects[p.object];
+            const VertexMorph* morph = p.object < asset_.morphs.size() ? &asset_.morphs[p.object] : nullptr;
+            if (!morph || morph->targets != m.weights.size() ||
+                morph->values.size() != morph_record_values(morph->targets, morph->attributes) * object.positions.size()) {
+                warnings_.push_back(label + ": object " + std::to_string(p.object) + " has no " +
+                                    std::to_string(m.weights.size()) + " morph targets per vertex; the mesh is written "
+                                    "without its morph targets");
+                return 0;
+            }
+        }
+        return uint8_t(m.weights.size());
+    }
+
+    // A primitive's morph targets (format 1.6): POSITION displacements (with their bounds, as glTF
+    // requires) and NORMAL displacements where the object has them and the primitive has normals. A
+    // target with neither gets zero POSITION displacements (a glTF target needs an attribute).
+    void add_targets(tinygltf::Primitive& prim, const Mesh& mesh, const VertexMorph& morph) {
+        const size_t per = morph_record_values(morph.targets, morph.attributes);
+        const size_t n = mesh.positions.size();
+        const bool position = morph.attributes & kMorphPosition, normal = morph.attributes & kMorphNormal;
+        const bool write_normal = normal && prim.attributes.count("NORMAL");
+        const size_t stride = 3 * (size_t(position) + size_t(normal));
+        for (size_t t = 0; t < morph.targets; ++t) {
+            std::map<std::string, int> target;
+            std::vector<std::array<float, 3>> d(n, {0, 0, 0});
+            if (position || !write_normal) {
+                if (position)
+                    for (size_t v = 0; v < n; ++v)
+                        for (size_t k = 0; k < 3; ++k) d[v][k] = morph.values[v * per + t * stride + k];
+                target["POSITION"] = add_float_attribute(model_, d, TINYGLTF_TYPE_VEC3, true);
+            }
+            if (write_normal) {
+                const size_t offset = position ? 3 : 0;
+                for (size_t v = 0; v < n; ++v)
+                    for (size_t k = 0; k < 3; ++k) d[v][k] = morph.values[v * per + t * stride + offset + k];
+                target["NORMAL"] = add_float_attribute(model_, d, TINYGLTF_TYPE_VEC3, false);
+            }
+            prim.targets.push_back(std::move(target));
+        }
     }
 
     // ---- nodes
@@ -701,7 +755,15 @@ private:
             for (size_t t = 0; t < animation.tracks.size(); ++t) {
                 const SceneAnimation::Track& track = animation.tracks[t];
                 const int node = track.node < node_out.size() ? node_out[track.node] : -1;
-                const size_t per_key = animation_values_per_key(track.path, track.interpolation);
+                const size_t per_key = animation_values_per_key(track.path, track.interpolation, track.targets);
+                const bool weights = track.path == AnimationPath::Weights;
+                if (weights && (node < 0 || model_.nodes[size_t(node)].mesh < 0 ||
+                                mesh_targets_out_[model_.nodes[size_t(node)].mesh] != track.targets || track.targets == 0)) {
+                    warnings_.push_back(what + ": track " + std::to_string(t) + " moves morph target weights of a node "
+                                        "whose mesh is not written with " + std::to_string(track.targets) +
+                                        " morph targets; left out");
+                    continue;
+                }
                 if (node < 0 || track.times.empty() || track.values.size() != track.times.size() * per_key ||
                     !targets.insert({node, int(track.path)}).second) {
                     warnings_.push_back(what + ": track " + std::to_string(t) +
@@ -713,10 +775,10 @@ private:
                 const int input = add_accessor(model_, input_view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
                                                track.times.size(), {double(*lo)}, {double(*hi)});
                 const bool rotation = track.path == AnimationPath::Rotation;
-                const size_t components = rotation ? 4 : 3;
+                const size_t components = weights ? 1 : rotation ? 4 : 3;
                 const int output_view = add_buffer_view(model_, track.values.data(), track.values.size() * 4, 0);
                 const int output = add_accessor(model_, output_view, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                                rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
+                                                weights ? TINYGLTF_TYPE_SCALAR : rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
                                                 track.values.size() / components);
                 tinygltf::AnimationSampler sampler;
                 sampler.input = input;
@@ -729,6 +791,7 @@ private:
                 channel.target_node = node;
                 channel.target_path = track.path == AnimationPath::Translation ? "translation"
                                       : rotation                               ? "rotation"
+                                      : weights                                ? "weights"
                                                                                : "scale";
                 g.samplers.push_back(std::move(sampler));
                 g.channels.push_back(std::move(channel));
@@ -909,6 +972,7 @@ private:
     std::set<size_t> skinned_meshes_;   // asset meshes written with JOINTS_0 / WEIGHTS_0
     std::map<uint16_t, int> skin_out_;  // asset skin -> glTF skin
     std::map<size_t, int> mesh_out_;
+    std::map<int, uint8_t> mesh_targets_out_;  // glTF mesh -> its morph target count
     std::map<int, Dequantization> dequantization_;
     std::vector<int> parent_;
     std::vector<SceneMesh> flat_meshes_;

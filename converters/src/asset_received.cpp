@@ -2,6 +2,7 @@
 // down to what holds together, with the decoded objects.
 #include "ellicast/converters/asset.h"
 
+#include "morph_targets.h"
 #include "skin_weights.h"
 
 #include <algorithm>
@@ -25,8 +26,14 @@ std::string texture_missing(const ReceivedStream& stream, uint16_t index) {
 
 // Animations (format 1.4, spec 20.2): each complete one with the tracks a receiver shows, over the
 // nodes written (node_map: stream node -> written node). What is not shown yet is named.
-void received_animations(const ReceivedStream& stream, const std::map<uint16_t, uint16_t>& node_map, Asset& asset,
+void received_animations(const ReceivedStream& stream, const std::map<uint16_t, uint16_t>& node_map,
+                         const std::function<unsigned(uint16_t)>& node_targets, Asset& asset,
                          std::vector<std::string>& warnings);
+// Morph targets (format 1.6, spec 22.4): the meshes shown with their targets keep their default
+// weights and their objects get per-vertex displacements; the others lose them with a warning.
+// Returns the stream meshes shown with their targets.
+std::set<uint16_t> received_morphs(const ReceivedStream& stream, const std::map<uint16_t, uint16_t>& mesh_map,
+                                   Asset& asset, std::vector<std::string>& warnings);
 
 // Skins (format 1.5, spec 21.3): the written nodes whose skin can be shown keep it (renumbered), the
 // others lose it with a warning saying why; weighted objects get per-vertex weights.
@@ -207,7 +214,13 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
         }
         asset.scene.nodes.push_back(std::move(out));
     }
-    received_animations(stream, node_map, asset, warnings);
+    const std::set<uint16_t> morphed = received_morphs(stream, mesh_map, asset, warnings);
+    const auto node_targets = [&](uint16_t node) -> unsigned {
+        const auto n = nodes.find(node);
+        if (n == nodes.end() || !morphed.count(n->second.mesh)) return 0;
+        return unsigned(stream.scene_meshes().at(n->second.mesh).weights.size());
+    };
+    received_animations(stream, node_map, node_targets, asset, warnings);
     received_skins(stream, node_map, asset, warnings);
     const size_t node_count = stream.scene_node_count();
     if (nodes.size() < node_count || cut_off)
@@ -251,27 +264,91 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
 }
 
 namespace {
-void received_animations(const ReceivedStream& stream, const std::map<uint16_t, uint16_t>& node_map, Asset& asset,
+std::set<uint16_t> received_morphs(const ReceivedStream& stream, const std::map<uint16_t, uint16_t>& mesh_map,
+                                   Asset& asset, std::vector<std::string>& warnings) {
+    std::set<uint16_t> out;
+    asset.morphs.assign(asset.objects.size(), {});
+    const auto object_shown = [&](uint16_t o) { return o < asset.objects.size() && !asset.objects[o].positions.empty(); };
+    for (const auto& [index, mesh] : stream.scene_meshes()) {
+        if (mesh.weights.empty()) continue;
+        SceneMesh& written = asset.scene.meshes[mesh_map.at(index)];
+        if (!mesh_shows_targets(stream, mesh, object_shown)) {
+            written.weights.clear();
+            std::string why = "none of its objects has arrived";
+            for (const auto& p : mesh.primitives) {
+                if (!object_shown(p.object)) continue;
+                const ReceivedObject& o = stream.objects()[p.object];
+                if (o.morph.empty())
+                    why = "no displacements of object " + std::to_string(p.object) + " have arrived";
+                else if (!morphed(o))
+                    why = "no point of object " + std::to_string(p.object) + " with its displacements has arrived";
+                else if (o.morph_targets != mesh.weights.size())
+                    why = "object " + std::to_string(p.object) + " has " + std::to_string(o.morph_targets) +
+                          " morph targets, the mesh " + std::to_string(mesh.weights.size());
+                else continue;
+                break;
+            }
+            warnings.push_back("mesh " + std::to_string(index) + " is shown without its " +
+                               std::to_string(mesh.weights.size()) + " morph targets (in its base shape): " + why);
+            continue;
+        }
+        out.insert(index);
+        for (const auto& p : mesh.primitives)
+            if (object_shown(p.object) && asset.morphs[p.object].empty())
+                asset.morphs[p.object] = morph_targets::vertex_morph(asset.objects[p.object], stream, p.object);
+    }
+    return out;
+}
+
+void received_animations(const ReceivedStream& stream, const std::map<uint16_t, uint16_t>& node_map,
+                         const std::function<unsigned(uint16_t)>& node_targets, Asset& asset,
                          std::vector<std::string>& warnings) {
-    const auto shown = shown_animations(stream, [&](uint16_t node) { return node_map.count(node) > 0; });
-    std::set<uint16_t> shown_indices;
+    const auto shown = shown_animations(stream, [&](uint16_t node) { return node_map.count(node) > 0; }, node_targets);
+    std::set<uint16_t> shown_indices, shown_morphs;
     for (const ShownAnimation& s : shown) {
-        shown_indices.insert(s.index);
-        const auto& received = stream.animations().at(s.index);
-        const std::string what = "animation " + std::to_string(s.index);
+        const auto& received = s.morph_only ? stream.morph_animations().at(s.index) : stream.animations().at(s.index);
+        const std::string what = (s.morph_only ? "morph animation " : "animation ") + std::to_string(s.index);
         SceneAnimation a;
         a.name = shown_name(received.name, what, warnings);
         for (uint16_t t : s.tracks) {
             const auto& track = received.tracks.at(t);
-            a.tracks.push_back({node_map.at(track.info.node), track.info.path, track.info.interpolation, track.times,
+            a.tracks.push_back({node_map.at(track.info.node), track.info.path, track.info.interpolation, 0, track.times,
                                 track.values});
         }
-        if (s.tracks.size() < received.track_count)
-            warnings.push_back(what + ": " + std::to_string(received.track_count - s.tracks.size()) + " of its " +
-                               std::to_string(received.track_count) +
-                               " tracks left out (a node not shown, times that do not increase, or a target moved twice)");
+        size_t morph_declared = 0;
+        for (const auto& [m, morph] : stream.morph_animations())
+            if (s.morph_only ? m == s.index : morph.joins == s.index) {
+                morph_declared += morph.track_count;
+                shown_morphs.insert(m);
+            }
+        for (const auto& [m, t] : s.morph_tracks) {
+            const auto& track = stream.morph_animations().at(m).tracks.at(t);
+            a.tracks.push_back({node_map.at(track.info.node), AnimationPath::Weights, track.info.interpolation,
+                                track.info.targets, track.times, track.values});
+        }
+        if (!s.morph_only) shown_indices.insert(s.index);
+        const size_t declared = (s.morph_only ? 0 : received.track_count) + morph_declared;
+        if (a.tracks.size() < declared)
+            warnings.push_back(what + ": " + std::to_string(declared - a.tracks.size()) + " of its " +
+                               std::to_string(declared) +
+                               " tracks left out (a node not shown or without its morph targets, times that do not "
+                               "increase, or a target moved twice)");
         asset.scene.animations.push_back(std::move(a));
     }
+    for (const auto& [m, morph] : stream.morph_animations()) {
+        if (shown_morphs.count(m)) continue;
+        uint64_t held = 0, keys = 0;
+        for (const auto& [t, track] : morph.tracks) held += track.keys_held, keys += track.info.key_count;
+        warnings.push_back("morph animation " + std::to_string(m) + " not shown: " +
+                           (morph.complete() ? std::string("none of its tracks can be shown, or the animation it joins is not")
+                                             : std::to_string(morph.tracks.size()) + " of its " +
+                                                   std::to_string(morph.track_count) + " tracks and " +
+                                                   std::to_string(held) + " keys of those arrived so far"));
+    }
+    if (const auto count = stream.morph_animation_count(); count && stream.morph_animations().size() < *count)
+        warnings.push_back(std::to_string(*count - stream.morph_animations().size()) + " of " + std::to_string(*count) +
+                           " morph animations did not arrive at all" +
+                           (stream.animations().empty() ? "" : "; the animations wait for them"));
     for (const auto& [index, animation] : stream.animations()) {
         if (shown_indices.count(index)) continue;
         uint64_t held = 0, keys = 0;

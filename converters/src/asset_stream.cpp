@@ -2,6 +2,7 @@
 // transmission order; decode_asset rebuilds objects and scene from what arrived.
 #include "ellicast/converters/asset_stream.h"
 
+#include "morph_targets.h"
 #include "skin_weights.h"
 
 #include <algorithm>
@@ -73,6 +74,24 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
         }
     }
     take(weights, out.weight_packets, out.weight_bytes);
+    // Format 1.6: the morph target displacements of every point of each object with targets (spec 22.1).
+    std::vector<std::vector<uint8_t>> morphs;
+    for (size_t i = 0; i < out.encoded.contents.size() && with_scene; ++i) {
+        if (i >= asset.morphs.size() || asset.morphs[i].empty()) continue;
+        const ObjectInfo& object = out.encoded.info.objects[i];
+        const VertexMorph& morph = asset.morphs[i];
+        const std::vector<float> values = morph_targets::point_values(asset.objects[i], morph,
+                                                                      out.encoded.contents[i].points, out.encoded.info, object);
+        if (values.empty()) continue;
+        if (Error e = packetize_morph_deltas(out.encoded.info, uint16_t(i), morph.targets, morph.attributes, values,
+                                             stream_id, 0, morphs);
+            e != Error::Ok) {
+            error = std::string("could not cut the morph targets of object ") + std::to_string(i) +
+                    " into packets (a point's displacements larger than a packet?): " + error_name(e);
+            return false;
+        }
+    }
+    take(morphs, out.morph_packets, out.morph_bytes);
     // Format 1.3: each object's exact layer (spec 19), after its points.
     std::vector<std::vector<uint8_t>> connectivity;
     for (size_t i = 0; i < out.encoded.contents.size(); ++i) {

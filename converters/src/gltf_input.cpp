@@ -287,9 +287,6 @@ bool primitive_to_mesh(const tinygltf::Model& model, const tinygltf::Primitive& 
             warnings.push_back(where + ": COLOR_0 is not a VEC3/VEC4 of the vertex count; ignored");
         }
     }
-    if (prim.targets.size() > 0)
-        warnings.push_back(where + ": " + std::to_string(prim.targets.size()) +
-                           " morph targets ignored (the base shape is sent)");
 
     std::vector<uint32_t> idx;
     if (prim.indices >= 0) {
@@ -668,6 +665,9 @@ void visit_node(Traversal& tr, int index, const Eigen::Matrix4d& parent, int dep
             Mesh mesh;
             mesh.name = label + (gmesh.primitives.size() > 1 ? "#" + std::to_string(p) : "");
             if (!primitive_to_mesh(model, gmesh.primitives[p], world, where, mesh, tr.result.warnings)) continue;
+            if (!gmesh.primitives[p].targets.empty())
+                tr.result.warnings.push_back(where + ": " + std::to_string(gmesh.primitives[p].targets.size()) +
+                                             " morph targets ignored (the base shape is read)");
             check_and_repair_mesh(mesh, where, tr.result.warnings);
             if (!mesh.is_point_set && mesh.triangles.empty()) {
                 tr.result.warnings.push_back(where + ": no usable triangles, skipped");

@@ -98,12 +98,15 @@ int run_convert(const ConvertArgs& a) {
     size_t all_bytes = 0;
     for (const auto& p : encoded.packets) all_bytes += p.size();
     std::printf("stream: %zu packets (%zu stream info, %zu ellipsoids, %zu scene, %zu points, %zu skin weights, "
-                "%zu exact layer, %zu repair), %zu bytes\n",
+                "%zu morph targets, %zu exact layer, %zu repair), %zu bytes\n",
                 encoded.packets.size(), encoded.stream_info_packets, encoded.ellipsoid_packets, encoded.scene_packets,
-                encoded.point_packets, encoded.weight_packets, encoded.connectivity_packets, encoded.repair_packets,
-                all_bytes);
-    std::printf("scene: %zu nodes, %zu meshes, %zu objects, %zu materials, %zu textures, %zu animations, %zu skins\n",
-                decoded.scene.nodes.size(), decoded.scene.meshes.size(), decoded.objects.size(),
+                encoded.point_packets, encoded.weight_packets, encoded.morph_packets, encoded.connectivity_packets,
+                encoded.repair_packets, all_bytes);
+    size_t morphed = 0;
+    for (const auto& m : decoded.scene.meshes) morphed += !m.weights.empty();
+    const std::string with_targets = morphed ? " (" + std::to_string(morphed) + " with morph targets)" : "";
+    std::printf("scene: %zu nodes, %zu meshes%s, %zu objects, %zu materials, %zu textures, %zu animations, %zu skins\n",
+                decoded.scene.nodes.size(), decoded.scene.meshes.size(), with_targets.c_str(), decoded.objects.size(),
                 decoded.scene.materials.size(), decoded.scene.textures.size(), decoded.scene.animations.size(),
                 decoded.scene.skins.size());
     for (size_t i = 0; i < report.objects.size(); ++i) {

@@ -62,6 +62,10 @@ void print_scene_summary(const ReceivedStream& stream, const Asset& asset) {
         std::printf(", %zu of %u animations shown", asset.scene.animations.size(), unsigned(*stream.animation_count()));
     if (stream.skin_count())
         std::printf(", %zu of %u skins shown", asset.scene.skins.size(), unsigned(*stream.skin_count()));
+    size_t with_targets = 0, shown_targets = 0;
+    for (const auto& [i, m] : stream.scene_meshes()) with_targets += !m.weights.empty();
+    for (const auto& m : asset.scene.meshes) shown_targets += !m.weights.empty();
+    if (with_targets) std::printf(", %zu of %zu meshes with their morph targets", shown_targets, with_targets);
     std::printf("\n");
 }
 

@@ -109,10 +109,17 @@ int run_encode(const EncodeArgs& a) {
                     r.closed ? "closed" : "open", 100 * r.coverage, 100 * r.outside, 100 * r.surface_covered);
     }
     std::printf("objects %zu, ellipsoids %zu, points %zu\n", encoded.info.objects.size(), ellipsoids, points);
-    if (with_scene)
-        std::printf("scene: %zu nodes, %zu meshes, %zu materials, %zu textures, %zu animations, %zu skins\n",
-                    asset.scene.nodes.size(), asset.scene.meshes.size(), asset.scene.materials.size(),
+    if (with_scene) {
+        size_t morphed = 0;
+        for (const auto& m : asset.scene.meshes) morphed += !m.weights.empty();
+        const std::string with_targets = morphed ? " (" + std::to_string(morphed) + " with morph targets)" : "";
+        std::printf("scene: %zu nodes, %zu meshes%s, %zu materials, %zu textures, %zu animations, %zu skins\n",
+                    asset.scene.nodes.size(), asset.scene.meshes.size(), with_targets.c_str(), asset.scene.materials.size(),
                     asset.scene.textures.size(), asset.scene.animations.size(), asset.scene.skins.size());
+        if (out.weight_packets || out.morph_packets)
+            std::printf("per-point scene data: skin weights %zu (%zu packets), morph targets %zu (%zu packets)\n",
+                        out.weight_bytes, out.weight_packets, out.morph_bytes, out.morph_packets);
+    }
     std::printf("bytes: stream info %zu (%zu packets), base %zu (%zu packets), scene %zu (%zu packets), "
                 "detail %zu (%zu packets), repair %zu (%zu packets), file %zu\n",
                 out.stream_info_bytes, out.stream_info_packets, out.ellipsoid_bytes, out.ellipsoid_packets,

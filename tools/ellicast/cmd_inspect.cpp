@@ -105,6 +105,16 @@ nlohmann::json to_json(const StreamReport& r, bool with_packets) {
             j["scene"]["skin_count"] = *count;
             j["scene"]["skins_complete"] = whole;
         }
+        if (const auto count = r.stream.morph_animation_count()) {
+            size_t whole = 0;
+            for (const auto& [i, a] : r.stream.morph_animations()) whole += a.complete();
+            j["scene"]["morph_animations"] = r.stream.morph_animations().size();
+            j["scene"]["morph_animation_count"] = *count;
+            j["scene"]["morph_animations_complete"] = whole;
+        }
+        size_t morph_meshes = 0;
+        for (const auto& [i, m] : r.stream.scene_meshes()) morph_meshes += !m.weights.empty();
+        if (morph_meshes) j["scene"]["meshes_with_targets"] = morph_meshes;
     }
     json damaged = json::array();
     for (const auto& d : r.damaged)
@@ -206,6 +216,14 @@ void print_text(const StreamReport& r, bool with_packets) {
             size_t whole = 0;
             for (const auto& [i, s] : r.stream.skins()) whole += s.complete();
             out << ", skins (format 1.5) " << whole << " complete of " << *count;
+        }
+        size_t morph_meshes = 0;
+        for (const auto& [i, m] : r.stream.scene_meshes()) morph_meshes += !m.weights.empty();
+        if (morph_meshes) out << ", meshes with morph targets (format 1.6) " << morph_meshes;
+        if (const auto count = r.stream.morph_animation_count()) {
+            size_t whole = 0;
+            for (const auto& [i, a] : r.stream.morph_animations()) whole += a.complete();
+            out << ", morph animations (format 1.6) " << whole << " complete of " << *count;
         }
         out << "\n";
     }

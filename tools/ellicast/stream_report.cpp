@@ -303,6 +303,79 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             }
         }
     }
+    // Spec 22.4: morph animations complete, their tracks usable over recorded nodes whose meshes carry
+    // as many targets, one track per node in each written animation, joined animations in the table;
+    // every point of the objects of meshes with targets with displacements of that count, and every
+    // object with displacements shown by a mesh with its count.
+    {
+        const auto& morphs = r.stream.morph_animations();
+        if (const auto count = r.stream.morph_animation_count()) {
+            std::string missing = missing_ranges(morphs, *count);
+            if (!missing.empty()) r.violations.push_back({std::nullopt, "morph animations missing: " + missing});
+        }
+        std::map<uint16_t, std::set<uint16_t>> written_nodes;  // by written animation: ANIMATION j, or 0x10000 + m
+        for (const auto& [index, a] : morphs) {
+            const std::string name = "morph animation " + std::to_string(index);
+            if (!is_valid_utf8(a.name)) r.violations.push_back({std::nullopt, name + ": its name is not valid UTF-8"});
+            if (a.joins != kNone && (!r.stream.animation_count() || a.joins >= *r.stream.animation_count()))
+                r.violations.push_back({std::nullopt, name + ": it joins animation " + std::to_string(a.joins) +
+                                                          ", past the animation table"});
+            auto& nodes = written_nodes[a.joins != kNone ? a.joins : uint16_t(0)];
+            std::set<uint16_t> own;
+            auto& seen = a.joins != kNone ? nodes : own;
+            for (uint16_t t = 0; t < a.track_count; ++t) {
+                const auto it = a.tracks.find(t);
+                const std::string track = name + " track " + std::to_string(t);
+                if (it == a.tracks.end()) {
+                    r.violations.push_back({std::nullopt, track + ": no key received"});
+                    continue;
+                }
+                const auto& info = it->second.info;
+                if (!it->second.complete)
+                    r.violations.push_back({std::nullopt, track + ": " + std::to_string(it->second.keys_held) + " of " +
+                                                              std::to_string(info.key_count) + " keys received"});
+                else if (!it->second.usable)
+                    r.violations.push_back({std::nullopt, track + ": its times do not strictly increase across packets"});
+                const auto node = r.stream.scene_nodes().find(info.node);
+                if (info.node >= r.stream.scene_node_count() || node == r.stream.scene_nodes().end()) {
+                    r.violations.push_back({std::nullopt, track + ": its node " + std::to_string(info.node) +
+                                                              " has no node record"});
+                } else {
+                    const auto mesh = r.stream.scene_meshes().find(node->second.mesh);
+                    if (node->second.mesh == kNone || (mesh != r.stream.scene_meshes().end() &&
+                                                       mesh->second.weights.size() != info.targets))
+                        r.violations.push_back({std::nullopt, track + ": node " + std::to_string(info.node) +
+                                                                  " has no mesh with " + std::to_string(info.targets) +
+                                                                  " morph targets"});
+                }
+                if (!seen.insert(info.node).second)
+                    r.violations.push_back({std::nullopt, track + ": another morph track of the same written animation "
+                                                              "moves the weights of node " + std::to_string(info.node)});
+            }
+        }
+        std::map<uint16_t, std::set<size_t>> counts;  // object -> target counts of the meshes showing it
+        for (const auto& [index, mesh] : r.stream.scene_meshes())
+            for (const auto& p : mesh.primitives) counts[p.object].insert(mesh.weights.size());
+        for (size_t o = 0; o < r.stream.objects().size(); ++o) {
+            const ReceivedObject& object = r.stream.objects()[o];
+            if (!object.info) continue;
+            const std::string name = "object " + std::to_string(o);
+            const auto shown = counts.find(uint16_t(o));
+            std::set<size_t> targets;
+            if (shown != counts.end()) targets = shown->second;
+            targets.erase(0);
+            if (!object.morph.empty() && !targets.count(object.morph_targets))
+                r.violations.push_back({std::nullopt, name + ": it has " + std::to_string(object.morph_targets) +
+                                                          " morph targets, but no mesh with that count shows it"});
+            if (targets.empty()) continue;
+            if (targets.size() > 1)
+                r.violations.push_back({std::nullopt, name + ": meshes with different morph target counts show it"});
+            if (object.morph.size() < object.info->point_count)
+                r.violations.push_back({std::nullopt, name + ": a mesh with morph targets shows it, and " +
+                                                          std::to_string(object.info->point_count - object.morph.size()) +
+                                                          " of its points have no displacements"});
+        }
+    }
     if (!r.stream.textures().empty()) {
         std::string missing = missing_ranges(r.stream.textures(), r.stream.textures().begin()->second.info.texture_count);
         if (!missing.empty()) r.violations.push_back({std::nullopt, "textures missing: " + missing});

@@ -26,6 +26,16 @@ struct VertexWeights {
     bool empty() const { return joints.empty(); }
 };
 
+// Morph target displacements per vertex of an object (glTF primitive targets): per vertex, per
+// target, the POSITION displacement (attributes & kMorphPosition) and then the NORMAL displacement
+// (attributes & kMorphNormal), 3 floats each: morph_record_values(targets, attributes) per vertex.
+struct VertexMorph {
+    uint8_t targets = 0;
+    uint8_t attributes = 0;
+    std::vector<float> values;
+    bool empty() const { return targets == 0; }
+};
+
 struct Asset {
     // Object i of the stream, in its mesh's local frame. At the receiver an object with no
     // positions is one that has not arrived: write_asset leaves it out.
@@ -33,6 +43,9 @@ struct Asset {
     // Format 1.5 (spec 21): weights[i], when present and not empty, holds one entry per vertex of
     // objects[i]. Nodes name their skin in scene.nodes[n].skin, skins are in scene.skins.
     std::vector<VertexWeights> weights;
+    // Format 1.6 (spec 22): morphs[i], when present and not empty, holds objects[i]'s morph targets;
+    // the mesh showing it has as many default weights (scene.meshes[m].weights).
+    std::vector<VertexMorph> morphs;
     // Nodes, meshes (primitive -> object + material), materials, textures (image file bytes).
     SceneDescription scene;
     // What was dropped, repaired or ignored, one sentence each.
@@ -44,10 +57,11 @@ struct Asset {
 // materials (PBR metallic-roughness factors, alpha mode, double-sided, texture references with
 // their texture-coordinate set) and the textures they use (the PNG or JPEG file bytes exactly as
 // the asset had them, from a bufferView, a data: URI or an external file, with their sampler;
-// identical image + sampler pairs are sent once). What ellicast does not carry (animations, skins,
-// morph targets, cameras, lights, other scenes, other image types, TANGENT / TEXCOORD_1+ /
-// JOINTS / WEIGHTS attributes, unknown extensions) is named in a warning; geometry is taken in its
-// bind/rest pose. A material's texture on another set than TEXCOORD_0 is not sent (warning
+// identical image + sampler pairs are sent once), animations (format 1.4), skins with JOINTS_0 /
+// WEIGHTS_0 (1.5) and morph targets with their default weights and `weights` channels (1.6). What
+// ellicast does not carry (cameras, lights, other scenes, other image types, TANGENT / TEXCOORD_1+ /
+// JOINTS_1+ / WEIGHTS_1+ attributes, TANGENT displacements of morph targets, a node's own morph
+// weights, unknown extensions) is named in a warning; geometry is taken in its bind/rest pose. A material's texture on another set than TEXCOORD_0 is not sent (warning
 // naming the material and slot): the material keeps its factors and its other textures. A
 // material's KHR_texture_transform is applied to the texture coordinates of the objects drawn
 // with it (same accessors under another transform: another object); a texture whose transform

@@ -17,13 +17,14 @@ struct EncodedAsset {
     EncodeResult encoded;  // stream info, per-object contents, reports, warnings
     // Every packet in transmission order: STREAM_INFO, ELLIPSOIDS, then the scene (SCENE,
     // MATERIAL, TEXTURE_FRAGMENT: base data, a receiver wants it before the detail), then POINTS,
-    // then JOINT_WEIGHTS (skin weights), then CONNECTIVITY (the exact layer), then POINTS_REPAIR (EncodeOptions::repair_ratio).
+    // then JOINT_WEIGHTS (skin weights), then MORPH_DELTAS (morph targets), then CONNECTIVITY (the exact layer), then POINTS_REPAIR (EncodeOptions::repair_ratio).
     // Sequence numbers count up in this order from 0.
     std::vector<std::vector<uint8_t>> packets;
     size_t stream_info_packets = 0, ellipsoid_packets = 0, scene_packets = 0, point_packets = 0, repair_packets = 0;
     size_t stream_info_bytes = 0, ellipsoid_bytes = 0, scene_bytes = 0, point_bytes = 0, repair_bytes = 0;
     size_t connectivity_packets = 0, connectivity_bytes = 0;  // the exact layer (format 1.3), after the points
     size_t weight_packets = 0, weight_bytes = 0;  // JOINT_WEIGHTS (format 1.5), right after the points
+    size_t morph_packets = 0, morph_bytes = 0;    // MORPH_DELTAS (format 1.6), after the weights
 };
 
 // Encodes the objects of `asset` (one stream object each, in their own frames) and, when

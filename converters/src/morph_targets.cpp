@@ -1,0 +1,57 @@
+// Morph target displacements between an asset's vertices and a stream's points (format 1.6, spec 22).
+#include "morph_targets.h"
+
+#include "point_transfer.h"
+
+namespace ellicast::morph_targets {
+
+std::vector<float> point_values(const Mesh& mesh, const VertexMorph& morph, const std::vector<QuantizedPoint>& points,
+                                const StreamInfo& info, const ObjectInfo& object) {
+    const size_t per = morph_record_values(morph.targets, morph.attributes);
+    if (morph.empty() || per == 0 || morph.values.size() != per * mesh.positions.size()) return {};
+    std::vector<float> out(per * points.size(), 0.0f);
+    const std::vector<point_transfer::Source> where = point_transfer::sources(mesh, points, info, object);
+    for (size_t i = 0; i < points.size(); ++i) {
+        const point_transfer::Source& s = where[i];
+        if (!s.found) continue;
+        float* to = out.data() + i * per;
+        if (s.snapped) {
+            std::copy_n(morph.values.data() + size_t(s.nearest) * per, per, to);
+            continue;
+        }
+        for (size_t v = 0; v < per; ++v) {
+            double x = 0;
+            for (size_t k = 0; k < 3; ++k) x += s.bary[k] * morph.values[size_t(s.corners[k]) * per + v];
+            to[v] = float(x);
+        }
+    }
+    return out;
+}
+
+VertexMorph vertex_morph(const Mesh& decoded, const ReceivedStream& stream, size_t index) {
+    VertexMorph out;
+    if (index >= stream.objects().size() || !stream.info()) return out;
+    const ReceivedObject& object = stream.objects()[index];
+    if (!object.info || object.morph.empty() || decoded.positions.empty()) return out;
+    std::vector<std::array<float, 3>> positions;
+    std::vector<const std::vector<float>*> records;
+    for (const auto& [i, record] : object.morph) {
+        auto p = object.points.find(i);
+        if (p == object.points.end()) continue;
+        positions.push_back(dequantize_point(p->second, *stream.info(), *object.info).position);
+        records.push_back(&record);
+    }
+    if (positions.empty()) return out;
+    const std::vector<uint32_t> nearest = point_transfer::nearest_held(decoded, positions);
+    out.targets = object.morph_targets;
+    out.attributes = object.morph_attributes;
+    const size_t per = morph_record_values(out.targets, out.attributes);
+    out.values.reserve(per * decoded.positions.size());
+    for (size_t v = 0; v < decoded.positions.size(); ++v) {
+        const std::vector<float>& r = *records[nearest[v]];
+        out.values.insert(out.values.end(), r.begin(), r.end());
+    }
+    return out;
+}
+
+}  // namespace ellicast::morph_targets
