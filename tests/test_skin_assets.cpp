@@ -7,7 +7,11 @@
 #include <ellicast/broadcast/reception.h>
 #include "ellicast/converters/asset_stream.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
+#include <cstring>
+#include <fstream>
 #include <map>
 
 using namespace ellicast;
@@ -214,4 +218,57 @@ TEST_CASE("a receiver waiting for the Fox is not done before its last SKIN and J
         reception.take(encoded.packets[last]);
         CHECK(reception.complete());
     }
+}
+
+TEST_CASE("a vertex with more than four influences (JOINTS_1 / WEIGHTS_1) keeps its four largest, with a warning counting them") {
+    if (!have_sample(kFox)) return;
+    const Asset plain = load_asset(sample(kFox));
+    REQUIRE(plain.weights.size() == 1);
+    const size_t n = plain.weights[0].joints.size();
+    size_t full = 0;  // vertices whose four JOINTS_0 slots all have a weight
+    for (size_t v = 0; v < n; ++v) full += influences(plain.weights[0], v).size() == 4;
+    REQUIRE(full > 0);
+
+    // The Fox with a second set giving every vertex joint 5 at weight 1 (as large as any weight).
+    const fs::path dir = scratch_dir("fox_joints_1");
+    for (const char* file : {"Fox.bin", "Texture.png"})
+        if (!fs::exists(dir / file)) fs::copy_file(shared_samples() / "gltf/Fox" / file, dir / file);
+    auto j = nlohmann::json::parse(read_bytes(shared_samples() / kFox));
+    std::vector<uint8_t> data;
+    for (size_t v = 0; v < n; ++v)
+        for (uint16_t x : {uint16_t(5), uint16_t(0), uint16_t(0), uint16_t(0)}) data.push_back(uint8_t(x)), data.push_back(0);
+    const size_t weights_at = data.size();
+    for (size_t v = 0; v < n; ++v)
+        for (float x : {1.0f, 0.0f, 0.0f, 0.0f}) {
+            uint8_t b[4];
+            std::memcpy(b, &x, 4);
+            data.insert(data.end(), b, b + 4);
+        }
+    const size_t buffer = j["buffers"].size(), views = j["bufferViews"].size(), accessors = j["accessors"].size();
+    j["buffers"].push_back({{"byteLength", data.size()}, {"uri", "data:application/octet-stream;base64," + base64(data)}});
+    j["bufferViews"].push_back({{"buffer", buffer}, {"byteOffset", 0}, {"byteLength", weights_at}});
+    j["bufferViews"].push_back({{"buffer", buffer}, {"byteOffset", weights_at}, {"byteLength", data.size() - weights_at}});
+    j["accessors"].push_back({{"bufferView", views}, {"componentType", 5123}, {"count", n}, {"type", "VEC4"}});
+    j["accessors"].push_back({{"bufferView", views + 1}, {"componentType", 5126}, {"count", n}, {"type", "VEC4"}});
+    auto& attributes = j["meshes"][0]["primitives"][0]["attributes"];
+    attributes["JOINTS_1"] = accessors;
+    attributes["WEIGHTS_1"] = accessors + 1;
+    std::ofstream(dir / "Fox8.gltf", std::ios::binary) << j.dump();
+
+    const Asset eight = load_asset((dir / "Fox8.gltf").string());
+    REQUIRE(eight.weights.size() == 1);
+    REQUIRE(eight.weights[0].joints.size() == n);
+    // Every vertex now has joint 5 at the largest weight; those that had four influences lost their
+    // smallest, and the warning counts them (not JOINTS_1 as an attribute left out).
+    size_t with_five = 0;
+    for (size_t v = 0; v < n; ++v) {
+        const auto got = influences(eight.weights[0], v);
+        with_five += got.count(5) && got.at(5) >= 1.0f;
+        CHECK(got.size() <= 4);
+    }
+    CHECK(with_five == n);
+    CHECK(any_warning(eight, std::to_string(full) + " of its " + std::to_string(n) +
+                                 " vertices have more than four joint influences"));
+    CHECK_FALSE(any_warning(eight, "JOINTS_1 not sent"));
+    CHECK_FALSE(any_warning(eight, "vertex attribute(s)"));
 }

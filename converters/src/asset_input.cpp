@@ -379,39 +379,59 @@ private:
         return index;
     }
 
-    // JOINTS_0 and WEIGHTS_0 of a primitive, per vertex of `mesh` (as primitive_to_mesh made it), or
-    // empty with a warning naming what is wrong.
+    // JOINTS_n and WEIGHTS_n of a primitive (every set, in order), per vertex of `mesh` (as
+    // primitive_to_mesh made it): each vertex's four largest influences (a record holds four, spec
+    // 21.2; a receiver's weights sum to 1 again), with a warning counting the vertices that had more.
+    // Empty, with a warning naming what is wrong, when a set is unusable.
     VertexWeights read_weights(const tinygltf::Primitive& prim, const Mesh& mesh, const std::string& where) {
         VertexWeights out;
-        auto j = prim.attributes.find("JOINTS_0"), w = prim.attributes.find("WEIGHTS_0");
-        if (j == prim.attributes.end() && w == prim.attributes.end()) return out;
+        const size_t n = mesh.positions.size();
+        std::vector<std::vector<std::pair<float, uint16_t>>> influences(n);  // (weight, joint) per vertex
         try {
-            if (j == prim.attributes.end() || w == prim.attributes.end())
-                throw InputError(where + ": JOINTS_0 without WEIGHTS_0 or the other way round");
-            if (mesh.is_point_set && prim.indices >= 0)
-                throw InputError(where + ": an indexed point primitive's weights");
-            int jc = 0, wc = 0;
-            const std::vector<double> joints = read_accessor(model_, j->second, where + " JOINTS_0", jc);
-            const std::vector<double> weights = read_accessor(model_, w->second, where + " WEIGHTS_0", wc);
-            const size_t n = mesh.positions.size();
-            if (jc != 4 || wc != 4 || joints.size() != 4 * n || weights.size() != 4 * n)
-                throw InputError(where + ": JOINTS_0 and WEIGHTS_0 are not VEC4 of the vertex count");
-            out.joints.resize(n);
-            out.weights.resize(n);
-            for (size_t i = 0; i < n; ++i)
-                for (size_t k = 0; k < 4; ++k) {
-                    const double jv = joints[4 * i + k], wv = weights[4 * i + k];
-                    if (!(jv >= 0) || jv > 0xFFFF || jv != std::floor(jv))
-                        throw InputError(where + ": JOINTS_0 of vertex " + std::to_string(i) + " is not a joint index");
-                    if (!std::isfinite(wv) || wv < 0)
-                        throw InputError(where + ": WEIGHTS_0 of vertex " + std::to_string(i) + " is negative or not finite");
-                    out.joints[i][k] = uint16_t(jv);
-                    out.weights[i][k] = float(wv);
-                }
+            for (int set = 0;; ++set) {
+                const std::string js = "JOINTS_" + std::to_string(set), ws = "WEIGHTS_" + std::to_string(set);
+                auto j = prim.attributes.find(js), w = prim.attributes.find(ws);
+                if (j == prim.attributes.end() && w == prim.attributes.end()) break;
+                if (j == prim.attributes.end() || w == prim.attributes.end())
+                    throw InputError(where + ": " + js + " without " + ws + " or the other way round");
+                if (mesh.is_point_set && prim.indices >= 0) throw InputError(where + ": an indexed point primitive's weights");
+                int jc = 0, wc = 0;
+                const std::vector<double> joints = read_accessor(model_, j->second, where + " " + js, jc);
+                const std::vector<double> weights = read_accessor(model_, w->second, where + " " + ws, wc);
+                if (jc != 4 || wc != 4 || joints.size() != 4 * n || weights.size() != 4 * n)
+                    throw InputError(where + ": " + js + " and " + ws + " are not VEC4 of the vertex count");
+                for (size_t i = 0; i < n; ++i)
+                    for (size_t k = 0; k < 4; ++k) {
+                        const double jv = joints[4 * i + k], wv = weights[4 * i + k];
+                        if (!(jv >= 0) || jv > 0xFFFF || jv != std::floor(jv))
+                            throw InputError(where + ": " + js + " of vertex " + std::to_string(i) + " is not a joint index");
+                        if (!std::isfinite(wv) || wv < 0)
+                            throw InputError(where + ": " + ws + " of vertex " + std::to_string(i) + " is negative or not finite");
+                        if (wv > 0) influences[i].emplace_back(float(wv), uint16_t(jv));
+                    }
+            }
         } catch (const InputError& e) {
             warnings_.push_back(std::string(e.what()) + "; the weights are not sent");
             return {};
         }
+        if (!prim.attributes.count("JOINTS_0")) return out;
+        out.joints.assign(n, {0, 0, 0, 0});
+        out.weights.assign(n, {0, 0, 0, 0});
+        size_t more = 0;
+        for (size_t i = 0; i < n; ++i) {
+            auto& list = influences[i];
+            // The largest first (the earlier set and slot on a tie).
+            std::stable_sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+            more += list.size() > 4;
+            for (size_t k = 0; k < 4 && k < list.size(); ++k) {
+                out.weights[i][k] = list[k].first;
+                out.joints[i][k] = list[k].second;
+            }
+        }
+        if (more)
+            warnings_.push_back(where + ": " + std::to_string(more) + " of its " + std::to_string(n) +
+                                " vertices have more than four joint influences (JOINTS_1 / WEIGHTS_1); their four "
+                                "largest are sent");
         return out;
     }
 
@@ -423,7 +443,7 @@ private:
         for (const auto& [attr, accessor] : prim.attributes) {
             (void)accessor;
             if (attr == "POSITION" || attr == "NORMAL" || attr == "TEXCOORD_0" || attr == "COLOR_0" ||
-                attr == "JOINTS_0" || attr == "WEIGHTS_0")
+                attr.rfind("JOINTS_", 0) == 0 || attr.rfind("WEIGHTS_", 0) == 0)  // read_weights takes every set
                 continue;
             not_carried_attributes_[attr] = true;
         }
