@@ -4,6 +4,7 @@
 
 #include "ellicast/converters/asset.h"
 #include "ellicast/converters/asset_stream.h"
+#include <ellicast/broadcast/reception.h>
 #include "support.h"
 
 #include <functional>
@@ -26,6 +27,36 @@ inline constexpr const char* kGltfSamples[] = {
     "gltf/VertexColorTest/VertexColorTest.gltf",
     "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf"};
 inline std::string sample(const std::string& rel) { return (shared_samples() / rel).string(); }
+
+// Encoder options for the scene tests: a coarse base (40 ellipsoids, 80% coverage) and no repair
+// packets, so that every packet of a kind can be counted and lost on purpose.
+inline EncodeOptions coarse_options() {
+    EncodeOptions o;
+    o.max_ellipsoids = 40;
+    o.coverage = 0.8;
+    o.repair_ratio = 0;
+    return o;
+}
+
+// Whether `packet` is of `type` (the header's type byte).
+inline bool is_packet_type(const std::vector<uint8_t>& packet, PacketType type) {
+    return packet.size() > 6 && packet[6] == uint8_t(type);
+}
+
+// A receiver given every packet but the last of `type` is not complete, and is with it.
+inline void check_complete_only_with_last(const std::vector<std::vector<uint8_t>>& packets, PacketType type) {
+    CAPTURE(int(type));
+    size_t last = packets.size();
+    for (size_t i = 0; i < packets.size(); ++i)
+        if (is_packet_type(packets[i], type)) last = i;
+    REQUIRE(last < packets.size());
+    broadcast::Reception reception;
+    for (size_t i = 0; i < packets.size(); ++i)
+        if (i != last) reception.take(packets[i]);
+    CHECK_FALSE(reception.complete());
+    reception.take(packets[last]);
+    CHECK(reception.complete());
+}
 
 // What a receiver makes of `packets` without those for which lost(index) holds, decoded at grid
 // `grid`; `out`, when given, gets the stream it held.

@@ -13,14 +13,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-EncodeOptions coarse() {
-    EncodeOptions o;
-    o.max_ellipsoids = 40;
-    o.coverage = 0.8;
-    o.repair_ratio = 0;
-    return o;
-}
-
 bool is_animation(const std::vector<uint8_t>& p) { return p.size() > 6 && p[6] == 0x14; }
 
 Asset decode_without(const EncodedAsset& encoded, const std::function<bool(size_t)>& lost) {
@@ -55,7 +47,7 @@ TEST_CASE("the milk truck's wheels turn after a broadcast: its animation comes b
 
     EncodedAsset encoded;
     std::string error;
-    REQUIRE_MESSAGE(encode_asset(in, coarse(), 1, true, encoded, error), error);
+    REQUIRE_MESSAGE(encode_asset(in, coarse_options(), 1, true, encoded, error), error);
     const size_t animation_packets = size_t(std::count_if(encoded.packets.begin(), encoded.packets.end(), is_animation));
     CHECK(animation_packets >= 2);
 
@@ -98,7 +90,7 @@ TEST_CASE("every glTF sample keeps its animations through encode, packets and de
         const Asset in = load_asset(sample(file));
         EncodedAsset encoded;
         std::string error;
-        REQUIRE_MESSAGE(encode_asset(in, coarse(), 1, true, encoded, error), error);
+        REQUIRE_MESSAGE(encode_asset(in, coarse_options(), 1, true, encoded, error), error);
         const Asset out = decode_without(encoded, [](size_t) { return false; });
         REQUIRE(out.scene.animations.size() == in.scene.animations.size());
         for (size_t a = 0; a < in.scene.animations.size(); ++a) {

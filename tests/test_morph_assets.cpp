@@ -5,7 +5,6 @@
 #include "scene_compare.h"
 #include "support.h"
 
-#include <ellicast/broadcast/reception.h>
 #include "ellicast/converters/asset_stream.h"
 
 #include <nlohmann/json.hpp>
@@ -21,16 +20,6 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* const kDuck = "gltf/Duck/Duck.gltf";
-
-EncodeOptions coarse() {
-    EncodeOptions o;
-    o.max_ellipsoids = 40;
-    o.coverage = 0.8;
-    o.repair_ratio = 0;
-    return o;
-}
-
-bool is_type(const std::vector<uint8_t>& p, PacketType type) { return p.size() > 6 && p[6] == uint8_t(type); }
 
 bool any_warning(const Asset& a, const std::string& text) {
     return std::any_of(a.warnings.begin(), a.warnings.end(), [&](const std::string& w) { return w.find(text) != std::string::npos; });
@@ -176,13 +165,13 @@ TEST_CASE("a morphing Duck comes back morphing: its targets, default weights and
 
     EncodedAsset encoded;
     std::string error;
-    REQUIRE_MESSAGE(encode_asset(in, coarse(), 1, true, encoded, error), error);
+    REQUIRE_MESSAGE(encode_asset(in, coarse_options(), 1, true, encoded, error), error);
     CHECK(encoded.morph_packets > 0);
     // Breathe's weights join its ANIMATION; Lift stands alone: two morph animations, one track each.
     CHECK(std::count_if(encoded.packets.begin(), encoded.packets.end(),
-                        [](const auto& p) { return is_type(p, PacketType::MorphAnimation); }) == 2);
+                        [](const auto& p) { return is_packet_type(p, PacketType::MorphAnimation); }) == 2);
     CHECK(std::count_if(encoded.packets.begin(), encoded.packets.end(),
-                        [](const auto& p) { return is_type(p, PacketType::Animation); }) == 1);
+                        [](const auto& p) { return is_packet_type(p, PacketType::Animation); }) == 1);
 
     // Every packet: the targets on every vertex, the default weights and both animations, as they were.
     const Asset all = decode_without(encoded, [](size_t) { return false; });
@@ -230,11 +219,11 @@ TEST_CASE("the Duck keeps its base shape, and says why, until its displacements 
     const Asset in = load_asset(morphed_duck(dir, targets).string());
     EncodedAsset encoded;
     std::string error;
-    REQUIRE_MESSAGE(encode_asset(in, coarse(), 1, true, encoded, error), error);
+    REQUIRE_MESSAGE(encode_asset(in, coarse_options(), 1, true, encoded, error), error);
     auto of_type = [&](PacketType type) {
         std::vector<size_t> out;
         for (size_t i = 0; i < encoded.packets.size(); ++i)
-            if (is_type(encoded.packets[i], type)) out.push_back(i);
+            if (is_packet_type(encoded.packets[i], type)) out.push_back(i);
         return out;
     };
     const auto deltas = of_type(PacketType::MorphDeltas), morph_animations = of_type(PacketType::MorphAnimation);
@@ -242,7 +231,7 @@ TEST_CASE("the Duck keeps its base shape, and says why, until its displacements 
     REQUIRE(morph_animations.size() == 2);
 
     SUBCASE("every MORPH_DELTAS packet lost: the base shape, and no weight track") {
-        const Asset a = decode_without(encoded, [&](size_t i) { return is_type(encoded.packets[i], PacketType::MorphDeltas); });
+        const Asset a = decode_without(encoded, [&](size_t i) { return is_packet_type(encoded.packets[i], PacketType::MorphDeltas); });
         CHECK(a.scene.meshes.at(0).weights.empty());
         CHECK(any_warning(a, "is shown without its 2 morph targets"));
         CHECK(any_warning(a, "no displacements of object 0 have arrived"));
@@ -262,7 +251,7 @@ TEST_CASE("the Duck keeps its base shape, and says why, until its displacements 
     SUBCASE("half the POINTS and half the MORPH_DELTAS lost: still morphing, from the nearest points that have arrived") {
         size_t n = 0;
         const Asset a = decode_without(encoded, [&](size_t i) {
-            return (is_type(encoded.packets[i], PacketType::Points) || is_type(encoded.packets[i], PacketType::MorphDeltas)) &&
+            return (is_packet_type(encoded.packets[i], PacketType::Points) || is_packet_type(encoded.packets[i], PacketType::MorphDeltas)) &&
                    (n++ % 2 == 0);
         });
         CHECK(a.scene.meshes.at(0).weights == std::vector<float>{0.0f, 0.5f});
@@ -280,18 +269,8 @@ TEST_CASE("a receiver waiting for the morphing Duck is not done before its last 
     const Asset in = load_asset(morphed_duck(dir, targets).string());
     EncodedAsset encoded;
     std::string error;
-    REQUIRE_MESSAGE(encode_asset(in, coarse(), 1, true, encoded, error), error);
-    for (PacketType held_back : {PacketType::MorphDeltas, PacketType::MorphAnimation}) {
-        CAPTURE(int(held_back));
-        size_t last = encoded.packets.size();
-        for (size_t i = 0; i < encoded.packets.size(); ++i)
-            if (is_type(encoded.packets[i], held_back)) last = i;
-        REQUIRE(last < encoded.packets.size());
-        broadcast::Reception reception;
-        for (size_t i = 0; i < encoded.packets.size(); ++i)
-            if (i != last) reception.take(encoded.packets[i]);
-        CHECK_FALSE(reception.complete());
-        reception.take(encoded.packets[last]);
-        CHECK(reception.complete());
-    }
+    REQUIRE_MESSAGE(encode_asset(in, coarse_options(), 1, true, encoded, error), error);
+    // Every packet but one of a kind, then that one: complete only with it.
+    for (PacketType held_back : {PacketType::MorphDeltas, PacketType::MorphAnimation})
+        check_complete_only_with_last(encoded.packets, held_back);
 }

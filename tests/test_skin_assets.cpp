@@ -4,7 +4,6 @@
 #include "scene_compare.h"
 #include "support.h"
 
-#include <ellicast/broadcast/reception.h>
 #include "ellicast/converters/asset_stream.h"
 
 #include <nlohmann/json.hpp>
@@ -24,16 +23,6 @@ const char* const kFox = "gltf/Fox/Fox.gltf";
 // The Fox's skinned node is a child of its root node, as in the source asset, which the validator
 // warns about (a skinned mesh ignores its parents' transforms) in the source as in the output.
 const std::vector<std::string> kFoxWarnings = {"NODE_SKINNED_MESH_NON_ROOT"};
-
-EncodeOptions coarse() {
-    EncodeOptions o;
-    o.max_ellipsoids = 40;
-    o.coverage = 0.8;
-    o.repair_ratio = 0;
-    return o;
-}
-
-bool is_type(const std::vector<uint8_t>& p, PacketType type) { return p.size() > 6 && p[6] == uint8_t(type); }
 
 Asset decode_without(const EncodedAsset& encoded, const std::function<bool(size_t)>& lost) {
     return received_without(encoded.packets, lost, 24);
@@ -59,10 +48,10 @@ TEST_CASE("the Fox moves after a broadcast: its skin and every vertex's weights 
     REQUIRE(in.scene.skins.size() == 1);
     EncodedAsset encoded;
     std::string error;
-    REQUIRE_MESSAGE(encode_asset(in, coarse(), 1, true, encoded, error), error);
+    REQUIRE_MESSAGE(encode_asset(in, coarse_options(), 1, true, encoded, error), error);
     CHECK(encoded.weight_packets > 0);
     const size_t skin_packets =
-        size_t(std::count_if(encoded.packets.begin(), encoded.packets.end(), [](const auto& p) { return is_type(p, PacketType::Skin); }));
+        size_t(std::count_if(encoded.packets.begin(), encoded.packets.end(), [](const auto& p) { return is_packet_type(p, PacketType::Skin); }));
     CHECK(skin_packets == 2);  // 24 joints of 66 bytes: 17 and 7 in 1200-byte packets
 
     const Asset all = decode_without(encoded, [](size_t) { return false; });
@@ -137,12 +126,12 @@ TEST_CASE("the Fox stays in its bind pose, and says why, until its skin and weig
     const Asset in = load_asset(sample(kFox));
     EncodedAsset encoded;
     std::string error;
-    REQUIRE_MESSAGE(encode_asset(in, coarse(), 1, true, encoded, error), error);
+    REQUIRE_MESSAGE(encode_asset(in, coarse_options(), 1, true, encoded, error), error);
     const fs::path dir = scratch_dir("skin_fox_lossy");
 
     // One SKIN packet lost: the skin is not complete, the mesh is shown unskinned.
     size_t first_skin = 0;
-    while (first_skin < encoded.packets.size() && !is_type(encoded.packets[first_skin], PacketType::Skin)) ++first_skin;
+    while (first_skin < encoded.packets.size() && !is_packet_type(encoded.packets[first_skin], PacketType::Skin)) ++first_skin;
     REQUIRE(first_skin < encoded.packets.size());
     const Asset no_skin = decode_without(encoded, [&](size_t i) { return i == first_skin; });
     CHECK(no_skin.scene.skins.empty());
@@ -155,7 +144,7 @@ TEST_CASE("the Fox stays in its bind pose, and says why, until its skin and weig
 
     // Every JOINT_WEIGHTS packet lost: no weights, no skin.
     const Asset no_weights =
-        decode_without(encoded, [&](size_t i) { return is_type(encoded.packets[i], PacketType::JointWeights); });
+        decode_without(encoded, [&](size_t i) { return is_packet_type(encoded.packets[i], PacketType::JointWeights); });
     CHECK(no_weights.scene.skins.empty());
     CHECK(any_warning(no_weights, "no weights of object 0 have arrived"));
 
@@ -163,7 +152,7 @@ TEST_CASE("the Fox stays in its bind pose, and says why, until its skin and weig
     // vertex with the weights of the nearest point whose record arrived; the file is valid.
     size_t k = 0;
     const Asset half = decode_without(encoded, [&](size_t i) {
-        const bool detail = is_type(encoded.packets[i], PacketType::JointWeights) || is_type(encoded.packets[i], PacketType::Points);
+        const bool detail = is_packet_type(encoded.packets[i], PacketType::JointWeights) || is_packet_type(encoded.packets[i], PacketType::Points);
         return detail && (k++ % 2 == 1);
     });
     REQUIRE(half.scene.skins.size() == 1);
@@ -203,21 +192,10 @@ TEST_CASE("a receiver waiting for the Fox is not done before its last SKIN and J
     const Asset in = load_asset(sample(kFox));
     EncodedAsset encoded;
     std::string error;
-    REQUIRE_MESSAGE(encode_asset(in, coarse(), 1, true, encoded, error), error);
+    REQUIRE_MESSAGE(encode_asset(in, coarse_options(), 1, true, encoded, error), error);
     // Every packet but one of a kind, then that one: complete only with it.
-    for (PacketType held_back : {PacketType::Skin, PacketType::JointWeights, PacketType::Animation}) {
-        CAPTURE(int(held_back));
-        size_t last = encoded.packets.size();
-        for (size_t i = 0; i < encoded.packets.size(); ++i)
-            if (is_type(encoded.packets[i], held_back)) last = i;
-        REQUIRE(last < encoded.packets.size());
-        broadcast::Reception reception;
-        for (size_t i = 0; i < encoded.packets.size(); ++i)
-            if (i != last) reception.take(encoded.packets[i]);
-        CHECK_FALSE(reception.complete());
-        reception.take(encoded.packets[last]);
-        CHECK(reception.complete());
-    }
+    for (PacketType held_back : {PacketType::Skin, PacketType::JointWeights, PacketType::Animation})
+        check_complete_only_with_last(encoded.packets, held_back);
 }
 
 TEST_CASE("a vertex with more than four influences (JOINTS_1 / WEIGHTS_1) keeps its four largest, with a warning counting them") {

@@ -12,6 +12,22 @@ using namespace detail;
 
 namespace {
 bool read_keys(const uint8_t* key, size_t count, size_t per_key, AnimationPiece& a);
+
+// The name, then each key's time and values (spec 20.1, 22.2).
+void put_name_and_keys(std::vector<uint8_t>& out, const AnimationPiece& a, size_t name, size_t per_key) {
+    out.insert(out.end(), a.name.begin(), a.name.begin() + static_cast<std::ptrdiff_t>(name));
+    for (size_t k = 0; k < a.times.size(); ++k) {
+        put_f32(out, a.times[k]);
+        for (size_t v = 0; v < per_key; ++v) put_f32(out, a.values[k * per_key + v]);
+    }
+}
+
+// The index and key-range rules shared by ANIMATION and MORPH_ANIMATION (spec 20.1, 22.2).
+bool valid_ranges(const AnimationPiece& a, uint16_t count) {
+    return a.animation < a.animation_count && a.track < a.track_count && count != 0 && a.info.key_count != 0 &&
+           !(a.info.interpolation == Interpolation::CubicSpline && a.info.key_count < 2) &&
+           uint64_t(a.first_key) + count <= a.info.key_count;
+}
 }  // namespace
 
 size_t animation_values_per_key(AnimationPath path, Interpolation interpolation, size_t targets) {
@@ -35,12 +51,7 @@ std::vector<uint8_t> encode_animation_payload(const AnimationPiece& a) {
     put_u16(out, static_cast<uint16_t>(a.times.size()));
     put_u8(out, static_cast<uint8_t>(name));
     put_u8(out, 0);
-    out.insert(out.end(), a.name.begin(), a.name.begin() + static_cast<std::ptrdiff_t>(name));
-    const size_t per_key = animation_values_per_key(a.info.path, a.info.interpolation);
-    for (size_t k = 0; k < a.times.size(); ++k) {
-        put_f32(out, a.times[k]);
-        for (size_t v = 0; v < per_key; ++v) put_f32(out, a.values[k * per_key + v]);
-    }
+    put_name_and_keys(out, a, name, animation_values_per_key(a.info.path, a.info.interpolation));
     return out;
 }
 
@@ -63,10 +74,7 @@ Error decode_animation_payload(std::span<const uint8_t> payload, AnimationPiece&
     a.info.interpolation = static_cast<Interpolation>(interpolation);
     const size_t per_key = animation_values_per_key(a.info.path, a.info.interpolation);
     if (payload.size() != kAnimationHeaderSize + name + size_t(count) * 4 * (1 + per_key)) return Error::MalformedPayload;
-    if (a.animation >= a.animation_count || a.track >= a.track_count || count == 0 || a.info.key_count == 0 ||
-        (a.info.interpolation == Interpolation::CubicSpline && a.info.key_count < 2) ||
-        uint64_t(a.first_key) + count > a.info.key_count)
-        return Error::MalformedPayload;
+    if (!valid_ranges(a, count)) return Error::MalformedPayload;
     a.name.assign(reinterpret_cast<const char*>(p + kAnimationHeaderSize), name);
     if (!read_keys(p + kAnimationHeaderSize + name, count, per_key, a)) return Error::MalformedPayload;
     out = std::move(a);
@@ -112,12 +120,7 @@ std::vector<uint8_t> encode_morph_animation_payload(const AnimationPiece& a) {
     put_u32(out, a.first_key);
     put_u8(out, static_cast<uint8_t>(name));
     put_u8(out, 0);
-    out.insert(out.end(), a.name.begin(), a.name.begin() + static_cast<std::ptrdiff_t>(name));
-    const size_t per_key = animation_values_per_key(AnimationPath::Weights, a.info.interpolation, a.info.targets);
-    for (size_t k = 0; k < a.times.size(); ++k) {
-        put_f32(out, a.times[k]);
-        for (size_t v = 0; v < per_key; ++v) put_f32(out, a.values[k * per_key + v]);
-    }
+    put_name_and_keys(out, a, name, animation_values_per_key(AnimationPath::Weights, a.info.interpolation, a.info.targets));
     return out;
 }
 
@@ -142,10 +145,7 @@ Error decode_morph_animation_payload(std::span<const uint8_t> payload, Animation
     a.info.interpolation = static_cast<Interpolation>(interpolation);
     const size_t per_key = animation_values_per_key(AnimationPath::Weights, a.info.interpolation, a.info.targets);
     if (payload.size() != kMorphAnimationHeaderSize + name + size_t(count) * 4 * (1 + per_key)) return Error::MalformedPayload;
-    if (a.animation >= a.animation_count || a.track >= a.track_count || count == 0 || a.info.key_count == 0 ||
-        (a.info.interpolation == Interpolation::CubicSpline && a.info.key_count < 2) ||
-        uint64_t(a.first_key) + count > a.info.key_count)
-        return Error::MalformedPayload;
+    if (!valid_ranges(a, count)) return Error::MalformedPayload;
     a.name.assign(reinterpret_cast<const char*>(p + kMorphAnimationHeaderSize), name);
     if (!read_keys(p + kMorphAnimationHeaderSize + name, count, per_key, a)) return Error::MalformedPayload;
     out = std::move(a);

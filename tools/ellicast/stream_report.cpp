@@ -208,6 +208,22 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         std::string missing = missing_ranges(r.stream.materials(), r.stream.materials().begin()->second.material_count);
         if (!missing.empty()) r.violations.push_back({std::nullopt, "materials missing: " + missing});
     }
+    // A track of an animation or a morph animation that has not arrived whole or is not usable (spec
+    // 20.2, 22.2): reported; its description when any key of it arrived.
+    const auto checked_track = [&](const ReceivedStream::ReceivedAnimation& a, uint16_t t,
+                                   const std::string& track) -> const AnimationTrackInfo* {
+        const auto it = a.tracks.find(t);
+        if (it == a.tracks.end()) {
+            r.violations.push_back({std::nullopt, track + ": no key received"});
+            return nullptr;
+        }
+        if (!it->second.complete)
+            r.violations.push_back({std::nullopt, track + ": " + std::to_string(it->second.keys_held) + " of " +
+                                                      std::to_string(it->second.info.key_count) + " keys received"});
+        else if (!it->second.usable)
+            r.violations.push_back({std::nullopt, track + ": its times do not strictly increase across packets"});
+        return &it->second.info;
+    };
     // Spec 20.2: every animation complete, every track usable, its node recorded, one track per target.
     if (const auto count = r.stream.animation_count()) {
         std::string missing = missing_ranges(r.stream.animations(), *count);
@@ -217,18 +233,10 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             if (!is_valid_utf8(a.name)) r.violations.push_back({std::nullopt, name + ": its name is not valid UTF-8"});
             std::set<std::pair<uint16_t, int>> targets;
             for (uint16_t t = 0; t < a.track_count; ++t) {
-                const auto it = a.tracks.find(t);
                 const std::string track = name + " track " + std::to_string(t);
-                if (it == a.tracks.end()) {
-                    r.violations.push_back({std::nullopt, track + ": no key received"});
-                    continue;
-                }
-                const auto& info = it->second.info;
-                if (!it->second.complete)
-                    r.violations.push_back({std::nullopt, track + ": " + std::to_string(it->second.keys_held) + " of " +
-                                                              std::to_string(info.key_count) + " keys received"});
-                else if (!it->second.usable)
-                    r.violations.push_back({std::nullopt, track + ": its times do not strictly increase across packets"});
+                const AnimationTrackInfo* held = checked_track(a, t, track);
+                if (!held) continue;
+                const auto& info = *held;
                 if (info.node >= r.stream.scene_node_count() || !r.stream.scene_nodes().count(info.node))
                     r.violations.push_back({std::nullopt, track + ": its node " + std::to_string(info.node) +
                                                               " has no node record"});
@@ -324,18 +332,10 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             std::set<uint16_t> own;
             auto& seen = a.joins != kNone ? nodes : own;
             for (uint16_t t = 0; t < a.track_count; ++t) {
-                const auto it = a.tracks.find(t);
                 const std::string track = name + " track " + std::to_string(t);
-                if (it == a.tracks.end()) {
-                    r.violations.push_back({std::nullopt, track + ": no key received"});
-                    continue;
-                }
-                const auto& info = it->second.info;
-                if (!it->second.complete)
-                    r.violations.push_back({std::nullopt, track + ": " + std::to_string(it->second.keys_held) + " of " +
-                                                              std::to_string(info.key_count) + " keys received"});
-                else if (!it->second.usable)
-                    r.violations.push_back({std::nullopt, track + ": its times do not strictly increase across packets"});
+                const AnimationTrackInfo* held = checked_track(a, t, track);
+                if (!held) continue;
+                const auto& info = *held;
                 const auto node = r.stream.scene_nodes().find(info.node);
                 if (info.node >= r.stream.scene_node_count() || node == r.stream.scene_nodes().end()) {
                     r.violations.push_back({std::nullopt, track + ": its node " + std::to_string(info.node) +
