@@ -288,14 +288,26 @@ TEST_CASE("the faulty vectors name the reason they must be rejected with") {
         {"morph_deltas_held_out_of_range", "index out of range"},
         {"morph_deltas_index_out_of_range", "index out of range"},
         {"morph_deltas_index_overflow", "malformed payload"},
-        {"morph_deltas_length_mismatch", "malformed payload"},
         {"morph_deltas_malformed_before_stream_info", "malformed payload"},
+        {"morph_deltas_mask_bit_past_slots", "malformed payload"},
+        {"morph_deltas_mask_bit_past_slots_second_byte", "malformed payload"},
         {"morph_deltas_payload_short", "malformed payload"},
+        {"morph_deltas_record_cut", "malformed payload"},
+        {"morph_deltas_record_missing", "malformed payload"},
+        {"morph_deltas_record_past_payload", "malformed payload"},
+        {"morph_deltas_scale_contradicts", "stream mismatch"},
+        {"morph_deltas_scale_infinite", "malformed payload"},
+        {"morph_deltas_scale_too_large", "malformed payload"},
+        {"morph_deltas_scale_nan", "malformed payload"},
+        {"morph_deltas_scale_negative", "malformed payload"},
+        {"morph_deltas_scale_negative_zero", "malformed payload"},
+        {"morph_deltas_scale_zero", "malformed payload"},
+        {"morph_deltas_scales_short", "malformed payload"},
         {"morph_deltas_target_count_contradicts", "stream mismatch"},
         {"morph_deltas_target_count_zero", "malformed payload"},
+        {"morph_deltas_trailing_bytes", "malformed payload"},
         {"morph_deltas_unknown_object", "unknown object"},
         {"morph_deltas_value_contradicts", "stream mismatch"},
-        {"morph_deltas_value_nan", "malformed payload"},
         {"morph_mesh_target_count_contradicts", "stream mismatch"},
         {"morph_mesh_targets_dropped", "stream mismatch"},
         {"morph_mesh_targets_in_1_5_packet", "stream mismatch"},
@@ -504,6 +516,10 @@ TEST_CASE("the morph vectors: the unusual ones decode to the targets and morph a
     CHECK(valid["objects"][0]["morph"]["attributes"] == 3);
     CHECK(valid["objects"][0]["morph"]["records"].size() == 20);
     CHECK(valid["objects"][0]["morph"]["records"][0]["values"].size() == 2 * 2 * 3);
+    CHECK(valid["objects"][0]["morph"]["records"][0]["q"].size() == 2 * 2 * 3);
+    // Slot 3 (target 1's normal displacement) is 0 everywhere: the reference encoder's scale 1 (spec 22.1).
+    CHECK(valid["objects"][0]["morph"]["scales"].size() == 4);
+    CHECK(valid["objects"][0]["morph"]["scales"][3] == 1.0);
     CHECK(!valid["objects"][1].contains("morph"));
     CHECK(scene["morph_animations"][0]["joins"] == 0);
     CHECK(scene["morph_animations"][1]["joins"].is_null());
@@ -519,7 +535,7 @@ TEST_CASE("the morph vectors: the unusual ones decode to the targets and morph a
     for (const char* same : {"unusual/morph_newer_minor", "unusual/morph_trailing_bytes_1_5",
                              "unusual/morph_before_stream_info", "unusual/morph_shuffled_duplicates",
                              "unusual/morph_negative_zero", "unusual/morph_reserved", "unusual/morph_overlapping_runs",
-                             "unusual/morph_mesh_target_count_0"}) {
+                             "unusual/morph_mesh_target_count_0", "unusual/morph_deltas_explicit_zero"}) {
         INFO(same);
         const auto j = decode(same);
         CHECK(j["rejections"].empty());
@@ -545,6 +561,10 @@ TEST_CASE("the morph vectors: the unusual ones decode to the targets and morph a
         {"faulty/morph_duplicate_node_across_joined", "[0]", R"([[0,[0],[[0,0],[0,1]]],[1,[],[[1,0]]]])"},
         {"unusual/morph_two_join_one", "[0]", R"([[0,[0],[[0,0],[2,0]]],[1,[],[[1,0]]]])"},
         {"unusual/morph_weights_only", "[0]", R"([[0,[],[[0,0],[0,1]]],[1,[],[[1,0]]]])"},
+        {"unusual/morph_deltas_8_slots", "[0]", R"([[0,[0],[[0,0],[0,1]]],[1,[],[[1,0]]]])"},
+        {"unusual/morph_deltas_10_slots", "[0]", R"([[0,[0],[[0,0],[0,1]]],[1,[],[[1,0]]]])"},
+        {"unusual/morph_deltas_i16_extremes", "[0]", R"([[0,[0],[[0,0],[0,1]]],[1,[],[[1,0]]]])"},
+        {"unusual/morph_deltas_scale_subnormal", "[0]", R"([[0,[0],[[0,0],[0,1]]],[1,[],[[1,0]]]])"},
     };
     for (const auto& [vector, morphed, animations] : cases) {
         INFO(vector);
@@ -555,6 +575,33 @@ TEST_CASE("the morph vectors: the unusual ones decode to the targets and morph a
             brief.push_back({a["index"], a["tracks"], a["morph_tracks"]});
         CHECK(brief == nlohmann::json::parse(animations));
     }
+    // The records' integers (spec 22.1): i16 extremes, a subnormal scale, and the dequantized values as one
+    // f32 multiplication each, in every vector whose object 0 holds records.
+    CHECK(decode("unusual/morph_deltas_i16_extremes")["objects"][0]["morph"]["records"][0]["q"] ==
+          nlohmann::json::parse("[0, 3706, 0, -11019, 0, 0, -32768, 32767, -1, 0, 0, 0]"));
+    const auto subnormal = decode("unusual/morph_deltas_scale_subnormal")["objects"][0]["morph"];
+    CHECK(subnormal["records"][19]["q"][9] == 1);
+    CHECK(subnormal["records"][19]["q"][10] == -2);
+    CHECK(subnormal["records"][19]["q"][11] == 32767);
+    CHECK(decode("unusual/morph_deltas_8_slots")["objects"][0]["morph"]["scales"].size() == 8);
+    CHECK(decode("unusual/morph_deltas_10_slots")["objects"][0]["morph"]["scales"].size() == 10);
+    for (const std::string set : {"valid", "unusual", "faulty"})
+        for (const auto& file : vectors_in(set)) {
+            if (file.stem().string().rfind("morph", 0) != 0) continue;
+            const auto j = conformance::expected_decode(read_bytes(file));
+            for (const auto& o : j["objects"]) {
+                if (!o.contains("morph")) continue;
+                INFO(file.string());
+                const auto& scales = o["morph"]["scales"];
+                for (const auto& r : o["morph"]["records"]) {
+                    REQUIRE(r["q"].size() == 3 * scales.size());
+                    for (size_t i = 0; i < r["q"].size(); ++i) {
+                        const float product = float(r["q"][i].get<int>()) * scales[i / 3].get<float>();
+                        CHECK(product == r["values"][i].get<float>());
+                    }
+                }
+            }
+        }
 }
 
 #ifndef ELLICAST_FORMAT_TESTS_ONLY

@@ -17,13 +17,25 @@ size_t morph_record_values(uint8_t target_count, uint8_t attributes) {
 }
 
 std::vector<uint8_t> encode_morph_deltas_payload(const MorphDeltasRun& run) {
+    const size_t slots = morph_record_values(run.target_count, run.attributes) / 3, mask = (slots + 7) / 8;
     std::vector<uint8_t> out;
-    out.reserve(kMorphDeltasHeaderSize + 4 * run.values.size());
+    out.reserve(kMorphDeltasHeaderSize + 4 * slots + run.count * (mask + 6 * slots));
     put_u32(out, run.first_index);
     put_u16(out, run.count);
     put_u8(out, run.target_count);
     put_u8(out, run.attributes);
-    for (float f : run.values) put_f32(out, f);
+    for (float f : run.scales) put_f32(out, f);
+    for (size_t i = 0; i < run.count; ++i) {
+        const int16_t* record = run.values.data() + i * slots * 3;
+        const size_t at = out.size();
+        out.resize(at + mask, 0);
+        for (size_t k = 0; k < slots; ++k) {
+            const int16_t* v = record + 3 * k;
+            if (v[0] == 0 && v[1] == 0 && v[2] == 0) continue;  // the encoder leaves out exactly the zero vectors
+            out[at + k / 8] |= uint8_t(1u << (k % 8));
+            for (size_t c = 0; c < 3; ++c) put_u16(out, static_cast<uint16_t>(v[c]));
+        }
+    }
     return out;
 }
 
@@ -37,15 +49,30 @@ Error decode_morph_deltas_payload(std::span<const uint8_t> payload, MorphDeltasR
     run.attributes = p[7];
     if (run.count == 0 || run.target_count == 0 || run.attributes == 0 || (run.attributes & ~3u) != 0)
         return Error::MalformedPayload;
-    const size_t per_point = morph_record_values(run.target_count, run.attributes);
-    if (payload.size() != kMorphDeltasHeaderSize + 4 * per_point * run.count) return Error::MalformedPayload;
-    if (uint64_t(run.first_index) + run.count > 0xFFFFFFFFull) return Error::MalformedPayload;
-    run.values.resize(per_point * run.count);
-    for (size_t i = 0; i < run.values.size(); ++i) {
-        const float x = get_f32(p + kMorphDeltasHeaderSize + 4 * i);
-        if (!std::isfinite(x)) return Error::MalformedPayload;
-        run.values[i] = x;
+    const size_t slots = morph_record_values(run.target_count, run.attributes) / 3, mask = (slots + 7) / 8;
+    if (payload.size() < kMorphDeltasHeaderSize + 4 * slots) return Error::MalformedPayload;
+    run.scales.resize(slots);
+    for (size_t k = 0; k < slots; ++k) {
+        const float s = get_f32(p + kMorphDeltasHeaderSize + 4 * k);
+        // Below 2^113, every q * s is a finite f32 (spec 22.1).
+        if (!std::isfinite(s) || !(s > 0) || s >= 0x1p113f) return Error::MalformedPayload;
+        run.scales[k] = s;
     }
+    size_t pos = kMorphDeltasHeaderSize + 4 * slots;
+    run.values.assign(size_t(run.count) * slots * 3, 0);
+    for (size_t i = 0; i < run.count; ++i) {
+        if (payload.size() - pos < mask) return Error::MalformedPayload;
+        const uint8_t* bits = p + pos;
+        pos += mask;
+        if (slots % 8 != 0 && (bits[mask - 1] >> (slots % 8)) != 0) return Error::MalformedPayload;  // bits past S
+        for (size_t k = 0; k < slots; ++k) {
+            if (!(bits[k / 8] >> (k % 8) & 1u)) continue;
+            if (payload.size() - pos < 6) return Error::MalformedPayload;
+            for (size_t c = 0; c < 3; ++c, pos += 2)
+                run.values[(i * slots + k) * 3 + c] = static_cast<int16_t>(get_u16(p + pos));
+        }
+    }
+    if (pos != payload.size() || uint64_t(run.first_index) + run.count > 0xFFFFFFFFull) return Error::MalformedPayload;
     out = std::move(run);
     return Error::Ok;
 }
@@ -57,25 +84,51 @@ Error packetize_morph_deltas(const StreamInfo& info, uint16_t object_id, uint8_t
         info.packet_size < kMinPacketSize)
         return Error::MalformedPayload;
     const size_t points = info.objects[object_id].point_count;
-    const size_t per_point = morph_record_values(target_count, attributes);
+    const size_t per_point = morph_record_values(target_count, attributes), slots = per_point / 3, mask = (slots + 7) / 8;
     if (points == 0 || values.size() != points * per_point) return Error::MalformedPayload;
     for (float f : values)
         if (!std::isfinite(f)) return Error::MalformedPayload;
-    const size_t capacity = info.packet_size - kPacketOverhead - kMorphDeltasHeaderSize;
-    const size_t per_packet = std::min<size_t>(0xFFFF, capacity / (4 * per_point));
-    if (per_packet == 0) return Error::MalformedPayload;  // one point's record is larger than a packet
+    // One scale per slot over the object's points (spec 22.1, informative): its largest component
+    // maps to 32767.
+    std::vector<float> scales(slots, 0.0f);
+    for (size_t i = 0; i < points; ++i)
+        for (size_t k = 0; k < per_point; ++k)
+            scales[k / 3] = std::max(scales[k / 3], std::abs(values[i * per_point + k]));
+    for (float& s : scales) s = s > 0 ? s / 32767.0f : 1.0f;
+    for (float s : scales)
+        if (!std::isfinite(s) || !(s > 0) || s >= 0x1p113f) return Error::MalformedPayload;  // a subnormal range underflows
+    std::vector<int16_t> q(values.size());
+    std::vector<uint16_t> present(points, 0);  // vectors a point's record carries
+    for (size_t i = 0; i < points; ++i)
+        for (size_t k = 0; k < slots; ++k) {
+            bool any = false;
+            for (size_t c = 0; c < 3; ++c) {
+                const size_t at = i * per_point + 3 * k + c;
+                const double x = std::round(double(values[at]) / double(scales[k]));
+                q[at] = static_cast<int16_t>(std::clamp(x, -32767.0, 32767.0));
+                any |= q[at] != 0;
+            }
+            present[i] += any;
+        }
+    const size_t capacity = info.packet_size - kPacketOverhead - kMorphDeltasHeaderSize - 4 * slots;
+    if (info.packet_size < kPacketOverhead + kMorphDeltasHeaderSize + 4 * slots) return Error::MalformedPayload;
     uint32_t sequence = first_sequence;
-    for (size_t first = 0; first < points; first += per_packet) {
-        const size_t n = std::min(per_packet, points - first);
+    size_t first = 0;
+    while (first < points) {
+        size_t n = 0, bytes = 0;
+        while (first + n < points && n < 0xFFFF && bytes + mask + 6 * present[first + n] <= capacity)
+            bytes += mask + 6 * present[first + n++];
+        if (n == 0) return Error::MalformedPayload;  // one point's record is larger than a packet
         MorphDeltasRun run;
         run.first_index = static_cast<uint32_t>(first);
         run.count = static_cast<uint16_t>(n);
         run.target_count = target_count;
         run.attributes = attributes;
-        run.values.assign(values.begin() + std::ptrdiff_t(first * per_point),
-                          values.begin() + std::ptrdiff_t((first + n) * per_point));
+        run.scales = scales;
+        run.values.assign(q.begin() + std::ptrdiff_t(first * per_point), q.begin() + std::ptrdiff_t((first + n) * per_point));
         out.push_back(write_packet(skippable_header(PacketType::MorphDeltas, kMorphMinor, stream_id, sequence++, object_id),
                                    encode_morph_deltas_payload(run)));
+        first += n;
     }
     return Error::Ok;
 }
@@ -85,20 +138,25 @@ Error ReceivedStream::take_morph_deltas(ReceivedObject& object, const PacketView
     MorphDeltasRun run;
     if (decode_morph_deltas_payload(packet.payload, run) != Error::Ok)
         return reject(where, Error::MalformedPayload,
-                      name + ": its count, target count, attributes, length or a displacement is malformed");
+                      name + ": its count, target count, attributes, a scale, a record's mask or length is malformed");
     const uint64_t end = uint64_t(run.first_index) + run.count;
     if (end > object.info->point_count)
         return reject(where, Error::IndexOutOfRange,
                       name + ": points " + std::to_string(run.first_index) + "+" + std::to_string(run.count) + " of " +
                           std::to_string(object.info->point_count));
-    // Comparisons (spec 22.1), in order: the object's target count and attributes, then the records.
+    // Comparisons (spec 22.1), in order: the object's target count, attributes and scales, then the records.
     if (object.morph_targets != 0 &&
-        (object.morph_targets != run.target_count || object.morph_attributes != run.attributes))
+        (object.morph_targets != run.target_count || object.morph_attributes != run.attributes ||
+         object.morph_scales != run.scales))
         return reject(where, Error::StreamMismatch,
                       name + ": " + std::to_string(run.target_count) + " targets with attributes " +
-                          std::to_string(run.attributes) + " contradict the " + std::to_string(object.morph_targets) +
-                          " with attributes " + std::to_string(object.morph_attributes) + " of earlier packets");
+                          std::to_string(run.attributes) + " and their scales contradict the " +
+                          std::to_string(object.morph_targets) + " with attributes " +
+                          std::to_string(object.morph_attributes) + " of earlier packets");
     const size_t per_point = morph_record_values(run.target_count, run.attributes);
+    // Dequantized (spec 22.1): with the object's scales fixed, equal values are equal integers.
+    std::vector<float> values(run.values.size());
+    for (size_t i = 0; i < values.size(); ++i) values[i] = morph_dequantize(run.values[i], run.scales[(i % per_point) / 3]);
     uint64_t fresh = 0, runs = 0;
     bool in_run = false;
     for (size_t i = 0; i < run.count; ++i) {
@@ -111,7 +169,7 @@ Error ReceivedStream::take_morph_deltas(ReceivedObject& object, const PacketView
         }
         in_run = false;
         // As numbers: +0 and -0 agree (== does so).
-        if (!std::equal(it->second.begin(), it->second.end(), run.values.begin() + std::ptrdiff_t(i * per_point)))
+        if (!std::equal(it->second.begin(), it->second.end(), values.begin() + std::ptrdiff_t(i * per_point)))
             return reject(where, Error::StreamMismatch,
                           name + ": the displacements of point " + std::to_string(run.first_index + i) +
                               " differ from those received before");
@@ -127,10 +185,10 @@ Error ReceivedStream::take_morph_deltas(ReceivedObject& object, const PacketView
                           std::to_string(limits_.max_texture_bytes) + "-byte memory limit for them");
     object.morph_targets = run.target_count;
     object.morph_attributes = run.attributes;
+    object.morph_scales = run.scales;
     for (size_t i = 0; i < run.count; ++i)
-        object.morph.try_emplace(static_cast<uint32_t>(run.first_index + i),
-                                 run.values.begin() + std::ptrdiff_t(i * per_point),
-                                 run.values.begin() + std::ptrdiff_t((i + 1) * per_point));
+        object.morph.try_emplace(static_cast<uint32_t>(run.first_index + i), values.begin() + std::ptrdiff_t(i * per_point),
+                                 values.begin() + std::ptrdiff_t((i + 1) * per_point));
     texture_bytes_ += memory;
     ++counters_.accepted;
     return Error::Ok;

@@ -106,8 +106,8 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
         if (decode_morph_deltas_payload(packet.payload, run) != Error::Ok)
             return reject(where, Error::MalformedPayload,
                           "MORPH_DELTAS of object " + std::to_string(h.object_id) +
-                              ": its count, target count, attributes, length or a displacement that is not finite is "
-                              "malformed");
+                              ": its count, target count, attributes, a scale (not finite, not above 0, or 2^113 or "
+                              "more), a record's mask (a bit past its slots) or its length is malformed");
         e = take_object_packet(packet, where);
         break;
     }

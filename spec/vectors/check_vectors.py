@@ -22,7 +22,8 @@ and comparisons, the keys held by index, and the animations a receiver shows, sp
 SKIN and JOINT_WEIGHTS packets and the node record's skin of spec section 21: their checks and
 comparisons, the joints and influence records held, and the nodes a receiver shows skinned, spec 21.3; for
 format 1.6 the MORPH_DELTAS and MORPH_ANIMATION packets and the mesh record's target field of spec section 22:
-their checks and comparisons, the displacement records and morph keys held, the meshes a receiver shows with
+their checks and comparisons, the displacement records held (their i16 integers against the object's scales,
+and the displacements as one f32 multiplication each) and morph keys held, the meshes a receiver shows with
 their targets and the morph tracks it plays, spec 22.4) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
@@ -441,21 +442,53 @@ def decode_joint_weights(p):
 
 
 def decode_morph_deltas(p):
-    """Spec 22.1, the checks that need no stream info: (first_index, target_count, attributes, records) or None
-    when malformed; each record the list of its 3 * a * target_count values."""
+    """Spec 22.1, the checks that need no stream info: (first_index, target_count, attributes, scales, records) or
+    None when malformed; scales the S = target_count * a f32 scales, each record the list of its 3 * S integers
+    (slot by slot, x, y, z; a slot whose mask bit is clear 0, 0, 0)."""
     if len(p) < 8:
         return None
     first, count, targets, attributes = struct.unpack_from("<IHBB", p, 0)
     if count == 0 or targets == 0 or attributes == 0 or attributes & ~3:
         return None
-    per_point = 3 * bin(attributes).count("1") * targets
+    slots = targets * bin(attributes).count("1")
+    if len(p) < 8 + 4 * slots:
+        return None
+    scales = list(struct.unpack_from("<%df" % slots, p, 8))
+    # NaN > 0 is false: a NaN scale is caught here too; -0.0 > 0 is false as in IEEE 754.
+    if not finite(scales) or not all(s > 0 for s in scales) or any(s >= 2.0 ** 113 for s in scales):
+        return None
+    mask_size = (slots + 7) // 8
+    pos = 8 + 4 * slots
+    records = []
+    for _ in range(count):
+        if pos + mask_size > len(p):
+            return None  # a record runs past the payload (its mask)
+        mask = int.from_bytes(p[pos:pos + mask_size], "little")  # slot k is bit k mod 8 of byte k // 8
+        pos += mask_size
+        if mask >> slots:
+            return None  # a mask bit from S on is set
+        record = []
+        for k in range(slots):
+            if mask >> k & 1:
+                if pos + 6 > len(p):
+                    return None  # a record runs past the payload (a vector)
+                record.extend(struct.unpack_from("<3h", p, pos))
+                pos += 6
+            else:
+                record.extend((0, 0, 0))
+        records.append(record)
     # Python integers do not overflow: first + count is the true sum.
-    if len(p) != 8 + 4 * per_point * count or first + count > 2 ** 32 - 1:
-        return None
-    values = list(struct.unpack_from("<%df" % (per_point * count), p, 8))
-    if not finite(values):
-        return None
-    return first, targets, attributes, [values[per_point * i:per_point * (i + 1)] for i in range(count)]
+    if pos != len(p) or first + count > 2 ** 32 - 1:
+        return None  # bytes follow the last record, or the run passes 2^32 - 1
+    return first, targets, attributes, scales, records
+
+
+def f32_product(q, scale):
+    """Spec 22.1: the displacement q * scale computed as one f32 multiplication. The product of an i16 and an
+    f32 has at most 16 + 24 significant bits, so the double product is exact; rounding it to f32 once (to
+    nearest, ties to even) gives the spec's result, infinite past the f32 range (struct refuses to pack that)."""
+    x = q * scale
+    return math.copysign(math.inf, x) if abs(x) >= F32_INFINITE_FROM else f32(x)
 
 
 def decode_morph_animation(p):
@@ -1305,20 +1338,21 @@ class Receiver:
         return self.news(bool(fresh))
 
     def morph_deltas(self, obj, h, offset):
-        """Spec 22.1 with the object's entry: step 14, then the target count and attributes and each record
-        against those held (step 15)."""
-        first, targets, attributes, records = decode_morph_deltas(h["payload"])
+        """Spec 22.1 with the object's entry: step 14, then the target count, attributes and scales and each
+        record against those held (step 15)."""
+        first, targets, attributes, scales, records = decode_morph_deltas(h["payload"])
         if first + len(records) > obj["info"]["point_count"]:
             return self.reject(offset, "index out of range")
-        if obj["morph_kind"] is not None and obj["morph_kind"] != (targets, attributes):
+        # The scales compare as numbers (a list of Python floats: element by element with ==).
+        if obj["morph_kind"] is not None and obj["morph_kind"] != (targets, attributes, scales):
             return self.reject(offset, "stream mismatch")
         held = obj["morph"]
-        # Records compare value by value as numbers: Python's float equality has +0 == -0.
+        # Records are identical when every slot holds the same three integers (a clear bit reads as 0, 0, 0).
         if any(first + i in held and held[first + i] != r for i, r in enumerate(records)):
             return self.reject(offset, "stream mismatch")
         fresh = [i for i in range(len(records)) if first + i not in held]
         if fresh:
-            obj["morph_kind"] = (targets, attributes)
+            obj["morph_kind"] = (targets, attributes, scales)
             for i in fresh:
                 held[first + i] = records[i]
         return self.news(bool(fresh))
@@ -2080,8 +2114,10 @@ def objects_json(r):
             # Format 1.6 (spec 22.1): the target count, attributes and displacement records held, listed when
             # there is one (README).
             if obj["morph"]:
-                o["morph"] = dict(target_count=obj["morph_kind"][0], attributes=obj["morph_kind"][1],
-                                  records=[dict(index=i, values=v) for i, v in sorted(obj["morph"].items())])
+                targets, attributes, scales = obj["morph_kind"]
+                o["morph"] = dict(target_count=targets, attributes=attributes, scales=scales,
+                                  records=[dict(index=i, q=q, values=[f32_product(v, scales[k // 3]) for k, v in enumerate(q)])
+                                           for i, q in sorted(obj["morph"].items())])
         objects.append(o)
     return objects
 

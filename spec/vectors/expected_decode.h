@@ -240,15 +240,27 @@ inline nlohmann::json objects_json(const ReceivedStream& stream) {
                 }
                 o["weights"] = weights;
             }
-            // Format 1.6 (spec 22.1): the target count and attributes kept for the object and the
-            // displacement records held, by point index; listed only for an object that holds one, so
-            // that the decodes of streams without MORPH_DELTAS stay as they were.
+            // Format 1.6 (spec 22.1): the target count, attributes and scales kept for the object and the
+            // displacement records held, by point index, each as its integers and as its dequantized
+            // displacements; listed only for an object that holds one, so that the decodes of streams
+            // without MORPH_DELTAS stay as they were.
             if (!object.morph.empty()) {
+                const std::vector<float>& scales = object.morph_scales;
                 json records = json::array();
-                for (const auto& [index, values] : object.morph)
-                    records.push_back({{"index", index}, {"values", floats(values.data(), values.size())}});
+                for (const auto& [index, values] : object.morph) {
+                    // The library keeps a record dequantized (q * scale in f32); the integer of a component
+                    // is the nearest to value / scale: the products of distinct i16 values and one f32 scale
+                    // round to distinct f32 values, within 2^-9 of q * scale once divided by it (README).
+                    json q = json::array();
+                    for (size_t i = 0; i < values.size(); ++i) {
+                        const double v = values[i], s = scales[i / 3];
+                        q.push_back(std::isfinite(v) ? json(std::lround(v / s)) : json(nullptr));
+                    }
+                    records.push_back({{"index", index}, {"q", q}, {"values", floats(values.data(), values.size())}});
+                }
                 o["morph"] = {{"target_count", object.morph_targets},
                               {"attributes", object.morph_attributes},
+                              {"scales", floats(scales.data(), scales.size())},
                               {"records", records}};
             }
         }

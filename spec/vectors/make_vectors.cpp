@@ -13,6 +13,7 @@
 #include <ellicast/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -4520,24 +4521,39 @@ SceneDescription morphing_face(bool talk_moves_node = true) {
     return s;
 }
 
-// The displacement record of every point of object 0, `targets` targets (target 0 lifts the points by
-// 0.1 x^2 and tilts their normals, target 1 pushes them 0.15 along their normals, target 2, when
-// asked for, moves them 0.05 along z), with the position (attributes bit 0) and normal (bit 1) parts.
+// The displacement record of every point of object 0, `targets` targets, with the position
+// (attributes bit 0) and normal (bit 1) parts, x, y, z its dequantized position: target 0 lifts the
+// points of positive x by 0.1 x^2 and tilts their normals by (-0.2 x, 0, 0), and leaves the others
+// (0: left out of their records, spec 22.1); target 1 pushes every point 0.15 along its normal; when
+// asked for, target 2 moves every point 0.05 along z, target 3 moves the points of positive y by
+// (0.04, 0, 0) and tilts their normals by (0, -0.1 y, 0), target 4 moves the points of positive z by
+// (0, 0, 0.03 z) and tilts their normals by (0.05, 0.05, 0). The normal displacements of targets 1
+// and 2 are 0.
 std::vector<float> face_displacements(const StreamInfo& info, const ObjectContent& c, uint8_t targets,
                                       uint8_t attributes) {
     std::vector<float> out;
     for (const QuantizedPoint& q : c.points) {
         const SurfacePoint p = dequantize_point(q, info, info.objects[0]);
-        const double x = p.position[0];
+        const double x = p.position[0], y = p.position[1], z = p.position[2];
         for (uint8_t t = 0; t < targets; ++t) {
             std::array<double, 3> move{}, turn{};
             if (t == 0) {
-                move = {0, 0.1 * x * x, 0};
-                turn = {-0.2 * x, 0, 0};
+                if (x > 0) {
+                    move = {0, 0.1 * x * x, 0};
+                    turn = {-0.2 * x, 0, 0};
+                }
             } else if (t == 1) {
                 move = {0.15 * p.normal[0], 0.15 * p.normal[1], 0.15 * p.normal[2]};
-            } else {
+            } else if (t == 2) {
                 move = {0, 0, 0.05};
+            } else if (t == 3) {
+                if (y > 0) {
+                    move = {0.04, 0, 0};
+                    turn = {0, -0.1 * y, 0};
+                }
+            } else if (z > 0) {
+                move = {0, 0, 0.03 * z};
+                turn = {0.05, 0.05, 0};
             }
             if (attributes & kMorphPosition)
                 for (double v : move) out.push_back(float(v));
@@ -4546,6 +4562,26 @@ std::vector<float> face_displacements(const StreamInfo& info, const ObjectConten
         }
     }
     return out;
+}
+
+// The morphing face of `morphing_face` with mesh 0's targets `targets` (its default weights and each
+// weight track's keys padded with 0 for the targets past 2), so that it conforms with displacement
+// records of that many targets.
+SceneDescription morphing_face_with_targets(uint8_t targets, bool talk_moves_node = true) {
+    SceneDescription s = morphing_face(talk_moves_node);
+    s.meshes[0].weights.resize(targets, 0.0f);
+    for (SceneAnimation& a : s.animations)
+        for (SceneAnimation::Track& t : a.tracks) {
+            if (t.path != AnimationPath::Weights) continue;
+            std::vector<float> values;
+            for (size_t at = 0; at < t.values.size(); at += t.targets) {
+                values.insert(values.end(), t.values.begin() + long(at), t.values.begin() + long(at + t.targets));
+                values.resize(values.size() + (targets - t.targets), 0.0f);
+            }
+            t.values = values;
+            t.targets = targets;
+        }
+    return s;
 }
 
 struct MorphStream {
@@ -4628,26 +4664,80 @@ MorphDeltasRun deltas_run_of(const Packet& p) {
     }
     return run;
 }
-// The run of points [first, first + count) of `values` (records of `per_point` values each).
-MorphDeltasRun deltas_run(const std::vector<float>& values, uint32_t first, uint16_t count, uint8_t targets,
-                          uint8_t attributes) {
-    const size_t per_point = morph_record_values(targets, attributes);
-    MorphDeltasRun run;
-    run.first_index = first;
+// Every record of object 0 as one run (points 0 .. 19, the scales of the object), concatenated
+// from the stream's MORPH_DELTAS packets, which cover the points in order.
+MorphDeltasRun all_deltas(const Packets& deltas) {
+    MorphDeltasRun all = deltas_run_of(deltas.front());
+    for (size_t i = 1; i < deltas.size(); ++i) {
+        const MorphDeltasRun run = deltas_run_of(deltas[i]);
+        if (run.first_index != all.first_index + all.count || run.scales != all.scales) std::exit(1);
+        all.values.insert(all.values.end(), run.values.begin(), run.values.end());
+        all.count = uint16_t(all.count + run.count);
+    }
+    return all;
+}
+// The run of points [first, first + count) of `all` (a run from point 0).
+MorphDeltasRun deltas_run(const MorphDeltasRun& all, uint32_t first, uint16_t count) {
+    const size_t per_point = morph_record_values(all.target_count, all.attributes);
+    if (first + count > all.count) {
+        std::cerr << "make_vectors: a run past the records\n";
+        std::exit(1);
+    }
+    MorphDeltasRun run = all;
+    run.first_index = all.first_index + first;
     run.count = count;
-    run.target_count = targets;
-    run.attributes = attributes;
-    run.values.assign(values.begin() + long(first * per_point), values.begin() + long((first + count) * per_point));
+    run.values.assign(all.values.begin() + long(first * per_point), all.values.begin() + long((first + count) * per_point));
     return run;
 }
-// Every record of object 0, concatenated from the stream's MORPH_DELTAS packets.
-std::vector<float> all_deltas(const Packets& deltas) {
-    std::vector<float> out;
-    for (const Packet& p : deltas) {
-        const MorphDeltasRun run = deltas_run_of(p);
-        out.insert(out.end(), run.values.begin(), run.values.end());
+// The slots of a record (spec 22.1: S = target_count * a).
+size_t deltas_slots(const MorphDeltasRun& run) { return morph_record_values(run.target_count, run.attributes) / 3; }
+// A MORPH_DELTAS payload written here from the spec's words (22.1): the header, the scales, then per
+// point the mask and the vectors of its set bits, a vector 0, 0, 0 left out (its bit clear) unless
+// `explicit_zero(point, slot)` says to write it with its bit set. Without `explicit_zero` it is
+// the reference encoder's payload (checked).
+std::vector<uint8_t> deltas_payload(const MorphDeltasRun& run,
+                                    const std::function<bool(size_t, size_t)>& explicit_zero = nullptr) {
+    const size_t slots = deltas_slots(run), mask = (slots + 7) / 8;
+    std::vector<uint8_t> out(kMorphDeltasHeaderSize);
+    for (int i = 0; i < 4; ++i) out[size_t(i)] = uint8_t(run.first_index >> (8 * i));
+    out[4] = uint8_t(run.count);
+    out[5] = uint8_t(run.count >> 8);
+    out[6] = run.target_count;
+    out[7] = run.attributes;
+    for (float f : run.scales) {
+        uint32_t u;
+        std::memcpy(&u, &f, 4);
+        for (int i = 0; i < 4; ++i) out.push_back(uint8_t(u >> (8 * i)));
+    }
+    for (size_t i = 0; i < run.count; ++i) {
+        const size_t at = out.size();
+        out.resize(at + mask, 0);
+        for (size_t k = 0; k < slots; ++k) {
+            const int16_t* v = run.values.data() + (i * slots + k) * 3;
+            if (v[0] == 0 && v[1] == 0 && v[2] == 0 && !(explicit_zero && explicit_zero(i, k))) continue;
+            out[at + k / 8] |= uint8_t(1u << (k % 8));
+            for (int c = 0; c < 3; ++c) {
+                out.push_back(uint8_t(uint16_t(v[c])));
+                out.push_back(uint8_t(uint16_t(v[c]) >> 8));
+            }
+        }
+    }
+    if (!explicit_zero && out != encode_morph_deltas_payload(run)) {
+        std::cerr << "make_vectors: the MORPH_DELTAS payload written here differs from the reference encoder's\n";
+        std::exit(1);
     }
     return out;
+}
+// The payload offset of point i's record (its mask) in a MORPH_DELTAS payload.
+size_t deltas_record_at(const std::vector<uint8_t>& payload, size_t i) {
+    const size_t slots = size_t(payload[6]) * size_t(std::popcount(unsigned(payload[7] & 3))), mask = (slots + 7) / 8;
+    size_t at = kMorphDeltasHeaderSize + 4 * slots;
+    for (size_t n = 0; n < i; ++n) {
+        size_t set = 0;
+        for (size_t k = 0; k < slots; ++k) set += (payload[at + k / 8] >> (k % 8)) & 1u;
+        at += mask + 6 * set;
+    }
+    return at;
 }
 
 // The bytes of a mesh record's target field (spec 22): target_count (that of `weights` unless given)
@@ -4696,7 +4786,7 @@ std::vector<uint8_t> append_to_record(std::vector<uint8_t> payload, uint8_t kind
 
 // Offsets in a MORPH_DELTAS packet (header included, spec 22.1).
 constexpr size_t kDeltasFirst = kHeaderSize, kDeltasCount = kHeaderSize + 4, kDeltasTargets = kHeaderSize + 6,
-                 kDeltasAttributes = kHeaderSize + 7, kDeltasRecords = kHeaderSize + 8;
+                 kDeltasAttributes = kHeaderSize + 7, kDeltasScales = kHeaderSize + 8;
 // Offsets in a MORPH_ANIMATION packet (header included, spec 22.2).
 constexpr size_t kMorphIndex = kHeaderSize, kMorphCount = kHeaderSize + 2, kMorphTrack = kHeaderSize + 4,
                  kMorphTrackCount = kHeaderSize + 6, kMorphNode = kHeaderSize + 8, kMorphJoins = kHeaderSize + 10,
@@ -4709,10 +4799,18 @@ void morph_vectors(Writer& w) {
     const MorphStream base = make_morph_stream(scene);
     const Packets anims = base.animations();         // Talk's translation
     const Packets morphs = base.morph_animations();  // morph 0 track 0 keys 0..19, 20..23; morph 0 track 1; morph 1
-    const Packets& deltas = base.deltas;             // points 0..4, 5..9, 10..14, 15..19
-    if (anims.size() != 1 || morphs.size() != 4 || deltas.size() != 4) {
+    const Packets& deltas = base.deltas;             // points 0..17, 18..19
+    const MorphDeltasRun records = all_deltas(deltas);
+    // Points a MORPH_DELTAS packet carries, as "A..B".
+    auto points_of = [](const Packet& p) {
+        const MorphDeltasRun run = deltas_run_of(p);
+        return std::to_string(run.first_index) +
+               (run.count > 1 ? ".." + std::to_string(run.first_index + run.count - 1) : std::string());
+    };
+    const uint32_t n0 = deltas_run_of(deltas[0]).count;  // points of the first MORPH_DELTAS packet
+    if (anims.size() != 1 || morphs.size() != 4 || deltas.size() != 2 || records.count != 20 || n0 != 18) {
         std::cerr << "make_vectors: the morphing face takes " << anims.size() << " ANIMATION, " << morphs.size()
-                  << " MORPH_ANIMATION and " << deltas.size() << " MORPH_DELTAS packets, not 1, 4 and 4\n";
+                  << " MORPH_ANIMATION and " << deltas.size() << " MORPH_DELTAS packets, not 1, 4 and 2\n";
         std::exit(1);
     }
     const Packets stream = base.all();
@@ -4722,14 +4820,15 @@ void morph_vectors(Writer& w) {
     const std::string face =
         "the morphing face of valid/morph (format 1.6: mesh 0 'Face' of object 0 with 2 targets, default weights "
         "0.25 and 0, shown by nodes 1 'Face' and 3 'Mirror'; mesh 1 'Box' of object 1 without targets; the "
-        "displacements of object 0's 20 points in 4 MORPH_DELTAS packets; animation 0 'Talk' joined by morph "
+        "displacements of object 0's 20 points in 2 MORPH_DELTAS packets; animation 0 'Talk' joined by morph "
         "animation 0 (tracks on nodes 1 and 3), and morph animation 1 'Blink' standing alone), packets in stream order";
     w.write("valid", "morph",
             "format 1.6 (spec 22): the morphing face: objects 0 (6 ellipsoids, 20 points with normals) and 1 (4 "
             "ellipsoids, 12 points with normals), packet size 300; nodes 0 'Stage' (root), 1 'Face' and 3 'Mirror' "
             "(mesh 0), 2 'Box' (mesh 1); mesh 0 'Face' of object 0 whose record carries 2 targets with default "
             "weights 0.25, 0 (its SCENE packet says 1.6), mesh 1 'Box' of object 1 without targets; object 0's "
-            "displacement records (position and normal of both targets) in 4 MORPH_DELTAS packets; animation 0 "
+            "displacement records (position and normal of both targets: 4 slots quantized to i16 against 4 scales, "
+            "the vectors 0, 0, 0 left out, spec 22.1) in 2 MORPH_DELTAS packets (points 0..17, 18..19); animation 0 "
             "'Talk' (a LINEAR translation of node 1, one ANIMATION packet) joined by morph animation 0 (empty name: "
             "a LINEAR track of 24 keys on node 1 in 2 packets, a STEP track of 3 keys on node 3), and morph animation "
             "1 'Blink' (a LINEAR track of 3 keys on node 1), which stands alone; packets in stream order; mesh 0 "
@@ -4776,7 +4875,7 @@ void morph_vectors(Writer& w) {
         sent.insert(sent.end(), deltas.begin(), deltas.end());
         sent.insert(sent.end(), stream.begin(), stream.begin() + long(morph_at));
         w.write("unusual", "morph_before_stream_info",
-                face + ", with its 4 MORPH_ANIMATION and 4 MORPH_DELTAS packets first, before the STREAM_INFO, the "
+                face + ", with its 4 MORPH_ANIMATION and 2 MORPH_DELTAS packets first, before the STREAM_INFO, the "
                        "SCENE and the ANIMATION packets: the MORPH_ANIMATION packets are stream-level and accepted "
                        "when they arrive (spec 22), the MORPH_DELTAS packets held like POINTS packets (spec 22.1, "
                        "11.2) and released in arrival order when the STREAM_INFO arrives, then accepted; decodes as "
@@ -4800,24 +4899,26 @@ void morph_vectors(Writer& w) {
         Packet again = morphs[1];
         restamp_packet(again, 901);
         sent.push_back(again);
-        again = deltas[2];
+        again = deltas[1];
         restamp_packet(again, 902);
         sent.push_back(again);
         w.write("unusual", "morph_shuffled_duplicates",
                 face + ", with its SCENE, ANIMATION, MORPH_ANIMATION and MORPH_DELTAS packets shuffled after the "
                        "geometry (seeded), the second of them sent twice (byte-identical), the first again after the "
-                       "fourth with sequence number 900, and the second MORPH_ANIMATION packet and the third "
+                       "fourth with sequence number 900, and the second MORPH_ANIMATION packet and the second "
                        "MORPH_DELTAS packet again at the end (sequence 901, 902): 4 duplicates (spec 22.1, 22.2: "
                        "nothing new); decodes as valid/morph",
                 sent);
     }
     {
         const MorphStream normals = make_morph_stream(scene, 2, kMorphNormal);
+        if (normals.deltas.size() != 1) std::exit(1);
         w.write("unusual", "morph_normal_only",
                 "the morphing face of valid/morph with displacement records of normals only (attributes 2, spec "
-                "22.1: 6 values a point, 11 points a packet: 2 MORPH_DELTAS packets), the normal displacements of "
-                "valid/morph; mesh 0 is shown with its targets, its position displacements 0 ('a displacement the "
-                "record lacks is 0', spec 22.4)",
+                "22.1: 2 slots, 2 scales, a mask of one byte a point; the points of x <= 0 have no normal "
+                "displacement, their records the mask 00 alone): the normal displacements of valid/morph, all 20 "
+                "points in one MORPH_DELTAS packet; mesh 0 is shown with its targets, its position displacements 0 "
+                "('a displacement the record lacks is 0', spec 22.4)",
                 normals.all());
     }
     {
@@ -4840,26 +4941,22 @@ void morph_vectors(Writer& w) {
             make_morph_stream(morphing_face(false)).all());
     {
         Packets sent = stream;
-        // The first MORPH_DELTAS packet with -0 for +0.
-        MorphDeltasRun run = deltas_run_of(deltas[0]);
-        size_t zeros = 0;
-        for (float& v : run.values)
-            if (v == 0.0f) v = -0.0f, ++zeros;
         // Morph animation 0's STEP track (node 3): weights 1, 0, 0, 1, 0.5, 0.5, the time of key 0 0.
         AnimationPiece echo = morph_piece_of(morphs[2]);
+        size_t zeros = 0;
         for (float& v : echo.values)
             if (v == 0.0f) v = -0.0f, ++zeros;
         echo.times[0] = -0.0f;
-        if (zeros < 3) std::exit(1);
-        sent.push_back(deltas_packet(0, 1000, encode_morph_deltas_payload(run)));
-        sent.push_back(morph_animation_packet(echo, 1001));
-        sent.push_back(one_mesh_scene_packet(scene, scene.meshes[0], target_field({0.25f, -0.0f}), kMorphMinor, 1002));
+        if (zeros < 2) std::exit(1);
+        sent.push_back(morph_animation_packet(echo, 1000));
+        sent.push_back(one_mesh_scene_packet(scene, scene.meshes[0], target_field({0.25f, -0.0f}), kMorphMinor, 1001));
         w.write("unusual", "morph_negative_zero",
-                face + ", then (sequence 1000..1002) the first MORPH_DELTAS packet with -0 for every +0 of its "
-                       "records, the packet of morph animation 0's track 1 with -0 for its +0 weights and for the time "
-                       "of key 0, and a SCENE packet (1.6) of mesh 0's record with default weights 0.25 and -0: three "
-                       "duplicates, not mismatches (spec 22.1, 22.2, 22: values compare as numbers, +0 and -0 agree), "
-                       "and not malformed (a time of -0 is not negative)",
+                face + ", then (sequence 1000, 1001) the packet of morph animation 0's track 1 with -0 for its +0 "
+                       "weights and for the time of key 0, and a SCENE packet (1.6) of mesh 0's record with default "
+                       "weights 0.25 and -0: two duplicates, not mismatches (spec 22.2, 22: values compare as "
+                       "numbers, +0 and -0 agree), and not malformed (a time of -0 is not negative). (A MORPH_DELTAS "
+                       "record holds integers, which have no -0: spec 22.1, q = 0 gives +0; see "
+                       "unusual/morph_deltas_explicit_zero.)",
                 sent);
     }
     {
@@ -4879,20 +4976,19 @@ void morph_vectors(Writer& w) {
                        "the repeat is a duplicate; decodes as valid/morph",
                 sent);
     }
-    const std::vector<float> records = all_deltas(deltas);
     {
-        // Runs cut as no sender cuts (at most 5 points, as the packet size allows).
+        // Runs cut as no sender cuts (5 points each: well within the packet size).
         Packets sent = base.before_deltas();
         uint32_t sequence = 1000;
         for (auto [first, count] : std::vector<std::pair<uint32_t, uint16_t>>{
                  {3, 5}, {0, 5}, {8, 5}, {13, 5}, {15, 5}, {5, 5}})
-            sent.push_back(deltas_packet(0, sequence++, encode_morph_deltas_payload(deltas_run(records, first, count, 2, 3))));
+            sent.push_back(deltas_packet(0, sequence++, deltas_payload(deltas_run(records, first, count))));
         w.write("unusual", "morph_overlapping_runs",
                 face + ", with object 0's records in 6 MORPH_DELTAS packets that overlap, cut as no sender cuts "
-                       "(sequence 1000..1005): points 3..7, 0..4 (accepted: it brings 0..2; its records of 3 and 4 "
-                       "are compared with those held and agree), 8..12, 13..17, 15..19 (accepted: it brings 18 and "
-                       "19), then 5..9 (a duplicate: every record held); spec 22.1 keeps one record per point, "
-                       "whatever packets carried it; decodes as valid/morph",
+                       "(sequence 1000..1005, each with the object's 4 scales): points 3..7, 0..4 (accepted: it "
+                       "brings 0..2; its records of 3 and 4 are compared with those held and agree), 8..12, 13..17, "
+                       "15..19 (accepted: it brings 18 and 19), then 5..9 (a duplicate: every record held); spec 22.1 "
+                       "keeps one record per point, whatever packets carried it; decodes as valid/morph",
                 sent);
     }
     {
@@ -4929,12 +5025,105 @@ void morph_vectors(Writer& w) {
                 sent);
     }
 
+    {
+        // The first MORPH_DELTAS packet's records with every vector 0, 0, 0 written out (each mask 0F), cut
+        // into packets within the packet size.
+        const MorphDeltasRun run = deltas_run_of(deltas[0]);
+        const uint32_t half = (run.count + 1) / 2;
+        const auto all_set = [](size_t, size_t) { return true; };
+        Packets sent(stream.begin(), stream.begin() + long(deltas_at));
+        sent.push_back(deltas_packet(0, get32(deltas[0], 12), deltas_payload(deltas_run(records, 0, uint16_t(half)), all_set)));
+        sent.push_back(deltas_packet(0, 1000, deltas_payload(deltas_run(records, half, uint16_t(run.count - half)), all_set)));
+        sent.insert(sent.end(), stream.begin() + long(deltas_at) + 1, stream.end());
+        Packet again = deltas[0];
+        restamp_packet(again, 1001);
+        sent.push_back(again);
+        for (const Packet& p : sent)
+            if (p.size() > 300) std::exit(1);
+        w.write("unusual", "morph_deltas_explicit_zero",
+                face + ", with the records of its first MORPH_DELTAS packet (points 0.." + std::to_string(n0 - 1) +
+                       ") sent instead in 2 packets (points 0.." + std::to_string(half - 1) + " with the first's "
+                       "sequence number, " + std::to_string(half) + ".." + std::to_string(n0 - 1) +
+                       " with 1000) that write every vector 0, 0, 0 out: each record's mask 0F (all 4 slots set), "
+                       "a slot the reference leaves out (target 1's normal displacement; target 0's for the points "
+                       "of x <= 0) carried as 0, 0, 0; then the reference's first packet (sequence 1001) after the "
+                       "stream: the same records (spec 22.1: 'a clear bit and a set bit with 0, 0, 0 are "
+                       "identical'), so a duplicate, not a mismatch; decodes as valid/morph",
+                sent);
+    }
+    {
+        // Point 0's target 1 position displacement (slot 2) -32768, 32767, -1.
+        MorphDeltasRun run = deltas_run_of(deltas[0]);
+        if (deltas_slots(run) != 4) std::exit(1);
+        run.values[2 * 3 + 0] = -32768;
+        run.values[2 * 3 + 1] = 32767;
+        run.values[2 * 3 + 2] = -1;
+        Packets sent = stream;
+        sent[deltas_at] = with_payload(deltas[0], deltas_payload(run));
+        w.write("unusual", "morph_deltas_i16_extremes",
+                face + ", with point 0's target 1 position displacement (slot 2) in the first MORPH_DELTAS packet "
+                       "(re-encoded, the same size) the integers -32768, 32767, -1 (bytes 0080 FF7F FFFF): i16 "
+                       "two's complement, -32768 included though the reference encoder writes none below -32767; "
+                       "dequantized q * scale[2] in f32 (spec 22.1): -32768 s, 32767 s, -s with s = scale[2]; a "
+                       "stream that conforms; decodes as valid/morph but for point 0's record",
+                sent);
+    }
+    {
+        // Slot 3 (target 1's normal displacement, 0 everywhere) with the scale 2^-149 (00000001, the
+        // smallest subnormal) in both packets, and point 19's slot 3 the integers 1, -2, 32767.
+        Packets sent = stream;
+        for (size_t i = 0; i < deltas.size(); ++i) {
+            MorphDeltasRun run = deltas_run_of(deltas[i]);
+            uint32_t bits = 1;
+            std::memcpy(&run.scales[3], &bits, 4);
+            if (i + 1 == deltas.size()) {
+                int16_t* v = run.values.data() + ((19 - run.first_index) * 4 + 3) * 3;
+                v[0] = 1;
+                v[1] = -2;
+                v[2] = 32767;
+            }
+            sent[deltas_at + i] = with_payload(deltas[i], deltas_payload(run));
+            if (sent[deltas_at + i].size() > 300) std::exit(1);
+        }
+        w.write("unusual", "morph_deltas_scale_subnormal",
+                face + ", with the scale of slot 3 (target 1's normal displacement) 2^-149 (00000001, the smallest "
+                       "subnormal f32) where the reference writes 1, in both MORPH_DELTAS packets (re-encoded), and "
+                       "point 19's slot 3 the integers 1, -2, 32767: a subnormal scale is finite and above 0 (spec "
+                       "22.1), and the products 2^-149, -2^-148 and 32767 x 2^-149 are subnormal f32 values, exact; "
+                       "a stream that conforms; decodes as valid/morph but for the scales and point 19's record",
+                sent);
+    }
+    for (const uint8_t targets : {uint8_t(4), uint8_t(5)}) {
+        // Mesh 0 with `targets` targets (default weights and morph keys padded with 0) and object 0's records
+        // of as many targets: S = 8 slots (a mask of one full byte) or 10 (masks of 2 bytes).
+        const MorphStream m = make_morph_stream(morphing_face_with_targets(targets), targets, 3);
+        std::string runs;
+        for (const Packet& p : m.deltas) runs += (runs.empty() ? "" : ", ") + points_of(p);
+        const bool eight = targets == 4;
+        w.write("unusual", eight ? "morph_deltas_8_slots" : "morph_deltas_10_slots",
+                "the morphing face of valid/morph with " + std::to_string(targets) + " targets: mesh 0's default "
+                "weights 0.25, 0, 0, 0" + (eight ? "" : ", 0") + " and every morph track's keys with " +
+                std::to_string(targets) + " weights (those of valid/morph, then 0), and object 0's records of " +
+                std::to_string(targets) + " targets, position and normal (target 2 moves every point 0.05 along z; "
+                "target 3 moves the points of y > 0 by (0.04, 0, 0) and tilts their normals by (0, -0.1 y, 0)" +
+                (eight ? "" : "; target 4 moves the points of z > 0 by (0, 0, 0.03 z) and tilts their normals by "
+                              "(0.05, 0.05, 0)") + "): S = " + std::to_string(2 * targets) + " slots, " +
+                (eight ? "a multiple of 8: a mask of one full byte, bit 7 (slot 7, target 3's normal displacement) "
+                         "set for the points of y > 0"
+                       : "masks of 2 bytes (slot k is bit k mod 8 of byte floor(k / 8)): slots 8 and 9 (target 4) "
+                         "in bits 0 and 1 of the second byte, set for the points of z > 0, its bits 2..7 0") +
+                " (spec 22.1), " + std::to_string(m.deltas.size()) + " MORPH_DELTAS packets (points " + runs +
+                "); mesh 0 shown with its targets and every morph track kept",
+                m.all());
+    }
+
     // ---- faulty: no rejection, but the stream is not complete or does not conform (spec 22.4) ----
     {
         Packets sent = stream;
-        sent.erase(sent.begin() + long(deltas_at) + 2);
+        sent.erase(sent.begin() + long(deltas_at) + 1);
         w.write("faulty", "morph_deltas_incomplete",
-                face + ", without the third MORPH_DELTAS packet (points 10..14): no rejection; object 0 is morphed "
+                face + ", without the second MORPH_DELTAS packet (points " + points_of(deltas[1]) +
+                       "): no rejection; object 0 is morphed "
                        "(a held point with its record), so mesh 0 is shown with its targets (spec 22.3: each vertex "
                        "gets the record of the nearest held point with one), but the stream is not complete ('every "
                        "point of every object shown by a mesh whose record carries target_count > 0 has its "
@@ -4963,9 +5152,12 @@ void morph_vectors(Writer& w) {
         const MorphStream three = make_morph_stream(scene, 3, 3);
         Packets sent = base.before_deltas();
         sent.insert(sent.end(), three.deltas.begin(), three.deltas.end());
+        std::string runs;
+        for (const Packet& p : three.deltas) runs += (runs.empty() ? "" : ", ") + points_of(p);
         w.write("faulty", "morph_target_count_differs",
                 face + ", with object 0's MORPH_DELTAS packets of 3 targets (a third target moving every point 0.05 "
-                       "along z; 3 points a packet, 7 packets) where mesh 0's record carries 2: no rejection; object 0 "
+                       "along z, its normal 0: S = 6 slots; " + std::to_string(three.deltas.size()) +
+                       " packets, points " + runs + ") where mesh 0's record carries 2: no rejection; object 0 "
                        "is morphed with 3 targets, so mesh 0 is not shown with its targets ('every object it shows is "
                        "morphed with that target_count') and the morph tracks (C = 2) are left out; the stream does not "
                        "conform ('every object shown by a mesh with target_count > 0 has MORPH_DELTAS packets with "
@@ -5170,25 +5362,30 @@ void morph_vectors(Writer& w) {
                     "the record has 0 targets and contradicts mesh 0's 2: rejected, stream mismatch",
             after_stream(one_mesh_scene_packet(scene, scene.meshes[0], target_field({0.25f, 0}), kSkinMinor, 1000)));
 
-    // ---- faulty: MORPH_DELTAS rejections. A copy of the first MORPH_DELTAS packet (points 0..4) with one
-    // defect, sequence 1000, after the stream (resealed; a payload of another length gets its
-    // payload_length and checksum), unless the row says otherwise. ----
+    // ---- faulty: MORPH_DELTAS rejections. A copy of the first MORPH_DELTAS packet (points 0..n0 - 1) with
+    // one defect, sequence 1000, after the stream (resealed; a payload of another length gets its
+    // payload_length and checksum), unless the row says otherwise. Its payload: the header, the 4 scales
+    // (slot 0: target 0's position displacement, 1: target 0's normal, 2: target 1's position, 3: target
+    // 1's normal, all 0 so its scale 1), then the records, each a mask byte and 6 bytes per set bit. ----
     const Packet& first_deltas = deltas[0];
-    const std::string kDeltasCopy = face + ", then a copy of the first MORPH_DELTAS packet (points 0..4) ";
+    const std::vector<uint8_t> first_payload = payload_of(first_deltas);
+    const std::string first_points = points_of(first_deltas);
+    const std::string kDeltasCopy = face + ", then a copy of the first MORPH_DELTAS packet (points " + first_points + ") ";
     auto deltas_edited = [&](const std::function<void(Packet&)>& edit) {
         Packet copy = first_deltas;
         edit(copy);
         reseal(copy);
         return after_stream(copy);
     };
-    auto deltas_head = [&](const std::function<void(std::vector<uint8_t>&)>& edit) {
-        std::vector<uint8_t> payload = payload_of(first_deltas);
-        payload.resize(8);
+    auto deltas_cut = [&](size_t length, const std::function<void(std::vector<uint8_t>&)>& edit) {
+        std::vector<uint8_t> payload = first_payload;
+        payload.resize(length);
         edit(payload);
         return after_stream(with_payload(first_deltas, payload));
     };
+    auto scale_at = [](size_t k) { return kDeltasScales + 4 * k; };  // slot k's scale in the packet
     {
-        std::vector<uint8_t> payload = payload_of(first_deltas);
+        std::vector<uint8_t> payload = first_payload;
         payload.resize(7);
         w.write("faulty", "morph_deltas_payload_short",
                 kDeltasCopy + "cut to a payload of 7 bytes: rejected, malformed payload (spec 22.1: 'shorter than 8 "
@@ -5196,54 +5393,120 @@ void morph_vectors(Writer& w) {
                 after_stream(with_payload(first_deltas, payload)));
     }
     w.write("faulty", "morph_deltas_count_zero",
-            kDeltasCopy + "with count 0 and no record (an 8-byte payload: its length agrees): rejected, malformed "
-                          "payload (spec 22.1: 'count is 0')",
-            deltas_head([](std::vector<uint8_t>& p) { p[4] = p[5] = 0; }));
+            kDeltasCopy + "with count 0, its 4 scales and no record (a payload of 24 bytes = 8 + 4 S: nothing else is "
+                          "wrong): rejected, malformed payload (spec 22.1: 'count is 0')",
+            deltas_cut(24, [](std::vector<uint8_t>& p) { p[4] = p[5] = 0; }));
     w.write("faulty", "morph_deltas_target_count_zero",
-            kDeltasCopy + "with target_count 0 and no record (an 8-byte payload: 8 + 5 x 0 bytes, its length agrees): "
-                          "rejected, malformed payload (spec 22.1: 'target_count is 0')",
-            deltas_head([](std::vector<uint8_t>& p) { p[6] = 0; }));
+            kDeltasCopy + "with target_count 0, no scale and no record (an 8-byte payload: with S = 0 there is no "
+                          "scale and a record is 0 bytes, so nothing else is wrong): rejected, malformed payload (spec "
+                          "22.1: 'target_count is 0')",
+            deltas_cut(8, [](std::vector<uint8_t>& p) { p[6] = 0; }));
     w.write("faulty", "morph_deltas_attributes_zero",
-            kDeltasCopy + "with attributes 0 and no record (an 8-byte payload: a = 0, its length agrees): rejected, "
+            kDeltasCopy + "with attributes 0, no scale and no record (an 8-byte payload: a = 0, S = 0): rejected, "
                           "malformed payload (spec 22.1: 'attributes is 0')",
-            deltas_head([](std::vector<uint8_t>& p) { p[7] = 0; }));
+            deltas_cut(8, [](std::vector<uint8_t>& p) { p[7] = 0; }));
     w.write("faulty", "morph_deltas_attributes_bit_6",
-            kDeltasCopy + "with attributes 43 (bits 0, 1 and 6; bits 0 and 1 give its length): rejected, malformed "
-                          "payload (spec 22.1: 'has a bit of 2..7 set')",
+            kDeltasCopy + "with attributes 43 (bits 0, 1 and 6; bits 0 and 1 give S = 4, the scales and records as "
+                          "they were): rejected, malformed payload (spec 22.1: 'has a bit of 2..7 set')",
             deltas_edited([](Packet& p) { p[kDeltasAttributes] = 0x43; }));
-    {
-        std::vector<uint8_t> payload = payload_of(first_deltas);
-        payload.push_back(0);
-        w.write("faulty", "morph_deltas_length_mismatch",
-                kDeltasCopy + "with one byte (00) more after its records: rejected, malformed payload (spec 22.1: "
-                              "'payload_length MUST equal 8 + count * 12 * a * target_count')",
-                after_stream(with_payload(first_deltas, payload)));
-    }
-    w.write("faulty", "morph_deltas_index_overflow",
-            kDeltasCopy + "with first_index 4294967291 = 2^32 - 5: first_index + count = 2^32 > 2^32 - 1 (0 in 32-bit "
-                          "arithmetic): rejected, malformed payload (spec 22.1: 'computed without overflow'; at step "
-                          "11, before the object's point_count is looked at)",
-            deltas_edited([](Packet& p) { put32(p, kDeltasFirst, 0xFFFFFFFBu); }));
-    // Point 2's record: 12 values; its target 1 position y is value 7.
-    const size_t nan_at = kDeltasRecords + 4 * (2 * 12 + 7);
-    w.write("faulty", "morph_deltas_value_nan",
-            kDeltasCopy + "with the y of point 2's target 1 position displacement NaN (7FC00000): rejected, malformed "
-                          "payload (spec 22.1: 'a value is not finite')",
-            deltas_edited([&](Packet& p) { put32(p, nan_at, 0x7FC00000u); }));
+    w.write("faulty", "morph_deltas_scales_short",
+            kDeltasCopy + "cut to a payload of 20 bytes: the header and 3 of its 4 scales: rejected, malformed payload "
+                          "(spec 22.1: 'it is shorter than 8 + 4 S')",
+            deltas_cut(20, [](std::vector<uint8_t>&) {}));
+    w.write("faulty", "morph_deltas_scale_zero",
+            kDeltasCopy + "with the scale of slot 0 (target 0's position displacement) +0 (00000000): rejected, "
+                          "malformed payload (spec 22.1: 'a scale is not finite or not above 0')",
+            deltas_edited([&](Packet& p) { put32(p, scale_at(0), 0x00000000u); }));
+    w.write("faulty", "morph_deltas_scale_negative_zero",
+            kDeltasCopy + "with the scale of slot 0 -0 (80000000; -0 is not above 0): rejected, malformed payload "
+                          "(spec 22.1: 'a scale is not finite or not above 0')",
+            deltas_edited([&](Packet& p) { put32(p, scale_at(0), 0x80000000u); }));
+    w.write("faulty", "morph_deltas_scale_negative",
+            kDeltasCopy + "with the scale of slot 0 negated (its sign bit set; the same magnitude): rejected, "
+                          "malformed payload (spec 22.1: 'a scale is not finite or not above 0')",
+            deltas_edited([&](Packet& p) { p[scale_at(0) + 3] |= 0x80; }));
+    w.write("faulty", "morph_deltas_scale_infinite",
+            kDeltasCopy + "with the scale of slot 2 (target 1's position displacement) +infinity (7F800000): "
+                          "rejected, malformed payload (spec 22.1: 'a scale is not finite')",
+            deltas_edited([&](Packet& p) { put32(p, scale_at(2), 0x7F800000u); }));
+    w.write("faulty", "morph_deltas_scale_too_large",
+            kDeltasCopy + "with the scale of slot 2 (target 1's position displacement) 2^113 (78000000): finite, "
+                          "but 32768 times it is not: rejected, malformed payload (spec 22.1: 'a scale ... at or "
+                          "above 2^113')",
+            deltas_edited([&](Packet& p) { put32(p, scale_at(2), 0x78000000u); }));
+    w.write("faulty", "morph_deltas_scale_nan",
+            kDeltasCopy + "with the scale of slot 2 (target 1's position displacement) NaN (7FC00000): rejected, "
+                          "malformed payload (spec 22.1: 'a scale is not finite')",
+            deltas_edited([&](Packet& p) { put32(p, scale_at(2), 0x7FC00000u); }));
     {
         Packet bad = first_deltas;
-        put32(bad, nan_at, 0x7FC00000u);
+        put32(bad, scale_at(2), 0x7FC00000u);
         reseal(bad);
         restamp_packet(bad, 1000);
         Packets sent = {bad};
         sent.insert(sent.end(), stream.begin(), stream.end());
         w.write("faulty", "morph_deltas_malformed_before_stream_info",
-                "the morphing face of valid/morph with, before its STREAM_INFO, the copy of faulty/morph_deltas_value_nan "
+                "the morphing face of valid/morph with, before its STREAM_INFO, the copy of faulty/morph_deltas_scale_nan "
                 "(sequence 1000): rejected when it arrives, malformed payload (spec 22.1: the checks that need no "
                 "stream info are made at step 11, before a packet is held, 11.1); nothing held; the rest as in "
                 "valid/morph",
                 sent);
     }
+    const size_t last_record = deltas_record_at(first_payload, n0 - 1);  // payload offset of the last record
+    if ((first_payload[last_record] & 0x08) != 0) std::exit(1);
+    w.write("faulty", "morph_deltas_record_past_payload",
+            kDeltasCopy + "with bit 3 (slot 3, target 1's normal displacement) set in the mask of its last record "
+                          "(point " + std::to_string(n0 - 1) + ", payload offset " + std::to_string(last_record) +
+                          "), whose vector then needs 6 bytes past the end of the payload: rejected, malformed "
+                          "payload (spec 22.1: 'a record runs past the payload')",
+            deltas_edited([&](Packet& p) { p[kHeaderSize + last_record] |= 0x08; }));
+    w.write("faulty", "morph_deltas_record_cut",
+            kDeltasCopy + "with the last 2 bytes of its payload cut (the z of the last vector of point " +
+                          std::to_string(n0 - 1) + "'s record): rejected, malformed payload (spec 22.1: 'a record "
+                          "runs past the payload')",
+            deltas_cut(first_payload.size() - 2, [](std::vector<uint8_t>&) {}));
+    w.write("faulty", "morph_deltas_record_missing",
+            kDeltasCopy + "saying count " + std::to_string(n0 + 1) + " (points 0.." + std::to_string(n0) +
+                          ") with its " + std::to_string(n0) + " records: the mask of point " + std::to_string(n0) +
+                          "'s record lies past the end of the payload: rejected, malformed payload (spec 22.1: 'a "
+                          "record runs past the payload')",
+            deltas_edited([&](Packet& p) { put16(p, kDeltasCount, uint16_t(n0 + 1)); }));
+    w.write("faulty", "morph_deltas_mask_bit_past_slots",
+            kDeltasCopy + "with bit 4 set in the mask of point 0's record (S = 4: bits 4..7 of the mask byte MUST be "
+                          "0; the record's bytes otherwise as they were): rejected, malformed payload (spec 22.1: 'a "
+                          "mask bit from S on is set')",
+            deltas_edited([&](Packet& p) { p[kHeaderSize + deltas_record_at(first_payload, 0)] |= 0x10; }));
+    {
+        const MorphStream ten = make_morph_stream(morphing_face_with_targets(5), 5, 3);
+        Packet copy = ten.deltas[0];
+        const std::vector<uint8_t> payload = payload_of(copy);
+        copy[kHeaderSize + deltas_record_at(payload, 0) + 1] |= 0x04;  // bit 10: bit 2 of the second mask byte
+        reseal(copy);
+        restamp_packet(copy, 1000);
+        Packets sent = ten.all();
+        sent.push_back(copy);
+        w.write("faulty", "morph_deltas_mask_bit_past_slots_second_byte",
+                "the stream of unusual/morph_deltas_10_slots (mesh 0 and object 0's records with 5 targets, S = 10 "
+                "slots, masks of 2 bytes), then a copy of its first MORPH_DELTAS packet (points " +
+                    points_of(ten.deltas[0]) + "; sequence 1000) with bit 10 (bit 2 of the second mask byte) set in "
+                    "point 0's record: rejected, malformed payload (spec 22.1: 'the bits from S up to the end of the "
+                    "last mask byte MUST be 0'); the rest as in unusual/morph_deltas_10_slots",
+                sent);
+    }
+    {
+        std::vector<uint8_t> payload = first_payload;
+        payload.push_back(0);
+        w.write("faulty", "morph_deltas_trailing_bytes",
+                kDeltasCopy + "with one byte (00) more after its last record: rejected, malformed payload (spec 22.1: "
+                              "'bytes follow the last record')",
+                after_stream(with_payload(first_deltas, payload)));
+    }
+    w.write("faulty", "morph_deltas_index_overflow",
+            kDeltasCopy + "with first_index " + std::to_string(uint32_t(0u - n0)) + " = 2^32 - " +
+                          std::to_string(n0) + ": first_index + count = 2^32 > 2^32 - 1 (0 in 32-bit arithmetic): "
+                          "rejected, malformed payload (spec 22.1: 'computed without overflow'; at step 11, before "
+                          "the object's point_count is looked at)",
+            deltas_edited([&](Packet& p) { put32(p, kDeltasFirst, uint32_t(0u - n0)); }));
     w.write("faulty", "morph_deltas_unknown_object",
             kDeltasCopy + "sent for object 2 of a 2-object stream: rejected, unknown object (spec 22.1, 11.1 step 12)",
             deltas_edited([](Packet& p) { put16(p, 16, 2); }));
@@ -5269,38 +5532,61 @@ void morph_vectors(Writer& w) {
                 sent);
     }
     {
-        const MorphStream three = make_morph_stream(scene, 3, 3);
-        const std::vector<float> values3 = all_deltas(three.deltas);
+        const MorphDeltasRun three = all_deltas(make_morph_stream(scene, 3, 3).deltas);
         w.write("faulty", "morph_deltas_target_count_contradicts",
-                face + ", then a MORPH_DELTAS packet (sequence 1000) of points 0..2 with 3 targets (the records of "
-                       "faulty/morph_target_count_differs) where object 0's packets say 2: rejected, stream mismatch "
-                       "(spec 22.1: 'its target_count and attributes against those kept for its object')",
-                after_stream(deltas_packet(0, 1000, encode_morph_deltas_payload(deltas_run(values3, 0, 3, 3, 3)))));
-        const std::vector<float> positions = all_deltas(make_morph_stream(scene, 2, kMorphPosition).deltas);
+                face + ", then a MORPH_DELTAS packet (sequence 1000) of points 0..2 with 3 targets (S = 6: the 6 "
+                       "scales and the records of faulty/morph_target_count_differs) where object 0's packets say 2: "
+                       "rejected, stream mismatch (spec 22.1: 'its target_count, attributes and scales (as numbers) "
+                       "against those kept for its object')",
+                after_stream(deltas_packet(0, 1000, deltas_payload(deltas_run(three, 0, 3)))));
+        const MorphDeltasRun positions = all_deltas(make_morph_stream(scene, 2, kMorphPosition).deltas);
         w.write("faulty", "morph_deltas_attributes_contradicts",
                 face + ", then a MORPH_DELTAS packet (sequence 1000) of points 0..4 with attributes 1 (their position "
-                       "displacements alone) where object 0's packets say 3: rejected, stream mismatch (spec 22.1)",
-                after_stream(deltas_packet(0, 1000,
-                                           encode_morph_deltas_payload(deltas_run(positions, 0, 5, 2, kMorphPosition)))));
+                       "displacements alone: S = 2, the 2 scales of slots 0 and 2 of valid/morph) where object 0's "
+                       "packets say 3: rejected, stream mismatch (spec 22.1)",
+                after_stream(deltas_packet(0, 1000, deltas_payload(deltas_run(positions, 0, 5)))));
     }
-    w.write("faulty", "morph_deltas_value_contradicts",
-            kDeltasCopy + "with the y of point 2's target 1 position displacement 0.5 more: rejected, stream mismatch "
-                          "(spec 22.1: 'each record for a point whose record the decoder holds against that record')",
-            after_stream([&] {
-                MorphDeltasRun run = deltas_run_of(first_deltas);
-                run.values[2 * 12 + 7] += 0.5f;
-                return with_payload(first_deltas, encode_morph_deltas_payload(run));
-            }()));
     {
-        MorphDeltasRun run = deltas_run(records, 3, 5, 2, 3);
-        run.values[0] += 0.25f;  // point 3's target 0 position x
+        // Slot 3 is 0 in every record (every bit 3 clear), so its scale changes no displacement.
+        MorphDeltasRun run = deltas_run_of(first_deltas);
+        if (run.scales[3] != 1.0f) std::exit(1);
+        run.scales[3] = 0.5f;
+        w.write("faulty", "morph_deltas_scale_contradicts",
+                kDeltasCopy + "with the scale of slot 3 (target 1's normal displacement) 0.5 (3F000000) where object "
+                              "0's packets say 1 (re-encoded): slot 3 is 0, 0, 0 in every record, so every record is "
+                              "identical to the one held (the same integers, the same displacements), yet the scales "
+                              "differ: rejected, stream mismatch, not a duplicate (spec 22.1: 'its target_count, "
+                              "attributes and scales (as numbers) against those kept for its object')",
+                after_stream(with_payload(first_deltas, deltas_payload(run))));
+    }
+    {
+        // Point 2's target 1 position displacement (slot 2), its y one step further from 0.
+        MorphDeltasRun run = deltas_run_of(first_deltas);
+        int16_t& q = run.values[(2 * 4 + 2) * 3 + 1];
+        const int16_t was = q;
+        q = int16_t(q < 0 ? q - 1 : q + 1);
+        w.write("faulty", "morph_deltas_value_contradicts",
+                kDeltasCopy + "with the y of point 2's target 1 position displacement (slot 2) " + std::to_string(q) +
+                              " where it is " + std::to_string(was) + " (one step; re-encoded): rejected, stream "
+                              "mismatch (spec 22.1: 'each record for a point whose record the decoder holds against "
+                              "that record'; the same integers)",
+                after_stream(with_payload(first_deltas, deltas_payload(run))));
+    }
+    {
+        const uint32_t from = n0 - 2, to = std::min<uint32_t>(n0 + 2, 19);  // 2 points held, the next ones not
+        MorphDeltasRun run = deltas_run(records, from, uint16_t(to - from + 1));
+        int16_t& q = run.values[2 * 3 + 0];  // point n0 - 2's target 1 position x (slot 2)
+        const int16_t was = q;
+        q = int16_t(q < 0 ? q - 1 : q + 1);
         Packets sent = stream;
-        sent.insert(sent.begin() + long(deltas_at) + 1, deltas_packet(0, 1000, encode_morph_deltas_payload(run)));
+        sent.insert(sent.begin() + long(deltas_at) + 1, deltas_packet(0, 1000, deltas_payload(run)));
         w.write("faulty", "morph_deltas_contradicts_partly_new",
-                face + ", with a MORPH_DELTAS packet of points 3..7 (sequence 1000) right after the first (points "
-                       "0..4), point 3's record changed (its target 0 position x 0.25 more): rejected, stream mismatch "
-                       "(spec 22.1), and nothing of it is kept (the records of points 5..7, not held then, arrive with "
-                       "the next packet); as valid/morph",
+                face + ", with a MORPH_DELTAS packet of points " + std::to_string(from) + ".." +
+                       std::to_string(to) + " (sequence 1000) right after the first (points " + first_points +
+                       "), point " + std::to_string(from) + "'s record changed (its target 1 position x " +
+                       std::to_string(q) + " where it is " + std::to_string(was) + "): rejected, stream mismatch "
+                       "(spec 22.1), and nothing of it is kept (the records of points " + std::to_string(n0) + ".." +
+                       std::to_string(to) + ", not held then, arrive with the next packet); as valid/morph",
                 sent);
     }
 

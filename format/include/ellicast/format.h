@@ -606,20 +606,24 @@ Error decode_joint_weights_payload(std::span<const uint8_t> payload, JointWeight
 Error packetize_joint_weights(const StreamInfo& info, uint16_t object_id, const std::vector<Influences>& records,
                               uint32_t stream_id, uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out);
 
-// Morph targets (format 1.6, spec 22.1): the displacements of a run of an object's points. `values`
-// holds, per point, per target, the position displacement (attributes bit 0) and then the normal
-// displacement (bit 1), 3 f32 each.
+// Morph targets (format 1.6, spec 22.1): the displacements of a run of an object's points, in
+// slots (per target, the position displacement (attributes bit 0) and then the normal displacement
+// (bit 1)) of 3 components, quantized to i16 against one f32 scale per slot: `values` holds, per
+// point, per slot, 3 integers (a slot left out of a record is 0, 0, 0).
 inline constexpr uint8_t kMorphPosition = 1, kMorphNormal = 2;
 struct MorphDeltasRun {
     uint32_t first_index = 0;
     uint16_t count = 0;
     uint8_t target_count = 0;
     uint8_t attributes = 0;
-    std::vector<float> values;
+    std::vector<float> scales;     // one per slot
+    std::vector<int16_t> values;   // count * slots * 3
 };
 inline constexpr size_t kMorphDeltasHeaderSize = 8;
-// f32 values of one point's record: target_count * 3 * (attributes bits set).
+// Values of one point's record (slots * 3): target_count * 3 * (attributes bits set).
 size_t morph_record_values(uint8_t target_count, uint8_t attributes);
+// Component `q` of slot `slot` dequantized: q * scale in f32 (spec 22.1).
+inline float morph_dequantize(int16_t q, float scale) { return static_cast<float>(q) * scale; }
 std::vector<uint8_t> encode_morph_deltas_payload(const MorphDeltasRun& run);
 // The checks of spec 22.1 that need no stream info.
 Error decode_morph_deltas_payload(std::span<const uint8_t> payload, MorphDeltasRun& out);
@@ -891,9 +895,11 @@ struct ReceivedObject {
     uint64_t points_recovered = 0;                  // points that came through repair packets
     std::optional<ReceivedConnectivity> connectivity;  // format 1.3, once a CONNECTIVITY packet was taken
     std::map<uint32_t, Influences> weights;         // format 1.5: influence records by point index
-    // Format 1.6 (spec 22.1): the target count and attributes of the first MORPH_DELTAS packet
-    // accepted, and the displacement records (morph_record_values each) by point index.
+    // Format 1.6 (spec 22.1): the target count, attributes and scales of the first MORPH_DELTAS
+    // packet accepted, and the displacement records by point index, dequantized
+    // (morph_record_values floats each).
     uint8_t morph_targets = 0, morph_attributes = 0;
+    std::vector<float> morph_scales;
     std::map<uint32_t, std::vector<float>> morph;
 };
 
