@@ -119,10 +119,11 @@ for what in "$@"; do
       "$build/ellicast" compare "$samples/meshes/bunny.ply" -o "$results/bunny" | tee "$results/bunny/stdout.txt"
       "$build/ellicast" compare "$samples/meshes/spot.obj" -o "$results/spot" | tee "$results/spot/stdout.txt" ;;
     corpus)
-      # Real glTF assets through convert (issue 16): the shared samples, and $ELLICAST_CORPUS when set
+      # Real glTF assets through convert (issue 16): the shared samples, the small Khronos ones committed
+      # in samples/khronos, and $ELLICAST_CORPUS when set
       # (e.g. a checkout of KhronosGroup/glTF-Sample-Assets/Models).
       echo "== corpus: glTF assets through ellicast convert and the Khronos validator (bench/corpus.py)" >&2
-      folders=("$samples/gltf")
+      folders=("$samples/gltf" "$root/samples/khronos")
       [ -n "${ELLICAST_CORPUS:-}" ] && folders+=("$ELLICAST_CORPUS")
       python3 "$root/bench/corpus.py" "$build/ellicast" "$root/.cache/node/node_modules" "$results/corpus" "${folders[@]}" > /dev/null
       rm -rf "$results/corpus/out"

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 
@@ -273,4 +274,47 @@ TEST_CASE("a receiver waiting for the morphing Duck is not done before its last 
     // Every packet but one of a kind, then that one: complete only with it.
     for (PacketType held_back : {PacketType::MorphDeltas, PacketType::MorphAnimation})
         check_complete_only_with_last(encoded.packets, held_back);
+}
+
+TEST_CASE("Khronos SimpleMorph (a real asset, committed) comes back with its two targets, default weights and weight animation") {
+    const fs::path file = source_dir() / "samples" / "khronos" / "SimpleMorph" / "SimpleMorph.gltf";
+    const Asset in = load_asset(file.string());
+    REQUIRE(in.morphs.size() == 1);
+    REQUIRE(in.morphs[0].targets == 2);
+    CHECK(in.morphs[0].attributes == kMorphPosition);
+    CHECK(in.scene.meshes.at(0).weights == std::vector<float>{0.5f, 0.5f});
+    REQUIRE(in.scene.animations.size() == 1);
+    REQUIRE(in.scene.animations[0].tracks.size() == 1);
+    CHECK(in.scene.animations[0].tracks[0].path == AnimationPath::Weights);
+    CHECK(in.scene.animations[0].tracks[0].times.size() == 5);
+    for (const auto& w : in.warnings) CHECK_MESSAGE(w.find("morph") == std::string::npos, w);
+
+    EncodedAsset encoded;
+    std::string error;
+    REQUIRE_MESSAGE(encode_asset(in, coarse_options(), 1, true, encoded, error), error);
+    const Asset all = decode_without(encoded, [](size_t) { return false; });
+    REQUIRE(all.morphs.at(0).targets == 2);
+    REQUIRE(all.scene.animations.size() == 1);
+    CHECK(all.scene.animations[0].tracks[0].values == in.scene.animations[0].tracks[0].values);
+    const fs::path glb = scratch_dir("simple_morph") / "SimpleMorph.glb";
+    check_writes_clean(all, glb);
+    // The triangle comes back exact: its three vertices with the source's displacements (1, 0 and
+    // -1 are multiples of the scale: exact).
+    const Asset back = load_asset(glb.string());
+    REQUIRE(back.objects.at(0).positions.size() == 3);
+    REQUIRE(back.morphs.at(0).targets == 2);
+    for (size_t v = 0; v < 3; ++v) {
+        // The source vertex at the same place (within the 14-bit quantization step).
+        size_t source = 0;
+        double best = 1e300;
+        for (size_t u = 0; u < 3; ++u) {
+            double d = 0;
+            for (int k = 0; k < 3; ++k)
+                d += std::pow(double(in.objects[0].positions[u][k]) - back.objects[0].positions[v][k], 2);
+            if (d < best) best = d, source = u;
+        }
+        CHECK(best < 1e-6);
+        for (size_t k = 0; k < 6; ++k)
+            CHECK(back.morphs[0].values[v * 6 + k] == doctest::Approx(in.morphs[0].values[source * 6 + k]).epsilon(1e-6));
+    }
 }
