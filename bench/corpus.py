@@ -69,17 +69,18 @@ def validate(path, node_modules):
 def main():
     ellicast, node_modules, out_dir = sys.argv[1:4]
     folders = sys.argv[4:]
-    assets = []
+    assets = []  # (label: the path below its folder, path), folder by folder
     for folder in folders:
+        found = []
         for root, _, names in os.walk(folder):
-            for name in sorted(names):
+            for name in names:
                 if name.lower().endswith(('.gltf', '.glb')):
-                    assets.append(os.path.join(root, name))
-    assets.sort()
+                    path = os.path.join(root, name)
+                    found.append((os.path.relpath(path, folder), path))
+        assets += sorted(found)
     os.makedirs(out_dir, exist_ok=True)
     rows = []
-    for i, path in enumerate(assets):
-        label = os.path.relpath(path, os.path.commonpath(folders) if len(folders) > 1 else folders[0])
+    for i, (label, path) in enumerate(assets):
         print(f'[{i + 1}/{len(assets)}] {label}', file=sys.stderr, flush=True)
         out = os.path.join(out_dir, 'out', label.replace(os.sep, '_') + '.glb')
         os.makedirs(os.path.dirname(out), exist_ok=True)
