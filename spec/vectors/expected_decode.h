@@ -381,8 +381,10 @@ inline nlohmann::json texture_json(const ReceivedStream::ReceivedTexture& t) {
 // Format 1.4 (spec 20.1, 20.2): an animation as received: its track count and name (of the first
 // packet of it accepted), and per received track its description, the keys held (and the ranges of
 // those missing), whether it is complete and usable, and, once complete, its keys: the times and the
-// values (V per key, in key order, as the packets carry them).
-inline nlohmann::json animation_json(uint16_t index, const ReceivedStream::ReceivedAnimation& a) {
+// values (V per key, in key order, as the packets carry them). Format 1.6 (spec 22.2), `morph`: a
+// morph animation, with the ANIMATION it joins (null when it stands alone) and, per track, its
+// target count C instead of a path.
+inline nlohmann::json animation_json(uint16_t index, const ReceivedStream::ReceivedAnimation& a, bool morph = false) {
     using nlohmann::json;
     static const char* paths[] = {"translation", "rotation", "scale"};
     static const char* interpolations[] = {"LINEAR", "STEP", "CUBICSPLINE"};
@@ -397,59 +399,27 @@ inline nlohmann::json animation_json(uint16_t index, const ReceivedStream::Recei
             }
             if (cursor < track.info.key_count) missing.push_back({cursor, track.info.key_count});
         }
-        tracks.push_back({{"index", t},
-                          {"node", track.info.node},
-                          {"path", paths[static_cast<int>(track.info.path)]},
-                          {"interpolation", interpolations[static_cast<int>(track.info.interpolation)]},
-                          {"key_count", track.info.key_count},
-                          {"keys_held", track.keys_held},
-                          {"missing", missing},
-                          {"complete", track.complete},
-                          {"usable", track.usable},
-                          {"times", track.complete ? floats(track.times.data(), track.times.size()) : json(nullptr)},
-                          {"values", track.complete ? floats(track.values.data(), track.values.size()) : json(nullptr)}});
+        json entry = {{"index", t},
+                      {"node", track.info.node},
+                      {"interpolation", interpolations[static_cast<int>(track.info.interpolation)]},
+                      {"key_count", track.info.key_count},
+                      {"keys_held", track.keys_held},
+                      {"missing", missing},
+                      {"complete", track.complete},
+                      {"usable", track.usable},
+                      {"times", track.complete ? floats(track.times.data(), track.times.size()) : json(nullptr)},
+                      {"values", track.complete ? floats(track.values.data(), track.values.size()) : json(nullptr)}};
+        if (morph) entry["target_count"] = track.info.targets;
+        else entry["path"] = paths[static_cast<int>(track.info.path)];
+        tracks.push_back(std::move(entry));
     }
-    return {{"index", index},
-            {"name", replace_invalid_utf8(a.name)},
-            {"track_count", a.track_count},
-            {"complete", a.complete()},
-            {"tracks", tracks}};
-}
-
-// Format 1.6 (spec 22.2): a morph animation as received, as animation_json gives an animation, with
-// the ANIMATION it joins (null when it stands alone) and, per track, its target count C instead of a path.
-inline nlohmann::json morph_animation_json(uint16_t index, const ReceivedStream::ReceivedAnimation& a) {
-    using nlohmann::json;
-    static const char* interpolations[] = {"LINEAR", "STEP", "CUBICSPLINE"};
-    json tracks = json::array();
-    for (const auto& [t, track] : a.tracks) {
-        json missing = json::array();
-        if (!track.complete) {
-            uint64_t cursor = 0;
-            for (const auto& [first, run] : track.runs) {
-                if (first > cursor) missing.push_back({cursor, first});
-                cursor = uint64_t(first) + run.times.size();
-            }
-            if (cursor < track.info.key_count) missing.push_back({cursor, track.info.key_count});
-        }
-        tracks.push_back({{"index", t},
-                          {"node", track.info.node},
-                          {"target_count", track.info.targets},
-                          {"interpolation", interpolations[static_cast<int>(track.info.interpolation)]},
-                          {"key_count", track.info.key_count},
-                          {"keys_held", track.keys_held},
-                          {"missing", missing},
-                          {"complete", track.complete},
-                          {"usable", track.usable},
-                          {"times", track.complete ? floats(track.times.data(), track.times.size()) : json(nullptr)},
-                          {"values", track.complete ? floats(track.values.data(), track.values.size()) : json(nullptr)}});
-    }
-    return {{"index", index},
-            {"name", replace_invalid_utf8(a.name)},
-            {"track_count", a.track_count},
-            {"joins", none_or(a.joins)},
-            {"complete", a.complete()},
-            {"tracks", tracks}};
+    json out = {{"index", index},
+                {"name", replace_invalid_utf8(a.name)},
+                {"track_count", a.track_count},
+                {"complete", a.complete()},
+                {"tracks", tracks}};
+    if (morph) out["joins"] = none_or(a.joins);
+    return out;
 }
 
 // Format 1.5 (spec 21.1): a skin as received: its joint count, skeleton and name (of the first packet
@@ -636,7 +606,7 @@ inline nlohmann::json scene_json(const ReceivedStream& s) {
     json skins = json::array();
     for (const auto& [index, k] : s.skins()) skins.push_back(skin_json(index, k));
     json morph_animations = json::array();
-    for (const auto& [index, a] : s.morph_animations()) morph_animations.push_back(morph_animation_json(index, a));
+    for (const auto& [index, a] : s.morph_animations()) morph_animations.push_back(animation_json(index, a, true));
     const bool scene = s.has_scene() || !s.scene_nodes().empty() || !s.scene_meshes().empty();
     return {{"node_count", scene ? json(s.scene_node_count()) : json(nullptr)},
             {"mesh_count", scene ? json(s.scene_mesh_count()) : json(nullptr)},
