@@ -318,3 +318,44 @@ TEST_CASE("Khronos SimpleMorph (a real asset, committed) comes back with its two
             CHECK(back.morphs[0].values[v * 6 + k] == doctest::Approx(in.morphs[0].values[source * 6 + k]).epsilon(1e-6));
     }
 }
+
+TEST_CASE("broken morph targets in a glTF are named in a warning and cost the targets, not the model") {
+    const fs::path source = source_dir() / "samples" / "khronos" / "SimpleMorph" / "SimpleMorph.gltf";
+    const fs::path dir = scratch_dir("morph_broken");
+    auto edited = [&](const std::string& name, const std::function<void(nlohmann::json&)>& edit) {
+        auto j = nlohmann::json::parse(read_bytes(source));
+        edit(j);
+        const fs::path path = dir / (name + ".gltf");
+        std::ofstream(path, std::ios::binary) << j.dump();
+        return load_asset(path.string());
+    };
+    SUBCASE("a target accessor of another count than the vertices") {
+        const Asset a = edited("count", [](nlohmann::json& j) { j["accessors"][3]["count"] = 2; });
+        CHECK(any_warning(a, "target 1 POSITION: not a VEC3 of the vertex count; its morph targets are not sent"));
+        CHECK(any_warning(a, "its morph targets are not sent (the base shape is)"));
+        CHECK(a.scene.meshes.at(0).weights.empty());
+        CHECK(a.objects.at(0).positions.size() == 3);
+        // The weight channel has nothing left to move.
+        CHECK(any_warning(a, "moves morph target weights of a node whose mesh's morph targets are not sent"));
+        CHECK(a.scene.animations.empty());
+    }
+    SUBCASE("default weights of another count than the targets") {
+        const Asset a = edited("weights", [](nlohmann::json& j) { j["meshes"][0]["weights"] = {0.5}; });
+        CHECK(any_warning(a, "1 default weights for 2 morph targets; sent as 0"));
+        CHECK(a.scene.meshes.at(0).weights == std::vector<float>{0.0f, 0.0f});
+        CHECK(a.morphs.at(0).targets == 2);
+    }
+    SUBCASE("a weight channel whose output is not one weight per target per key") {
+        const Asset a = edited("output", [](nlohmann::json& j) { j["accessors"][5]["count"] = 9; });
+        CHECK(any_warning(a, "channel 0"));
+        CHECK(a.scene.animations.empty());
+        CHECK(a.morphs.at(0).targets == 2);  // the targets still travel
+    }
+    SUBCASE("a target that names an accessor that does not exist") {
+        const Asset a = edited("missing", [](nlohmann::json& j) {
+            j["meshes"][0]["primitives"][0]["targets"][0]["POSITION"] = 99;
+        });
+        CHECK(any_warning(a, "its morph targets are not sent"));
+        CHECK(a.scene.meshes.at(0).weights.empty());
+    }
+}
