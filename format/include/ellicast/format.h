@@ -97,7 +97,7 @@ std::string replace_invalid_utf8(std::string_view text);
 // Name of a packet type ("STREAM_INFO", ...), or "UNKNOWN(0xNN)".
 std::string packet_type_name(uint8_t type);
 
-// True for the types this implementation decodes (format 1.2).
+// True for the types this implementation decodes (every type up to format 1.6).
 bool is_known_packet_type(uint8_t type);
 
 // ---------------------------------------------------------------------------------------------
