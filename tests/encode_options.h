@@ -18,6 +18,16 @@ inline EncodeOptions fast_options() {
     return o;
 }
 
+// The scene tests' settings: fast_options' base ellipsoid budget at 80% coverage and no repair
+// packets, so that every packet of a kind can be counted and lost on purpose.
+inline EncodeOptions coarse_options() {
+    EncodeOptions o;
+    o.max_ellipsoids = 40;
+    o.coverage = 0.8;
+    o.repair_ratio = 0;
+    return o;
+}
+
 // Every packet of `encoded`, in transmission order, taken by a receiver.
 inline ReceivedStream receive_every_packet(const EncodeResult& encoded) {
     StreamPackets packets;

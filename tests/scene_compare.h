@@ -5,6 +5,7 @@
 #include "ellicast/converters/asset.h"
 #include "ellicast/converters/asset_stream.h"
 #include <ellicast/broadcast/reception.h>
+#include "encode_options.h"
 #include "support.h"
 
 #include <functional>
@@ -27,16 +28,6 @@ inline constexpr const char* kGltfSamples[] = {
     "gltf/VertexColorTest/VertexColorTest.gltf",
     "gltf/SphereTwoMaterials/sphere_two_materials_mesh_and_point_cloud.gltf"};
 inline std::string sample(const std::string& rel) { return (shared_samples() / rel).string(); }
-
-// Encoder options for the scene tests: a coarse base (40 ellipsoids, 80% coverage) and no repair
-// packets, so that every packet of a kind can be counted and lost on purpose.
-inline EncodeOptions coarse_options() {
-    EncodeOptions o;
-    o.max_ellipsoids = 40;
-    o.coverage = 0.8;
-    o.repair_ratio = 0;
-    return o;
-}
 
 // Whether `packet` is of `type` (the header's type byte).
 inline bool is_packet_type(const std::vector<uint8_t>& packet, PacketType type) {

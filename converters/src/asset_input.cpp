@@ -293,9 +293,9 @@ private:
             const size_t per = morph_record_values(out.targets, out.attributes);
             out.values.assign(per * n, 0.0f);
             for (size_t t = 0; t < prim.targets.size(); ++t) {
-                size_t offset = 3 * (out.attributes == (kMorphPosition | kMorphNormal) ? 2 : 1) * t;
                 for (const uint8_t bit : {kMorphPosition, kMorphNormal}) {
                     if (!(out.attributes & bit)) continue;
+                    const size_t offset = morph_slot_offset(out.attributes, t, bit);
                     const char* name = bit == kMorphPosition ? "POSITION" : "NORMAL";
                     auto it = prim.targets[t].find(name);
                     if (it != prim.targets[t].end()) {
@@ -311,7 +311,6 @@ private:
                                 out.values[v * per + offset + k] = x;
                             }
                     }
-                    offset += 3;
                 }
             }
         } catch (const InputError& e) {

@@ -596,20 +596,21 @@ private:
         const size_t n = mesh.positions.size();
         const bool position = morph.attributes & kMorphPosition, normal = morph.attributes & kMorphNormal;
         const bool write_normal = normal && prim.attributes.count("NORMAL");
-        const size_t stride = 3 * (size_t(position) + size_t(normal));
         for (size_t t = 0; t < morph.targets; ++t) {
             std::map<std::string, int> target;
             std::vector<std::array<float, 3>> d(n, {0, 0, 0});
             if (position || !write_normal) {
-                if (position)
+                if (position) {
+                    const size_t offset = morph_slot_offset(morph.attributes, t, kMorphPosition);
                     for (size_t v = 0; v < n; ++v)
-                        for (size_t k = 0; k < 3; ++k) d[v][k] = morph.values[v * per + t * stride + k];
+                        for (size_t k = 0; k < 3; ++k) d[v][k] = morph.values[v * per + offset + k];
+                }
                 target["POSITION"] = add_float_attribute(model_, d, TINYGLTF_TYPE_VEC3, true);
             }
             if (write_normal) {
-                const size_t offset = position ? 3 : 0;
+                const size_t offset = morph_slot_offset(morph.attributes, t, kMorphNormal);
                 for (size_t v = 0; v < n; ++v)
-                    for (size_t k = 0; k < 3; ++k) d[v][k] = morph.values[v * per + t * stride + offset + k];
+                    for (size_t k = 0; k < 3; ++k) d[v][k] = morph.values[v * per + offset + k];
                 target["NORMAL"] = add_float_attribute(model_, d, TINYGLTF_TYPE_VEC3, false);
             }
             prim.targets.push_back(std::move(target));

@@ -335,30 +335,27 @@ void received_animations(const ReceivedStream& stream, const std::map<uint16_t, 
                                "increase, or a target moved twice)");
         asset.scene.animations.push_back(std::move(a));
     }
-    for (const auto& [m, morph] : stream.morph_animations()) {
-        if (shown_morphs.count(m)) continue;
-        uint64_t held = 0, keys = 0;
-        for (const auto& [t, track] : morph.tracks) held += track.keys_held, keys += track.info.key_count;
-        warnings.push_back("morph animation " + std::to_string(m) + " not shown: " +
-                           (morph.complete() ? std::string("none of its tracks can be shown, or the animation it joins is not")
-                                             : std::to_string(morph.tracks.size()) + " of its " +
-                                                   std::to_string(morph.track_count) + " tracks and " +
-                                                   std::to_string(held) + " keys of those arrived so far"));
-    }
+    // Why an animation (or morph animation) that arrived in part or whole is not shown.
+    const auto not_shown = [&](const std::string& what, const ReceivedStream::ReceivedAnimation& a,
+                               const char* why_complete) {
+        uint64_t held = 0;
+        for (const auto& [t, track] : a.tracks) held += track.keys_held;
+        warnings.push_back(what + " not shown: " +
+                           (a.complete() ? std::string(why_complete)
+                                         : std::to_string(a.tracks.size()) + " of its " + std::to_string(a.track_count) +
+                                               " tracks and " + std::to_string(held) + " keys of those arrived so far"));
+    };
+    for (const auto& [m, morph] : stream.morph_animations())
+        if (!shown_morphs.count(m))
+            not_shown("morph animation " + std::to_string(m), morph,
+                      "none of its tracks can be shown, or the animation it joins is not");
     if (const auto count = stream.morph_animation_count(); count && stream.morph_animations().size() < *count)
         warnings.push_back(std::to_string(*count - stream.morph_animations().size()) + " of " + std::to_string(*count) +
                            " morph animations did not arrive at all" +
                            (stream.animations().empty() ? "" : "; the animations wait for them"));
-    for (const auto& [index, animation] : stream.animations()) {
-        if (shown_indices.count(index)) continue;
-        uint64_t held = 0, keys = 0;
-        for (const auto& [t, track] : animation.tracks) held += track.keys_held, keys += track.info.key_count;
-        warnings.push_back("animation " + std::to_string(index) + " not shown: " +
-                           (animation.complete() ? std::string("none of its tracks can be shown")
-                                                 : std::to_string(animation.tracks.size()) + " of its " +
-                                                       std::to_string(animation.track_count) + " tracks and " +
-                                                       std::to_string(held) + " keys of those arrived so far"));
-    }
+    for (const auto& [index, animation] : stream.animations())
+        if (!shown_indices.count(index))
+            not_shown("animation " + std::to_string(index), animation, "none of its tracks can be shown");
     if (const auto count = stream.animation_count(); count && stream.animations().size() < *count)
         warnings.push_back(std::to_string(*count - stream.animations().size()) + " of " + std::to_string(*count) +
                            " animations did not arrive at all");

@@ -622,6 +622,12 @@ struct MorphDeltasRun {
 inline constexpr size_t kMorphDeltasHeaderSize = 8;
 // Values of one point's record (slots * 3): target_count * 3 * (attributes bits set).
 size_t morph_record_values(uint8_t target_count, uint8_t attributes);
+// Where, in a point's record, the slot of `attribute` (kMorphPosition or kMorphNormal, one of
+// `attributes`) of target `target` starts (spec 22.1: per target, the position, then the normal).
+inline size_t morph_slot_offset(uint8_t attributes, size_t target, uint8_t attribute) {
+    const bool both = (attributes & kMorphPosition) && (attributes & kMorphNormal);
+    return 3 * (both ? 2 : 1) * target + (both && attribute == kMorphNormal ? 3 : 0);
+}
 // Component `q` of slot `slot` dequantized: q * scale in f32 (spec 22.1).
 inline float morph_dequantize(int16_t q, float scale) { return static_cast<float>(q) * scale; }
 std::vector<uint8_t> encode_morph_deltas_payload(const MorphDeltasRun& run);
