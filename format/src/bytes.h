@@ -69,6 +69,9 @@ public:
         }
         return v;
     }
+    size_t position() const { return pos_; }           // bits read so far
+    size_t size_bits() const { return in_.size() * 8; }
+    bool exhausted() const { return pos_ > in_.size() * 8; }  // read past the end
 
 private:
     std::span<const uint8_t> in_;

@@ -29,8 +29,13 @@ void put_batch_header(std::vector<uint8_t>& out, uint32_t first, size_t count) {
 
 }  // namespace
 
+unsigned record_position_bits(const StreamInfo& info, const ObjectInfo& object) {
+    return object.mapped() && object.map_level < info.position_bits ? info.position_bits - object.map_level
+                                                                    : info.position_bits;
+}
+
 size_t point_record_bits(const StreamInfo& info, const ObjectInfo& object) {
-    size_t bits = 3u * info.position_bits;
+    size_t bits = 3u * record_position_bits(info, object);
     if (object.has(kAttrNormal)) bits += 2u * info.normal_bits;
     if (object.has(kAttrTexcoord)) bits += 2u * info.texcoord_bits;
     bits += static_cast<size_t>(object.color_channels()) * info.color_bits;
@@ -55,6 +60,8 @@ Error check_stream_info(const StreamInfo& info) {
         if (o.kind == ObjectKind::PointSet && o.ellipsoid_count != 0) return Error::MalformedPayload;
         if (o.attributes & ~kAttrKnownMask) return Error::MalformedPayload;
         if ((o.attributes & kAttrColorAlpha) && !(o.attributes & kAttrColor)) return Error::MalformedPayload;
+        // Format 1.7 (spec 23.1): a level below the position depth, and a batch exactly when mapped.
+        if (o.map_level >= info.position_bits || (o.map_level == 0) != (o.map_batch == 0)) return Error::MalformedPayload;
         for (int i = 0; i < 2; ++i)
             if (!finite(o.texcoord_origin[i]) || !finite(o.texcoord_scale[i]) || o.texcoord_scale[i] < 0 ||
                 !finite(static_cast<float>(double(o.texcoord_origin[i]) + o.texcoord_scale[i])))
@@ -68,9 +75,10 @@ Error check_stream_info(const StreamInfo& info) {
 
 std::vector<uint8_t> encode_stream_info_payload(const StreamInfo& info, uint16_t first_object, uint16_t count) {
     std::vector<uint8_t> out;
-    out.reserve(kStreamInfoFixedSize + count * kObjectEntrySize);
+    const size_t entry_size = stream_info_entry_size(info);
+    out.reserve(kStreamInfoFixedSize + count * entry_size);
     put_u16(out, static_cast<uint16_t>(kStreamInfoFixedSize));
-    put_u16(out, static_cast<uint16_t>(kObjectEntrySize));
+    put_u16(out, static_cast<uint16_t>(entry_size));
     put_u16(out, info.packet_size);
     put_u8(out, info.position_bits);
     put_u8(out, info.normal_bits);
@@ -96,11 +104,22 @@ std::vector<uint8_t> encode_stream_info_payload(const StreamInfo& info, uint16_t
         put_u16(out, o.exact_layer ? kEntryExactLayer : 0);  // flags (spec 19.1); the other bits reserved
         for (float f : o.texcoord_origin) put_f32(out, f);
         for (float f : o.texcoord_scale) put_f32(out, f);
+        if (entry_size == kMappedEntrySize) {  // format 1.7 (spec 23.1)
+            put_u8(out, o.map_level);
+            put_u8(out, 0);
+            put_u16(out, o.map_batch);
+        }
     }
     return out;
 }
 
-Error decode_stream_info_payload(std::span<const uint8_t> payload, StreamInfoPart& out) {
+size_t stream_info_entry_size(const StreamInfo& info) {
+    for (const ObjectInfo& o : info.objects)
+        if (o.mapped()) return kMappedEntrySize;
+    return kObjectEntrySize;
+}
+
+Error decode_stream_info_payload(std::span<const uint8_t> payload, StreamInfoPart& out, uint8_t version_minor) {
     if (payload.size() < kStreamInfoFixedSize) return Error::MalformedPayload;
     const uint8_t* p = payload.data();
     const size_t info_size = get_u16(p);
@@ -136,6 +155,10 @@ Error decode_stream_info_payload(std::span<const uint8_t> payload, StreamInfoPar
         o.exact_layer = (get_u16(e + 26) & kEntryExactLayer) != 0 && o.kind != ObjectKind::PointSet;
         for (int k = 0; k < 2; ++k) o.texcoord_origin[k] = get_f32(e + 28 + 4 * k);
         for (int k = 0; k < 2; ++k) o.texcoord_scale[k] = get_f32(e + 36 + 4 * k);
+        if (version_minor >= kMapMinor && entry_size >= kMappedEntrySize) {  // spec 23.1
+            o.map_level = e[44];
+            o.map_batch = get_u16(e + 46);
+        }
     }
     if (check_stream_info(info) != Error::Ok) return Error::MalformedPayload;
     out = std::move(part);
@@ -182,8 +205,10 @@ std::vector<uint8_t> encode_points_payload(const PointBatch& batch, const Stream
     put_batch_header(out, batch.first_index, batch.points.size());
     BitWriter w(out);
     const int channels = object.color_channels();
+    // A mapped record (spec 23.4) keeps the low bits of each coordinate: the offset in its cell.
+    const int position_bits = int(record_position_bits(info, object));
     for (const QuantizedPoint& q : batch.points) {
-        for (int i = 0; i < 3; ++i) w.put(q.position[i], info.position_bits);
+        for (int i = 0; i < 3; ++i) w.put(q.position[i], position_bits);
         if (object.has(kAttrNormal))
             for (int i = 0; i < 2; ++i) w.put(q.normal[i], info.normal_bits);
         if (object.has(kAttrTexcoord))
@@ -206,8 +231,9 @@ Error decode_points_payload(std::span<const uint8_t> payload, const StreamInfo& 
     batch.points.resize(count);
     BitReader r(payload.subspan(kBatchHeaderSize));
     const int channels = object.color_channels();
+    const int position_bits = int(record_position_bits(info, object));
     for (QuantizedPoint& q : batch.points) {
-        for (int i = 0; i < 3; ++i) q.position[i] = r.get(info.position_bits);
+        for (int i = 0; i < 3; ++i) q.position[i] = r.get(position_bits);
         if (object.has(kAttrNormal))
             for (int i = 0; i < 2; ++i) q.normal[i] = r.get(info.normal_bits);
         if (object.has(kAttrTexcoord))
@@ -232,9 +258,14 @@ size_t points_per_packet(size_t packet_size, const StreamInfo& info, const Objec
     return cap > kBatchHeaderSize && bits > 0 ? std::min<size_t>((cap - kBatchHeaderSize) * 8 / bits, 0xFFFF) : 0;
 }
 
-size_t objects_per_stream_info_packet(size_t packet_size) {
+size_t point_batch_size(const StreamInfo& info, const ObjectInfo& object) {
+    const size_t fit = points_per_packet(info.packet_size, info, object);
+    return object.mapped() ? std::min<size_t>(fit, object.map_batch) : fit;
+}
+
+size_t objects_per_stream_info_packet(size_t packet_size, size_t entry_size) {
     size_t cap = payload_capacity(packet_size);
-    return cap > kStreamInfoFixedSize ? std::min<size_t>((cap - kStreamInfoFixedSize) / kObjectEntrySize, 0xFFFF) : 0;
+    return cap > kStreamInfoFixedSize ? std::min<size_t>((cap - kStreamInfoFixedSize) / entry_size, 0xFFFF) : 0;
 }
 
 // ------------------------------------------------------------------------------------------
@@ -259,15 +290,23 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
         if (contents[i].ellipsoids.size() != o.ellipsoid_count || contents[i].points.size() != o.point_count)
             return Error::MalformedPayload;
     }
-    const size_t per_info = objects_per_stream_info_packet(info_in.packet_size);
+    const size_t per_info = objects_per_stream_info_packet(info_in.packet_size, stream_info_entry_size(info_in));
     const size_t per_ellipsoids = ellipsoids_per_packet(info_in.packet_size);
     if (per_info == 0 || per_ellipsoids == 0) return Error::MalformedPayload;
 
     // Object payloads first: the content id is a checksum over them unless the caller chose one.
     std::vector<std::pair<uint16_t, std::vector<uint8_t>>> ellipsoid_payloads;
     std::vector<PendingBatch> point_batches;
+    std::vector<std::pair<uint16_t, std::vector<uint8_t>>> map_payloads;  // format 1.7 (spec 23.3)
     for (size_t i = 0; i < contents.size(); ++i) {
         const auto& content = contents[i];
+        const ObjectInfo& object = info_in.objects[i];
+        if (object.mapped()) {
+            std::vector<MapCell> cells;
+            if (!point_map_cells(content.points, info_in, object, cells)) return Error::MalformedPayload;
+            for (const PointMapFragment& f : plan_point_map(cells, object.map_level, info_in.packet_size))
+                map_payloads.emplace_back(static_cast<uint16_t>(i), encode_point_map_payload(f, object.map_level));
+        }
         for (size_t first = 0; first < content.ellipsoids.size(); first += per_ellipsoids) {
             EllipsoidBatch batch;
             batch.first_index = static_cast<uint32_t>(first);
@@ -275,7 +314,7 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
             batch.ellipsoids.assign(content.ellipsoids.begin() + first, content.ellipsoids.begin() + first + n);
             ellipsoid_payloads.emplace_back(static_cast<uint16_t>(i), encode_ellipsoids_payload(batch));
         }
-        const size_t per_points = points_per_packet(info_in.packet_size, info_in, info_in.objects[i]);
+        const size_t per_points = point_batch_size(info_in, object);
         if (per_points == 0) return Error::MalformedPayload;
         const size_t batches = (content.points.size() + per_points - 1) / per_points;
         for (size_t b = 0; b < batches; ++b) {
@@ -298,14 +337,19 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
         uint32_t crc = 0;
         for (const auto& [object, payload] : ellipsoid_payloads) crc = crc32c(payload.data(), payload.size(), crc);
         for (const auto& batch : point_batches) crc = crc32c(batch.payload.data(), batch.payload.size(), crc);
+        for (const auto& [object, payload] : map_payloads) crc = crc32c(payload.data(), payload.size(), crc);
         info.content_id = crc == 0 ? 1 : crc;
     }
 
     StreamPackets packets;
     uint32_t sequence = 0;
+    const bool mapped = stream_info_entry_size(info) == kMappedEntrySize;
     auto header = [&](PacketType type, uint16_t object) {
         PacketHeader h;
         h.type = static_cast<uint8_t>(type);
+        // Format 1.7 types, and STREAM_INFO with the entries' map fields, say 1.7 (spec 23).
+        if (type == PacketType::MappedPoints || type == PacketType::PointMap || (type == PacketType::StreamInfo && mapped))
+            h.version_minor = kMapMinor;
         h.stream_id = stream_id;
         h.sequence = sequence++;
         h.object_id = object;
@@ -320,8 +364,12 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
     } while (first < info.objects.size());
     for (const auto& [object, payload] : ellipsoid_payloads)
         packets.ellipsoids.push_back(write_packet(header(PacketType::Ellipsoids, object), payload));
+    for (const auto& [object, payload] : map_payloads)
+        packets.maps.push_back(write_packet(header(PacketType::PointMap, object), payload));
     for (const auto& batch : point_batches)
-        packets.points.push_back(write_packet(header(PacketType::Points, batch.object), batch.payload));
+        packets.points.push_back(write_packet(
+            header(info.objects[batch.object].mapped() ? PacketType::MappedPoints : PacketType::Points, batch.object),
+            batch.payload));
     out = std::move(packets);
     return Error::Ok;
 }

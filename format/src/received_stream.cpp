@@ -100,6 +100,16 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
         e = take_object_packet(packet, where);
         break;
     }
+    case PacketType::PointMap: {
+        // Step 11: the fixed fields of a POINT_MAP payload need no stream info (spec 23.3).
+        PointMapFragment fragment;
+        if (decode_point_map_header(packet.payload, fragment) != Error::Ok)
+            return reject(where, Error::MalformedPayload,
+                          "POINT_MAP of object " + std::to_string(h.object_id) +
+                              ": shorter than 12 bytes, or point_total 0, rice above 15 or root_count 0");
+        e = take_object_packet(packet, where);
+        break;
+    }
     case PacketType::MorphDeltas: {
         // Step 11: a MORPH_DELTAS payload needs no stream info to be checked (spec 22.1).
         MorphDeltasRun run;
@@ -125,7 +135,7 @@ Error ReceivedStream::take_stream_info(const PacketView& packet, uint64_t where)
         return reject(where, Error::MalformedPayload, "STREAM_INFO with object id " +
                                                           std::to_string(packet.header.object_id) + ", expected 65535");
     StreamInfoPart part;
-    if (decode_stream_info_payload(packet.payload, part) != Error::Ok)
+    if (decode_stream_info_payload(packet.payload, part, packet.header.version_minor) != Error::Ok)
         return reject(where, Error::MalformedPayload, "STREAM_INFO payload inconsistent or out of range");
     if (info_) {
         if (!same_stream_fields(*info_, part.info) || part.object_count != object_count_)
@@ -211,6 +221,7 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
         return take_joint_weights(object, packet, name, where);
     if (packet.header.type == static_cast<uint8_t>(PacketType::MorphDeltas))
         return take_morph_deltas(object, packet, name, where);
+    if (packet.header.type == static_cast<uint8_t>(PacketType::PointMap)) return take_point_map(object, packet, name, where);
     bool news = false;
     if (packet.header.type == static_cast<uint8_t>(PacketType::Ellipsoids)) {
         EllipsoidBatch batch;
@@ -223,6 +234,13 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
         for (size_t i = 0; i < batch.ellipsoids.size(); ++i)
             news |= object.ellipsoids.emplace(batch.first_index + static_cast<uint32_t>(i), batch.ellipsoids[i]).second;
     } else {
+        // POINTS for an object without a map, MAPPED_POINTS for one with a map (spec 23.4).
+        const bool mapped_type = packet.header.type == static_cast<uint8_t>(PacketType::MappedPoints);
+        if (mapped_type != oi.mapped())
+            return reject(where, Error::MalformedPayload,
+                          name + (mapped_type ? ": the object has no map (map_level 0), its points travel as POINTS"
+                                              : ": the object is mapped (map_level " + std::to_string(oi.map_level) +
+                                                    "), its points travel as MAPPED_POINTS"));
         PointBatch batch;
         if (decode_points_payload(packet.payload, *info_, oi, batch) != Error::Ok)
             return reject(where, Error::MalformedPayload, name + ": payload length does not match its count");
@@ -232,7 +250,7 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
                               std::to_string(batch.points.size()) + " of " + std::to_string(oi.point_count));
         std::vector<uint32_t> fresh;
         for (size_t i = 0; i < batch.points.size(); ++i)
-            if (object.points.emplace(batch.first_index + static_cast<uint32_t>(i), batch.points[i]).second)
+            if (take_point_record(object, batch.first_index + static_cast<uint32_t>(i), batch.points[i]))
                 fresh.push_back(batch.first_index + static_cast<uint32_t>(i));
         news = !fresh.empty();
         if (news) ++counters_.accepted;
@@ -447,9 +465,11 @@ Error ReceivedStream::take_repair(ReceivedObject& object, const PacketView& pack
         ReceivedRepairBlock fresh;
         fresh.block = block;
         fresh.held_in_batch.assign(block.source_count(), 0);
-        for (auto p = object.points.lower_bound(block.first_index);
-             p != object.points.end() && p->first < uint64_t{block.first_index} + block.point_count; ++p)
-            ++fresh.held_in_batch[(p->first - block.first_index) / block.batch];
+        // Records held count, placed or not (spec 23.6).
+        for (const auto* records : {&object.points, &object.unplaced})
+            for (auto p = records->lower_bound(block.first_index);
+                 p != records->end() && p->first < uint64_t{block.first_index} + block.point_count; ++p)
+                ++fresh.held_in_batch[(p->first - block.first_index) / block.batch];
         for (uint32_t i = 0; i < block.source_count(); ++i)
             if (fresh.held_in_batch[i] == block.batch_points(i)) ++fresh.batches_held;
         fresh.complete = fresh.batches_held == block.source_count();
@@ -464,6 +484,99 @@ Error ReceivedStream::take_repair(ReceivedObject& object, const PacketView& pack
     held.symbols.push_back(std::move(repair.symbol));
     ++counters_.accepted;
     try_recover(object, held);
+    return Error::Ok;
+}
+
+namespace {
+
+// Places a mapped record (spec 23.2, 23.4): its offset becomes a position once a fragment holds its
+// rank. False while none does.
+bool place_point(const ReceivedObject& object, uint32_t index, unsigned position_bits, QuantizedPoint& q) {
+    const ObjectInfo& oi = *object.info;
+    const uint32_t rank = mapped_rank(index, oi.point_count, oi.map_batch);
+    auto it = object.map_fragments.upper_bound(rank);
+    if (it == object.map_fragments.begin()) return false;
+    --it;
+    const ReceivedMapFragment& f = it->second;
+    if (rank - it->first >= f.point_total) return false;
+    const size_t cell = size_t(std::upper_bound(f.starts.begin(), f.starts.end(), rank - it->first) - f.starts.begin()) - 1;
+    const std::array<uint32_t, 3> corner = cell_corner(f.cells[cell].code, position_bits, oi.map_level);
+    for (int a = 0; a < 3; ++a) q.position[a] += corner[a];
+    return true;
+}
+
+}  // namespace
+
+bool ReceivedStream::take_point_record(ReceivedObject& object, uint32_t index, const QuantizedPoint& record) {
+    if (!object.info->mapped()) return object.points.emplace(index, record).second;
+    if (object.points.count(index) || object.unplaced.count(index)) return false;
+    QuantizedPoint q = record;
+    if (place_point(object, index, info_->position_bits, q))
+        object.points.emplace(index, q);
+    else
+        object.unplaced.emplace(index, record);
+    return true;
+}
+
+// Format 1.7 (spec 23.3): a fragment of an object's map.
+Error ReceivedStream::take_point_map(ReceivedObject& object, const PacketView& packet, const std::string& name,
+                                     uint64_t where) {
+    const ObjectInfo& oi = *object.info;
+    PointMapFragment f;
+    std::string why;
+    if (decode_point_map_payload(packet.payload, info_->position_bits, oi.map_level, f, &why) != Error::Ok)
+        return reject(where, Error::MalformedPayload, name + ": " + why);
+    const uint64_t end = uint64_t(f.first_rank) + f.point_total;
+    if (end > oi.point_count)
+        return reject(where, Error::IndexOutOfRange,
+                      name + ": ranks " + std::to_string(f.first_rank) + "+" + std::to_string(f.point_total) + " of " +
+                          std::to_string(oi.point_count));
+    auto same = object.map_fragments.find(f.first_rank);
+    if (same != object.map_fragments.end() && same->second.point_total == f.point_total && same->second.cells == f.cells) {
+        ++counters_.duplicates;
+        return Error::Ok;
+    }
+    // The fragments kept lie in order of ranks and cells together, so its neighbours decide.
+    auto next = object.map_fragments.lower_bound(f.first_rank);
+    if (next != object.map_fragments.end() &&
+        (next->first < end || next->second.cells.front().code <= f.cells.back().code))
+        return reject(where, Error::StreamMismatch, name + ": its ranks or cells overlap or cross a fragment received before");
+    if (next != object.map_fragments.begin()) {
+        auto prev = std::prev(next);
+        if (uint64_t(prev->first) + prev->second.point_total > f.first_rank ||
+            prev->second.cells.back().code >= f.cells.front().code)
+            return reject(where, Error::StreamMismatch, name + ": its ranks or cells overlap or cross a fragment received before");
+    }
+    ReceivedMapFragment kept;
+    kept.point_total = f.point_total;
+    kept.starts.reserve(f.cells.size());
+    uint32_t start = 0;
+    for (const MapCell& c : f.cells) {
+        kept.starts.push_back(start);
+        start += c.count;
+    }
+    kept.cells = std::move(f.cells);
+    object.map_fragments.emplace(f.first_rank, std::move(kept));
+    object.map_ranks += f.point_total;
+    ++counters_.accepted;
+    // Place the records it covers: over whichever is smaller, the records waiting or its ranks.
+    auto place = [&](uint32_t index) {
+        auto u = object.unplaced.find(index);
+        if (u == object.unplaced.end()) return;
+        QuantizedPoint q = u->second;
+        if (place_point(object, index, info_->position_bits, q)) {
+            object.points.emplace(index, q);
+            object.unplaced.erase(u);
+        }
+    };
+    if (object.unplaced.size() <= f.point_total) {
+        std::vector<uint32_t> waiting;
+        for (const auto& [index, q] : object.unplaced) waiting.push_back(index);
+        for (uint32_t index : waiting) place(index);
+    } else {
+        for (uint64_t rank = f.first_rank; rank < end; ++rank)
+            place(mapped_index(uint32_t(rank), oi.point_count, oi.map_batch));
+    }
     return Error::Ok;
 }
 
@@ -496,8 +609,10 @@ void ReceivedStream::try_recover(ReceivedObject& object, ReceivedRepairBlock& he
         if (held.held_in_batch[i] != block.batch_points(i)) continue;
         batch_points.clear();
         const uint32_t first = block.first_index + i * block.batch;
-        for (auto p = object.points.lower_bound(first); p != object.points.end() && p->first < first + block.batch_points(i); ++p)
-            batch_points.push_back(p->second);
+        for (uint32_t index = first; index < first + block.batch_points(i); ++index) {
+            auto p = object.points.find(index);
+            batch_points.push_back(p != object.points.end() ? p->second : object.unplaced.at(index));
+        }
         sources[i] = repair_source_symbol(block, batch_points, *info_, oi);
     }
     std::vector<uint32_t> unknown;
@@ -514,7 +629,7 @@ void ReceivedStream::try_recover(ReceivedObject& object, ReceivedRepairBlock& he
         PointBatch batch;
         if (decode_points_payload(payload, *info_, oi, batch) != Error::Ok) continue;  // cannot happen: lengths match
         for (size_t n = 0; n < batch.points.size(); ++n)
-            if (object.points.emplace(first + static_cast<uint32_t>(n), batch.points[n]).second) {
+            if (take_point_record(object, first + static_cast<uint32_t>(n), batch.points[n])) {
                 ++held.points_recovered;
                 ++object.points_recovered;
             }

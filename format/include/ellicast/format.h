@@ -42,8 +42,11 @@ inline constexpr uint8_t kSkinMinor = 5;
 // 1.6 added MORPH_DELTAS, MORPH_ANIMATION and the SCENE mesh record's targets (spec 22); SCENE
 // packets say 1.6 only when a mesh record of theirs carries targets.
 inline constexpr uint8_t kMorphMinor = 6;
+// 1.7 added MAPPED_POINTS, POINT_MAP and the object entry's map fields (spec 23); STREAM_INFO
+// packets say 1.7 (with 48-byte entries) only in a stream that maps an object.
+inline constexpr uint8_t kMapMinor = 7;
 // The newest format version this library reads and writes (spec/format.md's version).
-inline constexpr uint8_t kSpecMinor = 6;
+inline constexpr uint8_t kSpecMinor = 7;
 
 inline constexpr std::array<uint8_t, 4> kPacketMagic = {0xE1, 'L', 'C', 'S'};
 inline constexpr size_t kHeaderSize = 20;                       // bytes before the payload
@@ -74,6 +77,8 @@ enum class PacketType : uint8_t {
     ConnectivityRepair = 0x06,  // 1.3, skippable: a repair symbol over an object's coded connectivity
     JointWeights = 0x07,  // 1.5, skippable: the skin joints and weights of a run of an object's points
     MorphDeltas = 0x08,   // 1.6, skippable: the morph target displacements of a run of an object's points
+    MappedPoints = 0x09,  // 1.7, critical: a batch of an object's points, positions inside the cells of its map
+    PointMap = 0x0A,      // 1.7, critical: a fragment of an object's map of occupied cells
     Scene = 0x10,       // 1.1, skippable: nodes (hierarchy, names, transforms) and meshes (object + material)
     Material = 0x11,    // 1.1, skippable: one PBR material
     TextureFragment = 0x12,  // 1.1, skippable: a piece of one texture image, at its byte offset
@@ -82,9 +87,14 @@ enum class PacketType : uint8_t {
     Skin = 0x15,        // 1.5, skippable: joints and inverse bind matrices of a skin
     MorphAnimation = 0x16,  // 1.6, skippable: keys of one track of morph target weights
     Manifest = 0x20,    // 1.2, skippable: signed digests of the stream's other packets
-    // 0x00 is invalid; 0x09..0x0F reserved for geometry; 0x17..0x1F reserved for the scene;
+    // 0x00 is invalid; 0x0B..0x0F reserved for geometry; 0x17..0x1F reserved for the scene;
     // 0x21..0x7F future; 0x80..0xFF experimental.
 };
+
+// POINTS or (format 1.7) MAPPED_POINTS: a packet of an object's point records.
+inline bool is_points_type(uint8_t type) {
+    return type == static_cast<uint8_t>(PacketType::Points) || type == static_cast<uint8_t>(PacketType::MappedPoints);
+}
 
 // Names in the stream are UTF-8 (spec 15). True when `text` is well-formed UTF-8 (no overlong
 // forms, no surrogates, nothing above U+10FFFF).
@@ -235,8 +245,14 @@ struct ObjectInfo {
     // Format 1.3 (spec 19.1): the object's exact layer travels in CONNECTIVITY packets (entry flags
     // bit 8); a receiver waits for it to call the object complete. Never set for a point set.
     bool exact_layer = false;
+    // Format 1.7 (spec 23.1): 0, or the level L (1..position_bits - 1) of the map the object's points
+    // are placed by, their records then holding positions inside their cells (MAPPED_POINTS); and
+    // the batch n that deals indices to ranks (spec 23.2), >= 1 exactly when map_level > 0.
+    uint8_t map_level = 0;
+    uint16_t map_batch = 0;
 
     bool operator==(const ObjectInfo&) const = default;
+    bool mapped() const { return map_level > 0; }
     bool has(uint8_t attr) const { return (attributes & attr) == attr; }
     int color_channels() const { return has(kAttrColor) ? (has(kAttrColorAlpha) ? 4 : 3) : 0; }
 };
@@ -244,6 +260,7 @@ struct ObjectInfo {
 inline constexpr uint16_t kEntryExactLayer = 0x0100;  // object entry flags (offset 26), format 1.3
 inline constexpr size_t kStreamInfoFixedSize = 32;  // v1.0 stream-level part of STREAM_INFO
 inline constexpr size_t kObjectEntrySize = 44;      // v1.0 object table entry
+inline constexpr size_t kMappedEntrySize = 48;      // format 1.7: the entry with its map fields (spec 23.1)
 
 struct StreamInfo {
     uint16_t packet_size = kDefaultPacketSize;  // the sender's maximum packet size
@@ -259,8 +276,12 @@ struct StreamInfo {
     std::vector<ObjectInfo> objects;            // the whole object table
 };
 
-// Number of bits of one point record of `object` at the stream's bit depths.
+// Number of bits of one point record of `object` at the stream's bit depths: a POINTS record
+// (spec 7.1), or for a mapped object a mapped record (spec 23.4: 3 (position_bits - map_level)
+// position bits).
 size_t point_record_bits(const StreamInfo& info, const ObjectInfo& object);
+// Bits of each coordinate a record of `object` carries: position_bits, or position_bits - map_level.
+unsigned record_position_bits(const StreamInfo& info, const ObjectInfo& object);
 
 // Checks that the stream-level fields and every object are in range (bit depths, packet size,
 // finite frames with positive scale, attributes known, kind known). Returns MalformedPayload or Ok.
@@ -329,16 +350,93 @@ std::vector<uint8_t> encode_ellipsoids_payload(const EllipsoidBatch& batch);
 std::vector<uint8_t> encode_points_payload(const PointBatch& batch, const StreamInfo& info, const ObjectInfo& object);
 
 // Payload decoders: MalformedPayload when a length or field is inconsistent.
-Error decode_stream_info_payload(std::span<const uint8_t> payload, StreamInfoPart& out);
+// `version_minor`: that of the packet; the entries' map fields (spec 23.1) are read only from 1.7 on.
+Error decode_stream_info_payload(std::span<const uint8_t> payload, StreamInfoPart& out,
+                                 uint8_t version_minor = kSpecMinor);
 Error decode_ellipsoids_payload(std::span<const uint8_t> payload, EllipsoidBatch& out);
-// Needs the object's info: the record size depends on its attributes and the bit depths.
+// Needs the object's info: the record size depends on its attributes and the bit depths. For a
+// mapped object (MAPPED_POINTS, spec 23.4) the positions are the offsets inside the points' cells,
+// and encode_points_payload writes the low position_bits - map_level bits of each coordinate.
 Error decode_points_payload(std::span<const uint8_t> payload, const StreamInfo& info, const ObjectInfo& object,
                             PointBatch& out);
 
 // How many ellipsoids / points / object entries fit the payload of a packet of `packet_size` bytes.
 size_t ellipsoids_per_packet(size_t packet_size);
 size_t points_per_packet(size_t packet_size, const StreamInfo& info, const ObjectInfo& object);
-size_t objects_per_stream_info_packet(size_t packet_size);
+size_t objects_per_stream_info_packet(size_t packet_size, size_t entry_size = kObjectEntrySize);
+// Points per POINTS / MAPPED_POINTS packet the reference packetizer cuts an object into (and the
+// repair blocks' batch): as many as fit, and for a mapped object at most its map_batch.
+size_t point_batch_size(const StreamInfo& info, const ObjectInfo& object);
+// The entry size a STREAM_INFO of `info` is written with: 48 when an object is mapped (spec 23.1), else 44.
+size_t stream_info_entry_size(const StreamInfo& info);
+
+// ---------------------------------------------------------------------------------------------
+// Mapped points (format 1.7, spec 23)
+
+// The rank (spec 23.2) of the point of index `index` < point_count, batch n >= 1.
+uint32_t mapped_rank(uint32_t index, uint32_t point_count, uint32_t batch);
+// The inverse: the index of the point of rank `rank`.
+uint32_t mapped_index(uint32_t rank, uint32_t point_count, uint32_t batch);
+// Morton code (spec 23.2) of the cell of level `level` that holds quantized position q (position_bits P).
+uint64_t morton_cell(const std::array<uint32_t, 3>& q, unsigned position_bits, unsigned level);
+// The minimum corner, in quantized units, of the cell of level `level` with Morton code `code`.
+std::array<uint32_t, 3> cell_corner(uint64_t code, unsigned position_bits, unsigned level);
+
+struct MapCell {
+    uint64_t code = 0;   // Morton code at the map's level
+    uint32_t count = 0;  // points in the cell, >= 1
+    bool operator==(const MapCell&) const = default;
+};
+
+// A POINT_MAP fragment (spec 23.3): cells of level map_level in increasing code, with counts.
+struct PointMapFragment {
+    uint32_t first_rank = 0;
+    uint32_t point_total = 0;   // sum of the counts
+    uint8_t root_level = 0;     // F
+    uint8_t rice = 0;           // k
+    uint16_t root_count = 0;    // R (filled by the decoder; the encoder derives it from the cells)
+    std::vector<MapCell> cells;
+};
+
+inline constexpr size_t kPointMapHeaderSize = 12;
+
+// Encodes a fragment: the roots are the distinct cells of level root_level above `cells`.
+std::vector<uint8_t> encode_point_map_payload(const PointMapFragment& fragment, unsigned map_level);
+// Bits of the tree encode_point_map_payload would write (without the 12-byte header).
+size_t point_map_tree_bits(const std::vector<MapCell>& cells, unsigned map_level, unsigned root_level, unsigned rice);
+// The fixed fields (spec 23.3, step 11): MalformedPayload when shorter than 12 bytes, point_total
+// 0, rice > 15 or root_count 0. Fills the header fields of `out`, no cells.
+Error decode_point_map_header(std::span<const uint8_t> payload, PointMapFragment& out);
+// The whole payload for an object mapped at `map_level` of `position_bits` (spec 23.3, step 13):
+// MalformedPayload (with `why`) when the tree is malformed.
+Error decode_point_map_payload(std::span<const uint8_t> payload, unsigned position_bits, unsigned map_level,
+                               PointMapFragment& out, std::string* why = nullptr);
+
+// An object's cells at `level`, with counts, from its points in rank order; false when the points
+// are not in increasing cell order along their ranks (they were not ordered by mapped_order).
+bool point_map_cells(const std::vector<QuantizedPoint>& points, const StreamInfo& info, const ObjectInfo& object,
+                     std::vector<MapCell>& cells);
+// Cuts an object's cells into fragments that each fit a packet of `packet_size` bytes, with the
+// lowest root level at which every subtree fits one, and each fragment's best Rice parameter.
+std::vector<PointMapFragment> plan_point_map(const std::vector<MapCell>& cells, unsigned map_level, size_t packet_size);
+
+// The encoder's choice (spec 23.7): the level whose POINT_MAP and MAPPED_POINTS packets take the
+// fewest bytes, the map's counted `map_weight` times (a carousel repeats it), against those of
+// POINTS packets; level 0 when mapping does not pay.
+struct PointMapChoice {
+    uint8_t level = 0;
+    uint16_t batch = 0;
+    uint64_t plain_bytes = 0;   // POINTS packets
+    uint64_t map_bytes = 0;     // POINT_MAP packets at the chosen level
+    uint64_t point_bytes = 0;   // MAPPED_POINTS packets at the chosen level
+};
+PointMapChoice choose_point_map(const std::vector<QuantizedPoint>& points, const StreamInfo& info,
+                                const ObjectInfo& object, double map_weight = 2.0);
+// The order in which to send `points` (given in the encoder's priority order) for a map of `level`
+// and `batch`: out[i] is the position in `points` of the point of index i. Within a cell, the points
+// keep their given order.
+std::vector<uint32_t> mapped_order(const std::vector<QuantizedPoint>& points, unsigned position_bits, unsigned level,
+                                   uint32_t batch);
 
 // ---------------------------------------------------------------------------------------------
 // Packetizing a whole stream
@@ -356,7 +454,8 @@ struct ObjectContent {
 struct StreamPackets {
     std::vector<std::vector<uint8_t>> stream_info;  // every STREAM_INFO part
     std::vector<std::vector<uint8_t>> ellipsoids;   // every ELLIPSOIDS packet, object by object
-    std::vector<std::vector<uint8_t>> points;       // every POINTS packet, in stream order
+    std::vector<std::vector<uint8_t>> points;       // every POINTS / MAPPED_POINTS packet, in stream order
+    std::vector<std::vector<uint8_t>> maps;         // format 1.7: every POINT_MAP packet, object by object
 };
 
 // Cuts a stream into packets of at most info.packet_size bytes. Sequence numbers run from 0 in the
@@ -893,10 +992,23 @@ struct ReceivedRepairBlock {
     uint32_t points_recovered = 0;
 };
 
+// A POINT_MAP fragment a receiver accepted (spec 23.3).
+struct ReceivedMapFragment {
+    uint32_t point_total = 0;
+    std::vector<MapCell> cells;
+    std::vector<uint32_t> starts;  // rank of each cell's first point, from the fragment's first rank
+};
+
 struct ReceivedObject {
     std::optional<ObjectInfo> info;                 // once its stream info entry arrived
     std::map<uint32_t, QuantizedEllipsoid> ellipsoids;  // by index; duplicates collapse
-    std::map<uint32_t, QuantizedPoint> points;          // by index
+    std::map<uint32_t, QuantizedPoint> points;          // by index (a mapped object's: placed, spec 23.4)
+    // Format 1.7 (spec 23): a mapped object's fragments by first rank, and the records held but not
+    // placed (positions are offsets inside their cells) by index.
+    std::map<uint32_t, ReceivedMapFragment> map_fragments;
+    std::map<uint32_t, QuantizedPoint> unplaced;
+    uint64_t map_ranks = 0;                          // ranks the fragments hold
+    bool map_complete() const { return info && info->mapped() && map_ranks == info->point_count; }
     std::map<uint32_t, ReceivedRepairBlock> repair_blocks;  // by first_index (format 1.2)
     uint64_t points_recovered = 0;                  // points that came through repair packets
     std::optional<ReceivedConnectivity> connectivity;  // format 1.3, once a CONNECTIVITY packet was taken
@@ -1054,6 +1166,10 @@ private:
     std::optional<Rejection> first_stream_info_rejection_;
     Error take_object_packet(const PacketView& packet, uint64_t where);
     Error take_repair(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
+    Error take_point_map(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
+    // Takes a point record that arrived (or was recovered): placed, or held unplaced for a mapped
+    // object whose fragment has not arrived. False when the index was held already.
+    bool take_point_record(ReceivedObject& object, uint32_t index, const QuantizedPoint& record);
     Error take_connectivity(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_connectivity_repair(ReceivedObject& object, const PacketView& packet, const std::string& name,
                                    uint64_t where);
