@@ -231,7 +231,7 @@ int quality(const std::string& stream_path, const std::string& original_path, in
     }
     std::vector<const ContainerPacket*> info, ellipsoids, points;
     for (const auto& p : contents.packets) {
-        if (p.view.header.type == uint8_t(PacketType::Points)) points.push_back(&p);
+        if (is_points_type(p.view.header.type)) points.push_back(&p);
         else if (p.view.header.type == uint8_t(PacketType::Ellipsoids)) ellipsoids.push_back(&p);
         else info.push_back(&p);
     }

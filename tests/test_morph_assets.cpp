@@ -252,7 +252,7 @@ TEST_CASE("the Duck keeps its base shape, and says why, until its displacements 
     SUBCASE("half the POINTS and half the MORPH_DELTAS lost: still morphing, from the nearest points that have arrived") {
         size_t n = 0;
         const Asset a = decode_without(encoded, [&](size_t i) {
-            return (is_packet_type(encoded.packets[i], PacketType::Points) || is_packet_type(encoded.packets[i], PacketType::MorphDeltas)) &&
+            return (is_packet_type(encoded.packets[i], PacketType::Points) || is_packet_type(encoded.packets[i], PacketType::MappedPoints) || is_packet_type(encoded.packets[i], PacketType::MorphDeltas)) &&
                    (n++ % 2 == 0);
         });
         CHECK(a.scene.meshes.at(0).weights == std::vector<float>{0.0f, 0.5f});

@@ -34,7 +34,7 @@ RepairStream repair_stream(uint32_t points, size_t max_sources, double ratio, ui
     s.info.objects = {*whole.objects()[0].info};
     for (const auto& [index, q] : whole.objects()[0].points) s.quantized.push_back(q);
     REQUIRE(s.quantized.size() == points);
-    for (auto& p : all) (p[6] == uint8_t(PacketType::Points) ? s.points : s.base).push_back(p);
+    for (auto& p : all) (is_points_type(p[6]) ? s.points : s.base).push_back(p);
     const size_t batch = points_per_packet(packet_size, s.info, s.info.objects[0]);
     s.blocks = plan_repair_blocks(points, uint16_t(batch), max_sources);
     for (const RepairBlock& b : s.blocks)
@@ -243,7 +243,7 @@ TEST_CASE("the carousel interleaves each block's POINTS and repair packets, ever
     size_t points_first_cycle = 0, repairs_first_cycle = 0;
     for (size_t i = 0; i < half; ++i) {
         const uint8_t type = packets[c.cycle[i].packet][6];
-        points_first_cycle += type == uint8_t(PacketType::Points);
+        points_first_cycle += is_points_type(type);
         repairs_first_cycle += type == uint8_t(PacketType::PointsRepair);
     }
     CHECK(points_first_cycle + repairs_first_cycle == s.points.size());

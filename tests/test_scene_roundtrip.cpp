@@ -159,7 +159,7 @@ TEST_CASE("with packets lost the decoded scene is still a valid glTF: a missing 
         PacketView view;
         REQUIRE(parse_packet(encoded.packets[i], view) == Error::Ok);
         const auto type = PacketType(view.header.type);
-        if ((type == PacketType::Ellipsoids || type == PacketType::Points || type == PacketType::PointsRepair) &&
+        if ((type == PacketType::Ellipsoids || is_points_type(uint8_t(type)) || type == PacketType::PointsRepair) &&
             view.header.object_id == 3)
             drop.push_back(i);
         if (type == PacketType::TextureFragment && !texture_dropped) drop.push_back(i), texture_dropped = true;

@@ -35,7 +35,7 @@ Decoded encode_decode(const std::vector<Mesh>& original, bool half_of_the_points
     REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, packets) == Error::Ok);
     ReceivedStream stream;
     size_t where = 0;
-    for (auto* group : {&packets.stream_info, &packets.ellipsoids})
+    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.maps})  // the base, with its map (format 1.7)
         for (const auto& p : *group) REQUIRE(stream.add_packet(p, where++) == Error::Ok);
     std::mt19937 rng(100);
     for (const auto& p : packets.points)

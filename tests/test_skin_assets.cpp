@@ -152,7 +152,7 @@ TEST_CASE("the Fox stays in its bind pose, and says why, until its skin and weig
     // vertex with the weights of the nearest point whose record arrived; the file is valid.
     size_t k = 0;
     const Asset half = decode_without(encoded, [&](size_t i) {
-        const bool detail = is_packet_type(encoded.packets[i], PacketType::JointWeights) || is_packet_type(encoded.packets[i], PacketType::Points);
+        const bool detail = is_packet_type(encoded.packets[i], PacketType::JointWeights) || is_packet_type(encoded.packets[i], PacketType::Points) || is_packet_type(encoded.packets[i], PacketType::MappedPoints);
         return detail && (k++ % 2 == 1);
     });
     REQUIRE(half.scene.skins.size() == 1);

@@ -9,7 +9,7 @@
 namespace ellicast::auth {
 
 bool is_detail_type(uint8_t type) {
-    return type == static_cast<uint8_t>(PacketType::Points) || type == static_cast<uint8_t>(PacketType::PointsRepair) ||
+    return is_points_type(type) || type == static_cast<uint8_t>(PacketType::PointsRepair) ||
            type == static_cast<uint8_t>(PacketType::TextureFragment);
 }
 

@@ -17,7 +17,7 @@ namespace ellicast::broadcast {
 // cycle, spread over the chunks, so that a large texture does not ride along with every repetition of
 // the base.
 bool is_base_packet(const PacketHeader& header) {
-    return header.type != static_cast<uint8_t>(PacketType::Points) &&
+    return !is_points_type(header.type) &&
            header.type != static_cast<uint8_t>(PacketType::TextureFragment) &&
            header.type != static_cast<uint8_t>(PacketType::Animation) &&
            header.type != static_cast<uint8_t>(PacketType::JointWeights) &&
@@ -87,6 +87,11 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
             repairs.push_back(static_cast<uint32_t>(i));
             continue;
         }
+        if (view.header.type == static_cast<uint8_t>(PacketType::PointMap)) {
+            out.maps.push_back(static_cast<uint32_t>(i));
+            out.map_bytes += packets[i].size();
+            continue;
+        }
         if (is_base_packet(view.header)) {
             out.base.push_back(static_cast<uint32_t>(i));
             if (view.header.type == static_cast<uint8_t>(PacketType::StreamInfo))
@@ -129,7 +134,7 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
         for (size_t k = 0; k < out.data.size(); ++k) {
             PacketView view;
             parse_packet(packets[out.data[k]], view);
-            if (view.header.type != static_cast<uint8_t>(PacketType::Points) || view.payload.size() < 4) continue;
+            if (!is_points_type(view.header.type) || view.payload.size() < 4) continue;
             const uint32_t first = uint32_t(view.payload[0]) | uint32_t(view.payload[1]) << 8 |
                                    uint32_t(view.payload[2]) << 16 | uint32_t(view.payload[3]) << 24;
             auto it = blocks.upper_bound({view.header.object_id, first});
@@ -268,7 +273,8 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
     if (options.chunk_packets > 0) {
         chunks = out.data.empty() ? 1 : (out.data.size() + options.chunk_packets - 1) / options.chunk_packets;
     } else {
-        chunks = chunks_for_share(out.base_bytes, out.data_bytes, out.data.size(), options.base_share);
+        const size_t slices = std::max<size_t>(1, options.map_slices);
+        chunks = chunks_for_share(out.base_bytes + out.map_bytes / slices, out.data_bytes, out.data.size(), options.base_share);
         chunks = std::max(chunks, std::min(options.min_base_repetitions, std::max<size_t>(out.data.size(), 1)));
     }
     chunks = std::max<size_t>(chunks, 1);
@@ -296,6 +302,11 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
         size_t next = 0;
         for (size_t c = 0; c < chunks; ++c) {
             for (uint32_t b : out.base) out.cycle.push_back({b, true, false, static_cast<uint32_t>(c)});
+            // The map's slice of this repetition (every slice comes once in `slices` chunks).
+            const size_t slices = std::min(std::max<size_t>(1, options.map_slices), chunks);
+            for (size_t m = 0; m < out.maps.size(); ++m)
+                if (m % slices == c % slices)
+                    out.cycle.push_back({out.maps[m], true, false, static_cast<uint32_t>(c)});
             size_t end = data.size() * (c + 1) / chunks;
             uint64_t chunk_bytes = 0;
             for (size_t in_chunk = 1; next < end; ++next, ++in_chunk) {
@@ -358,6 +369,7 @@ Needs needs_of(const Carousel& c, WaitFor what) {
     n.block_of.assign(c.sizes.size(), -1);
     for (uint32_t b : c.base) n.single[b] = true, ++n.total;
     if (what != WaitFor::Everything) return n;
+    for (uint32_t m : c.maps) n.single[m] = true, ++n.total;  // format 1.7: points are placed by the map
     for (size_t b = 0; b < c.blocks.size(); ++b) {
         for (uint32_t p : c.blocks[b].symbols) n.block_of[p] = static_cast<int32_t>(b);
         n.block_needed.push_back(std::min(c.blocks[b].needed, c.blocks[b].symbols.size()));
@@ -430,8 +442,10 @@ std::vector<uint64_t> lossless_waits(const Carousel& c, WaitFor what) {
     std::vector<int64_t> next_occurrence(c.sizes.size(), -1);
     std::vector<bool> needed(c.sizes.size(), false);
     for (uint32_t b : c.base) needed[b] = true;
-    if (what == WaitFor::Everything)
+    if (what == WaitFor::Everything) {
         for (uint32_t d : c.data) needed[d] = true;
+        for (uint32_t m : c.maps) needed[m] = true;
+    }
     const size_t span = 2 * n;
     size_t size = 1;
     while (size < span) size <<= 1;
@@ -529,8 +543,10 @@ double expected_wait_bytes(const Carousel& c, WaitFor what, double loss, size_t 
     std::vector<bool> needed(c.sizes.size(), false);
     size_t needed_count = 0;
     for (uint32_t b : c.base) needed[b] = true, ++needed_count;
-    if (what == WaitFor::Everything)
+    if (what == WaitFor::Everything) {
         for (uint32_t d : c.data) needed[d] = true, ++needed_count;
+        for (uint32_t m : c.maps) needed[m] = true, ++needed_count;
+    }
     size_t samples = tune_in_samples == 0 ? n : std::min(n, tune_in_samples);
     const double log_loss = loss > 0 ? std::log(loss) : -std::numeric_limits<double>::infinity();
     // Stop once the chance of not being done is negligible, or after a bounded horizon.

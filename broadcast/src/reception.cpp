@@ -211,6 +211,7 @@ bool stream_base_complete(const ReceivedStream& stream) {
         if (!object.info) return false;
         if (object.info->kind == ObjectKind::Surface && object.ellipsoids.size() < object.info->ellipsoid_count)
             return false;
+        if (object.info->mapped() && !object.map_complete()) return false;  // format 1.7: the map is base
     }
     // Format 1.1: the scene tables and the materials travel with the base.
     if (stream.has_scene()) {

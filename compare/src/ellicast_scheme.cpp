@@ -21,7 +21,8 @@ struct EllicastScheme::State {
     std::vector<size_t> block_needed;
     std::vector<uint64_t> block_points;
     size_t singles_needed = 0;  // packets in no block: each one is needed
-    size_t info_packets = 0, ellipsoid_packets = 0;  // packets_ starts with these, in that order
+    size_t info_packets = 0, ellipsoid_packets = 0, map_packets = 0;  // packets_ starts with these, in that order
+    bool exact_layer = false;  // the object has one (spec 19)
 };
 
 EllicastScheme::EllicastScheme(const Mesh& mesh, const EllicastSettings& settings) : state_(std::make_unique<State>()) {
@@ -39,7 +40,8 @@ EllicastScheme::EllicastScheme(const Mesh& mesh, const EllicastSettings& setting
         throw CompareError(std::string("ellicast packetizer: ") + error_name(e));
     state_->info_packets = stream.stream_info.size();
     state_->ellipsoid_packets = stream.ellipsoids.size();
-    for (auto* group : {&stream.stream_info, &stream.ellipsoids})
+    state_->map_packets = stream.maps.size();  // format 1.7: POINT_MAP, base like the ellipsoids
+    for (auto* group : {&stream.stream_info, &stream.ellipsoids, &stream.maps})
         for (auto& p : *group) {
             packets_.push_back(std::move(p));
             state_->points_in_packet.push_back(0);
@@ -60,9 +62,9 @@ EllicastScheme::EllicastScheme(const Mesh& mesh, const EllicastSettings& setting
     state_->block_of.assign(packets_.size(), -1);
     if (settings.repair_ratio > 0) {
         // The encoder's blocks (spec 17.5): POINTS packets k at a time, ceil(ratio * k) repairs each.
-        const size_t batch = points_per_packet(encoded.info.packet_size, encoded.info, object);
+        const size_t batch = point_batch_size(encoded.info, object);
         const size_t max_sources = std::max<size_t>(1, size_t(255.0 / (1.0 + settings.repair_ratio)));
-        const size_t first_points_packet = state_->info_packets + state_->ellipsoid_packets;
+        const size_t first_points_packet = state_->info_packets + state_->ellipsoid_packets + state_->map_packets;
         for (const RepairBlock& block : plan_repair_blocks(object.point_count, uint16_t(batch), max_sources)) {
             std::vector<std::vector<uint8_t>> repairs;
             const size_t count = size_t(std::ceil(settings.repair_ratio * block.source_count() - 1e-9));
@@ -85,6 +87,7 @@ EllicastScheme::EllicastScheme(const Mesh& mesh, const EllicastSettings& setting
     // Format 1.3: the exact layer (spec 19), as encode_asset sends it: its pieces, and with repair its
     // repair symbols, any k of which give it back. Complete then means the exact model.
     if (const ObjectContent& content = encoded.contents[0]; !content.connectivity.empty()) {
+        state_->exact_layer = true;
         std::vector<std::vector<uint8_t>> pieces, repairs;
         if (Error e = packetize_connectivity(encoded.info, 0, content.triangle_count, content.connectivity, 1, 0, pieces);
             e != Error::Ok)
@@ -170,7 +173,15 @@ bool EllicastScheme::can_show(const std::vector<uint32_t>& held) const {
         if (i < state_->info_packets) info = true;
         else if (i < state_->info_packets + state_->ellipsoid_packets) ellipsoids = true;
     }
-    return info && ellipsoids;
+    if (info && ellipsoids) return true;
+    // Without an ellipsoid, every point and the exact layer still show the original mesh (spec
+    // 19.4): everything but the base's ellipsoids, held. Stream info parts are also singles.
+    if (!info || !state_->exact_layer) return false;
+    std::vector<uint32_t> with_base = held;
+    for (uint32_t i = 0; i < state_->info_packets + state_->ellipsoid_packets; ++i) with_base.push_back(i);
+    std::sort(with_base.begin(), with_base.end());
+    with_base.erase(std::unique(with_base.begin(), with_base.end()), with_base.end());
+    return complete(with_base);
 }
 
 double EllicastScheme::data_fraction(const std::vector<uint32_t>& held) const {

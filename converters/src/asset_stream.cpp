@@ -53,6 +53,7 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
     };
     take(stream.stream_info, out.stream_info_packets, out.stream_info_bytes);
     take(stream.ellipsoids, out.ellipsoid_packets, out.ellipsoid_bytes);
+    take(stream.maps, out.map_packets, out.map_bytes);
     take(scene.scene, out.scene_packets, out.scene_bytes);
     take(scene.materials, out.scene_packets, out.scene_bytes);
     take(scene.textures, out.scene_packets, out.scene_bytes);
@@ -129,7 +130,7 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
         std::vector<std::vector<uint8_t>> repairs;
         for (size_t i = 0; i < info.objects.size(); ++i) {
             const ObjectInfo& object = info.objects[i];
-            const size_t batch = points_per_packet(info.packet_size, info, object);
+            const size_t batch = point_batch_size(info, object);
             if (object.point_count == 0 || batch == 0) continue;
             for (const RepairBlock& block : plan_repair_blocks(object.point_count, uint16_t(batch), max_sources)) {
                 const size_t count = size_t(std::ceil(options.repair_ratio * block.source_count() - 1e-9));

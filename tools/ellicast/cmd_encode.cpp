@@ -34,6 +34,7 @@ struct EncodeArgs {
     bool allow_external_paths = false;
     std::string sign;  // secret key file: sign the stream (spec 16)
     double repair = EncodeOptions{}.repair_ratio;
+    bool no_point_map = false;
 };
 
 int run_encode(const EncodeArgs& a) {
@@ -60,6 +61,7 @@ int run_encode(const EncodeArgs& a) {
     options.max_samples = a.max_samples;
     options.threads = a.threads;
     options.repair_ratio = a.repair;
+    options.point_map = !a.no_point_map;
     if (std::string why = check_encode_options(options); !why.empty()) return fail(kExitUsage, why);
 
     // A glTF keeps its scene: each distinct primitive once in its mesh's frame, plus the SCENE,
@@ -120,19 +122,27 @@ int run_encode(const EncodeArgs& a) {
             std::printf("per-point scene data: skin weights %zu (%zu packets), morph targets %zu (%zu packets)\n",
                         out.weight_bytes, out.weight_packets, out.morph_bytes, out.morph_packets);
     }
-    std::printf("bytes: stream info %zu (%zu packets), base %zu (%zu packets), scene %zu (%zu packets), "
-                "detail %zu (%zu packets), repair %zu (%zu packets), file %zu\n",
-                out.stream_info_bytes, out.stream_info_packets, out.ellipsoid_bytes, out.ellipsoid_packets,
-                out.scene_bytes, out.scene_packets, out.point_bytes, out.point_packets, out.repair_bytes,
+    std::printf("bytes: stream info %zu (%zu packets), base %zu (%zu packets), point map %zu (%zu packets), scene %zu "
+                "(%zu packets), detail %zu (%zu packets), repair %zu (%zu packets), file %zu\n",
+                out.stream_info_bytes, out.stream_info_packets, out.ellipsoid_bytes, out.ellipsoid_packets, out.map_bytes,
+                out.map_packets, out.scene_bytes, out.scene_packets, out.point_bytes, out.point_packets, out.repair_bytes,
                 out.repair_packets, file.size());
     if (manifest_parts) {
         size_t manifest_bytes = 0;  // sign_stream puts the MANIFEST parts first
         for (size_t i = 0; i < manifest_parts; ++i) manifest_bytes += out.packets[i].size();
         std::printf("signed: %zu MANIFEST part(s), %zu bytes\n", manifest_parts, manifest_bytes);
     }
-    std::printf("bytes per ellipsoid %.2f, bytes per point %.2f (packet overhead included)\n",
+    std::printf("bytes per ellipsoid %.2f, bytes per point %.2f (packet overhead and point map included)\n",
                 ellipsoids ? double(out.ellipsoid_bytes) / double(ellipsoids) : 0.0,
-                points ? double(out.point_bytes) / double(points) : 0.0);
+                points ? double(out.point_bytes + out.map_bytes) / double(points) : 0.0);
+    for (size_t i = 0; i < encoded.reports.size(); ++i) {
+        const ObjectReport& r = encoded.reports[i];
+        if (r.map_level > 0)
+            std::printf("object %zu: points mapped at level %u (format 1.7): %.2f bytes a point (map %.2f) against "
+                        "%.2f as POINTS\n",
+                        i, unsigned(r.map_level), double(r.map_bytes + r.mapped_point_bytes) / double(r.points),
+                        double(r.map_bytes) / double(r.points), double(r.plain_point_bytes) / double(r.points));
+    }
     std::printf("time %.2f s\n", seconds);
     return kExitOk;
 }
@@ -171,6 +181,9 @@ const RegisterCommand registered({10, [](CLI::App& app, int& exit_code) {
                     "POINTS_REPAIR packets per POINTS packet, per block (format 1.2): a carousel sends them in turn "
                     "with the POINTS packets so that a receiver under loss gets every point sooner; 0: none, [0, 4]")
         ->capture_default_str();
+    cmd->add_flag("--no-point-map", args->no_point_map,
+                  "send every point as a full POINTS record (format 1.0), readable by decoders before format 1.7, "
+                  "instead of MAPPED_POINTS over a POINT_MAP where that takes fewer bytes");
     cmd->add_option("--sign", args->sign, "sign the stream with this secret key (NAME.key from `ellicast keygen`)");
     cmd->add_flag("--allow-external-paths", args->allow_external_paths,
                   "read glTF buffers and images outside the model's folder (refused by default)");

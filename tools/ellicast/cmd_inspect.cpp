@@ -78,6 +78,10 @@ nlohmann::json to_json(const StreamReport& r, bool with_packets) {
             oj["complete"] = o.ellipsoids.size() == o.info->ellipsoid_count && o.points.size() == o.info->point_count;
             oj["missing_ellipsoids"] = missing_ranges(o.ellipsoids, o.info->ellipsoid_count);
             oj["missing_points"] = missing_ranges(o.points, o.info->point_count);
+            if (o.info->mapped())  // format 1.7 (spec 23)
+                oj["point_map"] = {{"level", o.info->map_level},     {"batch", o.info->map_batch},
+                                   {"fragments", o.map_fragments.size()}, {"ranks", o.map_ranks},
+                                   {"complete", o.map_complete()},    {"unplaced_points", o.unplaced.size()}};
         } else {
             oj["info"] = nullptr;
         }
@@ -194,6 +198,11 @@ void print_text(const StreamReport& r, bool with_packets) {
             << fmt("%g", oi.frame.origin[0]) << ", " << fmt("%g", oi.frame.origin[1]) << ", " << fmt("%g", oi.frame.origin[2])
             << ") scale " << fmt("%g", oi.frame.scale) << "; ellipsoids " << o.ellipsoids.size() << "/" << oi.ellipsoid_count
             << ", points " << o.points.size() << "/" << oi.point_count << (complete ? ", complete" : "") << "\n";
+        if (oi.mapped())
+            out << "     point map (format 1.7): level " << int(oi.map_level) << ", batch " << oi.map_batch << ", "
+                << o.map_fragments.size() << " fragments holding " << o.map_ranks << "/" << oi.point_count << " ranks"
+                << (o.unplaced.empty() ? "" : "; " + std::to_string(o.unplaced.size()) + " points held but not placed")
+                << "\n";
         if (!complete) {
             std::string me = missing_ranges(o.ellipsoids, oi.ellipsoid_count), mp = missing_ranges(o.points, oi.point_count);
             if (!me.empty()) out << "     missing ellipsoids " << me << "\n";

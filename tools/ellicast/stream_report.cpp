@@ -71,8 +71,9 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
                                                   (detail.empty() ? "" : " (" + detail + ")")});
         }
         // The format 1.0 types are critical; the 1.1 scene types are sent skippable (spec section 4).
-        if (h.type <= uint8_t(PacketType::Points) && h.skippable())
-            r.violations.push_back({p.offset, packet_type_name(h.type) + " packet marked skippable (flags bit 0 must be 0 for a format 1.0 type)"});
+        if ((h.type <= uint8_t(PacketType::Points) || h.type == uint8_t(PacketType::MappedPoints) ||
+             h.type == uint8_t(PacketType::PointMap)) && h.skippable())
+            r.violations.push_back({p.offset, packet_type_name(h.type) + " packet marked skippable (flags bit 0 must be 0 for a format 1.0 type, MAPPED_POINTS and POINT_MAP)"});
     }
     // Packets held for their stream info and rejected when it arrived (their result when read was
     // "held"): each is a violation at its own offset too.
@@ -141,6 +142,12 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             r.violations.push_back({std::nullopt, name + ": " + std::to_string(o.points.size()) + " of " +
                                                       std::to_string(o.info->point_count) + " points received; missing " +
                                                       missing});
+        // Format 1.7 (spec 23.6): a mapped object's map holds every rank.
+        if (o.info->mapped() && !o.map_complete())
+            r.violations.push_back({std::nullopt, name + ": its point map holds " + std::to_string(o.map_ranks) + " of " +
+                                                      std::to_string(o.info->point_count) + " ranks (" +
+                                                      std::to_string(o.unplaced.size()) +
+                                                      " points held but not placed)"});
         // Format 1.3, the exact layer (spec 19.4): announced, complete, and decodable with every point.
         if (o.connectivity && !o.info->exact_layer)
             r.violations.push_back({std::nullopt, name + ": CONNECTIVITY packets arrived but its entry does not "

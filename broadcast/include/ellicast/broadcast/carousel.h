@@ -49,6 +49,11 @@ struct CarouselOptions {
     // Repair packets (format 1.2) sent per POINTS packet of a block: the first ceil(ratio * k) rows
     // of those the stream holds. Negative: every one it holds. 0: none (the POINTS packets repeat).
     double repair_ratio = -1;
+    // Format 1.7 (spec 23): an object's POINT_MAP packets are cut into this many slices, and each
+    // repetition of the base carries the next slice, so the whole map comes every this many chunks.
+    // A receiver needs the map to place points but not to show the base; sent with every base, the
+    // bunny's map (8 packets at level 6) would be twice the rest of the base.
+    size_t map_slices = 2;
 };
 
 // One slot of the cycle: which input packet is sent there.
@@ -71,6 +76,7 @@ struct Carousel {
     std::vector<uint32_t> base;      // input indices of the base packets, in input order
     std::vector<uint32_t> stream_info;  // input indices of the STREAM_INFO parts (also in `base`)
     std::vector<uint32_t> data;      // input indices of the POINTS packets, in input order
+    std::vector<uint32_t> maps;      // format 1.7: input indices of the POINT_MAP packets, in input order
     // Signed streams: input indices of the MANIFEST parts that list only detail packets; each goes
     // just before the first packet it lists and again half-way through them (its bytes count in
     // repeat_bytes). MANIFEST parts that list base packets are in `base`.
@@ -89,6 +95,7 @@ struct Carousel {
     bool restamp_sequence = true;
 
     uint64_t base_bytes = 0;         // B: one copy of the base
+    uint64_t map_bytes = 0;          // every POINT_MAP packet once (sent a slice with each base)
     uint64_t data_bytes = 0;         // D: every POINTS packet once
     uint64_t repeat_bytes = 0;       // R: the STREAM_INFO parts (and detail MANIFEST parts) sent inside chunks
     uint64_t cycle_bytes = 0;        // n * B + D + R, times period_cycles

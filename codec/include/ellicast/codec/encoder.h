@@ -56,6 +56,10 @@ struct EncodeOptions {
     // The exact layer (format 1.3, spec 19): each object's original triangles, coded over its points,
     // sent in CONNECTIVITY packets, so that a receiver holding every point shows the original mesh.
     bool exact_layer = true;
+    // Mapped points (format 1.7, spec 23): send an object's points as MAPPED_POINTS over a POINT_MAP
+    // of occupied cells, at the map level that makes them smallest, where that beats POINTS. false:
+    // POINTS packets, readable by 1.6 decoders.
+    bool point_map = true;
     // Called with a stage name and the fraction done (0..1); may be empty.
     std::function<void(const std::string& stage, double fraction)> progress;
 };
@@ -78,6 +82,10 @@ struct ObjectReport {
     bool closed = false;              // no boundary edges
     uint32_t exact_triangles = 0;     // triangles in the exact layer (0: none sent)
     uint32_t connectivity_bytes = 0;  // their coded size
+    uint8_t map_level = 0;            // format 1.7: the level of the object's point map (0: POINTS)
+    uint64_t plain_point_bytes = 0;   // POINTS packets the points would take
+    uint64_t map_bytes = 0;           // POINT_MAP packets (0 without a map)
+    uint64_t mapped_point_bytes = 0;  // MAPPED_POINTS packets (0 without a map)
     uint32_t turned_faces = 0;        // triangles encoded turned round: parts that faced inward or
                                       // against their neighbours (the input is not changed)
     double interior_fraction = 0;     // of the grid's voxels, inside the surface

@@ -15,7 +15,7 @@ namespace ellicast {
 
 struct EncodedAsset {
     EncodeResult encoded;  // stream info, per-object contents, reports, warnings
-    // Every packet in transmission order: STREAM_INFO, ELLIPSOIDS, then the scene (SCENE,
+    // Every packet in transmission order: STREAM_INFO, ELLIPSOIDS, POINT_MAP, then the scene (SCENE,
     // MATERIAL, TEXTURE_FRAGMENT: base data, a receiver wants it before the detail), then POINTS,
     // then JOINT_WEIGHTS (skin weights), then MORPH_DELTAS (morph targets), then CONNECTIVITY (the exact layer), then POINTS_REPAIR (EncodeOptions::repair_ratio).
     // Sequence numbers count up in this order from 0.
@@ -25,6 +25,7 @@ struct EncodedAsset {
     size_t connectivity_packets = 0, connectivity_bytes = 0;  // the exact layer (format 1.3), after the points
     size_t weight_packets = 0, weight_bytes = 0;  // JOINT_WEIGHTS (format 1.5), right after the points
     size_t morph_packets = 0, morph_bytes = 0;    // MORPH_DELTAS (format 1.6), after the weights
+    size_t map_packets = 0, map_bytes = 0;        // POINT_MAP (format 1.7), right after the ellipsoids
 };
 
 // Encodes the objects of `asset` (one stream object each, in their own frames) and, when
