@@ -314,6 +314,36 @@ TEST_CASE("the faulty vectors name the reason they must be rejected with") {
         {"morph_mesh_weight_contradicts", "stream mismatch"},
         {"morph_mesh_weight_infinite", "malformed payload"},
         {"morph_mesh_weights_short", "malformed payload"},
+        {"map_payload_short", "malformed payload"},
+        {"map_point_total_zero", "malformed payload"},
+        {"map_rice_16", "malformed payload"},
+        {"map_root_count_zero", "malformed payload"},
+        {"map_malformed_before_stream_info", "malformed payload"},
+        {"map_unknown_object", "unknown object"},
+        {"map_unmapped_object", "malformed payload"},
+        {"map_root_level_past_level", "malformed payload"},
+        {"map_roots_not_increasing", "malformed payload"},
+        {"map_mask_zero", "malformed payload"},
+        {"map_bits_end_early", "malformed payload"},
+        {"map_counts_not_summing", "malformed payload"},
+        {"map_trailing_byte", "malformed payload"},
+        {"map_ranks_past_point_count", "index out of range"},
+        {"map_held_out_of_range", "index out of range"},
+        {"map_fragment_contradicts", "stream mismatch"},
+        {"map_fragment_overlaps", "stream mismatch"},
+        {"map_fragment_cells_misordered", "stream mismatch"},
+        {"map_points_length_mismatch", "malformed payload"},
+        {"map_points_index_overflow", "malformed payload"},
+        {"map_points_index_out_of_range", "index out of range"},
+        {"map_points_for_unmapped_object", "malformed payload"},
+        {"map_points_for_mapped_object", "malformed payload"},
+        {"map_entry_level_at_position_bits", "malformed payload"},
+        {"map_entry_batch_zero", "malformed payload"},
+        {"map_entry_batch_without_level", "malformed payload"},
+        {"map_entry_level_contradicts", "stream mismatch"},
+        {"map_entry_batch_contradicts", "stream mismatch"},
+        {"map_entry_in_1_6_packet", "stream mismatch"},
+        {"map_repair_symbol_length", "malformed payload"},
     };
     for (const auto& [name, reason] : reasons) {
         INFO(name);
@@ -602,6 +632,99 @@ TEST_CASE("the morph vectors: the unusual ones decode to the targets and morph a
                 }
             }
         }
+}
+
+TEST_CASE("the mapped-point vectors: the unusual ones decode to the objects of valid/map, every placed point lies in "
+          "the cell its rank falls in, and what is not placed is listed (spec 23)") {
+    auto decode = [](const std::string& vector) {
+        return conformance::expected_decode(read_bytes(vectors_dir() / (vector + ".ellc")));
+    };
+    const auto valid = decode("valid/map");
+    const auto& o0 = valid["objects"][0];
+    REQUIRE(o0["info"]["map_level"] == 5);
+    REQUIRE(o0["info"]["map_batch"] == 28);
+    CHECK(!valid["objects"][1]["info"].contains("map_level"));  // listed for a mapped object only
+    CHECK(!valid["objects"][1].contains("map"));
+    CHECK(o0["points_received"] == 240);
+    CHECK(o0["map"]["complete"] == true);
+    CHECK(o0["map"]["ranks"] == 240);
+    CHECK(o0["map"]["unplaced"].empty());
+    CHECK(o0["map"]["fragments"].size() >= 3);
+    CHECK(valid["rejections"].empty());
+    for (const char* same : {"unusual/map_points_before_map", "unusual/map_before_stream_info",
+                             "unusual/map_fragments_reencoded", "unusual/map_odd_batches", "valid/map_repair",
+                             "unusual/map_repair_before_map"}) {
+        INFO(same);
+        const auto j = decode(same);
+        CHECK(j["rejections"].empty());
+        auto objects = j["objects"];
+        CHECK(objects[0]["map"] == o0["map"]);
+        CHECK(objects[0]["points"] == o0["points"]);
+        CHECK(objects[0]["point_digest"] == o0["point_digest"]);
+        CHECK(objects[1] == valid["objects"][1]);
+    }
+    CHECK(decode("unusual/map_fragments_reencoded")["counters"]["duplicates"] == o0["map"]["fragments"].size());
+    CHECK(decode("unusual/map_repair_before_map")["objects"][0]["points_recovered"] == 28);
+    // A STREAM_INFO that says 1.6 has no map fields, whatever its 48-byte entries hold (spec 23.1).
+    const auto old = decode("unusual/map_entry_1_6");
+    CHECK(old["rejections"].empty());
+    for (const auto& o : old["objects"]) {
+        CHECK(!o["info"].contains("map_level"));
+        CHECK(!o.contains("map"));
+        CHECK(o["points_received"] == o["info"]["point_count"]);
+    }
+    // A fragment lost: the points of its ranks stay unplaced, and only they (spec 23.4, 23.6).
+    const auto missing = decode("faulty/map_fragment_missing")["objects"][0];
+    CHECK(missing["map"]["complete"] == false);
+    CHECK(missing["map"]["unplaced"].size() + missing["points_received"].get<size_t>() == 240);
+    CHECK(missing["map"]["ranks"].get<uint64_t>() == 240 - missing["map"]["unplaced"].size());
+    CHECK(decode("faulty/map_fragment_missing")["rejections"].empty());
+    const auto repaired = decode("faulty/map_repair_fragment_missing")["objects"][0];
+    CHECK(repaired["points_recovered"] == 28);
+    CHECK(repaired["map"]["unplaced"] == missing["map"]["unplaced"]);
+    // In every vector with a mapped object: each placed point lies in the cell of level map_level that holds its
+    // rank (spec 23.2), its offset is what its record carried, and each unplaced record's rank is in no fragment.
+    size_t checked = 0;
+    for (const std::string set : {"valid", "unusual", "faulty"})
+        for (const auto& file : vectors_in(set)) {
+            const auto j = conformance::expected_decode(read_bytes(file));
+            for (const auto& o : j["objects"]) {
+                if (!o.contains("map")) continue;
+                INFO(file.string());
+                const unsigned P = j["stream_info"]["position_bits"].get<unsigned>();
+                const unsigned L = o["info"]["map_level"].get<unsigned>();
+                const uint32_t n = o["info"]["point_count"].get<uint32_t>(), batch = o["info"]["map_batch"].get<uint32_t>();
+                auto cell_of_rank = [&](uint32_t rank, uint64_t& code) {
+                    for (const auto& f : o["map"]["fragments"]) {
+                        uint64_t at = f["first_rank"].get<uint64_t>();
+                        if (rank < at || rank >= at + f["point_total"].get<uint64_t>()) continue;
+                        for (const auto& c : f["cells"]) {
+                            at += c[1].get<uint64_t>();
+                            if (rank < at) {
+                                code = c[0].get<uint64_t>();
+                                return true;
+                            }
+                        }
+                    }
+                    return false;
+                };
+                for (const auto& p : o["points"]) {
+                    uint64_t code = 0;
+                    REQUIRE(cell_of_rank(mapped_rank(p["index"].get<uint32_t>(), n, batch), code));
+                    const std::array<uint32_t, 3> q = {p["q"][0].get<uint32_t>(), p["q"][1].get<uint32_t>(),
+                                                       p["q"][2].get<uint32_t>()};
+                    CHECK(morton_cell(q, P, L) == code);
+                    CHECK(cell_corner(code, P, L)[0] == (q[0] >> (P - L)) << (P - L));
+                }
+                for (const auto& u : o["map"]["unplaced"]) {
+                    uint64_t code = 0;
+                    CHECK(!cell_of_rank(mapped_rank(u["index"].get<uint32_t>(), n, batch), code));
+                    for (int a = 0; a < 3; ++a) CHECK(u["q"][a].get<uint32_t>() < (1u << (P - L)));
+                }
+                ++checked;
+            }
+        }
+    CHECK(checked >= 35);
 }
 
 #ifndef ELLICAST_FORMAT_TESTS_ONLY

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent format 1.6 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.7 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
@@ -24,7 +24,10 @@ comparisons, the joints and influence records held, and the nodes a receiver sho
 format 1.6 the MORPH_DELTAS and MORPH_ANIMATION packets and the mesh record's target field of spec section 22:
 their checks and comparisons, the displacement records held (their i16 integers against the object's scales,
 and the displacements as one f32 multiplication each) and morph keys held, the meshes a receiver shows with
-their targets and the morph tracks it plays, spec 22.4) so
+their targets and the morph tracks it plays, spec 22.4; for format 1.7 the object entry's map fields and the
+POINT_MAP and MAPPED_POINTS packets of spec section 23: their checks and comparisons, the Rice-coded trees of
+the fragments decoded here, the ranks of spec 23.2, the records held but not placed and those placed, and
+POINTS_REPAIR over mapped records, spec 23.5) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -55,6 +58,8 @@ KNOWN_14 = {0x14: "ANIMATION"}
 KNOWN_15 = {0x15: "SKIN", 0x07: "JOINT_WEIGHTS"}
 # Format 1.6 (spec sections 4 and 22).
 KNOWN_16 = {0x16: "MORPH_ANIMATION", 0x08: "MORPH_DELTAS"}
+# Format 1.7 (spec sections 4 and 23): both critical, both belong to an object.
+KNOWN_17 = {0x09: "MAPPED_POINTS", 0x0A: "POINT_MAP"}
 SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14, 0x15, 0x16}  # JOINT_WEIGHTS and MORPH_DELTAS belong to an object
 PATHS = ("translation", "rotation", "scale")
 INTERPOLATIONS = ("LINEAR", "STEP", "CUBICSPLINE")
@@ -151,8 +156,9 @@ def read_container(buf):
     return None, packets, damaged
 
 
-def decode_stream_info(p):
-    """Spec 5.1..5.3. Returns (fields, object_count, first_object, entries) or None if malformed."""
+def decode_stream_info(p, minor=7):
+    """Spec 5.1..5.3. Returns (fields, object_count, first_object, entries) or None if malformed. `minor`: the
+    packet's version_minor (the entries' map fields are read only from 1.7 on, spec 23.1)."""
     if len(p) < 32:
         return None
     info_size, entry_size, packet_size = struct.unpack_from("<HHH", p, 0)
@@ -181,12 +187,21 @@ def decode_stream_info(p):
             return None
         if kind not in (0, 1) or attrs & 0xF0 or (attrs & 8 and not attrs & 4) or (kind == 1 and ne != 0):
             return None
+        # Format 1.7 (spec 23.1): map_level at 44, map_batch at 46, read only from a packet that says 1.7 or
+        # later whose entries are at least 48 bytes; otherwise both are 0 (bytes after 43 are a later field).
+        level, batch = 0, 0
+        if minor >= 7 and entry_size >= 48:
+            level, batch = p[e + 44], struct.unpack_from("<H", p, e + 46)[0]
+            if level >= pb or (level == 0 and batch != 0) or (level > 0 and batch == 0):
+                return None
         entries.append(dict(frame_origin=[ox, oy, oz], frame_scale=scale, ellipsoid_count=ne, point_count=npts,
                             kind="surface" if kind == 0 else "point set", attributes=attrs,
                             texcoord_origin=list(to), texcoord_scale=list(ts),
                             # Spec 19: flags bit 8, the exact layer; it means nothing for a point set. From
                             # 1.3 on it is compared (5.4); the other bits of the field are not.
-                            exact_layer=bool(flags & 0x100) and kind == 0))
+                            exact_layer=bool(flags & 0x100) and kind == 0,
+                            # Compared like the other fields (5.4); an entry without them compares as 0, 0.
+                            map_level=level, map_batch=batch))
     fields = dict(packet_size=packet_size, position_bits=pb, normal_bits=nb, texcoord_bits=tb, color_bits=cb,
                   ellipsoid_encoding=enc, content_id=content_id, grid_hint=grid_hint, coverage_target=coverage,
                   seed=seed)
@@ -194,15 +209,8 @@ def decode_stream_info(p):
 
 
 def record_bits(info, obj):
-    a = obj["attributes"]
-    b = 3 * info["position_bits"]
-    if a & 1:
-        b += 2 * info["normal_bits"]
-    if a & 2:
-        b += 2 * info["texcoord_bits"]
-    if a & 4:
-        b += (4 if a & 8 else 3) * info["color_bits"]
-    return b
+    """B of spec 7.1, or for a mapped object B_m of spec 23.4."""
+    return sum(record_widths(info, obj))
 
 
 def decode_batch(p, record, count_bits=None):
@@ -222,15 +230,9 @@ def unpack_ellipsoid(bits):
 
 
 def unpack_point(bits, info, obj):
-    a = obj["attributes"]
-    q = [bits.get(info["position_bits"]) for _ in range(3)]
-    if a & 1:
-        q += [bits.get(info["normal_bits"]) for _ in range(2)]
-    if a & 2:
-        q += [bits.get(info["texcoord_bits"]) for _ in range(2)]
-    if a & 4:
-        q += [bits.get(info["color_bits"]) for _ in range(4 if a & 8 else 3)]
-    return q
+    """A point record (spec 7.1), or for a mapped object a mapped record (spec 23.4: its offset, then the
+    attributes)."""
+    return [bits.get(n) for n in record_widths(info, obj)]
 
 
 def dequantize_ellipsoid(q, obj):
@@ -1117,9 +1119,10 @@ def pack_records(records, widths, length):
 
 
 def record_widths(info, obj):
-    """The bit width of each integer of a point record (spec 7.1), in order."""
+    """The bit width of each integer of a point record (spec 7.1), in order; for an object whose map_level L is
+    not 0, of a mapped record (spec 23.4): the offset's D = position_bits - L bits per coordinate."""
     a = obj["attributes"]
-    w = [info["position_bits"]] * 3
+    w = [info["position_bits"] - obj["map_level"]] * 3
     if a & 1:
         w += [info["normal_bits"]] * 2
     if a & 2:
@@ -1148,6 +1151,98 @@ def solve_gf(matrix, rhs):
                 m[r] = [a ^ mul[b] for a, b in zip(m[r], m[col])]
                 y[r] = bytearray(a ^ mul[b] for a, b in zip(y[r], y[col]))
     return [bytes(v) for v in y]
+
+
+# ------------------------------------------------------------------------------------------------
+# Format 1.7: mapped points (spec 23).
+
+
+def mapped_rank(i, count, batch):
+    """Spec 23.2: the rank of the point of index i < count, the points dealt to batches of `batch` indices."""
+    batches = -(-count // batch)
+    last = count - (batches - 1) * batch
+    t, j = divmod(i, batch)
+    return j * batches + t - max(0, j - last)
+
+
+def morton_cell(code, level):
+    """Spec 23.2: the cell (cx, cy, cz) of level `level` whose Morton code is `code`."""
+    cell = [0, 0, 0]
+    for b in range(level):
+        for axis in range(3):
+            cell[axis] |= (code >> (3 * b + axis) & 1) << b
+    return cell
+
+
+def point_map_header(p):
+    """Spec 23.3, the fixed fields (step 11): (first_rank, point_total, root_level, rice, root_count) or None."""
+    if len(p) < 12:
+        return None
+    first, total, root_level, rice, roots = struct.unpack_from("<IIBBH", p, 0)
+    if total == 0 or rice > 15 or roots == 0:
+        return None
+    return first, total, root_level, rice, roots
+
+
+class TreeEnd(Exception):
+    """The tree of a POINT_MAP payload is malformed (spec 23.3, step 13)."""
+
+
+def point_map_cells(p, level):
+    """Spec 23.3, step 13, for an object mapped at `level` (its map_level L): the fragment's cells of level L in
+    the order the tree reaches them, each (Morton code, count), or None when the payload is malformed."""
+    first, total, root_level, rice, roots = point_map_header(p)
+    if level == 0 or root_level > level:
+        return None
+    # The tree as a string of bits in stream order (LSB-first, spec 1.1): a unary run is then one find().
+    stream = "".join(format(b, "08b")[::-1] for b in p[12:])
+    at = 0
+    cells, counted = [], [0]
+
+    def field(n):
+        nonlocal at
+        if at + n > len(stream):
+            raise TreeEnd()  # the bits end before the tree does
+        v = int(stream[at:at + n][::-1], 2) if n else 0
+        at += n
+        return v
+
+    def node(code, l):
+        nonlocal at
+        if l == level:
+            end = stream.find("0", at)  # floor(v / 2^k) ones, then a zero
+            if end < 0:
+                raise TreeEnd()
+            quotient = end - at
+            at = end + 1
+            v = (quotient << rice) | field(rice)
+            cells.append((code, v + 1))
+            counted[0] += v + 1
+            # Every count is at least 1: once they pass point_total they cannot add up to it (the same reason;
+            # this bounds the work by point_total as spec 23.3 says).
+            if counted[0] > total:
+                raise TreeEnd()
+            return
+        mask = field(8)
+        if mask == 0:
+            raise TreeEnd()
+        for c in range(8):
+            if mask >> c & 1:
+                node(8 * code + c, l + 1)
+
+    try:
+        previous = None
+        for _ in range(roots):
+            code = field(3 * root_level)
+            if previous is not None and code <= previous:
+                return None  # a root's code not greater than the previous root's
+            previous = code
+            node(code, root_level)
+    except TreeEnd:
+        return None
+    if counted[0] != total or len(p) != 12 + (at + 7) // 8:
+        return None  # the counts do not add up to point_total, or bytes follow the tree's last byte
+    return cells
 
 
 class Receiver:
@@ -1185,7 +1280,8 @@ class Receiver:
             return self.reject(offset, "stream mismatch")
         t = h["type"]
         if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12 and t not in KNOWN_13 and t not in KNOWN_14
-                                   and t not in KNOWN_15 and t not in KNOWN_16) or not self.know_11):
+                                   and t not in KNOWN_15 and t not in KNOWN_16 and t not in KNOWN_17)
+                                  or not self.know_11):
             if not h["flags"] & 1:
                 return self.reject(offset, "unknown critical type")
             self.stream_id = h["stream_id"]
@@ -1223,6 +1319,9 @@ class Receiver:
         elif t == 0x04 and repair_fields(h["payload"]) is None:
             # Spec 17.3: the fixed fields are checked at step 11, before the packet can be held.
             return self.reject(offset, "malformed payload")
+        elif t == 0x0A and point_map_header(h["payload"]) is None:
+            # Spec 23.3: the fixed fields are checked at step 11, before the packet can be held.
+            return self.reject(offset, "malformed payload")
         else:
             result = self.object_packet(h, offset)
         if result in ("accepted", "duplicate", "held", "skipped"):
@@ -1233,7 +1332,7 @@ class Receiver:
     def stream_info(self, h, offset):
         if h["object_id"] != 0xFFFF:
             return self.reject(offset, "malformed payload")
-        d = decode_stream_info(h["payload"])
+        d = decode_stream_info(h["payload"], h["minor"])
         if d is None:
             return self.reject(offset, "malformed payload")
         fields, count, first, entries = d
@@ -1244,8 +1343,11 @@ class Receiver:
                 return self.reject(offset, "stream mismatch")
         else:
             self.info, self.object_count = fields, count
+            # points: by index, those placed (spec 23.4) for a mapped object; records (format 1.7): a mapped
+            # object's records held, placed or not, as their integers (offset, then attributes); fragments: its
+            # POINT_MAP fragments accepted, by first rank.
             self.objects = [dict(info=None, ellipsoids={}, points={}, blocks={}, recovered=0, weights={},
-                                 morph={}, morph_kind=None) for _ in range(count)]
+                                 morph={}, morph_kind=None, records={}, fragments={}) for _ in range(count)]
             # Spec 11.1: held packets naming an object beyond the table are rejected now, in arrival order.
             for h, at in [x for x in self.held if x[0]["object_id"] >= count]:
                 self.counters["held"] -= 1
@@ -1298,7 +1400,14 @@ class Receiver:
             return self.joint_weights(obj, h, offset)
         if h["type"] == 0x08:
             return self.morph_deltas(obj, h, offset)
+        if h["type"] == 0x0A:
+            return self.point_map(obj, h, offset)
         ellipsoids = h["type"] == 2
+        mapped = obj["info"]["map_level"] > 0
+        # Spec 23.4, step 13: POINTS for an object whose map_level is not 0, MAPPED_POINTS for one whose map_level
+        # is 0, are malformed (as is a payload whose length does not match, below; the same reason).
+        if not ellipsoids and (h["type"] == 0x09) != mapped:
+            return self.reject(offset, "malformed payload")
         record = 128 if ellipsoids else record_bits(self.info, obj["info"])
         batch = decode_batch(h["payload"], record)
         if batch is None:
@@ -1307,21 +1416,79 @@ class Receiver:
         declared = obj["info"]["ellipsoid_count" if ellipsoids else "point_count"]
         if first + len(readers) > declared:
             return self.reject(offset, "index out of range")
-        store = obj["ellipsoids" if ellipsoids else "points"]
+        store = obj["ellipsoids"] if ellipsoids else self.held_store(obj)
         fresh = []
         for i, bits in enumerate(readers):
             q = unpack_ellipsoid(bits) if ellipsoids else unpack_point(bits, self.info, obj["info"])
-            if first + i not in store:
-                store[first + i] = q
+            if first + i not in store:  # the first record received for an index is kept (7.2, 23.4)
                 fresh.append(first + i)
+                if mapped and not ellipsoids:
+                    self.take_record(obj, first + i, q)
+                else:
+                    store[first + i] = q
         self.counters["accepted" if fresh else "duplicates"] += 1
         if fresh and not ellipsoids:
             # Spec 17.4: after accepting a POINTS packet that brings a point of a block with rows kept,
-            # recover the block if it can be.
+            # recover the block if it can be (23.5, 23.6: a MAPPED_POINTS packet that brings a record).
             for b in sorted(obj["blocks"].values(), key=lambda b: b["first"]):
                 if b["rows"] and any(b["first"] <= i < b["first"] + b["count"] for i in fresh):
                     self.recover(obj, b)
         return "accepted" if fresh else "duplicate"
+
+    @staticmethod
+    def held_store(obj):
+        """What spec 17 calls the points held, by index: for a mapped object its records, placed or not (23.6)."""
+        return obj["records"] if obj["info"]["map_level"] else obj["points"]
+
+    def take_record(self, obj, index, q):
+        """Spec 23.4: a mapped record not held before is held, and placed at once when a fragment holding its
+        rank has been accepted."""
+        obj["records"][index] = q
+        info = obj["info"]
+        rank = mapped_rank(index, info["point_count"], info["map_batch"])
+        for first, fragment in obj["fragments"].items():
+            if first <= rank < first + fragment["total"]:
+                self.place(obj, index, rank, first, fragment)
+                break
+
+    def place(self, obj, index, rank, first, fragment):
+        """Spec 23.2: the point of rank `rank` lies in the cell of level L that holds it; its quantized position
+        is that cell's corner (cell * 2^D on each axis) plus the offset its record carries."""
+        d = self.info["position_bits"] - obj["info"]["map_level"]
+        at = first
+        for code, count in fragment["cells"]:
+            if rank < at + count:
+                break
+            at += count
+        cell = morton_cell(code, obj["info"]["map_level"])
+        q = obj["records"][index]
+        obj["points"][index] = [(cell[k] << d) + q[k] for k in range(3)] + q[3:]
+
+    def point_map(self, obj, h, offset):
+        """Spec 23.3 with the object's entry: step 13 (the tree), 14 (the ranks), 15 (against the fragments
+        kept); then the records held whose rank the fragment holds are placed (23.4)."""
+        p, info = h["payload"], obj["info"]
+        first, total, _, _, _ = point_map_header(p)
+        cells = point_map_cells(p, info["map_level"])
+        if cells is None:
+            return self.reject(offset, "malformed payload")
+        if first + total > info["point_count"]:  # Python integers do not overflow
+            return self.reject(offset, "index out of range")
+        kept = obj["fragments"]
+        if first in kept and kept[first]["cells"] == cells:
+            return self.news(False)  # a duplicate, whatever its root_level and rice
+        for g_first, g in kept.items():
+            below = first + total <= g_first and cells[-1][0] < g["cells"][0][0]
+            above = first >= g_first + g["total"] and cells[0][0] > g["cells"][-1][0]
+            if not (below or above):
+                return self.reject(offset, "stream mismatch")
+        fragment = kept[first] = dict(total=total, cells=cells)
+        for index in sorted(obj["records"]):
+            if index not in obj["points"]:
+                rank = mapped_rank(index, info["point_count"], info["map_batch"])
+                if first <= rank < first + total:
+                    self.place(obj, index, rank, first, fragment)
+        return self.news(True)
 
     def joint_weights(self, obj, h, offset):
         """Spec 21.2 with the object's entry: step 14, then each record against the one held (step 15)."""
@@ -1489,13 +1656,14 @@ class Receiver:
         return range(start, min(start + block["batch"], block["first"] + block["count"]))
 
     def complete(self, obj, block):
-        return all(i in obj["points"] for i in range(block["first"], block["first"] + block["count"]))
+        held = self.held_store(obj)  # for a mapped object: every record held, placed or not (23.6)
+        return all(i in held for i in range(block["first"], block["first"] + block["count"]))
 
     def recover(self, obj, block):
         """Spec 17.4: with u batches not wholly held and at least u rows, solve with the first u rows."""
         if block["recovered"] or self.complete(obj, block):
             return
-        points, k = obj["points"], block["k"]
+        points, k = self.held_store(obj), block["k"]
         known = [j for j in range(k) if all(i in points for i in self.batch_range(block, j))]
         unknown = [j for j in range(k) if j not in known]
         u = len(unknown)
@@ -1519,7 +1687,10 @@ class Receiver:
             for i in self.batch_range(block, j):
                 q = [bits.get(n) for n in widths]
                 if i not in points:  # points held are kept (the first copy, spec 7.2)
-                    points[i] = q
+                    if obj["info"]["map_level"]:
+                        self.take_record(obj, i, q)  # as if a MAPPED_POINTS packet had brought it (23.5)
+                    else:
+                        points[i] = q
                     block["points_recovered"] += 1
                     obj["recovered"] += 1
         block["recovered"] = True
@@ -2083,7 +2254,9 @@ def connectivity_json(obj):
 def objects_json(r):
     objects = []
     for i, obj in enumerate(r.objects):
-        info = obj["info"] and {k: v for k, v in obj["info"].items() if k != "exact_layer"}
+        # The map fields (format 1.7) are listed only for an object whose map_level is not 0 (README).
+        info = obj["info"] and {k: v for k, v in obj["info"].items() if k != "exact_layer" and
+                                (k not in ("map_level", "map_batch") or obj["info"]["map_level"])}
         o = dict(id=i, info=info, ellipsoids_received=len(obj["ellipsoids"]),
                  points_received=len(obj["points"]))
         if obj["info"] is not None:
@@ -2113,6 +2286,15 @@ def objects_json(r):
                 o["weights"] = [dict(index=i, joints=j, weights=w) for i, (j, w) in sorted(obj["weights"].items())]
             # Format 1.6 (spec 22.1): the target count, attributes and displacement records held, listed when
             # there is one (README).
+            # Format 1.7 (spec 23): for a mapped object, its fragments, the ranks they hold, whether its map is
+            # complete, and the records held but not placed (README).
+            if obj["info"]["map_level"]:
+                ranks = sum(g["total"] for g in obj["fragments"].values())
+                o["map"] = dict(fragments=[dict(first_rank=f, point_total=g["total"], cells=[list(c) for c in g["cells"]])
+                                           for f, g in sorted(obj["fragments"].items())],
+                                ranks=ranks, complete=ranks == obj["info"]["point_count"],
+                                unplaced=[dict(index=i, q=q) for i, q in sorted(obj["records"].items())
+                                          if i not in obj["points"]])
             if obj["morph"]:
                 targets, attributes, scales = obj["morph_kind"]
                 o["morph"] = dict(target_count=targets, attributes=attributes, scales=scales,
@@ -2133,7 +2315,7 @@ def decode(buf):
         old.add(h, offset)
         name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or KNOWN_12.get(h["type"]) or \
             KNOWN_13.get(h["type"]) or KNOWN_14.get(h["type"]) or KNOWN_15.get(h["type"]) or KNOWN_16.get(h["type"]) or \
-            "UNKNOWN(0x%02X)" % h["type"]
+            KNOWN_17.get(h["type"]) or "UNKNOWN(0x%02X)" % h["type"]
         plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
                           flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
                           object_id=h["object_id"], payload_length=h["payload_length"], result=result))

@@ -1,4 +1,4 @@
-// The expected decode of a conformance vector as JSON: what a format 1.6 decoder makes of a container
+// The expected decode of a conformance vector as JSON: what a format 1.7 decoder makes of a container
 // file (spec/format.md sections 10 and 11). The vector generator (make_vectors.cpp) writes it next to
 // each .ellc; tests/test_conformance.cpp recomputes it with the library and compares. The JSON layout
 // is described in spec/vectors/README.md.
@@ -112,14 +112,21 @@ inline nlohmann::json stream_info_json(const StreamInfo& s, size_t object_count)
 }
 
 inline nlohmann::json object_info_json(const ObjectInfo& o) {
-    return {{"frame_origin", floats(o.frame.origin.data(), 3)},
-            {"frame_scale", shortest(o.frame.scale)},
-            {"ellipsoid_count", o.ellipsoid_count},
-            {"point_count", o.point_count},
-            {"kind", o.kind == ObjectKind::Surface ? "surface" : "point set"},
-            {"attributes", o.attributes},
-            {"texcoord_origin", floats(o.texcoord_origin.data(), 2)},
-            {"texcoord_scale", floats(o.texcoord_scale.data(), 2)}};
+    nlohmann::json j = {{"frame_origin", floats(o.frame.origin.data(), 3)},
+                        {"frame_scale", shortest(o.frame.scale)},
+                        {"ellipsoid_count", o.ellipsoid_count},
+                        {"point_count", o.point_count},
+                        {"kind", o.kind == ObjectKind::Surface ? "surface" : "point set"},
+                        {"attributes", o.attributes},
+                        {"texcoord_origin", floats(o.texcoord_origin.data(), 2)},
+                        {"texcoord_scale", floats(o.texcoord_scale.data(), 2)}};
+    // Format 1.7 (spec 23.1): the map fields, listed only for a mapped object (map_level > 0), so that the
+    // decodes of the streams without a map stay as they were.
+    if (o.mapped()) {
+        j["map_level"] = o.map_level;
+        j["map_batch"] = o.map_batch;
+    }
+    return j;
 }
 
 // Format 1.3 (spec 19.1, 19.2, 19.5): an object's connectivity, held from the first CONNECTIVITY or
@@ -239,6 +246,24 @@ inline nlohmann::json objects_json(const ReceivedStream& stream) {
                     weights.push_back({{"index", index}, {"joints", joints}, {"weights", w}});
                 }
                 o["weights"] = weights;
+            }
+            // Format 1.7 (spec 23): a mapped object's map: the fragments accepted (by first rank, each with its
+            // cells of level map_level as [Morton code, count] in code order), the ranks they hold, whether
+            // they hold every rank, and the records held but not placed (by index, each as its integers: the
+            // offset inside its cell, then the attributes). Placed points are in `points`.
+            if (oi.mapped()) {
+                json fragments = json::array(), unplaced = json::array();
+                for (const auto& [first, f] : object.map_fragments) {
+                    json cells = json::array();
+                    for (const MapCell& c : f.cells) cells.push_back({c.code, c.count});
+                    fragments.push_back({{"first_rank", first}, {"point_total", f.point_total}, {"cells", cells}});
+                }
+                for (const auto& [index, q] : object.unplaced)
+                    unplaced.push_back({{"index", index}, {"q", point_integers(q, oi)}});
+                o["map"] = {{"fragments", fragments},
+                            {"ranks", object.map_ranks},
+                            {"complete", object.map_complete()},
+                            {"unplaced", unplaced}};
             }
             // Format 1.6 (spec 22.1): the target count, attributes and scales kept for the object and the
             // displacement records held, by point index, each as its integers and as its dequantized

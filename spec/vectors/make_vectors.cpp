@@ -5730,6 +5730,752 @@ void morph_vectors(Writer& w) {
             morph_rebuilt([](AnimationPiece& a) { a.values[6] += 0.125f; }));
 }
 
+// ------------------------------------------------------------------------------------------------
+// Format 1.7: mapped points (POINT_MAP, MAPPED_POINTS, spec 23). The mapped stream, at packet size 200:
+// object 0 (8 ellipsoids, 240 points with normals, in pairs on a sphere) mapped at level 5 (D = 9) with batch
+// 28 (the mapped records of B_m = 3 x 9 + 2 x 10 = 47 bits a 200-byte packet holds: 9 batches, the last of 16),
+// object 1 (4 ellipsoids, 30 points with RGB colour) not mapped. Its STREAM_INFO (48-byte entries), POINT_MAP
+// and MAPPED_POINTS packets say 1.7 (as the library writes them), its POINTS_REPAIR packets 1.2, its
+// ELLIPSOIDS and POINTS packets 1.0.
+
+constexpr uint8_t kMapLevel = 5;
+constexpr uint16_t kMapBatch = 28;
+constexpr uint32_t kMapPoints = 240;
+constexpr uint32_t kMapBatches = (kMapPoints + kMapBatch - 1) / kMapBatch;
+
+void set_minor(Packet& p, uint8_t minor) {
+    p[5] = minor;
+    reseal(p);
+}
+
+// Offsets in a POINT_MAP packet (header included), spec 23.3; in a STREAM_INFO packet of 48-byte entries
+// (32-byte stream-level fields), the map fields of entry i (spec 23.1).
+constexpr size_t kMapFirstRank = kHeaderSize, kMapPointTotal = kHeaderSize + 4, kMapRootLevel = kHeaderSize + 8,
+                 kMapRice = kHeaderSize + 9, kMapRootCount = kHeaderSize + 10, kMapTree = kHeaderSize + 12;
+constexpr size_t entry_map_level(size_t i) { return kHeaderSize + 32 + 48 * i + 44; }
+constexpr size_t entry_map_batch(size_t i) { return kHeaderSize + 32 + 48 * i + 46; }
+
+struct MapStream {
+    StreamInfo info;
+    std::vector<ObjectContent> contents;  // a mapped object's points in index order (mapped_order)
+    StreamPackets packets;
+    std::vector<PointMapFragment> fragments;  // object 0's, in the order of its POINT_MAP packets
+    std::vector<RepairBlock> blocks;          // object 0's repair blocks (map_stream_repairs)
+    std::vector<Packets> repairs;             // repairs[b]: block b's POINTS_REPAIR packets of rows k ..
+
+    Packets base() const {
+        Packets out = packets.stream_info;
+        out.insert(out.end(), packets.ellipsoids.begin(), packets.ellipsoids.end());
+        out.insert(out.end(), packets.maps.begin(), packets.maps.end());
+        return out;
+    }
+    Packets all() const {
+        Packets out = base();
+        out.insert(out.end(), packets.points.begin(), packets.points.end());
+        return out;
+    }
+    // The POINTS and MAPPED_POINTS packets of `object`, in stream order.
+    Packets points_of(uint16_t object) const {
+        Packets out;
+        for (const Packet& p : packets.points)
+            if (get16(p, 16) == object) out.push_back(p);
+        return out;
+    }
+    const Packet& repair(size_t b, unsigned r) const { return repairs[b].at(r - blocks[b].source_count()); }
+    // A MAPPED_POINTS (or, for an object without a map, POINTS) packet of the points [first, first + count) of
+    // `object`, cut where the packetizer would not cut (spec 23.4: any run of consecutive indices).
+    Packet points_packet(uint32_t first, uint32_t count, uint32_t sequence, uint16_t object = 0) const {
+        PointBatch batch;
+        batch.first_index = first;
+        batch.points.assign(contents[object].points.begin() + first, contents[object].points.begin() + first + count);
+        PacketHeader h;
+        const bool mapped = info.objects[object].mapped();
+        h.version_minor = mapped ? kMapMinor : 0;
+        h.type = uint8_t(mapped ? PacketType::MappedPoints : PacketType::Points);
+        h.stream_id = kStreamId;
+        h.sequence = sequence;
+        h.object_id = object;
+        return write_packet(h, encode_points_payload(batch, info, info.objects[object]));
+    }
+    // A POINT_MAP packet of `f` for object 0 (encoded as given: the encoder writes point_total as given and
+    // takes the roots from the cells in the order given).
+    Packet map_packet(const PointMapFragment& f, uint32_t sequence, uint16_t object = 0) const {
+        PacketHeader h;
+        h.version_minor = kMapMinor;
+        h.type = uint8_t(PacketType::PointMap);
+        h.stream_id = kStreamId;
+        h.sequence = sequence;
+        h.object_id = object;
+        return write_packet(h, encode_point_map_payload(f, info.objects[0].map_level));
+    }
+};
+
+// Points in pairs on a sphere of radius 0.4 of the frame around its middle: `count` / 2 directions of a
+// golden-angle spiral, the two points of a pair 0.01 of the frame or less from the spiral point along each
+// axis, so that a cell of level 5 often holds both. Normals: the direction.
+std::vector<QuantizedPoint> paired_points(const StreamInfo& info, const ObjectInfo& o, uint32_t count) {
+    std::vector<QuantizedPoint> out;
+    const double s = o.frame.scale, golden = M_PI * (3 - std::sqrt(5.0)), jitter = 0.02;
+    const uint32_t pairs = count / 2;
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t c = i / 2, j = i % 2;
+        const double z = 1 - 2 * (c + 0.5) / pairs, r = std::sqrt(std::max(0.0, 1 - z * z)), phi = golden * c;
+        const std::array<double, 3> dir = {r * std::cos(phi), r * std::sin(phi), z};
+        const std::array<double, 3> off = {j ? -0.13 : -0.5, j ? 0.11 : -0.5, j ? 0.33 : -0.5};
+        SurfacePoint p;
+        for (int k = 0; k < 3; ++k) {
+            p.position[k] = float(o.frame.origin[k] + s * (0.5 + 0.4 * dir[k] + off[k] * jitter));
+            p.normal[k] = float(dir[k]);
+        }
+        out.push_back(quantize_point(p, info, o));
+    }
+    return out;
+}
+
+// The mapped points of a stream: each mapped object's points put in index order for its level and batch
+// (mapped_order), packetized by the library; ELLIPSOIDS and POINTS packets then say 1.0. With `paired`,
+// object 0's points are paired_points.
+MapStream map_stream(StreamInfo info, uint64_t seed, bool paired = false) {
+    MapStream m;
+    m.info = info;
+    Rng rng(seed);
+    for (const ObjectInfo& o : info.objects) {
+        ObjectContent c = make_content(info, o, rng);
+        if (paired && m.contents.empty()) c.points = paired_points(info, o, o.point_count);
+        if (o.mapped()) {
+            const std::vector<uint32_t> order = mapped_order(c.points, info.position_bits, o.map_level, o.map_batch);
+            std::vector<QuantizedPoint> sorted;
+            for (uint32_t k : order) sorted.push_back(c.points[k]);
+            c.points = sorted;
+        }
+        m.contents.push_back(c);
+    }
+    if (Error e = packetize_stream(info, m.contents, kStreamId, m.packets); e != Error::Ok) {
+        std::cerr << "make_vectors: packetize_stream (mapped) failed: " << error_name(e) << "\n";
+        std::exit(1);
+    }
+    for (Packet& p : m.packets.ellipsoids) set_minor(p, 0);
+    for (Packet& p : m.packets.points)
+        if (p[6] == uint8_t(PacketType::Points)) set_minor(p, 0);
+    for (const Packet& p : m.packets.maps) {
+        PointMapFragment f;
+        std::string why;
+        const ObjectInfo& o = info.objects[get16(p, 16)];
+        if (decode_point_map_payload(payload_of(p), info.position_bits, o.map_level, f, &why) != Error::Ok) {
+            std::cerr << "make_vectors: the library's POINT_MAP packet does not decode: " << why << "\n";
+            std::exit(1);
+        }
+        if (get16(p, 16) == 0) m.fragments.push_back(f);
+    }
+    return m;
+}
+
+StreamInfo mapped_info() {
+    ObjectInfo o0 = make_object({-1, -1, -1}, 2, 8, kMapPoints, kAttrNormal);
+    o0.map_level = kMapLevel;
+    o0.map_batch = kMapBatch;
+    return default_info({o0, make_object({0, 0, 0}, 1, 4, 30, kAttrColor)}, 200);
+}
+
+// The mapped stream with object 0's repair blocks (spec 23.5): its MAPPED_POINTS batches of 28, at most 3 a
+// block, 3 rows each.
+MapStream map_stream_repairs() {
+    MapStream m = map_stream(mapped_info(), 230, true);
+    m.blocks = plan_repair_blocks(kMapPoints, kMapBatch, 3);
+    uint32_t sequence = uint32_t(m.all().size());
+    for (const RepairBlock& b : m.blocks) {
+        Packets out;
+        if (packetize_repairs(m.info, 0, m.contents[0].points, {b}, 3, kStreamId, sequence, out) != Error::Ok) {
+            std::cerr << "make_vectors: packetize_repairs (mapped) failed\n";
+            std::exit(1);
+        }
+        sequence += uint32_t(out.size());
+        m.repairs.push_back(out);
+    }
+    return m;
+}
+
+// "A..B" for a run of indices or ranks.
+std::string run_text(uint64_t first, uint64_t count) {
+    return std::to_string(first) + (count > 1 ? ".." + std::to_string(first + count - 1) : std::string());
+}
+
+void map_vectors(Writer& w) {
+    const MapStream m = map_stream_repairs();
+    const Packets stream = m.all();
+    const Packets mapped = m.points_of(0), plain = m.points_of(1);
+    const std::vector<PointMapFragment>& frags = m.fragments;
+    if (m.packets.stream_info.size() != 1 || m.packets.maps.size() < 3 || mapped.size() != kMapBatches || m.blocks.size() < 3 ||
+        m.packets.maps.size() != frags.size()) {
+        std::cerr << "make_vectors: the mapped stream takes " << m.packets.stream_info.size() << " STREAM_INFO, "
+                  << m.packets.maps.size() << " POINT_MAP, " << mapped.size() << " MAPPED_POINTS packets and "
+                  << m.blocks.size() << " repair blocks, not 1, at least 3, " << kMapBatches << " and at least 3\n";
+        std::exit(1);
+    }
+    const Packet& info = m.packets.stream_info[0];
+    const size_t n_frags = frags.size();
+    auto frag_text = [&](size_t i) {
+        return "fragment " + std::to_string(i) + " (ranks " + run_text(frags[i].first_rank, frags[i].point_total) + ", " +
+               std::to_string(frags[i].cells.size()) + " cells, root_level " + std::to_string(frags[i].root_level) +
+               ", rice " + std::to_string(frags[i].rice) + ")";
+    };
+    const std::string mapped_desc =
+        "the mapped stream (format 1.7, spec 23; packet size 200): object 0 (8 ellipsoids, 240 points with normals, "
+        "in pairs on a sphere) mapped at map_level 5 with map_batch 28 (mapped records of 3 x 9 + 2 x 10 = 47 bits), "
+        "its map in " + std::to_string(n_frags) + " POINT_MAP packets, its points in 9 MAPPED_POINTS packets of 28 "
+        "points (the last 16); object 1 (4 ellipsoids, 30 points with RGB colour) not mapped, in POINTS packets; STREAM_INFO "
+        "(48-byte entries), POINT_MAP and MAPPED_POINTS packets say 1.7, ELLIPSOIDS and POINTS 1.0";
+    // Every packet of the stream but those of `lost` (positions in `stream`).
+    auto without = [&](std::initializer_list<size_t> lost) {
+        Packets out;
+        for (size_t i = 0; i < stream.size(); ++i)
+            if (std::find(lost.begin(), lost.end(), i) == lost.end()) out.push_back(stream[i]);
+        return out;
+    };
+    const size_t maps_at = m.packets.stream_info.size() + m.packets.ellipsoids.size();  // fragment 0's position
+    auto appended = [&](Packet p) {
+        Packets out = stream;
+        restamp_packet(p, 1000);
+        out.push_back(p);
+        return out;
+    };
+    auto before_info = [&](Packet p) {
+        restamp_packet(p, 1000);
+        Packets out = {p};
+        out.insert(out.end(), stream.begin(), stream.end());
+        return out;
+    };
+
+    w.write("valid", "map",
+            mapped_desc + ", packets in stream order: every point of object 0 placed, its map complete (" +
+                std::to_string(n_frags) + " fragments), nothing held unplaced",
+            stream);
+
+    // As a carousel sends object 0's MAPPED_POINTS packets with their repair rows, under loss.
+    {
+        // Per block, the source batches lost; then as many rows as were lost (at least one).
+        const std::vector<std::vector<uint32_t>> lost_batches = {{1}, {0, 2}, {}, {1}};
+        Packets file = m.base();
+        file.insert(file.end(), plain.begin(), plain.end());
+        std::string what;
+        for (size_t b = 0; b < m.blocks.size(); ++b) {
+            const RepairBlock& block = m.blocks[b];
+            const std::vector<uint32_t> lost = b < lost_batches.size() ? lost_batches[b] : std::vector<uint32_t>{};
+            const uint32_t first_batch = block.first_index / kMapBatch;
+            for (uint32_t j = 0; j < block.source_count(); ++j)
+                if (std::find(lost.begin(), lost.end(), j) == lost.end()) file.push_back(mapped[first_batch + j]);
+            const size_t rows = std::max<size_t>(1, lost.size());
+            for (size_t r = 0; r < rows; ++r) file.push_back(m.repair(b, block.source_count() + unsigned(r)));
+            what += (b ? "; block " : "block ") + std::to_string(b) + " (points " + run_text(block.first_index, block.point_count) +
+                    ", k " + std::to_string(block.source_count()) + "): ";
+            if (lost.empty()) {
+                what += "nothing lost, its row a duplicate";
+            } else {
+                what += lost.size() > 1 ? "batches " : "batch ";
+                for (size_t j = 0; j < lost.size(); ++j)
+                    what += (j ? " and " : "") + std::to_string(first_batch + lost[j]) + " (points " +
+                            run_text((first_batch + lost[j]) * kMapBatch,
+                                     std::min<uint32_t>(kMapBatch, kMapPoints - (first_batch + lost[j]) * kMapBatch)) + ")";
+                what += " lost, recovered from " + std::to_string(rows) + " row" + (rows > 1 ? "s" : "");
+            }
+        }
+        w.write("valid", "map_repair",
+                mapped_desc + ", with object 0's repair blocks (spec 23.5: source symbols of mapped records, B_m = 47 "
+                              "bits): the base, object 1's POINTS packets, then per block its MAPPED_POINTS packets "
+                              "and repair rows, some lost: " + what + "; every point placed",
+                numbered(file));
+    }
+
+    // ---- unusual ----
+    {
+        Packets file = m.packets.stream_info;
+        file.insert(file.end(), m.packets.ellipsoids.begin(), m.packets.ellipsoids.end());
+        file.insert(file.end(), m.packets.points.begin(), m.packets.points.end());
+        file.insert(file.end(), m.packets.maps.begin(), m.packets.maps.end());
+        w.write("unusual", "map_points_before_map",
+                mapped_desc + ", with the POINT_MAP packets last, after every MAPPED_POINTS packet (the packets keep "
+                              "their sequence numbers): each record is held but not placed until the fragment holding "
+                              "its rank arrives, then placed (spec 23.4); decodes as valid/map",
+                file);
+    }
+    {
+        Packets file = {mapped[0], mapped[5], m.packets.maps[1], mapped[1]};
+        file.push_back(m.packets.maps[0]);
+        file.insert(file.end(), stream.begin(), stream.end());
+        w.write("unusual", "map_before_stream_info",
+                mapped_desc + ", with MAPPED_POINTS packets of points 0..27 and 140..167, the POINT_MAP packet of " +
+                    frag_text(1) + ", MAPPED_POINTS of points 28..55 and the POINT_MAP packet of " + frag_text(0) +
+                    " first, before the STREAM_INFO: all held (11.2), released in arrival order (11.1) when it "
+                    "arrives, the records then held unplaced until the fragment holding their rank is taken in; then "
+                    "the whole stream again (those 5 packets duplicates); decodes as valid/map",
+                file);
+    }
+    {
+        Packets file = stream;
+        std::string what;
+        uint32_t sequence = 1000;
+        for (size_t i = 0; i < n_frags; ++i) {
+            // Another root level and Rice parameter that still fit the packet size.
+            bool found = false;
+            for (unsigned F = kMapLevel + 1; F-- > 0 && !found;)
+                for (unsigned k : {3u, 2u, 1u, 0u, 4u, 5u}) {
+                    if (F == frags[i].root_level && k == frags[i].rice) continue;
+                    PointMapFragment f = frags[i];
+                    f.root_level = uint8_t(F);
+                    f.rice = uint8_t(k);
+                    const Packet p = m.map_packet(f, sequence);
+                    if (p.size() > m.info.packet_size) continue;
+                    file.push_back(p);
+                    what += (i ? ", " : "") + std::to_string(F) + "/" + std::to_string(k) + " (" +
+                            std::to_string(p.size()) + " bytes)";
+                    found = true;
+                    ++sequence;
+                    break;
+                }
+            if (!found) std::exit(1);
+        }
+        w.write("unusual", "map_fragments_reencoded",
+                mapped_desc + ", then (sequence 1000..) each fragment again, coded with another root_level / rice: " +
+                    what + ": duplicates (spec 23.3: the same first_rank, cells and counts, whatever root_level and "
+                           "rice); decodes as valid/map",
+                file);
+    }
+    {
+        // Runs of object 0's points cut as no sender cuts (at most 28 a packet), out of order, one overlapping.
+        std::vector<std::pair<uint32_t, uint32_t>> runs;
+        const uint32_t lengths[] = {1, 7, 28, 17, 3, 25, 13, 27, 9, 21, 28, 11, 19, 5, 26, 2, 4};
+        uint32_t at = 0;
+        for (size_t i = 0; at < kMapPoints; ++i) {
+            const uint32_t n = std::min(lengths[i % std::size(lengths)], kMapPoints - at);
+            runs.push_back({at, n});
+            at += n;
+        }
+        Rng rng(231);
+        for (size_t i = runs.size(); i > 1; --i) std::swap(runs[i - 1], runs[rng.below(i)]);
+        runs.insert(runs.begin() + 3, {100, 28});  // overlaps the runs around it
+        Packets file = m.base();
+        file.insert(file.end(), plain.begin(), plain.end());
+        std::string what;
+        uint32_t sequence = 1000;
+        for (auto [first, count] : runs) {
+            file.push_back(m.points_packet(first, count, sequence++));
+            what += (what.empty() ? "" : ", ") + run_text(first, count);
+        }
+        w.write("unusual", "map_odd_batches",
+                mapped_desc + ", with object 0's points in MAPPED_POINTS packets of runs no sender cuts (sequence "
+                              "1000..): " + what + " (spec 23.4: a batch MAY hold any run of consecutive indices; "
+                              "the rank of each point depends on its index alone); decodes as valid/map",
+                file);
+    }
+    {
+        // Object 0 without a map, sent as POINTS, its STREAM_INFO saying 1.6 with 48-byte entries.
+        StreamInfo plain_info = mapped_info();
+        plain_info.objects[0].map_level = 0;
+        plain_info.objects[0].map_batch = 0;
+        Stream s;
+        s.info = plain_info;
+        Rng rng(230);
+        for (const ObjectInfo& o : plain_info.objects) s.contents.push_back(make_content(plain_info, o, rng));
+        packetize_stream(plain_info, s.contents, kStreamId, s.packets);
+        mark_version_1_0(s.packets);
+        Packet& si = s.packets.stream_info[0];
+        std::vector<uint8_t> payload = payload_of(si);
+        if (get16(si, kHeaderSize + 2) != 44 || payload.size() != 32 + 2 * 44) std::exit(1);
+        std::vector<uint8_t> grown(payload.begin(), payload.begin() + 32);
+        const uint8_t tails[2][4] = {{kMapLevel, 0, uint8_t(kMapBatch), 0}, {14, 0xFF, 0, 0}};
+        for (size_t i = 0; i < 2; ++i) {
+            grown.insert(grown.end(), payload.begin() + long(32 + 44 * i), payload.begin() + long(32 + 44 * (i + 1)));
+            grown.insert(grown.end(), tails[i], tails[i] + 4);
+        }
+        grown[2] = 48;  // entry_size
+        si = with_payload(si, grown);
+        set_minor(si, 6);
+        w.write("unusual", "map_entry_1_6",
+                "the two objects of the mapped stream (object 0's points from the generator's sphere, not in pairs) "
+                "without a map, object 0's points in POINTS packets (1.0), with a STREAM_INFO that says 1.6 and has "
+                "48-byte entries whose bytes 44..47 are 05 00 1C 00 (object 0: what map_level 5, map_batch 28 would be) and 0E FF 00 00 (object 1: map_level 14, which would be "
+                "malformed): a packet that says 1.6 has no map fields (spec 23.1, 9: bytes an older encoder appended "
+                "are never read as them), so both objects have map_level 0 and their POINTS packets are taken",
+                s.all());
+    }
+    {
+        // Records recovered while their fragment has not arrived: held unplaced, placed when it arrives.
+        Packets file = m.packets.stream_info;
+        file.insert(file.end(), m.packets.ellipsoids.begin(), m.packets.ellipsoids.end());
+        file.insert(file.end(), plain.begin(), plain.end());
+        const RepairBlock& b0 = m.blocks[0];
+        for (uint32_t j = 1; j < b0.source_count(); ++j) file.push_back(mapped[j]);
+        file.push_back(m.repair(0, b0.source_count()));
+        for (size_t i = b0.source_count(); i < mapped.size(); ++i) file.push_back(mapped[i]);
+        file.insert(file.end(), m.packets.maps.begin(), m.packets.maps.end());
+        w.write("unusual", "map_repair_before_map",
+                mapped_desc + ", with the POINT_MAP packets last and the MAPPED_POINTS packet of points 0..27 lost: "
+                              "block 0 (points " + run_text(b0.first_index, b0.point_count) + ") recovers those 28 "
+                              "records from its row " + std::to_string(b0.source_count()) + " before any fragment has "
+                              "arrived (spec 23.5: a source batch is held when its records are, placed or not), and "
+                              "holds them unplaced like the others until the fragments arrive; decodes as valid/map but "
+                              "for the counters, points_recovered 28 and the block",
+                numbered(file));
+    }
+    {
+        // A point set at 16 bits mapped at level 15: D = 1, Morton codes of 45 bits.
+        ObjectInfo o = make_object({-2, -2, -2}, 4, 0, 40, kAttrColor, ObjectKind::PointSet);
+        o.map_level = 15;
+        o.map_batch = 7;
+        StreamInfo info = default_info({o}, 200);
+        info.position_bits = 16;
+        const MapStream s = map_stream(info, 232);
+        std::string what;
+        for (const PointMapFragment& f : s.fragments)
+            what += (what.empty() ? "" : ", ") + run_text(f.first_rank, f.point_total) + " (root_level " +
+                    std::to_string(f.root_level) + ", " + std::to_string(f.cells.size()) + " cells)";
+        w.write("unusual", "map_level_15",
+                "a point set (kind 1) of 40 points with RGB colour, position_bits 16, mapped at map_level 15 = "
+                "position_bits - 1 (spec 23.1): offsets of D = 1 bit per coordinate, mapped records of 3 + 24 = 27 "
+                "bits, Morton codes of 45 bits (above 2^32), 15 levels of masks; map_batch 7 (6 batches, the last of 5); " +
+                    std::to_string(s.fragments.size()) + " fragments: " + what + "; packet size 200, packets in stream order",
+                s.all());
+    }
+    {
+        // Level 1 (8 cells), batch 1 (rank = index), points cut into 3 packets of 10 by the generator.
+        ObjectInfo o = make_object({-1, -1, -1}, 2, 2, 30, 0);
+        o.map_level = 1;
+        o.map_batch = 1;
+        StreamInfo info = default_info({o}, 200);
+        const MapStream s = map_stream(info, 233);
+        Packets file = s.base();
+        for (uint32_t first : {20u, 0u, 10u}) file.push_back(s.points_packet(first, 10, uint32_t(file.size())));
+        std::string what;
+        for (const MapCell& c : s.fragments.at(0).cells)
+            what += (what.empty() ? "" : ", ") + std::to_string(c.code) + ": " + std::to_string(c.count);
+        w.write("unusual", "map_level_1_batch_1",
+                "one surface object (2 ellipsoids, 30 points without attributes, 14 bits) mapped at map_level 1 (8 "
+                "cells, codes 0..7) with map_batch 1 (one batch per point: rank(i) = i, spec 23.2); its map one "
+                "fragment of root_level " + std::to_string(s.fragments.at(0).root_level) + ", rice " +
+                    std::to_string(s.fragments.at(0).rice) + ", cells (code: count) " + what +
+                    "; its points in MAPPED_POINTS packets of 20..29, 0..9, 10..19 (cut by the generator: 13-bit "
+                    "offsets, 39-bit records)",
+                file);
+    }
+
+    // ---- faulty: POINT_MAP (spec 23.3) ----
+    const Packet& frag1 = m.packets.maps[1];
+    const Packet& last_frag = m.packets.maps.back();
+    const std::string copy1 = mapped_desc + ", then (sequence 1000) a copy of the POINT_MAP packet of " + frag_text(1);
+    auto frag1_edited = [&](const std::function<void(Packet&)>& edit) {
+        Packet p = frag1;
+        edit(p);
+        reseal(p);
+        return p;
+    };
+    auto frag1_payload = [&](const std::function<void(std::vector<uint8_t>&)>& edit) {
+        std::vector<uint8_t> payload = payload_of(frag1);
+        edit(payload);
+        return with_payload(frag1, payload);
+    };
+    w.write("faulty", "map_payload_short",
+            copy1 + " cut to a payload of 11 bytes: rejected, malformed payload (spec 23.3, step 11: shorter than 12 bytes)",
+            appended(frag1_payload([](std::vector<uint8_t>& p) { p.resize(11); })));
+    const Packet total_zero = frag1_edited([](Packet& p) { put32(p, kMapPointTotal, 0); });
+    w.write("faulty", "map_point_total_zero",
+            copy1 + " with point_total 0: rejected, malformed payload (spec 23.3, step 11)", appended(total_zero));
+    w.write("faulty", "map_rice_16",
+            copy1 + " with rice 16: rejected, malformed payload (spec 23.3, step 11: rice above 15)",
+            appended(frag1_edited([](Packet& p) { p[kMapRice] = 16; })));
+    w.write("faulty", "map_root_count_zero",
+            copy1 + " with root_count 0: rejected, malformed payload (spec 23.3, step 11)",
+            appended(frag1_edited([](Packet& p) { put16(p, kMapRootCount, 0); })));
+    w.write("faulty", "map_malformed_before_stream_info",
+            "the copy of map_point_total_zero (sequence 1000) first, before the STREAM_INFO of " + mapped_desc +
+                ": rejected when it arrives, malformed payload (spec 23.3: step 11 is made whether or not a stream "
+                "info has arrived, before the packet can be held); nothing held",
+            before_info(total_zero));
+    w.write("faulty", "map_unknown_object",
+            copy1 + " sent for object 2 of the 2-object stream: rejected, unknown object (11.1 step 12)",
+            appended(frag1_edited([](Packet& p) { put16(p, 16, 2); })));
+    w.write("faulty", "map_unmapped_object",
+            copy1 + " sent for object 1, whose map_level is 0: rejected, malformed payload (spec 23.3, step 13: the "
+                    "object's map_level is 0)",
+            appended(frag1_edited([](Packet& p) { put16(p, 16, 1); })));
+    w.write("faulty", "map_root_level_past_level",
+            copy1 + " with root_level 6 where object 0's map_level is 5: rejected, malformed payload (spec 23.3, step "
+                    "13: root_level > map_level)",
+            appended(frag1_edited([](Packet& p) { p[kMapRootLevel] = kMapLevel + 1; })));
+    {
+        // Two roots of level 5 (cells), the second below the first.
+        const MapCell a = frags[0].cells.at(0), b = frags[0].cells.at(1);
+        PointMapFragment f;
+        f.first_rank = 0;
+        f.point_total = a.count + b.count;
+        f.root_level = kMapLevel;
+        f.rice = 0;
+        f.cells = {b, a};
+        w.write("faulty", "map_roots_not_increasing",
+                mapped_desc + ", then (sequence 1000) a POINT_MAP packet of object 0 with root_level 5 (each root a "
+                              "cell) and 2 roots, cell " + std::to_string(b.code) + " (count " + std::to_string(b.count) +
+                    ") then cell " + std::to_string(a.code) + " (count " + std::to_string(a.count) +
+                    "), first_rank 0: rejected, malformed payload (spec 23.3, step 13: a root's code not greater "
+                    "than the previous root's)",
+                appended(m.map_packet(f, 1000)));
+    }
+    {
+        // One root of level 4, its mask 0: 12 bits of code, then 8 zero bits.
+        const uint64_t root = frags[0].cells.at(0).code >> 3;
+        std::vector<uint8_t> payload(12, 0);
+        payload[4] = 1;           // point_total 1
+        payload[8] = kMapLevel - 1;  // root_level 4
+        payload[10] = 1;          // root_count 1
+        const uint32_t bits = uint32_t(root);  // 12 bits, then the mask's 8 zero bits
+        payload.push_back(uint8_t(bits));
+        payload.push_back(uint8_t(bits >> 8));
+        payload.push_back(0);
+        w.write("faulty", "map_mask_zero",
+                mapped_desc + ", then (sequence 1000) a POINT_MAP packet of object 0, first_rank 0, point_total 1, "
+                              "root_level 4, rice 0, one root (code " + std::to_string(root) + ") whose mask is 0 "
+                              "(a payload of 15 bytes: 20 bits of tree): rejected, malformed payload (spec 23.3, step "
+                              "13: a mask is 0)",
+                appended(with_payload(frag1, payload)));
+    }
+    w.write("faulty", "map_bits_end_early",
+            copy1 + " without the last byte of its payload: rejected, malformed payload (spec 23.3, step 13: the bits "
+                    "end before the tree does)",
+            appended(frag1_payload([](std::vector<uint8_t>& p) { p.pop_back(); })));
+    w.write("faulty", "map_counts_not_summing",
+            copy1 + " with point_total one more than its counts add up to: rejected, malformed payload (spec 23.3, step "
+                    "13)",
+            appended(frag1_edited([&](Packet& p) { put32(p, kMapPointTotal, frags[1].point_total + 1); })));
+    w.write("faulty", "map_trailing_byte",
+            copy1 + " with one byte (00) more after the last byte of its tree: rejected, malformed payload (spec 23.3, "
+                    "step 13: payload_length is not 12 + ceil(b / 8))",
+            appended(frag1_payload([](std::vector<uint8_t>& p) { p.push_back(0); })));
+    const Packet past = [&] {
+        Packet p = last_frag;
+        put32(p, kMapFirstRank, frags.back().first_rank + 1);
+        reseal(p);
+        return p;
+    }();
+    const std::string past_text = "a copy of the POINT_MAP packet of " + frag_text(n_frags - 1) + " with first_rank " +
+                                  std::to_string(frags.back().first_rank + 1) + ": its ranks end at 240, past point_count 240";
+    w.write("faulty", "map_ranks_past_point_count",
+            mapped_desc + ", then (sequence 1000) " + past_text + ": rejected, index out of range (spec 23.3, step 14)",
+            appended(past));
+    w.write("faulty", "map_held_out_of_range",
+            past_text + " (sequence 1000), first, before the STREAM_INFO of " + mapped_desc +
+                ": held (its fixed fields are well formed), then, when the STREAM_INFO releases it, rejected, index "
+                "out of range (11.1 step 14)",
+            before_info(past));
+    {
+        // The same first rank and cells as fragment 1, two counts moved.
+        PointMapFragment f = frags[1];
+        size_t a = 0;
+        while (a < f.cells.size() && f.cells[a].count < 2) ++a;
+        if (a == f.cells.size()) a = 0;
+        const size_t b = a + 1 < f.cells.size() ? a + 1 : a - 1;
+        if (f.cells[a].count < 2) {
+            f.cells[a].count += 1;
+            f.cells[b].count -= 1;
+        } else {
+            f.cells[a].count -= 1;
+            f.cells[b].count += 1;
+        }
+        w.write("faulty", "map_fragment_contradicts",
+                mapped_desc + ", then (sequence 1000) a POINT_MAP packet with the first_rank, point_total and cells of " +
+                    frag_text(1) + " but the counts of cells " + std::to_string(frags[1].cells[a].code) + " and " +
+                    std::to_string(frags[1].cells[b].code) + " " + std::to_string(f.cells[a].count) + " and " +
+                    std::to_string(f.cells[b].count) + " where they are " + std::to_string(frags[1].cells[a].count) +
+                    " and " + std::to_string(frags[1].cells[b].count) +
+                    ": not a duplicate (other counts), and its ranks overlap the kept fragment's: rejected, stream "
+                    "mismatch (spec 23.3, step 15)",
+                appended(m.map_packet(f, 1000)));
+    }
+    {
+        // Fragment 1 lost; a copy of it one rank early overlaps fragment 0's last rank (its cells lie above).
+        Packets file = without({maps_at + 1});
+        Packet p = frag1;
+        put32(p, kMapFirstRank, frags[1].first_rank - 1);
+        reseal(p);
+        restamp_packet(p, 1000);
+        file.push_back(p);
+        w.write("faulty", "map_fragment_overlaps",
+                mapped_desc + ", with the POINT_MAP packet of " + frag_text(1) + " lost, then (sequence 1000) that "
+                              "packet with first_rank " + std::to_string(frags[1].first_rank - 1) +
+                    ": its cells lie above fragment 0's and below fragment 2's, its ranks below fragment 2's, but its "
+                    "first rank is fragment 0's last: rejected, stream mismatch (spec 23.3, step 15: not entirely on "
+                    "one side of a kept fragment, in ranks and in cells together); the points of fragment 1's ranks "
+                    "stay unplaced, the map incomplete",
+                file);
+    }
+    {
+        // Fragment 1 lost; a fragment in its ranks whose cells are fragment 0's first cells.
+        PointMapFragment f;
+        f.first_rank = frags[1].first_rank;
+        f.point_total = frags[1].point_total;
+        f.root_level = kMapLevel;
+        f.rice = 0;
+        uint32_t left = f.point_total;
+        // At most 8 cells: 1 point each, the rest in the last.
+        for (size_t i = 0; i < frags[0].cells.size() && left > 0; ++i) {
+            const uint32_t c = (i == 7 || i + 1 == frags[0].cells.size() || left == 1) ? left : 1;
+            f.cells.push_back({frags[0].cells[i].code, c});
+            left -= c;
+        }
+        if (left != 0) std::exit(1);
+        f.rice = 0;
+        for (unsigned k = 0; k <= 15; ++k) {
+            f.rice = uint8_t(k);
+            if (m.map_packet(f, 1000).size() <= m.info.packet_size) break;
+        }
+        Packets file = without({maps_at + 1});
+        file.push_back(m.map_packet(f, 1000));
+        w.write("faulty", "map_fragment_cells_misordered",
+                mapped_desc + ", with the POINT_MAP packet of " + frag_text(1) + " lost, then (sequence 1000) a POINT_MAP "
+                              "packet of fragment 1's ranks (first_rank " + std::to_string(f.first_rank) + ", point_total " +
+                    std::to_string(f.point_total) + ") whose " + std::to_string(f.cells.size()) +
+                    " cells are fragment 0's first ones (root_level 5, rice " + std::to_string(f.rice) +
+                    "): its ranks lie above fragment 0's, its cells do not: rejected, stream mismatch (spec 23.3, step "
+                    "15); the map stays incomplete",
+                file);
+    }
+    {
+        const uint32_t lo = frags[1].first_rank, hi = lo + frags[1].point_total;
+        uint32_t unplaced = 0;
+        for (uint32_t i = 0; i < kMapPoints; ++i) {
+            const uint32_t r = mapped_rank(i, kMapPoints, kMapBatch);
+            unplaced += r >= lo && r < hi;
+        }
+        w.write("faulty", "map_fragment_missing",
+                mapped_desc + ", with the POINT_MAP packet of " + frag_text(1) +
+                    " lost: no rejection; the " + std::to_string(unplaced) +
+                    " points whose ranks it holds stay held but not placed (spec 23.4: not shown, not received), the "
+                    "map is not complete: the object is not complete and the stream does not conform (spec 23.6)",
+                without({maps_at + 1}));
+    }
+
+    // ---- faulty: MAPPED_POINTS (spec 23.4) ----
+    const std::string mp_copy = mapped_desc + ", then (sequence 1000) a copy of the MAPPED_POINTS packet of points ";
+    {
+        std::vector<uint8_t> payload = payload_of(mapped[0]);
+        payload.push_back(0);
+        w.write("faulty", "map_points_length_mismatch",
+                mp_copy + "0..27 with one byte (00) more: rejected, malformed payload (spec 23.4: payload_length is not "
+                          "8 + ceil(count * B_m / 8))",
+                appended(with_payload(mapped[0], payload)));
+    }
+    {
+        Packet p = mapped[0];
+        put32(p, kHeaderSize, 0xFFFFFFFFu - (kMapBatch - 1));
+        reseal(p);
+        w.write("faulty", "map_points_index_overflow",
+                mp_copy + "0..27 with first_index 4294967268 = 2^32 - 28: first_index + count = 2^32 > 2^32 - 1: "
+                          "rejected, malformed payload (spec 23.4, step 13)",
+                appended(p));
+    }
+    {
+        Packet p = mapped.back();
+        put32(p, kHeaderSize, kMapPoints - 15);
+        reseal(p);
+        w.write("faulty", "map_points_index_out_of_range",
+                mp_copy + "224..239 with first_index 225: its last point 240 is not below point_count 240: rejected, "
+                          "index out of range (spec 23.4, step 14)",
+                appended(p));
+    }
+    {
+        Packet p = plain.at(0);
+        p[5] = kMapMinor;
+        p[6] = uint8_t(PacketType::MappedPoints);
+        reseal(p);
+        w.write("faulty", "map_points_for_unmapped_object",
+                mapped_desc + ", then (sequence 1000) object 1's first POINTS packet with its type made MAPPED_POINTS "
+                              "(and its version 1.7): object 1's map_level is 0: rejected, malformed payload (spec 23.4, "
+                              "step 13)",
+                appended(p));
+    }
+    {
+        ObjectInfo unmapped = m.info.objects[0];
+        unmapped.map_level = 0;
+        unmapped.map_batch = 0;
+        PointBatch batch;
+        batch.first_index = 0;
+        batch.points.assign(m.contents[0].points.begin(), m.contents[0].points.begin() + 21);
+        PacketHeader h;
+        h.version_minor = 0;
+        h.type = uint8_t(PacketType::Points);
+        h.stream_id = kStreamId;
+        h.sequence = 1000;
+        h.object_id = 0;
+        w.write("faulty", "map_points_for_mapped_object",
+                mapped_desc + ", then (sequence 1000) a POINTS packet (1.0) of object 0's points 0..20 as POINTS records "
+                              "(their whole 14-bit positions and normals: 62 bits, a well-formed POINTS payload): "
+                              "object 0's map_level is 4: rejected, malformed payload (spec 23.4, step 13)",
+                appended(write_packet(h, encode_points_payload(batch, m.info, unmapped))));
+    }
+
+    // ---- faulty: the entry's map fields (spec 23.1) ----
+    auto info_edited = [&](const std::function<void(Packet&)>& edit) {
+        Packet p = info;
+        edit(p);
+        reseal(p);
+        return appended(p);
+    };
+    const std::string si_copy = mapped_desc + ", then (sequence 1000) a copy of its STREAM_INFO with ";
+    w.write("faulty", "map_entry_level_at_position_bits",
+            si_copy + "object 0's map_level 14 = position_bits: rejected, malformed payload (spec 23.1: map_level >= "
+                      "position_bits)",
+            info_edited([](Packet& p) { p[entry_map_level(0)] = 14; }));
+    w.write("faulty", "map_entry_batch_zero",
+            si_copy + "object 0's map_batch 0 (its map_level 5): rejected, malformed payload (spec 23.1: map_level > 0 "
+                      "with map_batch 0)",
+            info_edited([](Packet& p) { put16(p, entry_map_batch(0), 0); }));
+    w.write("faulty", "map_entry_batch_without_level",
+            si_copy + "object 1's map_batch 5 (its map_level 0): rejected, malformed payload (spec 23.1: map_level 0 "
+                      "with map_batch != 0)",
+            info_edited([](Packet& p) { put16(p, entry_map_batch(1), 5); }));
+    w.write("faulty", "map_entry_level_contradicts",
+            si_copy + "object 0's map_level 4 where the accepted one says 5: rejected, stream mismatch (spec 23.1, 5.4)",
+            info_edited([](Packet& p) { p[entry_map_level(0)] = 4; }));
+    w.write("faulty", "map_entry_batch_contradicts",
+            si_copy + "object 0's map_batch 29 where the accepted one says 28: rejected, stream mismatch (spec 23.1, 5.4)",
+            info_edited([](Packet& p) { put16(p, entry_map_batch(0), 29); }));
+    w.write("faulty", "map_entry_in_1_6_packet",
+            si_copy + "its version 1.6: its map fields are not read, so object 0's entry has map_level 0 and map_batch "
+                      "0 (spec 23.1), which contradicts the accepted 5 and 28: rejected, stream mismatch (spec 23.1: an "
+                      "entry without them comparing as map_level = 0, map_batch = 0)",
+            info_edited([](Packet& p) { p[5] = 6; }));
+
+    // ---- faulty: repair over mapped records (spec 23.5) ----
+    {
+        const RepairBlock& b0 = m.blocks[0];
+        Packet p = m.repair(0, b0.source_count());
+        std::vector<uint8_t> payload = payload_of(p);
+        payload.resize(8 + (size_t{kMapBatch} * 62 + 7) / 8, 0);
+        w.write("faulty", "map_repair_symbol_length",
+                mapped_desc + ", then (sequence 1000) block 0's POINTS_REPAIR packet of row " +
+                    std::to_string(b0.source_count()) + " with its symbol zero-padded to ceil(28 x 62 / 8) = 217 bytes, "
+                    "the length for POINTS records of 62 bits (the packet, 249 bytes, is also larger than packet size "
+                    "200): rejected, malformed payload (spec 23.5: B is the mapped record size B_m = 47: 165 bytes)",
+                appended(with_payload(p, payload)));
+    }
+    {
+        // Fragment 1 lost; records of its ranks recovered and held unplaced.
+        const RepairBlock& b0 = m.blocks[0];
+        Packets file = m.packets.stream_info;
+        file.insert(file.end(), m.packets.ellipsoids.begin(), m.packets.ellipsoids.end());
+        for (size_t i = 0; i < n_frags; ++i)
+            if (i != 1) file.push_back(m.packets.maps[i]);
+        file.insert(file.end(), plain.begin(), plain.end());
+        for (uint32_t j = 1; j < b0.source_count(); ++j) file.push_back(mapped[j]);
+        file.push_back(m.repair(0, b0.source_count()));
+        for (size_t i = b0.source_count(); i < mapped.size(); ++i) file.push_back(mapped[i]);
+        w.write("faulty", "map_repair_fragment_missing",
+                mapped_desc + ", with the POINT_MAP packet of " + frag_text(1) + " and the MAPPED_POINTS packet of "
+                              "points 0..27 lost: block 0 recovers those 28 records from its row " +
+                    std::to_string(b0.source_count()) + " (spec 23.5); those whose rank fragment 1 holds stay held "
+                    "but not placed with the other records of its ranks; no rejection; the map is not complete, the "
+                    "stream does not conform (spec 23.6)",
+                numbered(file));
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -5751,6 +6497,7 @@ int main(int argc, char** argv) {
     animation_vectors(w);
     skin_vectors(w);
     morph_vectors(w);
+    map_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
