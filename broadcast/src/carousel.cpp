@@ -273,8 +273,9 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
     if (options.chunk_packets > 0) {
         chunks = out.data.empty() ? 1 : (out.data.size() + options.chunk_packets - 1) / options.chunk_packets;
     } else {
-        const size_t slices = std::max<size_t>(1, options.map_slices);
-        chunks = chunks_for_share(out.base_bytes + out.map_bytes / slices, out.data_bytes, out.data.size(), options.base_share);
+        // The map's rounds count as data: the chunks are those the base alone asks for.
+        const uint64_t map_rounds = std::max<size_t>(1, options.map_rounds);
+        chunks = chunks_for_share(out.base_bytes, out.data_bytes + map_rounds * out.map_bytes, out.data.size(), options.base_share);
         chunks = std::max(chunks, std::min(options.min_base_repetitions, std::max<size_t>(out.data.size(), 1)));
     }
     chunks = std::max<size_t>(chunks, 1);
@@ -302,11 +303,14 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
         size_t next = 0;
         for (size_t c = 0; c < chunks; ++c) {
             for (uint32_t b : out.base) out.cycle.push_back({b, true, false, static_cast<uint32_t>(c)});
-            // The map's slice of this repetition (every slice comes once in `slices` chunks).
-            const size_t slices = std::min(std::max<size_t>(1, options.map_slices), chunks);
-            for (size_t m = 0; m < out.maps.size(); ++m)
-                if (m % slices == c % slices)
-                    out.cycle.push_back({out.maps[m], true, false, static_cast<uint32_t>(c)});
+            // The map's share of this repetition: the fragments in turn, `map_rounds` times a cycle
+            // over the chunks (at least one fragment with every base).
+            if (!out.maps.empty()) {
+                const size_t rounds = std::max<size_t>(1, options.map_rounds);
+                const size_t total = std::max(rounds * out.maps.size(), chunks);
+                for (size_t k = c * total / chunks; k < (c + 1) * total / chunks; ++k)
+                    out.cycle.push_back({out.maps[k % out.maps.size()], true, false, static_cast<uint32_t>(c)});
+            }
             size_t end = data.size() * (c + 1) / chunks;
             uint64_t chunk_bytes = 0;
             for (size_t in_chunk = 1; next < end; ++next, ++in_chunk) {
