@@ -31,6 +31,9 @@
 // packet: what independence costs). Decode times are of the decoder alone, over every packet.
 //
 //   bench_point_coding [--samples DIR] [--only NAME] [--no-draco] [--no-computed-normals]
+//
+// With --mapped it measures instead what format 1.7 made of issue 14 (spec 23): the POINT_MAP +
+// MAPPED_POINTS packets of every sample against its POINTS packets and Draco (bench/results/mapped_points.txt).
 #include "ellicast/codec/encoder.h"
 #include "ellicast/converters/asset.h"
 #include "ellicast/converters/asset_stream.h"
@@ -48,6 +51,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -1006,6 +1010,7 @@ StreamPoints encode_model(const Mesh& mesh) {
     asset.objects.push_back(mesh);
     EncodeOptions options;
     options.repair_ratio = 0;
+    options.point_map = false;  // the POINTS packets of format 1.0, which the candidates re-code
     EncodedAsset out;
     std::string error;
     auto t0 = Clock::now();
@@ -1061,6 +1066,143 @@ struct Result {
     long draco_mesh = -1, draco_pc = -1;
 };
 
+// ---------------------------------------------------------------------------------------------
+// --mapped: what format 1.7's mapped points (spec 23) cost, against POINTS and Draco
+
+struct MappedBytes {
+    size_t points = 0, plain = 0, mapped = 0, map = 0, map_packets = 0;
+    std::string levels;
+};
+
+// The asset encoded twice as `ellicast encode` does (no repair): POINTS packets, and POINT_MAP +
+// MAPPED_POINTS packets. Each mapped stream is received whole and checked to give back every point.
+MappedBytes mapped_bytes(const Asset& asset) {
+    MappedBytes r;
+    for (bool point_map : {false, true}) {
+        EncodeOptions options;
+        options.repair_ratio = 0;
+        options.point_map = point_map;
+        EncodedAsset out;
+        std::string error;
+        CHECK(encode_asset(asset, options, 1, false, out, error));
+        if (!point_map) {
+            r.plain = out.point_bytes;
+            for (const auto& o : out.encoded.info.objects) r.points += o.point_count;
+            continue;
+        }
+        r.mapped = out.point_bytes + out.map_bytes;
+        r.map = out.map_bytes;
+        r.map_packets = out.map_packets;
+        for (const ObjectReport& o : out.encoded.reports)
+            r.levels += (r.levels.empty() ? "" : ",") + std::to_string(int(o.map_level));
+        ReceivedStream rx;
+        for (const auto& p : out.packets) CHECK(rx.add_packet(p, 0) == Error::Ok);
+        for (size_t i = 0; i < rx.objects().size(); ++i) {
+            const auto& o = rx.objects()[i];
+            CHECK(o.points.size() == o.info->point_count);
+            for (const auto& [index, q] : o.points) CHECK(q.position == out.encoded.contents[i].points[index].position);
+        }
+    }
+    return r;
+}
+
+int run_mapped(const std::string& samples, const std::string& tmp, bool draco) {
+    std::printf("bench_point_coding --mapped: bytes per point of format 1.7's mapped points (POINT_MAP + MAPPED_POINTS\n");
+    std::printf("packets, spec 23) against format 1.0's POINTS packets, both with all framing (24 bytes header + CRC and\n");
+    std::printf("8 bytes batch header a packet; the map's packets counted once), as `ellicast encode` makes them (default\n");
+    std::printf("options, 14-bit positions, %zu-byte packets, no repair). Every mapped stream is received and checked\n", kPacket);
+    std::printf("to give back every point. Draco: draco_encoder -qp 14 -cl 7 (-qn 10 with normals), per input vertex.\n\n");
+    std::printf("Positions only (attributes dropped, positions welded):\n");
+    std::printf("%-14s %7s %6s %10s %10s %8s %6s %11s %11s\n", "model", "points", "level", "POINTS", "mapped", "change",
+                "map", "Draco mesh", "Draco pc");
+    const std::vector<std::string> names = {"bunny.ply", "fandisk.obj", "spot.obj", "suzanne.obj", "teapot.obj", "woody.obj"};
+    struct Row {
+        std::string name;
+        double positions = 0;
+        size_t vertices = 0;
+    };
+    std::vector<Row> rows;
+    for (const auto& name : names) {
+        const std::string path = samples + "/meshes/" + name;
+        if (!std::filesystem::exists(path)) continue;
+        Asset asset = load_asset(path);
+        Asset welded;
+        welded.objects.push_back(weld_positions(asset.objects[0]));
+        const MappedBytes m = mapped_bytes(welded);
+        long mesh = -1, pc = -1;
+        if (draco) {
+            const std::string ply = tmp + "/" + name + ".ply";
+            write_ply(ply, welded.objects[0], false);
+            mesh = draco_bytes(ply, false, false);
+            pc = draco_bytes(ply, true, false);
+        }
+        const double v = double(welded.objects[0].positions.size()), n = double(m.points);
+        std::printf("%-14s %7zu %6s %6.2f B/pt %6.2f B/pt %+7.0f%% %6.2f %6.2f B/vx %6.2f B/vx\n", name.c_str(), m.points,
+                    m.levels.c_str(), double(m.plain) / n, double(m.mapped) / n, 100.0 * (double(m.mapped) / double(m.plain) - 1),
+                    double(m.map) / n, mesh < 0 ? 0.0 : double(mesh) / v, pc < 0 ? 0.0 : double(pc) / v);
+        rows.push_back({name, double(m.mapped) / n, size_t(v)});
+    }
+    std::printf("('map' = the POINT_MAP packets' share of 'mapped'. Points = vertices + surface samples.)\n\n");
+    std::printf("With normals (the model's own for suzanne, area-weighted computed ones for the others), %d-bit octahedral:\n",
+                kNormalBits);
+    std::printf("%-14s %10s %10s %14s %16s\n", "model", "POINTS", "mapped", "normals cost", "Draco normals");
+    for (const Row& row : rows) {
+        Asset asset = load_asset(samples + "/meshes/" + row.name);
+        Mesh m = asset.objects[0];
+        if (!m.has_normals()) {
+            m = weld_positions(m);
+            compute_normals(m);
+        }
+        m.texcoords.clear();
+        m.colors.clear();
+        Asset with;
+        with.objects.push_back(m);
+        const MappedBytes b = mapped_bytes(with);
+        long mesh = -1, mesh_normals = -1;
+        if (draco) {
+            Mesh welded = weld_positions(m);
+            compute_normals(welded);
+            const std::string ply = tmp + "/" + row.name + ".n.ply";
+            write_ply(ply, welded, true);
+            mesh_normals = draco_bytes(ply, false, true);
+            write_ply(ply, welded, false);
+            mesh = draco_bytes(ply, false, false);
+        }
+        const double n = double(b.points);
+        std::printf("%-14s %6.2f B/pt %6.2f B/pt %+8.2f B/pt %+10.2f B/vx\n", row.name.c_str(), double(b.plain) / n,
+                    double(b.mapped) / n, double(b.mapped) / n - row.positions,
+                    mesh < 0 ? 0.0 : double(mesh_normals - mesh) / double(row.vertices));
+    }
+    std::printf("('normals cost' = mapped B/pt with normals minus positions only: the points differ where a vertex\n");
+    std::printf(" splits at a crease. Draco normals: its mesh with normals minus without, per vertex.)\n\n");
+    std::printf("glTF samples as they are (every attribute they carry):\n");
+    std::printf("%-24s %-34s %7s %8s %10s %10s %8s\n", "asset", "attributes", "points", "levels", "POINTS", "mapped", "change");
+    std::vector<std::filesystem::path> assets;
+    for (const auto& dir : std::filesystem::directory_iterator(samples + "/gltf"))
+        for (const auto& f : std::filesystem::directory_iterator(dir.path()))
+            if (f.path().extension() == ".gltf" || f.path().extension() == ".glb") assets.push_back(f.path());
+    std::sort(assets.begin(), assets.end());
+    for (const auto& path : assets) {
+        Asset asset = load_asset(path.string());
+        std::set<std::string> attributes;
+        for (const Mesh& m : asset.objects) {
+            if (m.has_normals()) attributes.insert("normals");
+            if (m.has_texcoords()) attributes.insert("texcoords");
+            if (m.has_colors()) attributes.insert("colours");
+        }
+        std::string a;
+        for (const auto& s : attributes) a += (a.empty() ? "" : "+") + s;
+        const MappedBytes m = mapped_bytes(asset);
+        const double n = double(m.points);
+        std::printf("%-24s %-34s %7zu %8s %6.2f B/pt %6.2f B/pt %+7.0f%%\n",
+                    (path.parent_path().filename() / path.filename()).string().substr(0, 24).c_str(),
+                    (a.empty() ? "-" : a).c_str(), m.points, m.levels.substr(0, 8).c_str(), double(m.plain) / n,
+                    double(m.mapped) / n, 100.0 * (double(m.mapped) / double(m.plain) - 1));
+    }
+    std::printf("(levels: the map level of each object, 0 = sent as POINTS because mapping would not pay.)\n");
+    return 0;
+}
+
 void print_packing(const char* label, const Packing& p, size_t points, size_t extra, double base) {
     double amort = p.bpp() + double(extra) / double(points);
     std::printf("  %-34s %5zu packets  %7.1f pts/packet  %5.2f B/pt  %5.2f B/pt with stream-info model  (%+.0f%%)\n",
@@ -1073,7 +1215,7 @@ void print_packing(const char* label, const Packing& p, size_t points, size_t ex
 int main(int argc, char** argv) {
     std::string samples = "../shared/samples";
     std::string only;
-    bool draco = true, computed_normals = true;
+    bool draco = true, computed_normals = true, mapped = false;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         if (a == "--samples" && i + 1 < argc)
@@ -1084,8 +1226,10 @@ int main(int argc, char** argv) {
             draco = false;
         else if (a == "--no-computed-normals")
             computed_normals = false;
+        else if (a == "--mapped")
+            mapped = true;
         else {
-            std::fprintf(stderr, "usage: bench_point_coding [--samples DIR] [--only NAME] [--no-draco] [--no-computed-normals]\n");
+            std::fprintf(stderr, "usage: bench_point_coding [--samples DIR] [--only NAME] [--no-draco] [--no-computed-normals] [--mapped]\n");
             return 2;
         }
     }
@@ -1093,6 +1237,7 @@ int main(int argc, char** argv) {
     const std::vector<int> levels = {4, 5, 6, 7};
     const std::string tmp = (std::filesystem::temp_directory_path() / "bench_point_coding").string();
     std::filesystem::create_directories(tmp);
+    if (mapped) return run_mapped(samples, tmp, draco);
 
     std::printf("bench_point_coding: bytes per point of POINTS payloads, 14-bit positions, %zu-byte packets,\n", kPacket);
     std::printf("framing included (%zu bytes per packet: 20 header + 4 CRC + 8 batch header). Every coding is decoded\n", kFraming);
