@@ -3,11 +3,13 @@
 #include "encode_options.h"
 #include "support.h"
 
+#include "ellicast/broadcast/carousel.h"
 #include "ellicast/codec/encoder.h"
 #include "ellicast/converters/mesh_input.h"
 #include "ellicast/format.h"
 
 #include <algorithm>
+#include <map>
 #include <random>
 
 using namespace ellicast;
@@ -265,4 +267,35 @@ TEST_CASE("a 1.6 STREAM_INFO with 48-byte entries is read without the map fields
     REQUIRE(decode_stream_info_payload(payload, part, kMorphMinor) == Error::Ok);
     CHECK(part.info.objects[0].map_level == 0);
     CHECK(part.info.objects[0].map_batch == 0);
+}
+
+TEST_CASE("the carousel sends a small object's one map fragment with every stream info, and each fragment of a large map four times a cycle or more") {
+    if (!have_sample("meshes/spot.obj") || !have_sample("meshes/bunny.ply")) return;
+    for (const char* model : {"meshes/spot.obj", "meshes/bunny.ply"}) {
+        LoadResult loaded = load_meshes(sample(model));
+        EncodeOptions o = fast_options();
+        o.max_ellipsoids = 4;
+        o.candidates = 16;
+        o.grid = 16;
+        const EncodeResult encoded = encode_meshes(loaded.meshes, o);
+        StreamPackets p;
+        REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, p) == Error::Ok);
+        std::vector<std::vector<uint8_t>> all;
+        for (auto* group : {&p.stream_info, &p.ellipsoids, &p.maps, &p.points}) all.insert(all.end(), group->begin(), group->end());
+        broadcast::Carousel carousel;
+        std::string error;
+        REQUIRE(broadcast::build_carousel(all, broadcast::CarouselOptions{}, carousel, error));
+        REQUIRE(!carousel.maps.empty());
+        std::map<uint32_t, size_t> sent;
+        size_t infos = 0;
+        for (const auto& entry : carousel.cycle) {
+            sent[entry.packet]++;
+            infos += all[entry.packet][6] == uint8_t(PacketType::StreamInfo);
+        }
+        const double cycles = double(carousel.period_cycles);
+        for (uint32_t m : carousel.maps) CHECK(double(sent[m]) / cycles >= 4);
+        if (carousel.maps.size() == 1) CHECK(sent[carousel.maps[0]] == infos);
+        MESSAGE(std::string(model) << ": " << carousel.maps.size() << " map fragments, sent " << double(sent[carousel.maps[0]]) / cycles
+                      << " times a cycle (the first), " << carousel.chunk_count << " chunks");
+    }
 }

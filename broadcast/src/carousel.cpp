@@ -275,14 +275,17 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
     } else {
         // The map's rounds count as data: the chunks are those the base alone asks for.
         const uint64_t map_rounds = std::max<size_t>(1, options.map_rounds);
-        chunks = chunks_for_share(out.base_bytes, out.data_bytes + map_rounds * out.map_bytes, out.data.size(), options.base_share);
+        chunks = out.map_bytes <= out.base_bytes
+                     ? chunks_for_share(out.base_bytes + out.map_bytes, out.data_bytes, out.data.size(), options.base_share)
+                     : chunks_for_share(out.base_bytes, out.data_bytes + map_rounds * out.map_bytes, out.data.size(),
+                                        options.base_share);
         chunks = std::max(chunks, std::min(options.min_base_repetitions, std::max<size_t>(out.data.size(), 1)));
     }
     chunks = std::max<size_t>(chunks, 1);
     // Spread the points packets evenly over the chunks (sizes differ by at most one packet).
     out.chunk_count = chunks;
     out.chunk_packets = out.data.empty() ? 0 : (out.data.size() + chunks - 1) / chunks;
-    size_t next_info = 0, next_manifest = 0;
+    size_t next_info = 0, next_manifest = 0, next_map = 0;
     for (size_t period = 0; period < out.period_cycles; ++period) {
         const std::vector<uint32_t>& data = cycle_data[period];
         // This cycle's detail MANIFEST parts: before the first packet each lists, and half-way.
@@ -304,10 +307,12 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
         for (size_t c = 0; c < chunks; ++c) {
             for (uint32_t b : out.base) out.cycle.push_back({b, true, false, static_cast<uint32_t>(c)});
             // The map's share of this repetition: the fragments in turn, `map_rounds` times a cycle
-            // over the chunks (at least one fragment with every base).
+            // over the chunks (at least one fragment with every base); a map no larger than the rest
+            // of the base goes whole with every repetition.
             if (!out.maps.empty()) {
                 const size_t rounds = std::max<size_t>(1, options.map_rounds);
-                const size_t total = std::max(rounds * out.maps.size(), chunks);
+                const size_t total = out.map_bytes <= out.base_bytes ? chunks * out.maps.size()
+                                                                     : std::max(rounds * out.maps.size(), chunks);
                 for (size_t k = c * total / chunks; k < (c + 1) * total / chunks; ++k)
                     out.cycle.push_back({out.maps[k % out.maps.size()], true, false, static_cast<uint32_t>(c)});
             }
@@ -328,6 +333,14 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
                     out.cycle.push_back({info, true, true, static_cast<uint32_t>(c)});
                     chunk_bytes += packets[info].size();
                     out.repeat_bytes += packets[info].size();
+                    // Format 1.7: the next POINT_MAP fragment in turn, so that a small object's one
+                    // fragment is not lost with every base of a cycle (points cannot be placed without it).
+                    if (!out.maps.empty()) {
+                        const uint32_t map = out.maps[next_map++ % out.maps.size()];
+                        out.cycle.push_back({map, true, true, static_cast<uint32_t>(c)});
+                        chunk_bytes += packets[map].size();
+                        out.repeat_bytes += packets[map].size();
+                    }
                     if (!first_picture_manifests.empty()) {
                         const uint32_t m = first_picture_manifests[next_manifest++ % first_picture_manifests.size()];
                         out.cycle.push_back({m, true, true, static_cast<uint32_t>(c)});

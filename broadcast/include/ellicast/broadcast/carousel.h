@@ -39,7 +39,8 @@ struct CarouselOptions {
     // its STREAM_INFO is lost in both copies at 30% loss one cycle in eleven.
     size_t min_base_repetitions = 4;
     // Inside each chunk, a STREAM_INFO part again after every this many POINTS packets (the parts in
-    // turn when the stream info has several); 0: only with the base. A receiver needs the stream
+    // turn when the stream info has several), and (format 1.7) the next POINT_MAP fragment in turn
+    // with it; 0: only with the base. A receiver needs the stream
     // info and one ELLIPSOIDS packet to show anything: with the base alone, the bunny's 100-byte
     // stream info came 9 times a cycle, and at 50% loss a quarter of receivers still had none a
     // quarter of a cycle after tuning in. Every 8 packets costs about 1% of the cycle.
@@ -54,7 +55,9 @@ struct CarouselOptions {
     // place points but not to show the base: sent whole with every base, the bunny's map (8 packets
     // at level 6) would make the base more than twice as large and the first picture half as frequent.
     // At 50% loss on the bunny, 2 rounds left the last points for 3.88 cycles (p90), 3 for 3.22, 4
-    // for 2.37 (bench_full_quality), 6 for 2.43 with a cycle 11% longer.
+    // for 2.37 (bench_full_quality), 6 for 2.43 with a cycle 11% longer. A map no larger than the
+    // rest of the base goes whole with every repetition instead (a small object's one fragment: sent
+    // only four times a cycle, at 60% loss the trefoil's receiver of one cycle placed none of its points).
     size_t map_rounds = 4;
 };
 
