@@ -299,3 +299,41 @@ TEST_CASE("the carousel sends a small object's one map fragment with every strea
                       << " times a cycle (the first), " << carousel.chunk_count << " chunks");
     }
 }
+
+TEST_CASE("ellicast decode of a mapped stream whose map did not arrive shows the base and says how many points wait for it") {
+    if (!have_sample("meshes/spot.obj")) return;
+    auto dir = scratch_dir("point_map_cli");
+    int status = 0;
+    std::string out = run_command("'" + ellicast_exe().string() + "' encode -q -e 40 '" + sample("meshes/spot.obj") + "' -o '" +
+                                      (dir / "spot.ellc").string() + "'",
+                                  status);
+    REQUIRE_MESSAGE(status == 0, out);
+    CHECK(out.find("points mapped at level") != std::string::npos);
+    // The same recording without its POINT_MAP packets.
+    std::vector<uint8_t> bytes;
+    std::string message;
+    REQUIRE(read_file((dir / "spot.ellc").string(), bytes, message) == Error::Ok);
+    ContainerContents contents = read_container(bytes);
+    std::vector<std::vector<uint8_t>> kept;
+    size_t maps = 0;
+    for (const auto& p : contents.packets) {
+        if (p.view.header.type == uint8_t(PacketType::PointMap)) {
+            ++maps;
+            continue;
+        }
+        kept.emplace_back(p.view.payload.data() - kHeaderSize, p.view.payload.data() + p.view.payload.size() + kChecksumSize);
+    }
+    REQUIRE(maps > 0);
+    REQUIRE(write_file((dir / "nomap.ellc").string(), write_container(kept), message) == Error::Ok);
+    out = run_command("'" + ellicast_exe().string() + "' decode '" + (dir / "nomap.ellc").string() + "' -o '" +
+                          (dir / "nomap.glb").string() + "'",
+                      status);
+    CHECK_MESSAGE(status == 0, out);
+    CHECK_MESSAGE(out.find("points arrived but are not shown: the POINT_MAP fragments that place them did not arrive") !=
+                      std::string::npos,
+                  out);
+    CHECK(std::filesystem::exists(dir / "nomap.glb"));
+    out = run_command("'" + ellicast_exe().string() + "' validate '" + (dir / "nomap.ellc").string() + "'", status);
+    CHECK(status != 0);
+    CHECK_MESSAGE(out.find("its point map holds 0 of") != std::string::npos, out);
+}

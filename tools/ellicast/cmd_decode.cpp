@@ -167,6 +167,12 @@ int run_decode(const DecodeArgs& args) {
                         (unsigned long long)o.connectivity_size);
         std::printf("\n");
         for (const auto& note : o.notes) std::fprintf(stderr, "ellicast: warning: object %zu: %s\n", i, note.c_str());
+        // Format 1.7 (spec 23.4): points whose map fragment did not arrive are held, not shown.
+        if (!objects[i].unplaced.empty())
+            std::fprintf(stderr,
+                         "ellicast: warning: object %zu: %zu points arrived but are not shown: the POINT_MAP fragments "
+                         "that place them did not arrive (its map holds %llu of %u ranks)\n",
+                         i, objects[i].unplaced.size(), (unsigned long long)objects[i].map_ranks, info.point_count);
     }
     const auto& t = report.timings;
     std::printf("time: read %.3f s, rasterize %.3f s, marching cubes %.3f s, insertion %.3f s, cleanup %.3f s, "
