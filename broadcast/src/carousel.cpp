@@ -333,9 +333,11 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
                     out.cycle.push_back({info, true, true, static_cast<uint32_t>(c)});
                     chunk_bytes += packets[info].size();
                     out.repeat_bytes += packets[info].size();
-                    // Format 1.7: the next POINT_MAP fragment in turn, so that a small object's one
-                    // fragment is not lost with every base of a cycle (points cannot be placed without it).
-                    if (!out.maps.empty()) {
+                    // Format 1.7: a small map's next fragment in turn, so that a small object's one
+                    // fragment is not lost with every base of a cycle (points cannot be placed without
+                    // it). A large map comes often enough with the bases: more copies of the bunny's
+                    // lengthened the cycle 4% and the wait for every point with it.
+                    if (!out.maps.empty() && out.map_bytes <= out.base_bytes) {
                         const uint32_t map = out.maps[next_map++ % out.maps.size()];
                         out.cycle.push_back({map, true, true, static_cast<uint32_t>(c)});
                         chunk_bytes += packets[map].size();

@@ -39,8 +39,8 @@ struct CarouselOptions {
     // its STREAM_INFO is lost in both copies at 30% loss one cycle in eleven.
     size_t min_base_repetitions = 4;
     // Inside each chunk, a STREAM_INFO part again after every this many POINTS packets (the parts in
-    // turn when the stream info has several), and (format 1.7) the next POINT_MAP fragment in turn
-    // with it; 0: only with the base. A receiver needs the stream
+    // turn when the stream info has several), and (format 1.7) when the map is no larger than the
+    // rest of the base, its next POINT_MAP fragment in turn with it; 0: only with the base. A receiver needs the stream
     // info and one ELLIPSOIDS packet to show anything: with the base alone, the bunny's 100-byte
     // stream info came 9 times a cycle, and at 50% loss a quarter of receivers still had none a
     // quarter of a cycle after tuning in. Every 8 packets costs about 1% of the cycle.
