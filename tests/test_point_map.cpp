@@ -19,15 +19,23 @@ namespace {
 
 std::string sample(const std::string& relative) { return (shared_samples() / relative).string(); }
 
-// The bunny with a small base (the points are what is tested), mapped or not.
-EncodeResult encode_bunny(bool point_map) {
-    LoadResult loaded = load_meshes(sample("meshes/bunny.ply"));
+// A sample with a small base (the points are what is tested), mapped or not.
+EncodeResult encode_small_base(const std::string& model, bool point_map = true) {
+    LoadResult loaded = load_meshes(sample(model));
     EncodeOptions o = fast_options();
     o.max_ellipsoids = 4;
     o.candidates = 16;
     o.grid = 16;
     o.point_map = point_map;
     return encode_meshes(loaded.meshes, o);
+}
+
+EncodeResult encode_bunny(bool point_map) { return encode_small_base("meshes/bunny.ply", point_map); }
+
+StreamPackets packets_of(const EncodeResult& encoded) {
+    StreamPackets p;
+    REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, p) == Error::Ok);
+    return p;
 }
 
 uint64_t total_bytes(const std::vector<std::vector<uint8_t>>& packets) {
@@ -138,9 +146,7 @@ TEST_CASE("the bunny's points travel mapped: fewer bytes, the same points, place
     auto a = sorted(points), b = sorted(plain.contents[0].points);
     CHECK(std::equal(a.begin(), a.end(), b.begin(), [](const auto& x, const auto& y) { return x.position == y.position; }));
 
-    StreamPackets p, q;
-    REQUIRE(packetize_stream(mapped.info, mapped.contents, 1, p) == Error::Ok);
-    REQUIRE(packetize_stream(plain.info, plain.contents, 1, q) == Error::Ok);
+    const StreamPackets p = packets_of(mapped), q = packets_of(plain);
     REQUIRE(!p.maps.empty());
     CHECK(q.maps.empty());
     for (const auto* group : {&p.maps, &p.points})
@@ -188,8 +194,7 @@ TEST_CASE("repair symbols over mapped records bring back a lost MAPPED_POINTS pa
     if (!have_sample("meshes/bunny.ply")) return;
     const EncodeResult mapped = encode_bunny(true);
     const ObjectInfo& object = mapped.info.objects[0];
-    StreamPackets p;
-    REQUIRE(packetize_stream(mapped.info, mapped.contents, 1, p) == Error::Ok);
+    const StreamPackets p = packets_of(mapped);
     REQUIRE(p.points.size() >= 3);
     const auto blocks = plan_repair_blocks(object.point_count, uint16_t(point_batch_size(mapped.info, object)), 127);
     std::vector<std::vector<uint8_t>> repairs;
@@ -211,8 +216,7 @@ TEST_CASE("hostile mapped packets are rejected with their reason and change noth
     if (!have_sample("meshes/bunny.ply")) return;
     const EncodeResult mapped = encode_bunny(true);
     const ObjectInfo& object = mapped.info.objects[0];
-    StreamPackets p;
-    REQUIRE(packetize_stream(mapped.info, mapped.contents, 1, p) == Error::Ok);
+    const StreamPackets p = packets_of(mapped);
     REQUIRE(p.maps.size() >= 2);
     ReceivedStream rx;
     for (const auto& packet : p.stream_info) REQUIRE(rx.add_packet(packet, 0) == Error::Ok);
@@ -272,14 +276,7 @@ TEST_CASE("a 1.6 STREAM_INFO with 48-byte entries is read without the map fields
 TEST_CASE("the carousel sends a small object's one map fragment with every stream info, and each fragment of a large map four times a cycle or more") {
     if (!have_sample("meshes/spot.obj") || !have_sample("meshes/bunny.ply")) return;
     for (const char* model : {"meshes/spot.obj", "meshes/bunny.ply"}) {
-        LoadResult loaded = load_meshes(sample(model));
-        EncodeOptions o = fast_options();
-        o.max_ellipsoids = 4;
-        o.candidates = 16;
-        o.grid = 16;
-        const EncodeResult encoded = encode_meshes(loaded.meshes, o);
-        StreamPackets p;
-        REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, p) == Error::Ok);
+        const StreamPackets p = packets_of(encode_small_base(model));
         std::vector<std::vector<uint8_t>> all;
         for (auto* group : {&p.stream_info, &p.ellipsoids, &p.maps, &p.points}) all.insert(all.end(), group->begin(), group->end());
         broadcast::Carousel carousel;

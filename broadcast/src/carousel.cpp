@@ -269,13 +269,16 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
         }
         std::sort(out.base.begin(), out.base.end());
     }
+    // Format 1.7: a map no larger than the rest of the base goes whole with every repetition of the
+    // base and after every stream info repeat; a larger one `map_rounds` times a cycle.
+    const bool small_map = out.map_bytes <= out.base_bytes;
+    const size_t map_rounds = std::max<size_t>(1, options.map_rounds);
     size_t chunks;
     if (options.chunk_packets > 0) {
         chunks = out.data.empty() ? 1 : (out.data.size() + options.chunk_packets - 1) / options.chunk_packets;
     } else {
-        // The map's rounds count as data: the chunks are those the base alone asks for.
-        const uint64_t map_rounds = std::max<size_t>(1, options.map_rounds);
-        chunks = out.map_bytes <= out.base_bytes
+        // A large map's rounds count as data: the chunks are those the base alone asks for.
+        chunks = small_map
                      ? chunks_for_share(out.base_bytes + out.map_bytes, out.data_bytes, out.data.size(), options.base_share)
                      : chunks_for_share(out.base_bytes, out.data_bytes + map_rounds * out.map_bytes, out.data.size(),
                                         options.base_share);
@@ -285,6 +288,10 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
     // Spread the points packets evenly over the chunks (sizes differ by at most one packet).
     out.chunk_count = chunks;
     out.chunk_packets = out.data.empty() ? 0 : (out.data.size() + chunks - 1) / chunks;
+    // Map fragments sent with the bases in a cycle, in turn (at least one with every base).
+    const size_t map_sends = out.maps.empty() ? 0
+                             : small_map     ? chunks * out.maps.size()
+                                             : std::max(map_rounds * out.maps.size(), chunks);
     size_t next_info = 0, next_manifest = 0, next_map = 0;
     for (size_t period = 0; period < out.period_cycles; ++period) {
         const std::vector<uint32_t>& data = cycle_data[period];
@@ -306,16 +313,9 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
         size_t next = 0;
         for (size_t c = 0; c < chunks; ++c) {
             for (uint32_t b : out.base) out.cycle.push_back({b, true, false, static_cast<uint32_t>(c)});
-            // The map's share of this repetition: the fragments in turn, `map_rounds` times a cycle
-            // over the chunks (at least one fragment with every base); a map no larger than the rest
-            // of the base goes whole with every repetition.
-            if (!out.maps.empty()) {
-                const size_t rounds = std::max<size_t>(1, options.map_rounds);
-                const size_t total = out.map_bytes <= out.base_bytes ? chunks * out.maps.size()
-                                                                     : std::max(rounds * out.maps.size(), chunks);
-                for (size_t k = c * total / chunks; k < (c + 1) * total / chunks; ++k)
-                    out.cycle.push_back({out.maps[k % out.maps.size()], true, false, static_cast<uint32_t>(c)});
-            }
+            // This repetition's share of the map's fragments.
+            for (size_t k = c * map_sends / chunks; k < (c + 1) * map_sends / chunks; ++k)
+                out.cycle.push_back({out.maps[k % out.maps.size()], true, false, static_cast<uint32_t>(c)});
             size_t end = data.size() * (c + 1) / chunks;
             uint64_t chunk_bytes = 0;
             for (size_t in_chunk = 1; next < end; ++next, ++in_chunk) {
@@ -337,7 +337,7 @@ bool build_carousel(const std::vector<std::vector<uint8_t>>& packets, const Caro
                     // fragment is not lost with every base of a cycle (points cannot be placed without
                     // it). A large map comes often enough with the bases: more copies of the bunny's
                     // lengthened the cycle 4% and the wait for every point with it.
-                    if (!out.maps.empty() && out.map_bytes <= out.base_bytes) {
+                    if (small_map && !out.maps.empty()) {
                         const uint32_t map = out.maps[next_map++ % out.maps.size()];
                         out.cycle.push_back({map, true, true, static_cast<uint32_t>(c)});
                         chunk_bytes += packets[map].size();

@@ -33,22 +33,15 @@ VertexMorph vertex_morph(const Mesh& decoded, const ReceivedStream& stream, size
     if (index >= stream.objects().size() || !stream.info()) return out;
     const ReceivedObject& object = stream.objects()[index];
     if (!object.info || object.morph.empty() || decoded.positions.empty()) return out;
-    std::vector<std::array<float, 3>> positions;
-    std::vector<const std::vector<float>*> records;
-    for (const auto& [i, record] : object.morph) {
-        auto p = object.points.find(i);
-        if (p == object.points.end()) continue;
-        positions.push_back(dequantize_point(p->second, *stream.info(), *object.info).position);
-        records.push_back(&record);
-    }
-    if (positions.empty()) return out;
-    const std::vector<uint32_t> nearest = point_transfer::nearest_held(decoded, positions);
+    const std::vector<const std::vector<float>*> per_vertex =
+        point_transfer::nearest_records(decoded, stream, index, object.morph);
+    if (per_vertex.empty()) return out;
     out.targets = object.morph_targets;
     out.attributes = object.morph_attributes;
     const size_t per = morph_record_values(out.targets, out.attributes);
     out.values.reserve(per * decoded.positions.size());
     for (size_t v = 0; v < decoded.positions.size(); ++v) {
-        const std::vector<float>& r = *records[nearest[v]];
+        const std::vector<float>& r = *per_vertex[v];
         out.values.insert(out.values.end(), r.begin(), r.end());
     }
     return out;

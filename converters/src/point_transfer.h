@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <vector>
 
 namespace ellicast::point_transfer {
@@ -30,5 +31,26 @@ std::vector<Source> sources(const Mesh& mesh, const std::vector<QuantizedPoint>&
 // For each vertex of `decoded`, the index into `held` of the position nearest to it (the smaller
 // index on a tie). `held` must not be empty.
 std::vector<uint32_t> nearest_held(const Mesh& decoded, const std::vector<std::array<float, 3>>& held);
+
+// For each vertex of `decoded`, the record (of `records`, by point index, of object `index` of
+// `stream`, whose info has arrived) of the nearest held point that has one; empty when no held
+// point has a record.
+template <class Record>
+std::vector<const Record*> nearest_records(const Mesh& decoded, const ReceivedStream& stream, size_t index,
+                                           const std::map<uint32_t, Record>& records) {
+    const ReceivedObject& object = stream.objects()[index];
+    std::vector<std::array<float, 3>> positions;
+    std::vector<const Record*> held;
+    for (const auto& [i, record] : records) {
+        auto p = object.points.find(i);
+        if (p == object.points.end()) continue;
+        positions.push_back(dequantize_point(p->second, *stream.info(), *object.info).position);
+        held.push_back(&record);
+    }
+    std::vector<const Record*> out;
+    if (held.empty()) return out;
+    for (uint32_t n : nearest_held(decoded, positions)) out.push_back(held[n]);
+    return out;
+}
 
 }  // namespace ellicast::point_transfer

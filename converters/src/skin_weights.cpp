@@ -68,20 +68,11 @@ VertexWeights vertex_weights(const Mesh& decoded, const ReceivedStream& stream, 
     if (index >= stream.objects().size() || !stream.info()) return out;
     const ReceivedObject& object = stream.objects()[index];
     if (!object.info || object.weights.empty() || decoded.positions.empty()) return out;
-    // The held points with a record, as degenerate triangles (the tree finds the nearest).
-    std::vector<std::array<float, 3>> positions;
-    std::vector<const Influences*> records;
-    for (const auto& [i, record] : object.weights) {
-        auto p = object.points.find(i);
-        if (p == object.points.end()) continue;
-        positions.push_back(dequantize_point(p->second, *stream.info(), *object.info).position);
-        records.push_back(&record);
-    }
-    if (positions.empty()) return out;
-    const std::vector<uint32_t> nearest = point_transfer::nearest_held(decoded, positions);
+    const std::vector<const Influences*> per_vertex = point_transfer::nearest_records(decoded, stream, index, object.weights);
+    if (per_vertex.empty()) return out;
     out.joints.resize(decoded.positions.size());
     out.weights.resize(decoded.positions.size());
-    for (size_t v = 0; v < decoded.positions.size(); ++v) record_weights(*records[nearest[v]], out.joints[v], out.weights[v]);
+    for (size_t v = 0; v < decoded.positions.size(); ++v) record_weights(*per_vertex[v], out.joints[v], out.weights[v]);
     return out;
 }
 

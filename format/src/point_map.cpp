@@ -81,7 +81,7 @@ void put_node(BitWriter& w, const std::vector<MapCell>& cells, size_t a, size_t 
 
 }  // namespace
 
-size_t point_map_tree_bits(const std::vector<MapCell>& cells, unsigned map_level, unsigned root_level, unsigned rice) {
+size_t point_map_tree_bits(std::span<const MapCell> cells, unsigned map_level, unsigned root_level, unsigned rice) {
     size_t bits = 0;
     for (size_t i = 0; i < cells.size(); ++i) {
         bits += rice_bits(cells[i].count - 1u, rice);
@@ -224,12 +224,13 @@ bool point_map_cells(const std::vector<QuantizedPoint>& points, const StreamInfo
 
 namespace {
 
-unsigned best_rice(const std::vector<MapCell>& cells, size_t a, size_t b) {
+// The Rice parameter that codes the counts of `cells` in the fewest bits.
+unsigned best_rice(std::span<const MapCell> cells) {
     unsigned best = 0;
     size_t best_bits = SIZE_MAX;
     for (unsigned k = 0; k <= 15; ++k) {
         size_t bits = 0;
-        for (size_t i = a; i < b; ++i) bits += rice_bits(cells[i].count - 1u, k);
+        for (const MapCell& c : cells) bits += rice_bits(c.count - 1u, k);
         if (bits < best_bits) best_bits = bits, best = k;
     }
     return best;
@@ -241,7 +242,7 @@ std::vector<PointMapFragment> plan_point_map(const std::vector<MapCell>& cells, 
     std::vector<PointMapFragment> out;
     if (cells.empty()) return out;
     const size_t cap_bits = (std::min(packet_size, kMaxPacketSize) - kPacketOverhead - kPointMapHeaderSize) * 8;
-    const unsigned k = best_rice(cells, 0, cells.size());
+    const unsigned k = best_rice(cells);
     for (unsigned F = 0; F <= map_level; ++F) {
         // The roots of level F: runs of cells with one prefix, and the bits of each.
         const unsigned shift = 3 * (map_level - F);
@@ -255,8 +256,8 @@ std::vector<PointMapFragment> plan_point_map(const std::vector<MapCell>& cells, 
         std::vector<size_t> bits(roots.size());
         bool fits = true;
         for (size_t r = 0; r < roots.size() && fits; ++r) {
-            std::vector<MapCell> sub(cells.begin() + long(roots[r].first), cells.begin() + long(roots[r].second));
-            bits[r] = point_map_tree_bits(sub, map_level, F, k);
+            bits[r] = point_map_tree_bits(std::span(cells).subspan(roots[r].first, roots[r].second - roots[r].first),
+                                          map_level, F, k);
             fits = bits[r] <= cap_bits && roots[r].second - roots[r].first <= 0xFFFF;
         }
         if (!fits) continue;
@@ -273,7 +274,7 @@ std::vector<PointMapFragment> plan_point_map(const std::vector<MapCell>& cells, 
             for (const MapCell& c : f.cells) total += c.count;
             f.point_total = uint32_t(total);
             // The fragment's own best parameter never makes it longer than the shared one did.
-            const unsigned own = best_rice(f.cells, 0, f.cells.size());
+            const unsigned own = best_rice(f.cells);
             f.rice = uint8_t(point_map_tree_bits(f.cells, map_level, F, own) <= point_map_tree_bits(f.cells, map_level, F, k) ? own : k);
             rank += total;
             out.push_back(std::move(f));

@@ -52,6 +52,12 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
         newest_minor_ = std::max(newest_minor_, h.version_minor);
         return Error::Ok;
     }
+    auto object_packet = [&](bool well_formed, const char* why) {
+        if (!well_formed)
+            return reject(where, Error::MalformedPayload,
+                          packet_type_name(h.type) + " of object " + std::to_string(h.object_id) + ": " + why);
+        return take_object_packet(packet, where);
+    };
     Error e;
     switch (static_cast<PacketType>(h.type)) {
     case PacketType::StreamInfo:
@@ -79,46 +85,32 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
         e = Error::Ok;
         break;
     }
+    // Step 11 of the object types whose payload is checked without stream info (spec 17.3, 21.2,
+    // 22.1, 23.3): malformed now, or on to the object's steps.
     case PacketType::PointsRepair: {
-        // Step 11: the fixed fields need no stream info (spec 17.3).
         RepairPacket repair;
-        if (decode_repair_payload(packet.payload, repair) != Error::Ok)
-            return reject(where, Error::MalformedPayload,
-                          "POINTS_REPAIR of object " + std::to_string(h.object_id) +
-                              ": its block (point_count, batch, source_count, row) is inconsistent or the payload too short");
-        e = take_object_packet(packet, where);
+        e = object_packet(decode_repair_payload(packet.payload, repair) == Error::Ok,
+                          "its block (point_count, batch, source_count, row) is inconsistent or the payload too short");
         break;
     }
     case PacketType::JointWeights: {
-        // Step 11: a JOINT_WEIGHTS payload needs no stream info to be checked (spec 21.2).
         JointWeightsRun run;
-        if (decode_joint_weights_payload(packet.payload, run) != Error::Ok)
-            return reject(where, Error::MalformedPayload,
-                          "JOINT_WEIGHTS of object " + std::to_string(h.object_id) +
-                              ": its count, joint size or an influence record (count, zero weight, weights not summing "
-                              "to 255, a joint named twice, records not ending with the payload) is malformed");
-        e = take_object_packet(packet, where);
+        e = object_packet(decode_joint_weights_payload(packet.payload, run) == Error::Ok,
+                          "its count, joint size or an influence record (count, zero weight, weights not summing "
+                          "to 255, a joint named twice, records not ending with the payload) is malformed");
         break;
     }
     case PacketType::PointMap: {
-        // Step 11: the fixed fields of a POINT_MAP payload need no stream info (spec 23.3).
         PointMapFragment fragment;
-        if (decode_point_map_header(packet.payload, fragment) != Error::Ok)
-            return reject(where, Error::MalformedPayload,
-                          "POINT_MAP of object " + std::to_string(h.object_id) +
-                              ": shorter than 12 bytes, or point_total 0, rice above 15 or root_count 0");
-        e = take_object_packet(packet, where);
+        e = object_packet(decode_point_map_header(packet.payload, fragment) == Error::Ok,
+                          "shorter than 12 bytes, or point_total 0, rice above 15 or root_count 0");
         break;
     }
     case PacketType::MorphDeltas: {
-        // Step 11: a MORPH_DELTAS payload needs no stream info to be checked (spec 22.1).
         MorphDeltasRun run;
-        if (decode_morph_deltas_payload(packet.payload, run) != Error::Ok)
-            return reject(where, Error::MalformedPayload,
-                          "MORPH_DELTAS of object " + std::to_string(h.object_id) +
-                              ": its count, target count, attributes, a scale (not finite, not above 0, or 2^113 or "
-                              "more), a record's mask (a bit past its slots) or its length is malformed");
-        e = take_object_packet(packet, where);
+        e = object_packet(decode_morph_deltas_payload(packet.payload, run) == Error::Ok,
+                          "its count, target count, attributes, a scale (not finite, not above 0, or 2^113 or "
+                          "more), a record's mask (a bit past its slots) or its length is malformed");
         break;
     }
     default: e = take_object_packet(packet, where); break;

@@ -403,7 +403,7 @@ inline constexpr size_t kPointMapHeaderSize = 12;
 // Encodes a fragment: the roots are the distinct cells of level root_level above `cells`.
 std::vector<uint8_t> encode_point_map_payload(const PointMapFragment& fragment, unsigned map_level);
 // Bits of the tree encode_point_map_payload would write (without the 12-byte header).
-size_t point_map_tree_bits(const std::vector<MapCell>& cells, unsigned map_level, unsigned root_level, unsigned rice);
+size_t point_map_tree_bits(std::span<const MapCell> cells, unsigned map_level, unsigned root_level, unsigned rice);
 // The fixed fields (spec 23.3, step 11): MalformedPayload when shorter than 12 bytes, point_total
 // 0, rice > 15 or root_count 0. Fills the header fields of `out`, no cells.
 Error decode_point_map_header(std::span<const uint8_t> payload, PointMapFragment& out);
