@@ -31,6 +31,7 @@ std::string packet_type_name(uint8_t type) {
     case 0x08: return "MORPH_DELTAS";
     case 0x09: return "MAPPED_POINTS";
     case 0x0A: return "POINT_MAP";
+    case 0x0B: return "NORMALS";
     case 0x16: return "MORPH_ANIMATION";
     default: {
         char buf[24];
@@ -41,7 +42,7 @@ std::string packet_type_name(uint8_t type) {
 }
 
 bool is_known_packet_type(uint8_t type) {
-    return (type >= 0x01 && type <= 0x0A) || (type >= 0x10 && type <= 0x16) || type == 0x20;
+    return (type >= 0x01 && type <= 0x0B) || (type >= 0x10 && type <= 0x16) || type == 0x20;
 }
 
 const char* error_name(Error e) {

@@ -62,6 +62,9 @@ Error check_stream_info(const StreamInfo& info) {
         if ((o.attributes & kAttrColorAlpha) && !(o.attributes & kAttrColor)) return Error::MalformedPayload;
         // Format 1.7 (spec 23.1): a level below the position depth, and a batch exactly when mapped.
         if (o.map_level >= info.position_bits || (o.map_level == 0) != (o.map_batch == 0)) return Error::MalformedPayload;
+        // Format 1.8 (spec 24.1): surface normals only on a surface with an exact layer and no normal in its records.
+        if (o.surface_normals && (o.kind != ObjectKind::Surface || !o.exact_layer || o.has(kAttrNormal)))
+            return Error::MalformedPayload;
         for (int i = 0; i < 2; ++i)
             if (!finite(o.texcoord_origin[i]) || !finite(o.texcoord_scale[i]) || o.texcoord_scale[i] < 0 ||
                 !finite(static_cast<float>(double(o.texcoord_origin[i]) + o.texcoord_scale[i])))
@@ -101,7 +104,8 @@ std::vector<uint8_t> encode_stream_info_payload(const StreamInfo& info, uint16_t
         put_u32(out, o.point_count);
         put_u8(out, static_cast<uint8_t>(o.kind));
         put_u8(out, o.attributes);
-        put_u16(out, o.exact_layer ? kEntryExactLayer : 0);  // flags (spec 19.1); the other bits reserved
+        // flags (spec 19.1, 24.1); the other bits reserved
+        put_u16(out, uint16_t((o.exact_layer ? kEntryExactLayer : 0) | (o.surface_normals ? kEntrySurfaceNormals : 0)));
         for (float f : o.texcoord_origin) put_f32(out, f);
         for (float f : o.texcoord_scale) put_f32(out, f);
         if (entry_size == kMappedEntrySize) {  // format 1.7 (spec 23.1)
@@ -153,6 +157,7 @@ Error decode_stream_info_payload(std::span<const uint8_t> payload, StreamInfoPar
         o.kind = static_cast<ObjectKind>(e[24]);
         o.attributes = e[25];
         o.exact_layer = (get_u16(e + 26) & kEntryExactLayer) != 0 && o.kind != ObjectKind::PointSet;
+        o.surface_normals = version_minor >= kSurfaceNormalsMinor && (get_u16(e + 26) & kEntrySurfaceNormals) != 0;
         for (int k = 0; k < 2; ++k) o.texcoord_origin[k] = get_f32(e + 28 + 4 * k);
         for (int k = 0; k < 2; ++k) o.texcoord_scale[k] = get_f32(e + 36 + 4 * k);
         if (version_minor >= kMapMinor && entry_size >= kMappedEntrySize) {  // spec 23.1
@@ -298,6 +303,7 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
     std::vector<std::pair<uint16_t, std::vector<uint8_t>>> ellipsoid_payloads;
     std::vector<PendingBatch> point_batches;
     std::vector<std::pair<uint16_t, std::vector<uint8_t>>> map_payloads;  // format 1.7 (spec 23.3)
+    std::vector<std::pair<uint16_t, std::vector<uint8_t>>> normals_payloads;  // format 1.8 (spec 24.2)
     for (size_t i = 0; i < contents.size(); ++i) {
         const auto& content = contents[i];
         const ObjectInfo& object = info_in.objects[i];
@@ -313,6 +319,18 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
             size_t n = std::min(per_ellipsoids, content.ellipsoids.size() - first);
             batch.ellipsoids.assign(content.ellipsoids.begin() + first, content.ellipsoids.begin() + first + n);
             ellipsoid_payloads.emplace_back(static_cast<uint16_t>(i), encode_ellipsoids_payload(batch));
+        }
+        if (object.surface_normals != !content.normals.empty()) return Error::MalformedPayload;
+        if (object.surface_normals) {
+            std::vector<std::vector<uint8_t>> packets;
+            if (packetize_normals(info_in, static_cast<uint16_t>(i), content.normals, 0, 0, packets) != Error::Ok)
+                return Error::MalformedPayload;
+            for (const auto& p : packets) {
+                PacketView view;
+                parse_packet(p, view);
+                normals_payloads.emplace_back(static_cast<uint16_t>(i),
+                                              std::vector<uint8_t>(view.payload.begin(), view.payload.end()));
+            }
         }
         const size_t per_points = point_batch_size(info_in, object);
         if (per_points == 0) return Error::MalformedPayload;
@@ -338,18 +356,25 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
         for (const auto& [object, payload] : ellipsoid_payloads) crc = crc32c(payload.data(), payload.size(), crc);
         for (const auto& batch : point_batches) crc = crc32c(batch.payload.data(), batch.payload.size(), crc);
         for (const auto& [object, payload] : map_payloads) crc = crc32c(payload.data(), payload.size(), crc);
+        for (const auto& [object, payload] : normals_payloads) crc = crc32c(payload.data(), payload.size(), crc);
         info.content_id = crc == 0 ? 1 : crc;
     }
 
     StreamPackets packets;
     uint32_t sequence = 0;
     const bool mapped = stream_info_entry_size(info) == kMappedEntrySize;
+    const bool surface_normals = std::any_of(info.objects.begin(), info.objects.end(),
+                                             [](const ObjectInfo& o) { return o.surface_normals; });
     auto header = [&](PacketType type, uint16_t object) {
         PacketHeader h;
         h.type = static_cast<uint8_t>(type);
         // Format 1.7 types, and STREAM_INFO with the entries' map fields, say 1.7 (spec 23).
         if (type == PacketType::MappedPoints || type == PacketType::PointMap || (type == PacketType::StreamInfo && mapped))
             h.version_minor = kMapMinor;
+        // Format 1.8: NORMALS, and STREAM_INFO with an entry's surface-normals flag (spec 24).
+        if (type == PacketType::Normals || (type == PacketType::StreamInfo && surface_normals))
+            h.version_minor = kSurfaceNormalsMinor;
+        if (type == PacketType::Normals) h.flags |= kFlagSkippable;
         h.stream_id = stream_id;
         h.sequence = sequence++;
         h.object_id = object;
@@ -370,6 +395,8 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
         packets.points.push_back(write_packet(
             header(info.objects[batch.object].mapped() ? PacketType::MappedPoints : PacketType::Points, batch.object),
             batch.payload));
+    for (const auto& [object, payload] : normals_payloads)
+        packets.normals.push_back(write_packet(header(PacketType::Normals, object), payload));
     out = std::move(packets);
     return Error::Ok;
 }

@@ -86,7 +86,7 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
         break;
     }
     // Step 11 of the object types whose payload is checked without stream info (spec 17.3, 21.2,
-    // 22.1, 23.3): malformed now, or on to the object's steps.
+    // 22.1, 23.3, 24.2): malformed now, or on to the object's steps.
     case PacketType::PointsRepair: {
         RepairPacket repair;
         e = object_packet(decode_repair_payload(packet.payload, repair) == Error::Ok,
@@ -113,6 +113,10 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
                           "more), a record's mask (a bit past its slots) or its length is malformed");
         break;
     }
+    case PacketType::Normals:
+        e = object_packet(check_normals_header(packet.payload) == Error::Ok,
+                          "shorter than 8 bytes, or count 0, sent_count above count, or a run past index 2^32 - 1");
+        break;
     default: e = take_object_packet(packet, where); break;
     }
     if (e == Error::Ok) {
@@ -214,6 +218,7 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
     if (packet.header.type == static_cast<uint8_t>(PacketType::MorphDeltas))
         return take_morph_deltas(object, packet, name, where);
     if (packet.header.type == static_cast<uint8_t>(PacketType::PointMap)) return take_point_map(object, packet, name, where);
+    if (packet.header.type == static_cast<uint8_t>(PacketType::Normals)) return take_normals(object, packet, name, where);
     bool news = false;
     if (packet.header.type == static_cast<uint8_t>(PacketType::Ellipsoids)) {
         EllipsoidBatch batch;
@@ -819,7 +824,15 @@ std::vector<SurfacePoint> ReceivedStream::points(size_t index) const {
     std::vector<SurfacePoint> out;
     if (index >= objects_.size() || !objects_[index].info || !info_) return out;
     out.reserve(objects_[index].points.size());
-    for (const auto& [i, q] : objects_[index].points) out.push_back(dequantize_point(q, *info_, *objects_[index].info));
+    const ReceivedObject& object = objects_[index];
+    for (const auto& [i, q] : object.points) {
+        out.push_back(dequantize_point(q, *info_, *object.info));
+        // Surface normals (spec 24.4): a sent normal; (0, 0, 0), for "left to the surface", otherwise.
+        if (!object.info->surface_normals) continue;
+        auto entry = object.normal_entries.find(i);
+        if (entry != object.normal_entries.end() && entry->second.sent)
+            out.back().normal = decode_octahedral(entry->second.normal, info_->normal_bits);
+    }
     return out;
 }
 

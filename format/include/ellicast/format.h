@@ -45,8 +45,11 @@ inline constexpr uint8_t kMorphMinor = 6;
 // 1.7 added MAPPED_POINTS, POINT_MAP and the object entry's map fields (spec 23); STREAM_INFO
 // packets say 1.7 (with 48-byte entries) only in a stream that maps an object.
 inline constexpr uint8_t kMapMinor = 7;
+// 1.8 added NORMALS and the object entry's surface-normals flag (spec 24); STREAM_INFO packets say
+// 1.8 only in a stream with an object that has surface normals.
+inline constexpr uint8_t kSurfaceNormalsMinor = 8;
 // The newest format version this library reads and writes (spec/format.md's version).
-inline constexpr uint8_t kSpecMinor = 7;
+inline constexpr uint8_t kSpecMinor = 8;
 
 inline constexpr std::array<uint8_t, 4> kPacketMagic = {0xE1, 'L', 'C', 'S'};
 inline constexpr size_t kHeaderSize = 20;                       // bytes before the payload
@@ -79,6 +82,7 @@ enum class PacketType : uint8_t {
     MorphDeltas = 0x08,   // 1.6, skippable: the morph target displacements of a run of an object's points
     MappedPoints = 0x09,  // 1.7, critical: a batch of an object's points, positions inside the cells of its map
     PointMap = 0x0A,      // 1.7, critical: a fragment of an object's map of occupied cells
+    Normals = 0x0B,       // 1.8, skippable: which normals of a run of points are sent, and those normals
     Scene = 0x10,       // 1.1, skippable: nodes (hierarchy, names, transforms) and meshes (object + material)
     Material = 0x11,    // 1.1, skippable: one PBR material
     TextureFragment = 0x12,  // 1.1, skippable: a piece of one texture image, at its byte offset
@@ -87,7 +91,7 @@ enum class PacketType : uint8_t {
     Skin = 0x15,        // 1.5, skippable: joints and inverse bind matrices of a skin
     MorphAnimation = 0x16,  // 1.6, skippable: keys of one track of morph target weights
     Manifest = 0x20,    // 1.2, skippable: signed digests of the stream's other packets
-    // 0x00 is invalid; 0x0B..0x0F reserved for geometry; 0x17..0x1F reserved for the scene;
+    // 0x00 is invalid; 0x0C..0x0F reserved for geometry; 0x17..0x1F reserved for the scene;
     // 0x21..0x7F future; 0x80..0xFF experimental.
 };
 
@@ -107,7 +111,7 @@ std::string replace_invalid_utf8(std::string_view text);
 // Name of a packet type ("STREAM_INFO", ...), or "UNKNOWN(0xNN)".
 std::string packet_type_name(uint8_t type);
 
-// True for the types this implementation decodes (every type up to format 1.6).
+// True for the types this implementation decodes (every type up to format 1.8).
 bool is_known_packet_type(uint8_t type);
 
 // ---------------------------------------------------------------------------------------------
@@ -250,14 +254,21 @@ struct ObjectInfo {
     // the batch n that deals indices to ranks (spec 23.2), >= 1 exactly when map_level > 0.
     uint8_t map_level = 0;
     uint16_t map_batch = 0;
+    // Format 1.8 (spec 24.1, entry flags bit 9): the object's normals are those of its surface (the
+    // exact layer's), except those NORMALS packets send; its records carry no normal (attributes
+    // bit 0 clear). Only on a surface with an exact layer.
+    bool surface_normals = false;
 
     bool operator==(const ObjectInfo&) const = default;
+    // Whether a receiver shows normals on the object: sent in its records, or surface normals.
+    bool has_normals() const { return (attributes & kAttrNormal) != 0 || surface_normals; }
     bool mapped() const { return map_level > 0; }
     bool has(uint8_t attr) const { return (attributes & attr) == attr; }
     int color_channels() const { return has(kAttrColor) ? (has(kAttrColorAlpha) ? 4 : 3) : 0; }
 };
 
 inline constexpr uint16_t kEntryExactLayer = 0x0100;  // object entry flags (offset 26), format 1.3
+inline constexpr uint16_t kEntrySurfaceNormals = 0x0200;  // format 1.8 (spec 24.1)
 inline constexpr size_t kStreamInfoFixedSize = 32;  // v1.0 stream-level part of STREAM_INFO
 inline constexpr size_t kObjectEntrySize = 44;      // v1.0 object table entry
 inline constexpr size_t kMappedEntrySize = 48;      // format 1.7: the entry with its map fields (spec 23.1)
@@ -441,6 +452,14 @@ std::vector<uint32_t> mapped_order(const std::vector<QuantizedPoint>& points, un
 // ---------------------------------------------------------------------------------------------
 // Packetizing a whole stream
 
+// Surface normals (format 1.8, spec 24): a point's normal entry says whether its normal is sent
+// (then its octahedral normal, normal_bits per component) or left to the surface.
+struct NormalEntry {
+    bool sent = false;
+    std::array<uint32_t, 2> normal{};  // when sent
+    bool operator==(const NormalEntry&) const = default;
+};
+
 // The content of one object, quantized, ready to be cut into packets.
 struct ObjectContent {
     std::vector<QuantizedEllipsoid> ellipsoids;  // must match info.objects[i].ellipsoid_count
@@ -449,6 +468,9 @@ struct ObjectContent {
     // packetize_connectivity, not by packetize_stream.
     std::vector<uint8_t> connectivity;
     uint32_t triangle_count = 0;
+    // Format 1.8 (spec 24): for an object with surface normals, one entry per point (sent by
+    // packetize_stream in NORMALS packets); empty otherwise.
+    std::vector<NormalEntry> normals;
 };
 
 struct StreamPackets {
@@ -456,6 +478,7 @@ struct StreamPackets {
     std::vector<std::vector<uint8_t>> ellipsoids;   // every ELLIPSOIDS packet, object by object
     std::vector<std::vector<uint8_t>> points;       // every POINTS / MAPPED_POINTS packet, in stream order
     std::vector<std::vector<uint8_t>> maps;         // format 1.7: every POINT_MAP packet, object by object
+    std::vector<std::vector<uint8_t>> normals;      // format 1.8: every NORMALS packet, object by object
 };
 
 // Cuts a stream into packets of at most info.packet_size bytes. Sequence numbers run from 0 in the
@@ -739,6 +762,40 @@ Error packetize_morph_deltas(const StreamInfo& info, uint16_t object_id, uint8_t
                              const std::vector<float>& values, uint32_t stream_id, uint32_t first_sequence,
                              std::vector<std::vector<uint8_t>>& out);
 
+// Surface normals (format 1.8, spec 24): NORMALS packets (NormalEntry is declared with ObjectContent).
+// One NORMALS packet's content: the entries of points [first_index, first_index + entries.size()).
+struct NormalsRun {
+    uint32_t first_index = 0;
+    std::vector<NormalEntry> entries;
+};
+inline constexpr size_t kNormalsHeaderSize = 8;
+// Bytes of a NORMALS payload of `count` entries, `sent` of them sent, at `normal_bits`.
+size_t normals_payload_size(size_t count, size_t sent, unsigned normal_bits);
+std::vector<uint8_t> encode_normals_payload(const NormalsRun& run, unsigned normal_bits);
+// The fixed fields (spec 24.2, step 11): MalformedPayload when shorter than 8 bytes, count 0,
+// sent_count > count, or first_index + count past 2^32 - 1.
+Error check_normals_header(std::span<const uint8_t> payload);
+// The whole payload at the stream's normal_bits (spec 24.2, step 13): MalformedPayload when the
+// length or the number of flags set does not match sent_count.
+Error decode_normals_payload(std::span<const uint8_t> payload, unsigned normal_bits, NormalsRun& out);
+// The NORMALS packets of object `object_id` (entries.size() must be its point_count), runs of as many
+// points as fit the stream's packet size, numbered from `first_sequence`, saying version 1.8.
+Error packetize_normals(const StreamInfo& info, uint16_t object_id, const std::vector<NormalEntry>& entries,
+                        uint32_t stream_id, uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out);
+// The surface normal of every point (spec 24.3) from the quantized positions and the exact layer's
+// triangles, and per point the ratio |S| / (sum of the angles) (0 when undefined): a normal whose
+// ratio is small can turn under rounding (the reference encoder sends it when the ratio is under 0.1).
+struct SurfaceNormals {
+    std::vector<std::array<float, 3>> normal;  // (0, 0, 0) where undefined
+    std::vector<float> condition;              // |S| / sum of theta; 0 where undefined
+};
+SurfaceNormals surface_normals(const std::vector<std::array<uint32_t, 3>>& positions,
+                               std::span<const std::array<uint32_t, 3>> triangles);
+// Whether some triangle contributes to the surface normal of each point (m != 0, exact integers):
+// the conformance test of spec 24.4.
+std::vector<char> surface_normal_defined(const std::vector<std::array<uint32_t, 3>>& positions,
+                                         std::span<const std::array<uint32_t, 3>> triangles);
+
 // Everything of the scene that travels besides geometry.
 struct SceneDescription {
     std::vector<SceneNode> nodes;  // node i has index i
@@ -1019,6 +1076,9 @@ struct ReceivedObject {
     uint8_t morph_targets = 0, morph_attributes = 0;
     std::vector<float> morph_scales;
     std::map<uint32_t, std::vector<float>> morph;
+    // Format 1.8 (spec 24.2): the normal entries of an object with surface normals, by point index.
+    std::map<uint32_t, NormalEntry> normal_entries;
+    bool normals_complete() const { return info && normal_entries.size() == info->point_count; }
 };
 
 struct Rejection {
@@ -1080,7 +1140,9 @@ public:
     uint8_t newest_minor() const { return newest_minor_; }
 
     // The dequantized geometry received so far for object `index` (ellipsoids by index order,
-    // points by stream order). Empty when the object's info has not arrived.
+    // points by stream order). Empty when the object's info has not arrived. For an object with
+    // surface normals (format 1.8) a point's normal is the one its NORMALS entry sent, or (0, 0, 0)
+    // when it is left to the surface or its entry has not arrived (spec 24.4).
     std::vector<Ellipsoid> ellipsoids(size_t index) const;
     std::vector<SurfacePoint> points(size_t index) const;
 
@@ -1167,6 +1229,7 @@ private:
     Error take_object_packet(const PacketView& packet, uint64_t where);
     Error take_repair(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_point_map(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
+    Error take_normals(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     // Takes a point record that arrived (or was recovered): placed, or held unplaced for a mapped
     // object whose fragment has not arrived. False when the index was held already.
     bool take_point_record(ReceivedObject& object, uint32_t index, const QuantizedPoint& record);
