@@ -15,8 +15,11 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -725,6 +728,129 @@ TEST_CASE("the mapped-point vectors: the unusual ones decode to the objects of v
             }
         }
     CHECK(checked >= 35);
+}
+
+TEST_CASE("the surface-normals vectors: the unusual ones decode to the objects of valid/normals, sent normals are "
+          "what ReceivedStream::points gives, surface normals are unit vectors, and only the non-conforming vectors "
+          "leave a point of the exact layer to an undefined surface normal (spec 24)") {
+    auto decode = [](const std::string& vector) {
+        return conformance::expected_decode(read_bytes(vectors_dir() / (vector + ".ellc")));
+    };
+    const auto valid = decode("valid/normals");
+    CHECK(valid["rejections"].empty());
+    CHECK(valid["newest_minor"] == 8);
+    for (int k : {0, 1}) {
+        INFO("object " << k);
+        const auto& o = valid["objects"][k];
+        CHECK(o["surface_normals"] == true);
+        CHECK((o["info"]["attributes"].get<int>() & kAttrNormal) == 0);  // no normal in the records (spec 24.1)
+        CHECK(o["normals"]["complete"] == true);
+        CHECK(o["normals"]["entries"].size() == o["info"]["point_count"].get<size_t>());
+        REQUIRE(o["normals"]["surface"].is_array());  // exact
+        CHECK(o["normals"]["surface"].size() == o["info"]["point_count"].get<size_t>());
+        size_t sent = 0;
+        for (const auto& e : o["normals"]["entries"]) sent += e["sent"].get<bool>();
+        CHECK(sent > 0);
+        CHECK(sent < o["normals"]["entries"].size());
+        for (const auto& p : o["points"]) CHECK(!p.contains("normal"));
+    }
+    CHECK(valid["objects"][0]["info"]["map_level"] == 5);
+    CHECK(!valid["objects"][2].contains("normals"));
+    CHECK(!valid["objects"][2].contains("surface_normals"));
+    for (const std::string same : {"unusual/normals_before_stream_info", "unusual/normals_runs_reordered",
+                                   "unusual/normals_padding_nonzero", "valid/normals_repair"}) {
+        INFO(same);
+        const auto j = decode(same);
+        CHECK(j["rejections"].empty());
+        for (int k : {0, 1}) {
+            CHECK(j["objects"][k].at("normals") == valid["objects"][k].at("normals"));
+            CHECK(j["objects"][k].at("points") == valid["objects"][k].at("points"));
+            CHECK(j["objects"][k].at("connectivity") == valid["objects"][k].at("connectivity"));
+        }
+        CHECK(j["objects"][2] == valid["objects"][2]);
+    }
+    CHECK(decode("valid/normals_repair")["objects"][1]["points_recovered"] == 20);
+    CHECK(decode("unusual/normals_runs_reordered")["counters"]["duplicates"] == 3);
+    // The same entries at 16 bits: the same points are sent.
+    const auto wide = decode("unusual/normals_16_bit");
+    for (int k : {0, 1})
+        for (size_t i = 0; i < wide["objects"][k]["normals"]["entries"].size(); ++i)
+            CHECK(wide["objects"][k]["normals"]["entries"][i]["sent"] == valid["objects"][k]["normals"]["entries"][i]["sent"]);
+    // A STREAM_INFO that says 1.7: bit 9 is not read (spec 24.1, 9).
+    for (const std::string old : {"unusual/normals_flag_in_1_7_stream", "faulty/normals_flag_in_1_7_packet"}) {
+        INFO(old);
+        const auto j = decode(old);
+        for (const auto& o : j["objects"]) {
+            CHECK(!o.contains("surface_normals"));
+            CHECK(!o.contains("normals"));
+            CHECK(o["points_received"] == o["info"]["point_count"]);
+        }
+        CHECK(j["objects"][0].at("connectivity").contains("triangles"));
+    }
+    CHECK(decode("faulty/normals_flag_in_1_7_packet")["rejections"].size() == 3);
+    // Incomplete entries; an object not exact lists no surface normal (spec 24.4, 19.4).
+    const auto incomplete = decode("faulty/normals_incomplete")["objects"][0]["normals"];
+    CHECK(incomplete["complete"] == false);
+    CHECK(incomplete["entries"].size() < 258);
+    CHECK(incomplete["surface"] == valid["objects"][0]["normals"]["surface"]);
+    const auto not_exact = decode("faulty/normals_connectivity_lost")["objects"][1]["normals"];
+    CHECK(not_exact["complete"] == true);
+    CHECK(not_exact["surface"].is_null());
+    // In every vector with surface normals: a sent entry's normal is its integers decoded (spec 8.3) and what
+    // ReceivedStream::points gives (a point left to the surface, or without an entry, gets (0, 0, 0)); a listed
+    // surface normal is a unit vector; and a point that a triangle of the exact layer uses is left to an undefined
+    // surface normal only in faulty/normals_surface_undefined (spec 24.4).
+    size_t checked = 0, undefined_left = 0;
+    for (const std::string set : {"valid", "unusual", "faulty"})
+        for (const auto& file : vectors_in(set)) {
+            const auto bytes = read_bytes(file);
+            const auto j = conformance::expected_decode(bytes);
+            const ReceivedStream stream = receive(bytes);
+            for (size_t k = 0; k < j["objects"].size(); ++k) {
+                const auto& o = j["objects"][k];
+                if (!o.contains("normals")) continue;
+                INFO(file.string() << " object " << k);
+                const unsigned bits = j["stream_info"]["normal_bits"].get<unsigned>();
+                std::map<uint32_t, nlohmann::json> entries;
+                for (const auto& e : o["normals"]["entries"]) {
+                    entries[e["index"].get<uint32_t>()] = e;
+                    if (!e["sent"].get<bool>()) continue;
+                    const auto n = decode_octahedral({e["q"][0].get<uint32_t>(), e["q"][1].get<uint32_t>()}, int(bits));
+                    for (int a = 0; a < 3; ++a) CHECK(e["normal"][a].get<float>() == n[a]);
+                }
+                const std::vector<SurfacePoint> shown = stream.points(k);
+                REQUIRE(shown.size() == o["points"].size());
+                for (size_t i = 0; i < shown.size(); ++i) {
+                    const uint32_t index = o["points"][i]["index"].get<uint32_t>();
+                    auto e = entries.find(index);
+                    for (int a = 0; a < 3; ++a)
+                        CHECK(shown[i].normal[a] == (e != entries.end() && e->second["sent"].get<bool>()
+                                                         ? e->second["normal"][a].get<float>()
+                                                         : 0.0f));
+                }
+                if (o["normals"]["surface"].is_null()) continue;
+                std::set<uint32_t> used;
+                for (const auto& t : o.at("connectivity").at("triangles"))
+                    for (const auto& v : t) used.insert(v.get<uint32_t>());
+                for (const auto& sn : o["normals"]["surface"]) {
+                    const uint32_t index = sn["index"].get<uint32_t>();
+                    if (sn["normal"].is_null()) {
+                        auto e = entries.find(index);
+                        if (used.count(index) && e != entries.end() && !e->second["sent"].get<bool>()) {
+                            CHECK(file.stem().string() == "normals_surface_undefined");
+                            ++undefined_left;
+                        }
+                        continue;
+                    }
+                    double length = 0;
+                    for (const auto& c : sn["normal"]) length += c.get<double>() * c.get<double>();
+                    CHECK(std::fabs(std::sqrt(length) - 1) < 1e-5);
+                }
+                ++checked;
+            }
+        }
+    CHECK(checked >= 60);
+    CHECK(undefined_left == 1);
 }
 
 #ifndef ELLICAST_FORMAT_TESTS_ONLY

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent format 1.7 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.8 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
@@ -27,7 +27,9 @@ and the displacements as one f32 multiplication each) and morph keys held, the m
 their targets and the morph tracks it plays, spec 22.4; for format 1.7 the object entry's map fields and the
 POINT_MAP and MAPPED_POINTS packets of spec section 23: their checks and comparisons, the Rice-coded trees of
 the fragments decoded here, the ranks of spec 23.2, the records held but not placed and those placed, and
-POINTS_REPAIR over mapped records, spec 23.5) so
+POINTS_REPAIR over mapped records, spec 23.5; for format 1.8 the object entry's surface-normals flag and the
+NORMALS packets of spec section 24: their checks and comparisons, the normal entries held by index, and the
+surface normal of every point of an exact object, summed here over its exact triangle list, spec 24.3) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -60,6 +62,8 @@ KNOWN_15 = {0x15: "SKIN", 0x07: "JOINT_WEIGHTS"}
 KNOWN_16 = {0x16: "MORPH_ANIMATION", 0x08: "MORPH_DELTAS"}
 # Format 1.7 (spec sections 4 and 23): both critical, both belong to an object.
 KNOWN_17 = {0x09: "MAPPED_POINTS", 0x0A: "POINT_MAP"}
+# Format 1.8 (spec sections 4 and 24): skippable, belongs to an object.
+KNOWN_18 = {0x0B: "NORMALS"}
 SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14, 0x15, 0x16}  # JOINT_WEIGHTS and MORPH_DELTAS belong to an object
 PATHS = ("translation", "rotation", "scale")
 INTERPOLATIONS = ("LINEAR", "STEP", "CUBICSPLINE")
@@ -156,9 +160,10 @@ def read_container(buf):
     return None, packets, damaged
 
 
-def decode_stream_info(p, minor=7):
+def decode_stream_info(p, minor=8):
     """Spec 5.1..5.3. Returns (fields, object_count, first_object, entries) or None if malformed. `minor`: the
-    packet's version_minor (the entries' map fields are read only from 1.7 on, spec 23.1)."""
+    packet's version_minor (the entries' map fields are read only from 1.7 on, spec 23.1, the surface-normals
+    flag only from 1.8 on, spec 24.1)."""
     if len(p) < 32:
         return None
     info_size, entry_size, packet_size = struct.unpack_from("<HHH", p, 0)
@@ -194,6 +199,11 @@ def decode_stream_info(p, minor=7):
             level, batch = p[e + 44], struct.unpack_from("<H", p, e + 46)[0]
             if level >= pb or (level == 0 and batch != 0) or (level > 0 and batch == 0):
                 return None
+        # Format 1.8 (spec 24.1): flags bit 9, read only from a packet that says 1.8 or later (otherwise 0).
+        # When set, the entry MUST be a surface (kind 0) with flags bit 8 set and attributes bit 0 clear.
+        surface_normals = minor >= 8 and bool(flags & 0x200)
+        if surface_normals and (kind != 0 or not flags & 0x100 or attrs & 1):
+            return None
         entries.append(dict(frame_origin=[ox, oy, oz], frame_scale=scale, ellipsoid_count=ne, point_count=npts,
                             kind="surface" if kind == 0 else "point set", attributes=attrs,
                             texcoord_origin=list(to), texcoord_scale=list(ts),
@@ -201,7 +211,9 @@ def decode_stream_info(p, minor=7):
                             # 1.3 on it is compared (5.4); the other bits of the field are not.
                             exact_layer=bool(flags & 0x100) and kind == 0,
                             # Compared like the other fields (5.4); an entry without them compares as 0, 0.
-                            map_level=level, map_batch=batch))
+                            map_level=level, map_batch=batch,
+                            # Compared like the other fields (5.4, 24.1); 0 when not read.
+                            surface_normals=surface_normals))
     fields = dict(packet_size=packet_size, position_bits=pb, normal_bits=nb, texcoord_bits=tb, color_bits=cb,
                   ellipsoid_encoding=enc, content_id=content_id, grid_hint=grid_hint, coverage_target=coverage,
                   seed=seed)
@@ -251,6 +263,16 @@ def sgn(v):
     return -1.0 if v < 0 else 1.0
 
 
+def decode_octahedral(qu, qv, bits):
+    """Spec 8.3: the unit normal of the octahedral integers (qu, qv) of `bits` bits each, rounded to f32."""
+    nm = (1 << bits) - 1
+    u, v = qu / nm * 2 - 1, qv / nm * 2 - 1
+    z = 1 - abs(u) - abs(v)
+    x, y = ((1 - abs(v)) * sgn(u), (1 - abs(u)) * sgn(v)) if z < 0 else (u, v)
+    n = math.sqrt(x * x + y * y + z * z)
+    return [f32(x / n), f32(y / n), f32(z / n)]
+
+
 def dequantize_point(q, info, obj):
     a = obj["attributes"]
     s, o = obj["frame_scale"], obj["frame_origin"]
@@ -258,12 +280,7 @@ def dequantize_point(q, info, obj):
     out = dict(position=[f32(o[i] + q[i] / pm * s) for i in range(3)])
     k = 3
     if a & 1:
-        nm = (1 << info["normal_bits"]) - 1
-        u, v = q[k] / nm * 2 - 1, q[k + 1] / nm * 2 - 1
-        z = 1 - abs(u) - abs(v)
-        x, y = ((1 - abs(v)) * sgn(u), (1 - abs(u)) * sgn(v)) if z < 0 else (u, v)
-        n = math.sqrt(x * x + y * y + z * z)
-        out["normal"] = [f32(x / n), f32(y / n), f32(z / n)]
+        out["normal"] = decode_octahedral(q[k], q[k + 1], info["normal_bits"])
         k += 2
     if a & 2:
         tm = (1 << info["texcoord_bits"]) - 1
@@ -1245,6 +1262,65 @@ def point_map_cells(p, level):
     return cells
 
 
+# ------------------------------------------------------------------------------------------------
+# Format 1.8: surface normals (spec 24).
+
+
+def normals_header(p):
+    """Spec 24.2, the fixed fields (step 11): (first_index, count, sent_count) or None."""
+    if len(p) < 8:
+        return None
+    first, count, sent = struct.unpack_from("<IHH", p, 0)
+    if count == 0 or sent > count or first + count > 0xFFFFFFFF:  # Python integers do not overflow
+        return None
+    return first, count, sent
+
+
+def normals_entries(p, bits):
+    """Spec 24.2, step 13 for the stream's normal_bits N: (first_index, [entry]) with each entry None (left to the
+    surface) or (u, v) (sent), or None when the length is not 8 + ceil((count + 2 N sent_count) / 8) or the flags of
+    value 1 are not sent_count in number. The padding bits are not looked at."""
+    first, count, sent = normals_header(p)
+    if len(p) != 8 + (count + 2 * bits * sent + 7) // 8:
+        return None
+    r = Bits(p[8:])
+    flags = [r.get(1) for _ in range(count)]
+    if sum(flags) != sent:
+        return None
+    entries = [None] * count
+    for i, f in enumerate(flags):  # the sent normals follow all the flags, in index order
+        if f:
+            entries[i] = (r.get(bits), r.get(bits))
+    return first, entries
+
+
+def surface_normals(positions, triangles):
+    """Spec 24.3: per point, S / |S| (S the sum over the corners at the point of theta * m / |m|, m = e1 x e2 in
+    integers, for the corners where m != 0), or None when no corner contributes or S = 0."""
+    S = [[0.0, 0.0, 0.0] for _ in positions]
+    contributed = [False] * len(positions)
+    for t in triangles:
+        for c in range(3):
+            i, j, k = t[c], t[(c + 1) % 3], t[(c + 2) % 3]
+            e1 = [positions[j][a] - positions[i][a] for a in range(3)]
+            e2 = [positions[k][a] - positions[i][a] for a in range(3)]
+            m = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
+            if m == [0, 0, 0]:
+                continue  # exact: the triangle does not contribute
+            l1 = math.sqrt(sum(v * v for v in e1))
+            l2 = math.sqrt(sum(v * v for v in e2))
+            lm = math.sqrt(sum(v * v for v in m))
+            theta = math.acos(max(-1.0, min(1.0, sum(a * b for a, b in zip(e1, e2)) / (l1 * l2))))
+            for a in range(3):
+                S[i][a] += theta * m[a] / lm
+            contributed[i] = True
+    out = []
+    for s, c in zip(S, contributed):
+        length = math.sqrt(sum(v * v for v in s))
+        out.append([f32(v / length) for v in s] if c and length > 0 else None)
+    return out
+
+
 class Receiver:
     """Spec 11.1 steps 9..15 and 11.2."""
 
@@ -1280,7 +1356,7 @@ class Receiver:
             return self.reject(offset, "stream mismatch")
         t = h["type"]
         if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12 and t not in KNOWN_13 and t not in KNOWN_14
-                                   and t not in KNOWN_15 and t not in KNOWN_16 and t not in KNOWN_17)
+                                   and t not in KNOWN_15 and t not in KNOWN_16 and t not in KNOWN_17 and t not in KNOWN_18)
                                   or not self.know_11):
             if not h["flags"] & 1:
                 return self.reject(offset, "unknown critical type")
@@ -1322,6 +1398,9 @@ class Receiver:
         elif t == 0x0A and point_map_header(h["payload"]) is None:
             # Spec 23.3: the fixed fields are checked at step 11, before the packet can be held.
             return self.reject(offset, "malformed payload")
+        elif t == 0x0B and normals_header(h["payload"]) is None:
+            # Spec 24.2: the fixed fields are checked at step 11, before the packet can be held.
+            return self.reject(offset, "malformed payload")
         else:
             result = self.object_packet(h, offset)
         if result in ("accepted", "duplicate", "held", "skipped"):
@@ -1346,8 +1425,9 @@ class Receiver:
             # points: by index, those placed (spec 23.4) for a mapped object; records (format 1.7): a mapped
             # object's records held, placed or not, as their integers (offset, then attributes); fragments: its
             # POINT_MAP fragments accepted, by first rank.
+            # normals (format 1.8): an object's normal entries held, by point index (None: left to the surface).
             self.objects = [dict(info=None, ellipsoids={}, points={}, blocks={}, recovered=0, weights={},
-                                 morph={}, morph_kind=None, records={}, fragments={}) for _ in range(count)]
+                                 morph={}, morph_kind=None, records={}, fragments={}, normals={}) for _ in range(count)]
             # Spec 11.1: held packets naming an object beyond the table are rejected now, in arrival order.
             for h, at in [x for x in self.held if x[0]["object_id"] >= count]:
                 self.counters["held"] -= 1
@@ -1402,6 +1482,8 @@ class Receiver:
             return self.morph_deltas(obj, h, offset)
         if h["type"] == 0x0A:
             return self.point_map(obj, h, offset)
+        if h["type"] == 0x0B:
+            return self.normals(obj, h, offset)
         ellipsoids = h["type"] == 2
         mapped = obj["info"]["map_level"] > 0
         # Spec 23.4, step 13: POINTS for an object whose map_level is not 0, MAPPED_POINTS for one whose map_level
@@ -1489,6 +1571,26 @@ class Receiver:
                 if first <= rank < first + total:
                     self.place(obj, index, rank, first, fragment)
         return self.news(True)
+
+    def normals(self, obj, h, offset):
+        """Spec 24.2 with the object's entry: step 13 (the object has surface normals; the length and the flags),
+        14 (the run inside point_count), 15 (each entry against the one held; nothing kept on a contradiction)."""
+        if not obj["info"]["surface_normals"]:
+            return self.reject(offset, "malformed payload")
+        d = normals_entries(h["payload"], self.info["normal_bits"])
+        if d is None:
+            return self.reject(offset, "malformed payload")
+        first, entries = d
+        if first + len(entries) > obj["info"]["point_count"]:
+            return self.reject(offset, "index out of range")
+        held = obj["normals"]
+        # Identical entries: both left to the surface, or both sent with the same u and v.
+        if any(first + i in held and held[first + i] != e for i, e in enumerate(entries)):
+            return self.reject(offset, "stream mismatch")
+        fresh = [i for i in range(len(entries)) if first + i not in held]
+        for i in fresh:
+            held[first + i] = entries[i]
+        return self.news(bool(fresh))
 
     def joint_weights(self, obj, h, offset):
         """Spec 21.2 with the object's entry: step 14, then each record against the one held (step 15)."""
@@ -2233,6 +2335,34 @@ def decode_connectivity(coded, triangle_count, positions, stats=None):
     return T
 
 
+def exact_triangles(obj):
+    """Spec 19.4: the exact triangle list of an object that is exact (every point held, its connectivity complete
+    and decoded without being unusable), else None."""
+    c = obj.get("connectivity")
+    if c is None or not c["complete"] or len(obj["points"]) != obj["info"]["point_count"]:
+        return None
+    positions = [obj["points"][i][:3] for i in range(obj["info"]["point_count"])]
+    return decode_connectivity(c["coded"], c["desc"][0], positions)
+
+
+def normals_json(obj, info):
+    """Spec 24.2..24.4: the entries held (by index), whether they are complete, and, for an exact object, every
+    point's surface normal over its exact triangle list (null where undefined)."""
+    bits = info["normal_bits"]
+    entries = []
+    for i, e in sorted(obj["normals"].items()):
+        if e is None:
+            entries.append(dict(index=i, sent=False))
+        else:
+            entries.append(dict(index=i, sent=True, q=list(e), normal=decode_octahedral(e[0], e[1], bits)))
+    surface = None
+    triangles = exact_triangles(obj)
+    if triangles is not None:
+        positions = [obj["points"][i][:3] for i in range(obj["info"]["point_count"])]
+        surface = [dict(index=i, normal=n) for i, n in enumerate(surface_normals(positions, triangles))]
+    return dict(entries=entries, complete=len(obj["normals"]) == obj["info"]["point_count"], surface=surface)
+
+
 def connectivity_json(obj):
     """Spec 19.1, 19.2: the connectivity held, and its decode once complete with every point held."""
     c = obj["connectivity"]
@@ -2255,7 +2385,7 @@ def objects_json(r):
     objects = []
     for i, obj in enumerate(r.objects):
         # The map fields (format 1.7) are listed only for an object whose map_level is not 0 (README).
-        info = obj["info"] and {k: v for k, v in obj["info"].items() if k != "exact_layer" and
+        info = obj["info"] and {k: v for k, v in obj["info"].items() if k not in ("exact_layer", "surface_normals") and
                                 (k not in ("map_level", "map_batch") or obj["info"]["map_level"])}
         o = dict(id=i, info=info, ellipsoids_received=len(obj["ellipsoids"]),
                  points_received=len(obj["points"]))
@@ -2281,6 +2411,10 @@ def objects_json(r):
                 o["exact_layer"] = obj["info"]["exact_layer"]
             if "connectivity" in obj:
                 o["connectivity"] = connectivity_json(obj)
+            # Format 1.8 (spec 24): listed for an object whose entry has the surface-normals flag (README).
+            if obj["info"]["surface_normals"]:
+                o["surface_normals"] = True
+                o["normals"] = normals_json(obj, r.info)
             # Format 1.5 (spec 21.2): the influence records held, listed when there is one (README).
             if obj["weights"]:
                 o["weights"] = [dict(index=i, joints=j, weights=w) for i, (j, w) in sorted(obj["weights"].items())]
@@ -2315,7 +2449,7 @@ def decode(buf):
         old.add(h, offset)
         name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or KNOWN_12.get(h["type"]) or \
             KNOWN_13.get(h["type"]) or KNOWN_14.get(h["type"]) or KNOWN_15.get(h["type"]) or KNOWN_16.get(h["type"]) or \
-            KNOWN_17.get(h["type"]) or "UNKNOWN(0x%02X)" % h["type"]
+            KNOWN_17.get(h["type"]) or KNOWN_18.get(h["type"]) or "UNKNOWN(0x%02X)" % h["type"]
         plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
                           flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
                           object_id=h["object_id"], payload_length=h["payload_length"], result=result))
@@ -2355,7 +2489,9 @@ def compare(expected, actual, path, diffs):
             diffs.append("%s: expected %r, got %r" % (path, expected, actual))
     elif isinstance(expected, (int, float)) and isinstance(actual, (int, float)):
         if isinstance(expected, float) or isinstance(actual, float):
-            if not abs(expected - actual) <= 1e-6 * max(1.0, abs(expected), abs(actual)):
+            # Surface normals (spec 24.3) are summed in any order: compared within 1e-4 (spec 14).
+            tolerance = 1e-4 if ".normals.surface[" in path else 1e-6 * max(1.0, abs(expected), abs(actual))
+            if not abs(expected - actual) <= tolerance:
                 diffs.append("%s: expected %r, got %r" % (path, expected, actual))
         elif expected != actual:
             diffs.append("%s: expected %r, got %r" % (path, expected, actual))

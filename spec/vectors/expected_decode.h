@@ -1,4 +1,4 @@
-// The expected decode of a conformance vector as JSON: what a format 1.7 decoder makes of a container
+// The expected decode of a conformance vector as JSON: what a format 1.8 decoder makes of a container
 // file (spec/format.md sections 10 and 11). The vector generator (make_vectors.cpp) writes it next to
 // each .ellc; tests/test_conformance.cpp recomputes it with the library and compares. The JSON layout
 // is described in spec/vectors/README.md.
@@ -167,6 +167,43 @@ inline nlohmann::json connectivity_json(const ReceivedStream& stream, size_t obj
     return j;
 }
 
+// Format 1.8 (spec 24.2, 24.3): the normal entries held for an object with surface normals, by point
+// index ("sent" with its integers and its dequantized normal, or left to the surface), whether they are
+// complete (an entry for every point 0 .. point_count - 1), and, once the object is exact (spec 19.4:
+// every point held and the connectivity decoded), every point's surface normal over the exact triangle
+// list (null where it is undefined: no triangle contributes, or the sum is 0); null while not exact.
+inline nlohmann::json normals_json(const ReceivedStream& stream, size_t object) {
+    using nlohmann::json;
+    const ReceivedObject& o = stream.objects()[object];
+    const int bits = stream.info()->normal_bits;
+    json entries = json::array();
+    for (const auto& [index, e] : o.normal_entries) {
+        if (e.sent)
+            entries.push_back({{"index", index},
+                               {"sent", true},
+                               {"q", {e.normal[0], e.normal[1]}},
+                               {"normal", floats(decode_octahedral(e.normal, bits).data(), 3)}});
+        else
+            entries.push_back({{"index", index}, {"sent", false}});
+    }
+    json surface = nullptr;
+    std::vector<Triangle> triangles;
+    std::string why;
+    if (exact_triangles(stream, object, triangles, why) == Error::Ok) {
+        std::vector<std::array<uint32_t, 3>> positions;
+        positions.reserve(o.points.size());
+        for (const auto& [index, p] : o.points) positions.push_back(p.position);
+        const SurfaceNormals normals = surface_normals(positions, triangles);
+        surface = json::array();
+        for (size_t i = 0; i < positions.size(); ++i) {
+            const std::array<float, 3>& n = normals.normal[i];
+            const bool defined = n[0] != 0 || n[1] != 0 || n[2] != 0;
+            surface.push_back({{"index", i}, {"normal", defined ? floats(n.data(), 3) : json(nullptr)}});
+        }
+    }
+    return {{"entries", entries}, {"complete", o.normals_complete()}, {"surface", surface}};
+}
+
 // The objects a receiver holds, as the JSON lists them.
 inline nlohmann::json objects_json(const ReceivedStream& stream) {
     using nlohmann::json;
@@ -233,6 +270,13 @@ inline nlohmann::json objects_json(const ReceivedStream& stream) {
             // one or that holds a connectivity, so that the decodes of streams without it stay as they were.
             if (oi.exact_layer || object.connectivity) o["exact_layer"] = oi.exact_layer;
             if (object.connectivity) o["connectivity"] = connectivity_json(stream, i);
+            // Format 1.8, surface normals (spec 24): listed only for an object whose entry has the flag
+            // (read from a STREAM_INFO that says 1.8 or later), so that the decodes of the streams without
+            // it stay as they were.
+            if (oi.surface_normals) {
+                o["surface_normals"] = true;
+                o["normals"] = normals_json(stream, i);
+            }
             // Format 1.5 (spec 21.2): the influence records held, by point index; listed only for an
             // object that holds one, so that the decodes of streams without JOINT_WEIGHTS stay as they were.
             if (!object.weights.empty()) {
@@ -826,7 +870,8 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
 inline bool is_informative_key(const std::string& key) { return key == "detail" || key == "description"; }
 
 // Compares an actual decode with the expected one: integers, strings, booleans and nulls exactly,
-// floating-point values within 1e-6 relative error. Appends one line per difference to `diffs`.
+// floating-point values within 1e-6 relative error (surface normals, spec 24.3, within 1e-4). Appends one line
+// per difference to `diffs`.
 inline void compare_json(const nlohmann::json& expected, const nlohmann::json& actual, const std::string& path,
                          std::vector<std::string>& diffs) {
     if (diffs.size() > 20) return;
@@ -834,6 +879,8 @@ inline void compare_json(const nlohmann::json& expected, const nlohmann::json& a
         if (expected.is_number_float() || actual.is_number_float()) {
             double a = expected.get<double>(), b = actual.get<double>();
             double tol = 1e-6 * std::max({1.0, std::fabs(a), std::fabs(b)});
+            // Surface normals (format 1.8, spec 24.3, 14): summed in any order, compared within 1e-4.
+            if (path.find(".normals.surface[") != std::string::npos) tol = 1e-4;
             if (!(std::fabs(a - b) <= tol)) diffs.push_back(path + ": expected " + expected.dump() + ", got " + actual.dump());
         } else if (expected != actual) {
             diffs.push_back(path + ": expected " + expected.dump() + ", got " + actual.dump());

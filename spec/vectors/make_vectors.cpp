@@ -2262,11 +2262,12 @@ void shuffle_points(ExactMesh& m, Rng& rng) {
 
 // A sphere of radius 0.8 around (0, 0, 0): an octahedron subdivided twice (66 vertices, 128
 // triangles, wound outward), with normals; each vertex moved by up to 0.12 along each axis (about a third of an edge) (seeded), so
-// that the parallelogram predictions miss and ranks beyond 2 occur.
-ExactMesh exact_sphere(Rng& rng) {
+// that the parallelogram predictions miss and ranks beyond 2 occur. The surface-normals stream (format
+// 1.8) subdivides it `levels` times with a smaller `jitter`.
+ExactMesh exact_sphere(Rng& rng, int levels = 2, double jitter = 0.12) {
     std::vector<std::array<double, 3>> v = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     std::vector<Triangle> t = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-    for (int level = 0; level < 2; ++level) {
+    for (int level = 0; level < levels; ++level) {
         std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
         auto midpoint = [&](uint32_t a, uint32_t b) {
             const auto key = std::make_pair(std::min(a, b), std::max(a, b));
@@ -2296,7 +2297,7 @@ ExactMesh exact_sphere(Rng& rng) {
     for (const auto& d : v) {
         SurfacePoint p;
         for (int k = 0; k < 3; ++k) {
-            p.position[k] = float(0.8 * d[k] + rng.range(-0.12, 0.12));
+            p.position[k] = float(0.8 * d[k] + rng.range(-jitter, jitter));
             p.normal[k] = float(d[k]);
         }
         m.points.push_back(p);
@@ -6476,6 +6477,729 @@ void map_vectors(Writer& w) {
     }
 }
 
+
+// ------------------------------------------------------------------------------------------------
+// Format 1.8: surface normals (NORMALS, spec 24). The surface-normals stream, at packet size 200, 14-bit
+// positions and 10-bit normals: object 0, a lumpy sphere (an octahedron subdivided three times: 258 points,
+// 512 triangles; each vertex moved by up to 0.03 along each axis) without normals in its records, mapped at
+// level 5 with batch 49 (mapped records of 3 x 9 = 27 bits), with an exact layer and surface normals;
+// object 1, the panel of the exact-layer stream (56 points with texture coordinates, 65 triangles, a hole,
+// a UV seam and a fin; its middle vertex used by no triangle) with an exact layer and surface normals, not
+// mapped; object 2, a point set (20 points with RGB colour). The normal entries are the reference
+// encoder's (spec 24.5, tolerance 2 degrees) for "original" normals that are each point's surface normal
+// (spec 24.3, over the quantized positions) where it is defined and the point's index is not a multiple
+// of 3, and the mesh's own normal otherwise (the sphere's: the direction of the vertex before it was
+// moved; the panel's: (0, 0, 1), the fin's tip (0, -1, 0)). In file order: the STREAM_INFO (1.8), the
+// ELLIPSOIDS (1.0), the POINT_MAP (1.7), the MAPPED_POINTS (1.7) and POINTS (1.0) packets as the packetizer
+// interleaves them, the CONNECTIVITY packets (1.3) of objects 0 and 1, the NORMALS packets (1.8) of
+// objects 0 and 1; sequence numbers count the packets in that order.
+
+constexpr uint16_t kNormalsPacketSize = 200;
+constexpr uint8_t kNormalsMapLevel = 5;
+constexpr uint16_t kNormalsMapBatch = 49;  // floor((200 - 32) * 8 / 27)
+constexpr double kNormalsTolerance = 2.0;  // degrees (spec 24.5)
+
+// The reference encoder's normal entries (spec 24.5): a point's normal is left to its surface when its
+// surface normal is defined, |S| is at least a tenth of the sum of the angles, and it is within the
+// tolerance of the original normal; otherwise the original normal is sent.
+std::vector<NormalEntry> reference_normal_entries(const StreamInfo& info,
+                                                  const std::vector<std::array<uint32_t, 3>>& positions,
+                                                  const std::vector<Triangle>& triangles,
+                                                  const std::vector<std::array<float, 3>>& originals) {
+    const SurfaceNormals sn = surface_normals(positions, triangles);
+    std::vector<NormalEntry> out(positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) {
+        const std::array<float, 3>& a = sn.normal[i];
+        const std::array<float, 3>& b = originals[i];
+        const double la = std::sqrt(double(a[0]) * a[0] + double(a[1]) * a[1] + double(a[2]) * a[2]);
+        const double lb = std::sqrt(double(b[0]) * b[0] + double(b[1]) * b[1] + double(b[2]) * b[2]);
+        bool surface = sn.condition[i] >= 0.1f && la > 0 && lb > 0;
+        if (surface) {
+            const double dot = (double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2]) / (la * lb);
+            surface = std::acos(std::clamp(dot, -1.0, 1.0)) * 180 / M_PI <= kNormalsTolerance;
+        }
+        if (!surface) {
+            out[i].sent = true;
+            out[i].normal = encode_octahedral(b, info.normal_bits);
+        }
+    }
+    return out;
+}
+
+struct NormalsStream {
+    StreamInfo info;
+    std::vector<ObjectContent> contents;
+    std::vector<std::vector<Triangle>> triangles;  // per object: the exact triangle list a decoder decodes
+    std::vector<std::vector<uint8_t>> coded;       // per object: the coded connectivity (empty: none)
+    // In file order, numbered in that order from 0: the STREAM_INFO, ELLIPSOIDS, POINT_MAP packets, the
+    // MAPPED_POINTS and POINTS packets, the CONNECTIVITY packets, the NORMALS packets.
+    Packets info_packets, ellipsoids, maps, points, connectivity, normals;
+
+    Packets all() const {
+        Packets out = info_packets;
+        for (const Packets* p : {&ellipsoids, &maps, &points, &connectivity, &normals})
+            out.insert(out.end(), p->begin(), p->end());
+        return out;
+    }
+    // Everything but the NORMALS packets.
+    Packets without_normals() const {
+        Packets out = info_packets;
+        for (const Packets* p : {&ellipsoids, &maps, &points, &connectivity}) out.insert(out.end(), p->begin(), p->end());
+        return out;
+    }
+    static Packets of(const Packets& packets, uint16_t object) {
+        Packets out;
+        for (const Packet& p : packets)
+            if (get16(p, 16) == object) out.push_back(p);
+        return out;
+    }
+    NormalsRun run_of(const Packet& p) const {
+        NormalsRun run;
+        if (decode_normals_payload(payload_of(p), info.normal_bits, run) != Error::Ok) {
+            std::cerr << "make_vectors: a NORMALS packet does not decode\n";
+            std::exit(1);
+        }
+        return run;
+    }
+    // The entries of points [first, first + count) of `object` as one run.
+    NormalsRun run(uint16_t object, uint32_t first, uint32_t count) const {
+        NormalsRun r;
+        r.first_index = first;
+        r.entries.assign(contents[object].normals.begin() + first, contents[object].normals.begin() + first + count);
+        return r;
+    }
+    Packet packet(const NormalsRun& run, uint32_t sequence, uint16_t object) const {
+        return write_packet(skippable_header(PacketType::Normals, kSurfaceNormalsMinor, kStreamId, sequence, object),
+                            encode_normals_payload(run, info.normal_bits));
+    }
+    size_t sent_count(uint16_t object) const {
+        size_t n = 0;
+        for (const NormalEntry& e : contents[object].normals) n += e.sent;
+        return n;
+    }
+};
+
+// With `flat_fin`, the panel's fin is flattened: its tip (the panel's last point before the points are
+// shuffled) moved to the quantized position 2 q0 - q1 of its edge's points 0 and 1, on their line, so that
+// the fin triangle is degenerate (m = 0 at each corner, spec 24.3) and the tip, which no other triangle
+// uses, has an undefined surface normal.
+NormalsStream normals_stream(uint8_t normal_bits = 10, bool flat_fin = false) {
+    NormalsStream s;
+    ObjectInfo o0 = make_object({-1, -1, -1}, 2, 8, 258, 0);
+    o0.exact_layer = true;
+    o0.surface_normals = true;
+    o0.map_level = kNormalsMapLevel;
+    o0.map_batch = kNormalsMapBatch;
+    ObjectInfo o1 = make_object({1, -1, -1}, 2, 8, 56, kAttrTexcoord);
+    o1.exact_layer = true;
+    o1.surface_normals = true;
+    s.info = default_info({o0, o1, make_object({-1, 2, -1}, 1, 0, 20, kAttrColor, ObjectKind::PointSet)}, kNormalsPacketSize);
+    s.info.normal_bits = normal_bits;
+    Rng rng(240);
+    std::vector<ExactMesh> meshes = {exact_sphere(rng, 3, 0.03), exact_panel()};
+    if (flat_fin) {
+        const ObjectInfo& o = s.info.objects[1];
+        SurfacePoint& tip = meshes[1].points.back();
+        const QuantizedPoint q0 = quantize_point(meshes[1].points[0], s.info, o);
+        const QuantizedPoint q1 = quantize_point(meshes[1].points[1], s.info, o);
+        std::array<uint32_t, 3> target;
+        const double steps = double((1u << s.info.position_bits) - 1);
+        for (int k = 0; k < 3; ++k) {
+            target[k] = 2 * q0.position[k] - q1.position[k];
+            tip.position[k] = float(o.frame.origin[k] + target[k] * double(o.frame.scale) / steps);
+        }
+        if (quantize_point(tip, s.info, o).position != target) {
+            std::cerr << "make_vectors: the flattened fin's tip does not quantize to 2 q0 - q1\n";
+            std::exit(1);
+        }
+    }
+    shuffle_points(meshes[1], rng);
+    for (size_t i = 0; i < s.info.objects.size(); ++i) {
+        const ObjectInfo& o = s.info.objects[i];
+        ObjectContent c = make_content(s.info, o, rng);  // ellipsoids (and the point set's points)
+        s.triangles.emplace_back();
+        s.coded.emplace_back();
+        if (i < meshes.size()) {
+            ExactMesh m = meshes[i];
+            if (m.points.size() != o.point_count) {
+                std::cerr << "make_vectors: normals mesh " << i << " has " << m.points.size() << " points\n";
+                std::exit(1);
+            }
+            c.points.clear();
+            for (const SurfacePoint& p : m.points) c.points.push_back(quantize_point(p, s.info, o));
+            if (o.mapped()) {
+                // Index order for the map (spec 23.2): the points and the triangles renumbered.
+                const std::vector<uint32_t> order = mapped_order(c.points, s.info.position_bits, o.map_level, o.map_batch);
+                std::vector<uint32_t> new_of(order.size());
+                std::vector<QuantizedPoint> points;
+                std::vector<SurfacePoint> mesh_points;
+                for (uint32_t k = 0; k < order.size(); ++k) {
+                    points.push_back(c.points[order[k]]);
+                    mesh_points.push_back(m.points[order[k]]);
+                    new_of[order[k]] = k;
+                }
+                c.points = points;
+                m.points = mesh_points;
+                for (Triangle& t : m.triangles)
+                    for (uint32_t& v : t) v = new_of[v];
+            }
+            std::vector<std::array<uint32_t, 3>> positions;
+            for (const QuantizedPoint& q : c.points) positions.push_back(q.position);
+            if (encode_connectivity(positions, m.triangles, s.coded[i], s.triangles[i]) != Error::Ok) {
+                std::cerr << "make_vectors: encode_connectivity (normals) failed\n";
+                std::exit(1);
+            }
+            c.triangle_count = uint32_t(m.triangles.size());
+            const SurfaceNormals sn = surface_normals(positions, m.triangles);
+            std::vector<std::array<float, 3>> originals;
+            for (size_t k = 0; k < positions.size(); ++k) {
+                const bool defined = sn.normal[k] != std::array<float, 3>{0, 0, 0};
+                originals.push_back(defined && k % 3 != 0 ? sn.normal[k] : m.points[k].normal);
+            }
+            c.normals = reference_normal_entries(s.info, positions, m.triangles, originals);
+        }
+        s.contents.push_back(std::move(c));
+    }
+    StreamPackets packets;
+    if (Error e = packetize_stream(s.info, s.contents, kStreamId, packets); e != Error::Ok) {
+        std::cerr << "make_vectors: packetize_stream (normals) failed: " << error_name(e) << "\n";
+        std::exit(1);
+    }
+    for (Packet& p : packets.ellipsoids) set_minor(p, 0);
+    for (Packet& p : packets.points)
+        if (p[6] == uint8_t(PacketType::Points)) set_minor(p, 0);
+    Packets connectivity;
+    for (size_t i = 0; i < s.info.objects.size(); ++i) {
+        if (s.coded[i].empty()) continue;
+        Packets out;
+        if (packetize_connectivity(s.info, uint16_t(i), s.contents[i].triangle_count, s.coded[i], kStreamId, 0, out) !=
+            Error::Ok) {
+            std::cerr << "make_vectors: packetize_connectivity (normals) failed\n";
+            std::exit(1);
+        }
+        connectivity.insert(connectivity.end(), out.begin(), out.end());
+    }
+    uint32_t sequence = 0;
+    auto number = [&](Packets p) {
+        for (Packet& q : p) restamp_packet(q, sequence++);
+        return p;
+    };
+    s.info_packets = number(packets.stream_info);
+    s.ellipsoids = number(packets.ellipsoids);
+    s.maps = number(packets.maps);
+    s.points = number(packets.points);
+    s.connectivity = number(connectivity);
+    s.normals = number(packets.normals);
+    return s;
+}
+
+// Offsets in a NORMALS packet (header included), spec 24.2; in a STREAM_INFO packet of 48-byte entries, the
+// kind, attributes and flags of entry i (spec 5.2).
+constexpr size_t kNormalsFirst = kHeaderSize, kNormalsCount = kHeaderSize + 4, kNormalsSent = kHeaderSize + 6,
+                 kNormalsBits = kHeaderSize + 8;
+constexpr size_t entry_kind(size_t i) { return kHeaderSize + 32 + 48 * i + 24; }
+constexpr size_t entry_attributes(size_t i) { return kHeaderSize + 32 + 48 * i + 25; }
+constexpr size_t entry_flags(size_t i) { return kHeaderSize + 32 + 48 * i + 26; }
+
+// A NORMALS payload written as given: the header fields, then `flags` (one bit each) and the `normals`
+// (u, v pairs of `bits` bits), padded to a whole byte.
+std::vector<uint8_t> raw_normals_payload(uint32_t first, uint16_t count, uint16_t sent, const std::vector<bool>& flags,
+                                         const std::vector<std::array<uint32_t, 2>>& normals, unsigned bits) {
+    std::vector<uint8_t> out(8);
+    for (int i = 0; i < 4; ++i) out[i] = uint8_t(first >> (8 * i));
+    out[4] = uint8_t(count);
+    out[5] = uint8_t(count >> 8);
+    out[6] = uint8_t(sent);
+    out[7] = uint8_t(sent >> 8);
+    uint64_t acc = 0;
+    int have = 0;
+    auto put = [&](uint32_t v, unsigned n) {
+        for (unsigned b = 0; b < n; ++b) {
+            acc |= uint64_t((v >> b) & 1) << have;
+            if (++have == 8) {
+                out.push_back(uint8_t(acc));
+                acc = 0;
+                have = 0;
+            }
+        }
+    };
+    for (bool f : flags) put(f ? 1 : 0, 1);
+    for (const auto& n : normals) {
+        put(n[0], bits);
+        put(n[1], bits);
+    }
+    if (have) out.push_back(uint8_t(acc));
+    return out;
+}
+
+std::string entries_text(const std::vector<NormalEntry>& entries) {
+    size_t sent = 0;
+    for (const NormalEntry& e : entries) sent += e.sent;
+    return std::to_string(sent) + " sent, " + std::to_string(entries.size() - sent) + " left to the surface";
+}
+
+void normals_vectors(Writer& w) {
+    const NormalsStream s = normals_stream();
+    const Packets stream = s.all();
+    const Packets n0 = NormalsStream::of(s.normals, 0), n1 = NormalsStream::of(s.normals, 1);
+    const Packets points1 = NormalsStream::of(s.points, 1);
+    if (s.info_packets.size() != 1 || n0.size() < 2 || n1.size() != 1 || points1.size() != 3 ||
+        NormalsStream::of(s.connectivity, 1).size() != 1) {
+        std::cerr << "make_vectors: the surface-normals stream takes " << s.info_packets.size() << " STREAM_INFO, "
+                  << n0.size() << " + " << n1.size() << " NORMALS and " << points1.size()
+                  << " POINTS packets of object 1, not 1, at least 2 + 1 and 3\n";
+        std::exit(1);
+    }
+    const unsigned bits = s.info.normal_bits;
+    const Packet& info = s.info_packets[0];
+    const Packet& last0 = n0.back();
+    const Packet& only1 = n1[0];
+    const NormalsRun run1 = s.run_of(only1), last_run0 = s.run_of(last0);
+    auto run_text_of = [&](const Packet& p) {
+        const NormalsRun r = s.run_of(p);
+        return "points " + run_text(r.first_index, r.entries.size()) + ", " + entries_text(r.entries);
+    };
+    std::string n0_text;
+    for (size_t i = 0; i < n0.size(); ++i) n0_text += (i ? "; " : "") + run_text_of(n0[i]);
+    const std::string desc =
+        "the surface-normals stream (format 1.8, spec 24; packet size 200): object 0, a lumpy sphere of 258 points "
+        "without normals in their records and 512 triangles, mapped at map_level 5 with map_batch 49, with an exact "
+        "layer and surface normals (entries: " + entries_text(s.contents[0].normals) + "; its NORMALS packets: " + n0_text +
+        "); object 1, the panel of the exact-layer stream (56 points with texture coordinates, 65 triangles), with "
+        "an exact layer and surface normals (" + run_text_of(only1) + ", in one NORMALS packet); object 2, a point set "
+        "of 20 points with RGB colour; STREAM_INFO and NORMALS packets say 1.8, POINT_MAP and MAPPED_POINTS 1.7, "
+        "CONNECTIVITY 1.3, ELLIPSOIDS and POINTS 1.0";
+    auto appended = [&](Packet p, Packets base) {
+        restamp_packet(p, 1000);
+        base.push_back(p);
+        return base;
+    };
+    auto after_stream = [&](Packet p) { return appended(std::move(p), stream); };
+    auto before_info = [&](Packet p) {
+        restamp_packet(p, 1000);
+        Packets out = {p};
+        out.insert(out.end(), stream.begin(), stream.end());
+        return out;
+    };
+    // The stream with `packet` replaced by `by` (at its place, with its sequence number).
+    auto replaced = [&](const Packet& packet, Packet by) {
+        Packets out = stream;
+        for (Packet& p : out)
+            if (p == packet) {
+                restamp_packet(by, get32(p, 12));
+                p = by;
+            }
+        return out;
+    };
+    // The stream without the packets in `lost`.
+    auto without = [&](const Packets& lost) {
+        Packets out;
+        for (const Packet& p : stream)
+            if (std::find(lost.begin(), lost.end(), p) == lost.end()) out.push_back(p);
+        return out;
+    };
+
+    // ---- valid ----
+    w.write("valid", "normals",
+            desc + ", packets in stream order: both surface objects exact, every normal entry held (normals complete), "
+                   "each point's surface normal listed (spec 24.3; object 1's middle vertex, used by no triangle, "
+                   "undefined: its normal is sent)",
+            stream);
+    {
+        // Object 1's POINTS packets as the source batches of one repair block (spec 17: records without a normal).
+        const ObjectInfo& o1 = s.info.objects[1];
+        const uint16_t batch = uint16_t(point_batch_size(s.info, o1));
+        const std::vector<RepairBlock> blocks = plan_repair_blocks(o1.point_count, batch, 3);
+        Packets rows;
+        if (blocks.size() != 1 ||
+            packetize_repairs(s.info, 1, s.contents[1].points, blocks, 1, kStreamId, 0, rows) != Error::Ok || rows.size() != 1) {
+            std::cerr << "make_vectors: packetize_repairs (normals) failed\n";
+            std::exit(1);
+        }
+        Packets file;
+        for (const Packet& p : stream) {
+            if (p == points1[1]) continue;
+            file.push_back(p);
+            if (p == points1[2]) file.push_back(rows[0]);
+        }
+        w.write("valid", "normals_repair",
+                desc + ", with object 1's POINTS packet of points 20..39 lost and, after its last POINTS packet, the "
+                       "POINTS_REPAIR packet of row 3 of its one block (points 0..55, batch " + std::to_string(batch) +
+                       ", k 3; records of 3 x 14 + 2 x 12 = 66 bits, no normal: spec 24.4, 17) (renumbered in file "
+                       "order): the block recovers points 20..39; decodes as valid/normals but for the counters, "
+                       "points_recovered and repair_blocks",
+                numbered(file));
+    }
+
+    // ---- unusual ----
+    {
+        Packets file = {n0.back(), only1, n0.front()};
+        file.insert(file.end(), stream.begin(), stream.end());
+        w.write("unusual", "normals_before_stream_info",
+                desc + ", with object 0's last NORMALS packet, object 1's and object 0's first (their own sequence "
+                       "numbers) first, before the STREAM_INFO: all held (spec 24.2, 11.2), released in arrival order "
+                       "when it arrives (11.1) and accepted, before any point has arrived (24.2: entries and points are "
+                       "held apart, by index); their copies in the stream are duplicates; decodes as valid/normals",
+                file);
+    }
+    {
+        // Object 0's entries in runs no sender cuts, out of order; single-point runs (sent_count 0 and 1), a run
+        // that overlaps others, and a copy of one run (the same payload, another sequence number).
+        const std::vector<NormalEntry>& e0 = s.contents[0].normals;
+        const uint32_t lengths[] = {1, 7, 41, 17, 3, 25, 13, 27, 9, 21, 44, 11, 19, 5, 26};
+        std::vector<std::pair<uint32_t, uint32_t>> runs;
+        for (uint32_t at = 0, i = 0; at < e0.size(); ++i) {
+            const uint32_t n = std::min<uint32_t>(lengths[i % std::size(lengths)], uint32_t(e0.size()) - at);
+            runs.push_back({at, n});
+            at += n;
+        }
+        Rng rng(241);
+        for (size_t i = runs.size(); i > 1; --i) std::swap(runs[i - 1], runs[rng.below(i)]);
+        uint32_t surface_one = 0, sent_one = 0;
+        while (e0[surface_one].sent) ++surface_one;
+        while (!e0[sent_one].sent) ++sent_one;
+        runs.insert(runs.begin(), {sent_one, 1});
+        runs.insert(runs.begin(), {surface_one, 1});
+        runs.insert(runs.begin() + 5, {120, 40});  // overlaps the runs around it
+        const std::pair<uint32_t, uint32_t> copy = runs[7];
+        runs.push_back(copy);  // a byte-identical copy
+        Packets file = s.without_normals();
+        std::string what;
+        uint32_t sequence = 1000;
+        for (auto [first, count] : runs) {
+            const Packet p = s.packet(s.run(0, first, count), sequence++, 0);
+            if (p.size() > kNormalsPacketSize) std::exit(1);
+            file.push_back(p);
+            what += (what.empty() ? "" : ", ") + run_text(first, count);
+        }
+        file.push_back(only1);
+        w.write("unusual", "normals_runs_reordered",
+                desc + ", with object 0's normal entries in NORMALS packets (sequence 1000..) of runs no sender cuts, "
+                       "out of order: " + what + " (the first a point left to the surface, sent_count 0, the second a "
+                       "point whose normal is sent, count 1 and sent_count 1; 120..159 overlaps the runs around it with "
+                       "the same entries; the last a copy of the eighth), then object 1's NORMALS packet: a packet that "
+                       "brings an entry not held is accepted, one that does not a duplicate (spec 24.2); decodes as "
+                       "valid/normals but for the counters",
+                file);
+    }
+    {
+        // Padding bits set to 1 (spec 24.2: a decoder MUST NOT require them to be zero).
+        Packets file = stream;
+        std::string what;
+        for (Packet& p : file) {
+            if (p[6] != uint8_t(PacketType::Normals)) continue;
+            const NormalsRun r = s.run_of(p);
+            size_t sent = 0;
+            for (const NormalEntry& e : r.entries) sent += e.sent;
+            const size_t used = r.entries.size() + 2 * bits * sent;
+            if (used % 8 == 0) continue;
+            p[kHeaderSize + 8 + used / 8] |= uint8_t(0xFF << (used % 8));
+            reseal(p);
+            what += (what.empty() ? "" : "; ") + std::string("object ") + std::to_string(get16(p, 16)) + "'s run of points " +
+                    run_text(r.first_index, r.entries.size()) + " (" + std::to_string(8 - used % 8) + " padding bits)";
+        }
+        if (what.empty()) std::exit(1);
+        w.write("unusual", "normals_padding_nonzero",
+                desc + ", with the padding bits after the last sent normal set to 1 in the NORMALS packets that have "
+                       "any (resealed): " + what + " (spec 24.2: a decoder MUST NOT require the padding bits to be "
+                       "zero); decodes as valid/normals",
+                file);
+    }
+    {
+        Packets file = s.without_normals();
+        set_minor(file[0], 7);
+        w.write("unusual", "normals_flag_in_1_7_stream",
+                desc + ", without its NORMALS packets and with its STREAM_INFO saying 1.7: bit 9 of an entry's flags "
+                       "is reserved in 1.7 and not read (spec 24.1, 9), so objects 0 and 1 have no surface normals: "
+                       "objects without normals (their records carry none, attributes bit 0 clear), exact, as a 1.7 "
+                       "encoder that set a reserved bit would send them",
+                file);
+    }
+    {
+        const NormalsStream s16 = normals_stream(16);
+        std::string what;
+        for (const Packet& p : s16.normals) {
+            const NormalsRun r = s16.run_of(p);
+            what += (what.empty() ? "" : "; ") + std::string("object ") + std::to_string(get16(p, 16)) + ", points " +
+                    run_text(r.first_index, r.entries.size()) + ", " + entries_text(r.entries) + " (" +
+                    std::to_string(p.size()) + " bytes)";
+        }
+        w.write("unusual", "normals_16_bit",
+                "the surface-normals stream made at normal_bits 16 (the largest: sent normals of 2 x 16 bits; the "
+                "same points, triangles and entries, the sent normals quantized at 16 bits), packets in stream order; "
+                "its NORMALS packets: " + what,
+                s16.all());
+    }
+
+    // ---- faulty: decoded without a rejection, but not complete or not conforming (spec 24.4) ----
+    w.write("faulty", "normals_incomplete",
+            desc + ", with object 0's last NORMALS packet (" + run_text_of(last0) + ") lost: no rejection; object 0's "
+                   "normal entries not complete (spec 24.4: complete only when the entries of all its points are "
+                   "held); the stream is not complete and does not conform",
+            without({last0}));
+    w.write("faulty", "normals_connectivity_lost",
+            desc + ", with object 1's CONNECTIVITY packet lost: no rejection; object 1 holds every point and every "
+                   "normal entry but is not exact (spec 19.4), so no surface normal is listed (its surface null; a "
+                   "receiver shows its estimate, 24.4); the stream is not complete",
+            without(NormalsStream::of(s.connectivity, 1)));
+    {
+        // Object 1's middle vertex, which no triangle uses (its surface normal undefined; the reference
+        // encoder sends its normal), left to the surface: it is not part of the exact object (spec 19.4), so
+        // the recording conforms (spec 24.4, 11.5).
+        std::vector<std::array<uint32_t, 3>> positions;
+        for (const QuantizedPoint& q : s.contents[1].points) positions.push_back(q.position);
+        const std::vector<char> defined = surface_normal_defined(positions, s.triangles[1]);
+        uint32_t lone = 0;
+        while (lone < defined.size() && defined[lone]) ++lone;
+        if (lone == defined.size() || !s.contents[1].normals[lone].sent) std::exit(1);
+        for (const Triangle& t : s.triangles[1])
+            if (t[0] == lone || t[1] == lone || t[2] == lone) std::exit(1);
+        NormalsRun r = run1;
+        r.entries[lone - r.first_index] = NormalEntry{};
+        w.write("unusual", "normals_unused_point_left_to_surface",
+                desc + ", with object 1's NORMALS packet re-encoded with the entry of point " + std::to_string(lone) +
+                    " (the panel's middle vertex, which no triangle uses: its surface normal is undefined, spec 24.3) "
+                    "\"left to the surface\" instead of sent: point " + std::to_string(lone) + "'s surface normal is "
+                    "listed as null; the point is not part of the exact object (spec 19.4), so the recording conforms "
+                    "(spec 24.4: only a point that a triangle of the exact layer uses must not be left to an undefined "
+                    "surface normal)",
+                replaced(only1, s.packet(r, 0, 1)));
+    }
+    {
+        // The panel's fin flattened: the tip, used by the degenerate fin triangle alone, has an undefined surface
+        // normal (spec 24.3: no triangle contributes).
+        const NormalsStream flat = normals_stream(10, true);
+        std::vector<std::array<uint32_t, 3>> positions;
+        for (const QuantizedPoint& q : flat.contents[1].points) positions.push_back(q.position);
+        const std::vector<char> defined = surface_normal_defined(positions, flat.triangles[1]);
+        std::vector<uint32_t> undefined_used;
+        for (uint32_t i = 0; i < defined.size(); ++i) {
+            if (defined[i]) continue;
+            for (const Triangle& t : flat.triangles[1])
+                if (t[0] == i || t[1] == i || t[2] == i) {
+                    undefined_used.push_back(i);
+                    break;
+                }
+        }
+        const Packets flat_normals1 = NormalsStream::of(flat.normals, 1);
+        if (undefined_used.size() != 1 || flat_normals1.size() != 1 || !flat.contents[1].normals[undefined_used[0]].sent)
+            std::exit(1);
+        const uint32_t tip = undefined_used[0];
+        const std::string flat_desc =
+            "the surface-normals stream with the panel's fin flattened (object 1; its tip, point " + std::to_string(tip) +
+            ", moved onto the line of its edge: the quantized position 2 q0 - q1 of the edge's points, so that the fin "
+            "triangle has m = 0 at each corner, spec 24.3): the tip, which no other triangle uses, has an undefined "
+            "surface normal, and the reference encoder sends its normal (spec 24.5); the points 0 and 1 of the grid get "
+            "theirs from the grid's triangles alone (object 1: " + entries_text(flat.contents[1].normals) + ")";
+        w.write("unusual", "normals_degenerate_triangle",
+                flat_desc + ", packets in stream order: both surface objects exact (a degenerate triangle is a triangle "
+                            "of the exact layer, spec 19.2), the tip's surface normal listed as null (undefined), its "
+                            "entry sent; the recording conforms",
+                flat.all());
+        NormalsRun r = flat.run_of(flat_normals1[0]);
+        r.entries[tip - r.first_index] = NormalEntry{};
+        Packets file = flat.all();
+        for (Packet& p : file)
+            if (p == flat_normals1[0]) {
+                Packet q = flat.packet(r, 0, 1);
+                restamp_packet(q, get32(p, 12));
+                p = q;
+            }
+        w.write("faulty", "normals_surface_undefined",
+                flat_desc + ", with object 1's NORMALS packet re-encoded with the tip's entry \"left to the surface\" "
+                            "instead of sent: no rejection (the packet is well formed); the tip's surface normal listed "
+                            "as null (undefined); the recording does not conform (spec 24.4, 11.5: no point of the exact "
+                            "layer left to its surface whose surface normal is undefined; a receiver shows (0, 0, 1) there)",
+                file);
+    }
+
+    // ---- faulty: the entry's flag (spec 24.1, 5.3, 5.4) ----
+    const std::string si_copy = desc + ", then (sequence 1000) a copy of its STREAM_INFO with ";
+    auto info_edited = [&](const std::function<void(Packet&)>& edit) {
+        Packet p = info;
+        edit(p);
+        reseal(p);
+        return after_stream(p);
+    };
+    w.write("faulty", "normals_entry_point_set",
+            si_copy + "object 2's (the point set's, no ellipsoids) flags 0x0300 (bits 8 and 9): rejected, malformed "
+                      "payload (spec 24.1: an entry with the surface-normals flag MUST have kind 0)",
+            info_edited([](Packet& p) { put16(p, entry_flags(2), 0x0300); }));
+    w.write("faulty", "normals_entry_without_exact_layer",
+            si_copy + "object 0's flags 0x0200 (bit 8 cleared, bit 9 set): rejected, malformed payload (spec 24.1: an "
+                      "entry with the surface-normals flag MUST have bit 8, an exact layer)",
+            info_edited([](Packet& p) { put16(p, entry_flags(0), 0x0200); }));
+    w.write("faulty", "normals_entry_with_normal_attribute",
+            si_copy + "object 0's attributes 1 (bit 0, normal, set): rejected, malformed payload (spec 24.1: an entry "
+                      "with the surface-normals flag MUST have attributes bit 0 clear)",
+            info_edited([](Packet& p) { p[entry_attributes(0)] = 1; }));
+    w.write("faulty", "normals_entry_flag_contradicts",
+            si_copy + "object 0's flags 0x0100 (bit 9 cleared: a well-formed entry without surface normals) where the "
+                      "accepted one says 0x0300: rejected, stream mismatch (spec 24.1, 5.4: the flag is compared)",
+            info_edited([](Packet& p) { put16(p, entry_flags(0), 0x0100); }));
+    w.write("faulty", "normals_entry_in_1_7_packet",
+            si_copy + "its version 1.7: bit 9 is not read from it (spec 24.1, 9), so objects 0 and 1 have no surface "
+                      "normals there, which contradicts the accepted entries: rejected, stream mismatch (5.4)",
+            info_edited([](Packet& p) { p[5] = 7; }));
+    {
+        Packets file = stream;
+        set_minor(file[0], 7);
+        w.write("faulty", "normals_flag_in_1_7_packet",
+                desc + ", with its STREAM_INFO saying 1.7: bit 9 is not read (spec 24.1, 9), so objects 0 and 1 have "
+                       "no surface normals (decoded as objects without normals, exact), and each NORMALS packet is "
+                       "rejected, malformed payload (spec 24.2, step 13: the object does not have surface normals)",
+                file);
+    }
+
+    // ---- faulty: NORMALS packets (spec 24.2) ----
+    const std::string copy1 = desc + ", then (sequence 1000) a copy of object 1's NORMALS packet (" + run_text_of(only1) + ")";
+    auto only1_edited = [&](const std::function<void(Packet&)>& edit) {
+        Packet p = only1;
+        edit(p);
+        reseal(p);
+        return p;
+    };
+    auto only1_payload = [&](const std::function<void(std::vector<uint8_t>&)>& edit) {
+        std::vector<uint8_t> payload = payload_of(only1);
+        edit(payload);
+        return with_payload(only1, payload);
+    };
+    w.write("faulty", "normals_payload_short",
+            copy1 + " cut to a payload of 7 bytes: rejected, malformed payload (spec 24.2, step 11: shorter than 8 bytes)",
+            after_stream(only1_payload([](std::vector<uint8_t>& p) { p.resize(7); })));
+    const Packet count_zero = with_payload(only1, raw_normals_payload(0, 0, 0, {}, {}, bits));
+    w.write("faulty", "normals_count_zero",
+            desc + ", then (sequence 1000) a NORMALS packet of object 1 with first_index 0, count 0, sent_count 0 and "
+                   "no bits (an 8-byte payload, the length 8 + ceil((0 + 0) / 8) agrees): rejected, malformed payload "
+                   "(spec 24.2, step 11: count 0)",
+            after_stream(count_zero));
+    {
+        std::array<uint32_t, 2> u{};
+        for (const NormalEntry& e : run1.entries)
+            if (e.sent) {
+                u = e.normal;
+                break;
+            }
+        // Before the STREAM_INFO, so that the step matters: its flags cannot add up to sent_count, so step 13
+        // would reject it too, but only once its entry has arrived (a decoder that left the check to step 13
+        // would hold it).
+        w.write("faulty", "normals_sent_count_past_count",
+                "a NORMALS packet of object 1 (sequence 1000) with first_index 0, count 1, sent_count 2, its one flag 1 "
+                "and two normals (" + std::to_string(u[0]) + ", " + std::to_string(u[1]) + " each; a payload of 8 + "
+                "ceil((1 + 2 x 2 x 10) / 8) = 14 bytes, the length agrees) first, before the STREAM_INFO of " + desc +
+                    ": rejected when it arrives, malformed payload (spec 24.2, step 11, whether or not a stream info "
+                    "has arrived: sent_count > count); nothing held",
+                before_info(with_payload(only1, raw_normals_payload(0, 1, 2, {true}, {u, u}, bits))));
+    }
+    w.write("faulty", "normals_index_overflow",
+            copy1 + " with first_index " + std::to_string(uint64_t(1) << 32) + " - " + std::to_string(run1.entries.size()) +
+                " = " + std::to_string((uint64_t(1) << 32) - run1.entries.size()) + ": first_index + count = 2^32 > 2^32 - 1 "
+                "(0 in 32-bit arithmetic): rejected, malformed payload (spec 24.2, step 11: computed without overflow)",
+            after_stream(only1_edited([&](Packet& p) { put32(p, kNormalsFirst, uint32_t((uint64_t(1) << 32) - run1.entries.size())); })));
+    w.write("faulty", "normals_malformed_before_stream_info",
+            "the NORMALS packet of normals_count_zero (sequence 1000) first, before the STREAM_INFO of " + desc +
+                ": rejected when it arrives, malformed payload (spec 24.2: step 11 is made whether or not a stream info "
+                "has arrived, before the packet can be held); nothing held",
+            before_info(count_zero));
+    const Packet unknown = only1_edited([](Packet& p) { put16(p, 16, 3); });
+    w.write("faulty", "normals_unknown_object",
+            copy1 + " sent for object 3 of the 3-object stream: rejected, unknown object (spec 24.2, 11.1 step 12)",
+            after_stream(unknown));
+    w.write("faulty", "normals_held_unknown_object",
+            "the copy of normals_unknown_object (object 3, sequence 1000) first, before the STREAM_INFO of " + desc +
+                ": held (its fixed fields are well formed; spec 24.2, 11.2), then rejected when the STREAM_INFO is "
+                "accepted, unknown object (11.1: held packets naming an object beyond the table are rejected first)",
+            before_info(unknown));
+    w.write("faulty", "normals_object_without_flag",
+            desc + ", then (sequence 1000) a NORMALS packet of object 1's entries of points 0..19 sent for object 2 "
+                   "(the point set, 20 points, no surface normals): rejected, malformed payload (spec 24.2, step 13: "
+                   "the object does not have surface normals)",
+            after_stream(s.packet(s.run(1, 0, 20), 0, 2)));
+    w.write("faulty", "normals_length_mismatch",
+            copy1 + " with one byte (00) more: rejected, malformed payload (spec 24.2, step 13: payload_length is not "
+                    "8 + ceil((count + 2 N sent_count) / 8))",
+            after_stream(only1_payload([](std::vector<uint8_t>& p) { p.push_back(0); })));
+    {
+        // A flag of value 1 made 0: the flags then add up to sent_count - 1 (the length still agrees).
+        size_t k = 0;
+        while (!run1.entries[k].sent) ++k;
+        w.write("faulty", "normals_flags_not_sent_count",
+                copy1 + " with the flag of point " + std::to_string(run1.first_index + k) + " (its first point whose "
+                        "normal is sent) made 0 (the length, which depends on count and sent_count, still agrees): "
+                        "rejected, malformed payload (spec 24.2, step 13: the number of flags of value 1 is not sent_count)",
+                after_stream(only1_edited([&](Packet& p) { p[kNormalsBits + k / 8] &= uint8_t(~(1u << (k % 8))); })));
+    }
+    const Packet past = [&] {
+        Packet p = last0;
+        put32(p, kNormalsFirst, last_run0.first_index + 1);
+        reseal(p);
+        return p;
+    }();
+    w.write("faulty", "normals_index_out_of_range",
+            desc + ", then (sequence 1000) a copy of object 0's last NORMALS packet (" + run_text_of(last0) +
+                ") with first_index " + std::to_string(last_run0.first_index + 1) + ": its last point 258 is not below "
+                "point_count 258: rejected, index out of range (spec 24.2, step 14)",
+            after_stream(past));
+    w.write("faulty", "normals_held_out_of_range",
+            "the copy of normals_index_out_of_range (sequence 1000) first, before the STREAM_INFO of " + desc +
+                ": held (its fixed fields are well formed), then, when the STREAM_INFO releases it, rejected, index out "
+                "of range (11.1 step 14)",
+            before_info(past));
+    {
+        size_t k = 0;
+        while (!run1.entries[k].sent) ++k;
+        NormalsRun r = run1;
+        r.entries[k].normal[0] ^= 1;
+        w.write("faulty", "normals_entry_contradicts",
+                desc + ", then (sequence 1000) object 1's NORMALS packet re-encoded with the u of point " +
+                    std::to_string(run1.first_index + k) + "'s sent normal " + std::to_string(r.entries[k].normal[0]) +
+                    " where it is " + std::to_string(run1.entries[k].normal[0]) + ": rejected, stream mismatch (spec "
+                    "24.2, step 15: each entry identical to the one held, both sent with the same u and v)",
+                after_stream(s.packet(r, 0, 1)));
+        NormalsRun r2 = run1;
+        r2.entries[k] = NormalEntry{};
+        w.write("faulty", "normals_surface_contradicts_sent",
+                desc + ", then (sequence 1000) object 1's NORMALS packet re-encoded with point " +
+                    std::to_string(run1.first_index + k) + "'s entry \"left to the surface\" where the held one is "
+                    "sent (sent_count one less, " + std::to_string(2 * bits) + " bits shorter): rejected, stream "
+                    "mismatch (spec 24.2, step 15)",
+                after_stream(s.packet(r2, 0, 1)));
+        size_t j = 0;
+        while (run1.entries[j].sent) ++j;
+        NormalsRun r3 = run1;
+        r3.entries[j].sent = true;
+        r3.entries[j].normal = {uint32_t((1u << bits) / 2), uint32_t((1u << bits) / 2)};
+        w.write("faulty", "normals_sent_contradicts_surface",
+                desc + ", then (sequence 1000) object 1's NORMALS packet re-encoded with point " +
+                    std::to_string(run1.first_index + j) + "'s entry sent, (" + std::to_string(r3.entries[j].normal[0]) +
+                    ", " + std::to_string(r3.entries[j].normal[1]) + "), where the held one is \"left to the surface\": "
+                    "rejected, stream mismatch (spec 24.2, step 15)",
+                after_stream(s.packet(r3, 0, 1)));
+    }
+    {
+        // Right after object 0's first NORMALS packet, a run across its end with its first entry changed.
+        const NormalsRun first_run = s.run_of(n0[0]);
+        const uint32_t end = first_run.first_index + uint32_t(first_run.entries.size());
+        NormalsRun r = s.run(0, end - 4, 12);
+        r.entries[0].sent = !r.entries[0].sent;
+        r.entries[0].normal = r.entries[0].sent ? std::array<uint32_t, 2>{uint32_t((1u << bits) / 2), 0} : std::array<uint32_t, 2>{};
+        Packets file;
+        for (const Packet& p : stream) {
+            file.push_back(p);
+            if (p == n0[0]) file.push_back(s.packet(r, 1000, 0));
+        }
+        w.write("faulty", "normals_contradicts_partly_new",
+                desc + ", with, right after object 0's first NORMALS packet (points " +
+                    run_text(first_run.first_index, first_run.entries.size()) + ") and before the second, a NORMALS "
+                    "packet (sequence 1000) of points " + run_text(end - 4, 12) + " whose entry of point " +
+                    std::to_string(end - 4) + " is " + (r.entries[0].sent ? "sent" : "\"left to the surface\"") +
+                    " where the held one is " + (r.entries[0].sent ? "\"left to the surface\"" : "sent") +
+                    ": rejected, stream mismatch (spec 24.2: nothing of the packet is kept: the entries of points " +
+                    run_text(end, 8) + ", not held then, arrive with the next packet)",
+                file);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -6498,6 +7222,7 @@ int main(int argc, char** argv) {
     skin_vectors(w);
     morph_vectors(w);
     map_vectors(w);
+    normals_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
