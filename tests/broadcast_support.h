@@ -58,7 +58,7 @@ inline std::vector<std::vector<uint8_t>> synthetic_stream(uint32_t ellipsoids, u
     Error e = packetize_stream(info, {content}, stream_id, sp);
     REQUIRE(e == Error::Ok);
     std::vector<std::vector<uint8_t>> all;
-    for (auto* part : {&sp.stream_info, &sp.ellipsoids, &sp.maps, &sp.points})
+    for (auto* part : {&sp.stream_info, &sp.ellipsoids, &sp.maps, &sp.points, &sp.normals})
         for (auto& p : *part) all.push_back(p);
     return all;
 }

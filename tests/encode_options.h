@@ -34,7 +34,7 @@ inline ReceivedStream receive_every_packet(const EncodeResult& encoded) {
     REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, packets) == Error::Ok);
     ReceivedStream stream;
     size_t where = 0;
-    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.maps, &packets.points})
+    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.maps, &packets.points, &packets.normals})
         for (const auto& p : *group) REQUIRE(stream.add_packet(p, where++) == Error::Ok);
     return stream;
 }

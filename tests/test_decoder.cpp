@@ -324,7 +324,7 @@ TEST_CASE("a stream with lost, duplicated, reordered and damaged packets decodes
     auto packets = make_stream(object, {sphere_ellipsoid({0, 0, 0}, 1), sphere_ellipsoid({0.2f, 0, 0}, 0.7f)}, points, info);
     std::mt19937 rng(3);
     std::vector<std::vector<uint8_t>> sent;
-    for (auto* list : {&packets.stream_info, &packets.ellipsoids, &packets.maps, &packets.points})
+    for (auto* list : {&packets.stream_info, &packets.ellipsoids, &packets.maps, &packets.points, &packets.normals})
         for (const auto& p : *list) {
             if (list == &packets.points && rng() % 4 == 0) continue;  // a lost point packet
             sent.push_back(p);
@@ -388,6 +388,7 @@ std::vector<std::vector<uint8_t>> all_packets(const StreamPackets& p) {
     out.insert(out.end(), p.ellipsoids.begin(), p.ellipsoids.end());
     out.insert(out.end(), p.maps.begin(), p.maps.end());
     out.insert(out.end(), p.points.begin(), p.points.end());
+    out.insert(out.end(), p.normals.begin(), p.normals.end());
     return out;
 }
 

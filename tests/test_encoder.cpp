@@ -37,7 +37,7 @@ ReceivedStream receive_all(const EncodeResult& r, std::vector<uint8_t>* file = n
     StreamPackets packets;
     REQUIRE(packetize_stream(r.info, r.contents, 7, packets) == Error::Ok);
     std::vector<std::vector<uint8_t>> all;
-    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.maps, &packets.points})
+    for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.maps, &packets.points, &packets.normals})
         for (auto& p : *group) {
             CHECK(p.size() <= r.info.packet_size);
             all.push_back(p);
@@ -90,7 +90,7 @@ TEST_CASE("every sample model encodes into a stream the receiver accepts whole")
                 CHECK(r.reports[i].flat_ellipsoids == 0);  // a closed model's ellipsoids stay inside
                 CHECK(r.reports[i].outside < 0.01);
             }
-            CHECK(o.has(kAttrNormal) == m.has_normals());
+            CHECK(o.has_normals() == m.has_normals());
             CHECK(o.has(kAttrTexcoord) == m.has_texcoords());
             CHECK(o.has(kAttrColor) == m.has_colors());
         }

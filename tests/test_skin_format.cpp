@@ -84,7 +84,7 @@ SmallStream small_stream(uint32_t points, uint16_t packet_size = 1200) {
     }
     StreamPackets sp;
     REQUIRE(packetize_stream(s.info, {content}, 77, sp) == Error::Ok);
-    for (auto* part : {&sp.stream_info, &sp.ellipsoids, &sp.maps, &sp.points})
+    for (auto* part : {&sp.stream_info, &sp.ellipsoids, &sp.maps, &sp.points, &sp.normals})
         for (auto& p : *part) s.packets.push_back(p);
     return s;
 }

@@ -13,13 +13,14 @@
 namespace ellicast::broadcast {
 
 // The base is what a receiver needs to show a model: stream info, ellipsoids, scene, materials.
-// Points, skin weights, morph targets, texture fragments, animations and the exact layer's connectivity are detail: sent once per
+// Points, normals (format 1.8), skin weights, morph targets, texture fragments, animations and the exact layer's connectivity are detail: sent once per
 // cycle, spread over the chunks, so that a large texture does not ride along with every repetition of
 // the base.
 bool is_base_packet(const PacketHeader& header) {
     return !is_points_type(header.type) &&
            header.type != static_cast<uint8_t>(PacketType::TextureFragment) &&
            header.type != static_cast<uint8_t>(PacketType::Animation) &&
+           header.type != static_cast<uint8_t>(PacketType::Normals) &&
            header.type != static_cast<uint8_t>(PacketType::JointWeights) &&
            header.type != static_cast<uint8_t>(PacketType::MorphDeltas) &&
            header.type != static_cast<uint8_t>(PacketType::MorphAnimation) &&

@@ -18,13 +18,16 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+bool left_to_surface(const std::array<float, 3>& n) { return n[0] == 0 && n[1] == 0 && n[2] == 0; }
+
 // Distance between two attribute sets, for choosing a face corner's set at a seam.
 double attribute_distance(const SurfacePoint& a, const SurfacePoint& b, const ObjectInfo& info) {
     if (info.has(kAttrTexcoord)) {
         double du = a.texcoord[0] - b.texcoord[0], dv = a.texcoord[1] - b.texcoord[1];
         return du * du + dv * dv;
     }
-    if (info.has(kAttrNormal))
+    // A normal left to the surface (format 1.8, (0, 0, 0)) is not compared (spec 24.4).
+    if (info.has_normals() && !left_to_surface(a.normal) && !left_to_surface(b.normal))
         return 1.0 - (a.normal[0] * b.normal[0] + a.normal[1] * b.normal[1] + a.normal[2] * b.normal[2]);
     if (info.has(kAttrColor)) {
         double s = 0;
@@ -35,7 +38,7 @@ double attribute_distance(const SurfacePoint& a, const SurfacePoint& b, const Ob
 }
 
 void copy_attributes(Mesh& out, const SurfacePoint& p, const ObjectInfo& info) {
-    if (info.has(kAttrNormal)) out.normals.push_back(p.normal);
+    if (info.has_normals()) out.normals.push_back(p.normal);
     if (info.has(kAttrTexcoord)) out.texcoords.push_back(p.texcoord);
     if (info.has(kAttrColor)) out.colors.push_back(p.color);
 }
@@ -59,6 +62,8 @@ Mesh point_set(const ObjectInfo& info, const std::vector<SurfacePoint>& points, 
         out.positions.push_back(p.position);
         copy_attributes(out, p, info);
     }
+    // Points without a surface cannot have surface normals (format 1.8): none rather than some.
+    if (info.surface_normals && std::any_of(out.normals.begin(), out.normals.end(), left_to_surface)) out.normals.clear();
     return out;
 }
 
@@ -133,14 +138,22 @@ Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::ve
         }
     }
     const bool any_original = r.original_vertices > 0;
-    const bool has_attributes = any_original && (info.attributes & (kAttrNormal | kAttrTexcoord | kAttrColor)) != 0;
-    // Geometric vertex normals, for vertices with no original to borrow from.
+    const bool has_attributes =
+        any_original && ((info.attributes & (kAttrNormal | kAttrTexcoord | kAttrColor)) != 0 || info.surface_normals);
+    // Geometric vertex normals, for vertices with no original to borrow from and for points whose
+    // normal is left to the surface (format 1.8): the angle-weighted sum of spec 24.3 over the faces
+    // shown around the vertex.
     auto geometric_normal = [&](OpenMesh::VertexHandle v) {
         Vec3 n(0, 0, 0);
-        for (auto f : mesh.vf_range(v)) {
-            auto it = mesh.cfv_iter(f);
-            Vec3 a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
-            n += OpenMesh::cross(b - a, c - a);
+        const Vec3 p = mesh.point(v);
+        for (auto h : mesh.voh_range(v)) {
+            if (mesh.is_boundary(h)) continue;
+            const Vec3 e1 = mesh.point(mesh.to_vertex_handle(h)) - p;
+            const Vec3 e2 = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h))) - p;
+            const Vec3 m = OpenMesh::cross(e1, e2);
+            const double lm = m.norm(), l1 = e1.norm(), l2 = e2.norm();
+            if (!(lm > 0) || !(l1 > 0) || !(l2 > 0)) continue;
+            n += m * (std::acos(std::clamp(OpenMesh::dot(e1, e2) / (l1 * l2), -1.0, 1.0)) / lm);
         }
         double l = n.norm();
         return l > 0 ? std::array<float, 3>{float(n[0] / l), float(n[1] / l), float(n[2] / l)}
@@ -196,7 +209,9 @@ Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::ve
                 out.positions.push_back({float(p[0]), float(p[1]), float(p[2])});
                 if (chosen >= 0) {
                     copy_attributes(out, points[size_t(chosen)], info);
-                } else if (info.has(kAttrNormal)) {
+                    if (info.surface_normals && left_to_surface(out.normals.back()))
+                        out.normals.back() = geometric_normal(corner[c]);
+                } else if (info.has_normals()) {
                     out.normals.push_back(geometric_normal(corner[c]));
                 }
             }
@@ -286,7 +301,7 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
     Reconstruction r;
     start_reconstruction(r, std::move(base), info.frame, grid.cell, std::max<size_t>(points.size(), info.point_count),
                          options.reconstruction);
-    if (info.has(kAttrNormal)) r.normals = &points;
+    if (info.has_normals()) r.normals = &points;
     r.sheet_points = &on_sheet;
     if (options.snapshot) options.snapshot(object_index, 0, extract_mesh(r, info, points));
 
@@ -353,6 +368,32 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
     return true;
 }
 
+void fill_surface_normals(Mesh& mesh) {
+    if (mesh.normals.size() != mesh.positions.size()) return;
+    std::vector<uint32_t> open;
+    for (uint32_t v = 0; v < mesh.normals.size(); ++v)
+        if (left_to_surface(mesh.normals[v])) open.push_back(v);
+    if (open.empty()) return;
+    std::vector<Vec3> sum(mesh.positions.size(), Vec3(0, 0, 0));
+    auto at = [&](uint32_t v) { return Vec3(mesh.positions[v][0], mesh.positions[v][1], mesh.positions[v][2]); };
+    for (const auto& t : mesh.triangles) {
+        for (int c = 0; c < 3; ++c) {
+            const uint32_t i = t[c];
+            if (!left_to_surface(mesh.normals[i])) continue;
+            const Vec3 p = at(i), e1 = at(t[(c + 1) % 3]) - p, e2 = at(t[(c + 2) % 3]) - p;
+            const Vec3 m = OpenMesh::cross(e1, e2);
+            const double lm = m.norm(), l1 = e1.norm(), l2 = e2.norm();
+            if (!(lm > 0) || !(l1 > 0) || !(l2 > 0)) continue;
+            sum[i] += m * (std::acos(std::clamp(OpenMesh::dot(e1, e2) / (l1 * l2), -1.0, 1.0)) / lm);
+        }
+    }
+    for (uint32_t v : open) {
+        const double l = sum[v].norm();
+        mesh.normals[v] = l > 0 ? std::array<float, 3>{float(sum[v][0] / l), float(sum[v][1] / l), float(sum[v][2] / l)}
+                                : std::array<float, 3>{0, 0, 1};
+    }
+}
+
 size_t shared_base_grid_nodes(const ReceivedStream& stream, const DecodeOptions& options) {
     size_t with_base = 0;
     for (const auto& o : stream.objects()) with_base += o.info && !o.ellipsoids.empty();
@@ -381,7 +422,7 @@ bool exact_mesh(const ReceivedStream& stream, size_t object, Mesh& out, std::str
                 v = uint32_t(m.positions.size());
                 const SurfacePoint& p = points[t[k]];
                 m.positions.push_back(p.position);
-                if (info.has(kAttrNormal)) m.normals.push_back(p.normal);
+                if (info.has_normals()) m.normals.push_back(p.normal);
                 if (info.has(kAttrTexcoord)) m.texcoords.push_back(p.texcoord);
                 if (info.has(kAttrColor)) m.colors.push_back(p.color);
             }
@@ -389,6 +430,8 @@ bool exact_mesh(const ReceivedStream& stream, size_t object, Mesh& out, std::str
         }
         m.triangles.push_back(face);
     }
+    // Surface normals (format 1.8, spec 24.4): the exact object's own, over its triangles.
+    if (info.surface_normals) fill_surface_normals(m);
     out = std::move(m);
     return true;
 }

@@ -45,6 +45,8 @@ std::string check_encode_options(const EncodeOptions& o) {
     if (o.threads < 1 || o.threads > 256) return "threads must be 1..256 (got " + std::to_string(o.threads) + ")";
     if (!(o.repair_ratio >= 0) || o.repair_ratio > 4)
         return "the repair ratio must be in [0, 4] (repair symbols per source packet; got " + std::to_string(o.repair_ratio) + ")";
+    if (!(o.normal_tolerance >= 0) || o.normal_tolerance > 90)
+        return "the normal tolerance must be in [0, 90] degrees (got " + std::to_string(o.normal_tolerance) + ")";
     return "";
 }
 
@@ -561,6 +563,70 @@ void encode_exact_layer(const Mesh& input, const std::vector<uint32_t>& vertex_p
     content.triangle_count = uint32_t(sent.size());
 }
 
+// The exact layer's triangles over the points: each input triangle through vertex_points, those
+// whose corners fall on fewer than three points left out (as encode_exact_layer does).
+std::vector<Triangle> exact_triangles_of(const Mesh& input, const std::vector<uint32_t>& vertex_points) {
+    std::vector<Triangle> triangles;
+    triangles.reserve(input.triangles.size());
+    for (const auto& t : input.triangles) {
+        const Triangle p = {vertex_points[t[0]], vertex_points[t[1]], vertex_points[t[2]]};
+        if (p[0] != p[1] && p[1] != p[2] && p[0] != p[2]) triangles.push_back(p);
+    }
+    return triangles;
+}
+
+// Surface normals (format 1.8, spec 24.5): per point, whether its normal can be left to the surface
+// of the exact layer: the surface normal (spec 24.3) is defined, far enough from cancelling out that
+// rounding cannot turn it (|S| at least a tenth of the angles' sum), and within `tolerance_degrees`
+// of the point's normal as it would be sent. A point no triangle uses (a surface sample) keeps its
+// normal: it is shown only before the exact layer is complete, and there the receiver's estimate
+// over flat triangles would lose the smooth shading of a low-poly model's interpolated normals.
+std::vector<NormalEntry> surface_normal_entries(const std::vector<QuantizedPoint>& points,
+                                                const std::vector<Triangle>& triangles, const StreamInfo& info,
+                                                double tolerance_degrees) {
+    std::vector<std::array<uint32_t, 3>> positions;
+    positions.reserve(points.size());
+    for (const auto& q : points) positions.push_back(q.position);
+    const SurfaceNormals surface = surface_normals(positions, triangles);
+    const double cos_tolerance = std::cos(tolerance_degrees * M_PI / 180.0);
+    // Points at a crease (another point at their position with a normal more than 30 degrees away:
+    // a hard edge's split vertex) keep their normals: before the exact layer is complete, the
+    // receiver's reconstruction turns its faces across creases by them (codec/src/normal_repair.cpp).
+    std::vector<char> crease(points.size(), 0);
+    {
+        std::vector<uint32_t> order(points.size());
+        for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+        std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return positions[a] < positions[b]; });
+        const double cos_crease = std::cos(30.0 * M_PI / 180.0);
+        for (size_t first = 0; first < order.size();) {
+            size_t end = first + 1;
+            while (end < order.size() && positions[order[end]] == positions[order[first]]) ++end;
+            for (size_t a = first; a < end && end - first > 1; ++a) {
+                const auto na = decode_octahedral(points[order[a]].normal, info.normal_bits);
+                // Against the group's first 16 only: all of a hostile mesh's points at one position stay linear.
+                for (size_t b = first; b < std::min(end, first + 16); ++b) {
+                    const auto nb = decode_octahedral(points[order[b]].normal, info.normal_bits);
+                    if (double(na[0]) * nb[0] + double(na[1]) * nb[1] + double(na[2]) * nb[2] < cos_crease) {
+                        crease[order[a]] = 1;
+                        break;
+                    }
+                }
+            }
+            first = end;
+        }
+    }
+    std::vector<NormalEntry> entries(points.size());
+    for (size_t i = 0; i < points.size(); ++i) {
+        const auto sent = decode_octahedral(points[i].normal, info.normal_bits);
+        const auto& s = surface.normal[i];
+        const double dot = double(sent[0]) * s[0] + double(sent[1]) * s[1] + double(sent[2]) * s[2];
+        const bool leave = !crease[i] && surface.condition[i] >= 0.1f && dot >= cos_tolerance;
+        entries[i].sent = !leave;
+        if (!leave) entries[i].normal = points[i].normal;
+    }
+    return entries;
+}
+
 // Spacings for the surface samples of one object, from its bounding box.
 // A sheet (an object given flat ellipsoids) gets half the spacing: its base is a thin shell whose two
 // sides share its points, and woody, a flat figure, needs 1.5% rather than 3% to come back within
@@ -704,6 +770,28 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         } else {
             content.points = encode_points(mesh, info, object, object_seed, &vertex_points);
         }
+        // Format 1.8 (spec 24): normals left to the exact layer's surface where they agree with it;
+        // the records then carry none, and NORMALS packets say which are sent.
+        if (options.normal_tolerance > 0 && options.exact_layer && object.has(kAttrNormal) && !mesh.is_point_set &&
+            !input.triangles.empty()) {
+            content.normals = surface_normal_entries(content.points, exact_triangles_of(input, vertex_points), info,
+                                                     options.normal_tolerance);
+            // Only where it pays: NORMALS packets (a bit a point, the normals sent, their framing)
+            // smaller than the normals in the records. A box, whose every point is at a crease, keeps
+            // format 1.7's records.
+            size_t sent = 0;
+            for (const NormalEntry& e : content.normals) sent += e.sent;
+            const double record_bits = 2.0 * info.normal_bits * double(content.points.size());
+            const double normals_bits = double(content.points.size()) + 2.0 * info.normal_bits * double(sent);
+            const double packets = std::ceil(normals_bits / (8.0 * double(info.packet_size - kPacketOverhead - kNormalsHeaderSize)));
+            if (sent < content.normals.size() &&
+                normals_bits + 8.0 * double(kPacketOverhead + kNormalsHeaderSize) * packets < record_bits) {
+                object.attributes &= uint8_t(~kAttrNormal);
+                object.surface_normals = true;
+            } else {
+                content.normals.clear();
+            }
+        }
         // Format 1.7 (spec 23): points sent over a map of occupied cells, where that takes fewer bytes.
         // The map deals them to packets along a space-filling curve: the order changes, and every
         // per-vertex index with it.
@@ -721,6 +809,11 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
                     new_index[order[i]] = i;
                 }
                 content.points = std::move(sorted);
+                if (!content.normals.empty()) {
+                    std::vector<NormalEntry> normals(order.size());
+                    for (uint32_t i = 0; i < order.size(); ++i) normals[i] = content.normals[order[i]];
+                    content.normals = std::move(normals);
+                }
                 for (uint32_t& v : vertex_points) v = new_index[v];
                 object.map_level = choice.level;
                 object.map_batch = choice.batch;
@@ -741,6 +834,16 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
                 result.warnings.push_back("mesh " + std::to_string(m) + (input.name.empty() ? "" : " (" + input.name + ")") + ": " + std::to_string(dropped) +
                                           " triangle(s) whose corners are one point after quantization are left out "
                                           "of the exact layer");
+        }
+        if (object.surface_normals && !object.exact_layer) {
+            // No exact layer after all (every triangle degenerate): the normals go in the records.
+            object.surface_normals = false;
+            object.attributes |= kAttrNormal;
+            content.normals.clear();
+        }
+        if (object.surface_normals) {
+            report.surface_normals = true;
+            for (const NormalEntry& e : content.normals) report.normals_sent += e.sent;
         }
         object.ellipsoid_count = uint32_t(content.ellipsoids.size());
         object.point_count = uint32_t(content.points.size());
@@ -763,6 +866,11 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
             uint32_t v[11] = {q.position[0], q.position[1], q.position[2], q.normal[0], q.normal[1], q.texcoord[0],
                               q.texcoord[1], q.color[0], q.color[1], q.color[2], q.color[3]};
             crc = crc32c(reinterpret_cast<const uint8_t*>(v), sizeof v, crc);
+        }
+        // Which normals are sent (format 1.8): another tolerance is other content.
+        for (const NormalEntry& e : result.contents[m].normals) {
+            const uint8_t sent = e.sent;
+            crc = crc32c(&sent, 1, crc);
         }
     }
     info.content_id = crc;

@@ -26,6 +26,10 @@ namespace {
 // normals the corner received.
 const double kAgreeCos = std::cos(30.0 * M_PI / 180.0);
 
+// A point of an object with surface normals (format 1.8) whose normal was not sent: (0, 0, 0). It
+// says nothing about which way a face should turn.
+bool left_to_surface(const std::array<float, 3>& m) { return m[0] == 0 && m[1] == 0 && m[2] == 0; }
+
 bool unit_normal(const DecoderTriMesh& mesh, OpenMesh::VertexHandle a, OpenMesh::VertexHandle b,
                  OpenMesh::VertexHandle c, Vec3& n) {
     n = OpenMesh::cross(mesh.point(b) - mesh.point(a), mesh.point(c) - mesh.point(a));
@@ -60,6 +64,7 @@ public:
                 around += OpenMesh::cross(b - a, c - a);
             }
             const auto& m = (*r.normals)[r.vertex_points[v.idx()][0]].normal;
+            if (left_to_surface(m)) continue;
             (around[0] * m[0] + around[1] * m[1] + around[2] * m[2] >= 0 ? along : against) += 1;
         }
         // Mostly one way: that way (the few others are the folds to repair); mixed: either way.
@@ -86,6 +91,7 @@ public:
         double best = -1;
         for (uint32_t i : r_.vertex_points[v.idx()]) {
             const auto& m = (*r_.normals)[i].normal;
+            if (left_to_surface(m)) return 1;  // a normal left to the surface objects to nothing
             const double d = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
             const bool either_way = sign_ == 0 || (r_.sheet_points && (*r_.sheet_points)[i]);
             best = std::max(best, either_way ? std::abs(d) : sign_ * d);
@@ -284,6 +290,7 @@ std::vector<OpenMesh::VertexHandle> reinsert(Reconstruction& r, NormalView& view
             if (!unit_normal(mesh, a, b, c, n)) return false;
             for (uint32_t i : list) {
                 const auto& m = (*r.normals)[i].normal;
+                if (left_to_surface(m)) return true;
                 const double d = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
                 if (view.read(d) >= kAgreeCos) return true;
             }

@@ -57,6 +57,11 @@ EllicastScheme::EllicastScheme(const Mesh& mesh, const EllicastSettings& setting
         state_->points_in_packet.push_back(static_cast<uint32_t>(batch.points.size()));
         packets_.push_back(std::move(p));
     }
+    // Format 1.8: NORMALS packets (an object with normals and an exact layer), detail after the points.
+    for (auto& p : stream.normals) {
+        state_->points_in_packet.push_back(0);
+        packets_.push_back(std::move(p));
+    }
     ellipsoids_ = object.ellipsoid_count;
     points_ = object.point_count;
     state_->block_of.assign(packets_.size(), -1);

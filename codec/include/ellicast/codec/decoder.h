@@ -369,8 +369,13 @@ struct StreamDecodeReport {
 // options.base_grid_nodes). decode_stream applies it itself.
 size_t shared_base_grid_nodes(const ReceivedStream& stream, const DecodeOptions& options);
 
+// Surface normals (format 1.8, spec 24.4): every vertex whose normal is (0, 0, 0) (a point whose
+// normal was left to the surface) gets the angle-weighted sum of spec 24.3 over the triangles that
+// use it, normalized; (0, 0, 1) where that is undefined.
+void fill_surface_normals(Mesh& mesh);
+
 // Object `object`'s exact mesh (spec 19.4): its original triangles over the points they use, each
-// corner with the point's dequantized attributes. False, with `why`, while its points or its
+// corner with the point's dequantized attributes (surface normals filled in). False, with `why`, while its points or its
 // connectivity are not all there or the connectivity is unusable.
 bool exact_mesh(const ReceivedStream& stream, size_t object, Mesh& out, std::string& why, bool& unusable);
 

@@ -60,6 +60,11 @@ struct EncodeOptions {
     // of occupied cells, at the map level that makes them smallest, where that beats POINTS. false:
     // POINTS packets, readable by 1.6 decoders.
     bool point_map = true;
+    // Surface normals (format 1.8, spec 24): an object with normals and an exact layer sends only the
+    // normals further than this many degrees from its surface's (the angle-weighted normal over the
+    // exact layer's triangles); the others a receiver computes. 0: every normal in the point
+    // records, readable with normals by 1.7 decoders. [0, 90]
+    double normal_tolerance = 2.0;
     // Called with a stage name and the fraction done (0..1); may be empty.
     std::function<void(const std::string& stage, double fraction)> progress;
 };
@@ -86,6 +91,8 @@ struct ObjectReport {
     uint64_t plain_point_bytes = 0;   // POINTS packets the points would take
     uint64_t map_bytes = 0;           // POINT_MAP packets (0 without a map)
     uint64_t mapped_point_bytes = 0;  // MAPPED_POINTS packets (0 without a map)
+    bool surface_normals = false;     // format 1.8: normals left to the surface where they agree
+    uint32_t normals_sent = 0;        // of the points, those whose normal NORMALS packets send
     uint32_t turned_faces = 0;        // triangles encoded turned round: parts that faced inward or
                                       // against their neighbours (the input is not changed)
     double interior_fraction = 0;     // of the grid's voxels, inside the surface
