@@ -35,6 +35,7 @@ struct EncodeArgs {
     std::string sign;  // secret key file: sign the stream (spec 16)
     double repair = EncodeOptions{}.repair_ratio;
     bool no_point_map = false;
+    double normal_tolerance = EncodeOptions{}.normal_tolerance;
 };
 
 int run_encode(const EncodeArgs& a) {
@@ -62,6 +63,7 @@ int run_encode(const EncodeArgs& a) {
     options.threads = a.threads;
     options.repair_ratio = a.repair;
     options.point_map = !a.no_point_map;
+    options.normal_tolerance = a.normal_tolerance;
     if (std::string why = check_encode_options(options); !why.empty()) return fail(kExitUsage, why);
 
     // A glTF keeps its scene: each distinct primitive once in its mesh's frame, plus the SCENE,
@@ -142,7 +144,14 @@ int run_encode(const EncodeArgs& a) {
                         "%.2f as POINTS\n",
                         i, unsigned(r.map_level), double(r.map_bytes + r.mapped_point_bytes) / double(r.points),
                         double(r.map_bytes) / double(r.points), double(r.plain_point_bytes) / double(r.points));
+        if (r.surface_normals)
+            std::printf("object %zu: surface normals (format 1.8): %u of %u normals sent, the others within %g degrees "
+                        "of the surface's\n",
+                        i, r.normals_sent, r.points, a.normal_tolerance);
     }
+    if (out.normal_packets)
+        std::printf("normals: %zu bytes (%zu NORMALS packets), %.2f bytes a point\n", out.normal_bytes, out.normal_packets,
+                    points ? double(out.normal_bytes) / double(points) : 0.0);
     std::printf("time %.2f s\n", seconds);
     return kExitOk;
 }
@@ -184,6 +193,11 @@ const RegisterCommand registered({10, [](CLI::App& app, int& exit_code) {
     cmd->add_flag("--no-point-map", args->no_point_map,
                   "send every point as a full POINTS record (format 1.0), readable by decoders before format 1.7, "
                   "instead of MAPPED_POINTS over a POINT_MAP where that takes fewer bytes");
+    cmd->add_option("--normal-tolerance", args->normal_tolerance,
+                    "degrees (0..90): an object with normals and an exact layer sends only the normals further than "
+                    "this from its surface's, in NORMALS packets (format 1.8); 0 sends every normal in the point "
+                    "records, readable with normals by decoders before format 1.8")
+        ->capture_default_str();
     cmd->add_option("--sign", args->sign, "sign the stream with this secret key (NAME.key from `ellicast keygen`)");
     cmd->add_flag("--allow-external-paths", args->allow_external_paths,
                   "read glTF buffers and images outside the model's folder (refused by default)");

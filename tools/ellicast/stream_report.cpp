@@ -162,8 +162,32 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         } else if (o.connectivity && o.connectivity->complete && missing.empty()) {
             std::vector<Triangle> triangles;
             std::string why;
-            if (exact_triangles(r.stream, i, triangles, why) != Error::Ok)
+            if (exact_triangles(r.stream, i, triangles, why) != Error::Ok) {
                 r.violations.push_back({std::nullopt, name + ": its exact layer is unusable: " + why});
+            } else if (o.info->surface_normals) {
+                // Format 1.8 (spec 24.4): no point of the exact layer left to an undefined surface normal.
+                std::vector<std::array<uint32_t, 3>> positions(o.info->point_count);
+                for (const auto& [index, q] : o.points) positions[index] = q.position;
+                const std::vector<char> defined = surface_normal_defined(positions, triangles);
+                std::vector<char> used(positions.size(), 0);
+                for (const Triangle& t : triangles)
+                    for (uint32_t v : t) used[v] = 1;
+                std::vector<uint32_t> bad;
+                for (const auto& [index, entry] : o.normal_entries)
+                    if (!entry.sent && used[index] && !defined[index]) bad.push_back(index);
+                if (!bad.empty())
+                    r.violations.push_back({std::nullopt, name + ": " + std::to_string(bad.size()) +
+                                                              " point(s) of its exact layer left to the surface have no "
+                                                              "surface normal (no triangle with an area uses them), "
+                                                              "first point " + std::to_string(bad[0])});
+            }
+        }
+        // Format 1.8 (spec 24.4): an object with surface normals has the normal entry of every point.
+        if (o.info->surface_normals && !o.normals_complete()) {
+            r.violations.push_back({std::nullopt, name + ": the NORMALS entries of " +
+                                                      std::to_string(o.normal_entries.size()) + " of " +
+                                                      std::to_string(o.info->point_count) + " points arrived; missing " +
+                                                      missing_ranges(o.normal_entries, o.info->point_count)});
         }
     }
     // Format 1.2 repair packets: each symbol must be its row of the code over the points (spec 17.4).
