@@ -75,7 +75,7 @@ bool load_stream(const std::string& path, std::vector<std::vector<uint8_t>>& pac
         error = "packetizing failed";
         return false;
     }
-    for (auto* part : {&sp.stream_info, &sp.ellipsoids, &sp.maps, &sp.points})
+    for (auto* part : {&sp.stream_info, &sp.ellipsoids, &sp.maps, &sp.points, &sp.normals})
         for (auto& p : *part) packets.push_back(p);
     return true;
 }

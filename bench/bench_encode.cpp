@@ -76,6 +76,7 @@ Run encode(const std::vector<Mesh>& meshes, EncodeOptions options) {
         for (auto& p : packets.ellipsoids) run.base_bytes += p.size();
         for (auto& p : packets.points) run.detail_bytes += p.size();
         for (auto& p : packets.maps) run.detail_bytes += p.size();  // format 1.7: the map, counted with the points it places
+        for (auto& p : packets.normals) run.detail_bytes += p.size();  // format 1.8: NORMALS
     }
     return run;
 }
