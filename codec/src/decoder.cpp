@@ -20,6 +20,22 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 bool left_to_surface(const std::array<float, 3>& n) { return n[0] == 0 && n[1] == 0 && n[2] == 0; }
 
+// One corner's term of the angle-weighted vertex normal (spec 24.3): the unit normal of the face
+// with edges e1, e2 from the corner, times the corner's angle; 0 for a degenerate face.
+Vec3 corner_contribution(const Vec3& e1, const Vec3& e2) {
+    const Vec3 m = OpenMesh::cross(e1, e2);
+    const double lm = m.norm(), l1 = e1.norm(), l2 = e2.norm();
+    if (!(lm > 0) || !(l1 > 0) || !(l2 > 0)) return Vec3(0, 0, 0);
+    return m * (std::acos(std::clamp(OpenMesh::dot(e1, e2) / (l1 * l2), -1.0, 1.0)) / lm);
+}
+
+// A unit vector from a sum of contributions; (0, 0, 1) where there is none.
+std::array<float, 3> unit_or_up(const Vec3& n) {
+    const double l = n.norm();
+    return l > 0 ? std::array<float, 3>{float(n[0] / l), float(n[1] / l), float(n[2] / l)}
+                 : std::array<float, 3>{0, 0, 1};
+}
+
 // The order in which the received points (in index order) are inserted. A mapped object's packets
 // each hold points along a Morton curve (spec 23.2), and inserted in that order the bunny comes back
 // at 0.0134% RMS with every point; in bit-reversed order of their position in the list, a
@@ -171,16 +187,10 @@ Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::ve
         const Vec3 p = mesh.point(v);
         for (auto h : mesh.voh_range(v)) {
             if (mesh.is_boundary(h)) continue;
-            const Vec3 e1 = mesh.point(mesh.to_vertex_handle(h)) - p;
-            const Vec3 e2 = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h))) - p;
-            const Vec3 m = OpenMesh::cross(e1, e2);
-            const double lm = m.norm(), l1 = e1.norm(), l2 = e2.norm();
-            if (!(lm > 0) || !(l1 > 0) || !(l2 > 0)) continue;
-            n += m * (std::acos(std::clamp(OpenMesh::dot(e1, e2) / (l1 * l2), -1.0, 1.0)) / lm);
+            n += corner_contribution(mesh.point(mesh.to_vertex_handle(h)) - p,
+                                     mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h))) - p);
         }
-        double l = n.norm();
-        return l > 0 ? std::array<float, 3>{float(n[0] / l), float(n[1] / l), float(n[2] / l)}
-                     : std::array<float, 3>{0, 0, 1};
+        return unit_or_up(n);
     };
     auto sets_of = [&](OpenMesh::VertexHandle v) -> const std::vector<uint32_t>* {
         int s = source[v.idx()];
@@ -405,18 +415,11 @@ void fill_surface_normals(Mesh& mesh) {
         for (int c = 0; c < 3; ++c) {
             const uint32_t i = t[c];
             if (!left_to_surface(mesh.normals[i])) continue;
-            const Vec3 p = at(i), e1 = at(t[(c + 1) % 3]) - p, e2 = at(t[(c + 2) % 3]) - p;
-            const Vec3 m = OpenMesh::cross(e1, e2);
-            const double lm = m.norm(), l1 = e1.norm(), l2 = e2.norm();
-            if (!(lm > 0) || !(l1 > 0) || !(l2 > 0)) continue;
-            sum[i] += m * (std::acos(std::clamp(OpenMesh::dot(e1, e2) / (l1 * l2), -1.0, 1.0)) / lm);
+            const Vec3 p = at(i);
+            sum[i] += corner_contribution(at(t[(c + 1) % 3]) - p, at(t[(c + 2) % 3]) - p);
         }
     }
-    for (uint32_t v : open) {
-        const double l = sum[v].norm();
-        mesh.normals[v] = l > 0 ? std::array<float, 3>{float(sum[v][0] / l), float(sum[v][1] / l), float(sum[v][2] / l)}
-                                : std::array<float, 3>{0, 0, 1};
-    }
+    for (uint32_t v : open) mesh.normals[v] = unit_or_up(sum[v]);
 }
 
 size_t shared_base_grid_nodes(const ReceivedStream& stream, const DecodeOptions& options) {

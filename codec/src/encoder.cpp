@@ -541,16 +541,22 @@ std::vector<QuantizedPoint> encode_points(const Mesh& mesh, const StreamInfo& in
 
 // The exact layer of one object (spec 19): its original triangles over its points, coded. A
 // triangle whose corners became fewer than three points is left out (counted in `dropped`).
-void encode_exact_layer(const Mesh& input, const std::vector<uint32_t>& vertex_points, ObjectContent& content,
-                        uint32_t& dropped) {
+// The exact layer's triangles over the points: each input triangle through vertex_points, those
+// whose corners fall on fewer than three points left out.
+std::vector<Triangle> exact_triangles_of(const Mesh& input, const std::vector<uint32_t>& vertex_points) {
     std::vector<Triangle> triangles;
     triangles.reserve(input.triangles.size());
-    dropped = 0;
     for (const auto& t : input.triangles) {
         const Triangle p = {vertex_points[t[0]], vertex_points[t[1]], vertex_points[t[2]]};
-        if (p[0] == p[1] || p[1] == p[2] || p[0] == p[2]) ++dropped;
-        else triangles.push_back(p);
+        if (p[0] != p[1] && p[1] != p[2] && p[0] != p[2]) triangles.push_back(p);
     }
+    return triangles;
+}
+
+void encode_exact_layer(const Mesh& input, const std::vector<uint32_t>& vertex_points, ObjectContent& content,
+                        uint32_t& dropped) {
+    const std::vector<Triangle> triangles = exact_triangles_of(input, vertex_points);
+    dropped = uint32_t(input.triangles.size() - triangles.size());
     if (triangles.empty()) return;
     std::vector<std::array<uint32_t, 3>> positions;
     positions.reserve(content.points.size());
@@ -561,18 +567,6 @@ void encode_exact_layer(const Mesh& input, const std::vector<uint32_t>& vertex_p
         return;
     }
     content.triangle_count = uint32_t(sent.size());
-}
-
-// The exact layer's triangles over the points: each input triangle through vertex_points, those
-// whose corners fall on fewer than three points left out (as encode_exact_layer does).
-std::vector<Triangle> exact_triangles_of(const Mesh& input, const std::vector<uint32_t>& vertex_points) {
-    std::vector<Triangle> triangles;
-    triangles.reserve(input.triangles.size());
-    for (const auto& t : input.triangles) {
-        const Triangle p = {vertex_points[t[0]], vertex_points[t[1]], vertex_points[t[2]]};
-        if (p[0] != p[1] && p[1] != p[2] && p[0] != p[2]) triangles.push_back(p);
-    }
-    return triangles;
 }
 
 // Surface normals (format 1.8, spec 24.5): per point, whether its normal can be left to the surface

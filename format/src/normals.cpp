@@ -3,6 +3,7 @@
 #include "ellicast/format.h"
 
 #include "bytes.h"
+#include "point_runs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -65,33 +66,41 @@ Error decode_normals_payload(std::span<const uint8_t> payload, unsigned normal_b
     return Error::Ok;
 }
 
-Error packetize_normals(const StreamInfo& info, uint16_t object_id, const std::vector<NormalEntry>& entries,
-                        uint32_t stream_id, uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out) {
-    if (object_id >= info.objects.size() || !info.objects[object_id].surface_normals ||
-        entries.size() != info.objects[object_id].point_count || entries.empty() || info.packet_size < kMinPacketSize)
-        return Error::MalformedPayload;
-    const size_t capacity_bits = (info.packet_size - kPacketOverhead - kNormalsHeaderSize) * 8;
-    const size_t normal_bits = 2 * size_t(info.normal_bits);
-    uint32_t sequence = first_sequence;
+std::vector<std::vector<uint8_t>> detail::normals_payloads(const std::vector<NormalEntry>& entries,
+                                                           size_t packet_size, unsigned normal_bits) {
+    std::vector<std::vector<uint8_t>> out;
+    const size_t capacity_bits = (packet_size - kPacketOverhead - kNormalsHeaderSize) * 8;
     size_t first = 0;
     while (first < entries.size()) {
         // As many entries as fit: one flag bit each, and 2N bits more for each normal sent.
         size_t n = 0, bits = 0;
         while (first + n < entries.size() && n < 0xFFFF) {
-            const size_t more = 1 + (entries[first + n].sent ? normal_bits : 0);
+            const size_t more = 1 + (entries[first + n].sent ? 2 * size_t(normal_bits) : 0);
             if (bits + more > capacity_bits) break;
             bits += more;
             ++n;
         }
-        if (n == 0) return Error::MalformedPayload;  // cannot happen at 128 bytes and 16-bit normals
+        if (n == 0) return {};
         NormalsRun run;
         run.first_index = static_cast<uint32_t>(first);
         run.entries.assign(entries.begin() + std::ptrdiff_t(first), entries.begin() + std::ptrdiff_t(first + n));
-        out.push_back(write_packet(
-            skippable_header(PacketType::Normals, kSurfaceNormalsMinor, stream_id, sequence++, object_id),
-            encode_normals_payload(run, info.normal_bits)));
+        out.push_back(encode_normals_payload(run, normal_bits));
         first += n;
     }
+    return out;
+}
+
+Error packetize_normals(const StreamInfo& info, uint16_t object_id, const std::vector<NormalEntry>& entries,
+                        uint32_t stream_id, uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out) {
+    if (object_id >= info.objects.size() || !info.objects[object_id].surface_normals ||
+        entries.size() != info.objects[object_id].point_count || entries.empty() || info.packet_size < kMinPacketSize)
+        return Error::MalformedPayload;
+    const auto payloads = normals_payloads(entries, info.packet_size, info.normal_bits);
+    if (payloads.empty()) return Error::MalformedPayload;
+    uint32_t sequence = first_sequence;
+    for (const auto& payload : payloads)
+        out.push_back(write_packet(
+            skippable_header(PacketType::Normals, kSurfaceNormalsMinor, stream_id, sequence++, object_id), payload));
     return Error::Ok;
 }
 
@@ -184,22 +193,15 @@ Error ReceivedStream::take_normals(ReceivedObject& object, const PacketView& pac
                       name + ": points " + std::to_string(run.first_index) + "+" + std::to_string(run.entries.size()) +
                           " of " + std::to_string(oi.point_count));
     bool news = false;
-    for (size_t i = 0; i < run.entries.size(); ++i) {
-        auto it = object.normal_entries.find(static_cast<uint32_t>(run.first_index + i));
-        if (it == object.normal_entries.end()) {
-            news = true;
-        } else if (!(it->second == run.entries[i])) {
-            return reject(where, Error::StreamMismatch,
-                          name + ": the normal entry of point " + std::to_string(run.first_index + i) +
-                              " differs from the one received before");
-        }
-    }
+    if (auto differs = detail::compare_run(object.normal_entries, run.first_index, run.entries, news))
+        return reject(where, Error::StreamMismatch,
+                      name + ": the normal entry of point " + std::to_string(*differs) +
+                          " differs from the one received before");
     if (!news) {
         ++counters_.duplicates;
         return Error::Ok;
     }
-    for (size_t i = 0; i < run.entries.size(); ++i)
-        object.normal_entries.emplace(static_cast<uint32_t>(run.first_index + i), run.entries[i]);
+    detail::keep_run(object.normal_entries, run.first_index, run.entries);
     ++counters_.accepted;
     return Error::Ok;
 }

@@ -2,6 +2,7 @@
 #include "ellicast/format.h"
 
 #include "bytes.h"
+#include "point_runs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -322,15 +323,9 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
         }
         if (object.surface_normals != !content.normals.empty()) return Error::MalformedPayload;
         if (object.surface_normals) {
-            std::vector<std::vector<uint8_t>> packets;
-            if (packetize_normals(info_in, static_cast<uint16_t>(i), content.normals, 0, 0, packets) != Error::Ok)
-                return Error::MalformedPayload;
-            for (const auto& p : packets) {
-                PacketView view;
-                parse_packet(p, view);
-                normals_payloads.emplace_back(static_cast<uint16_t>(i),
-                                              std::vector<uint8_t>(view.payload.begin(), view.payload.end()));
-            }
+            auto payloads = detail::normals_payloads(content.normals, info_in.packet_size, info_in.normal_bits);
+            if (payloads.empty()) return Error::MalformedPayload;
+            for (auto& payload : payloads) normals_payloads.emplace_back(static_cast<uint16_t>(i), std::move(payload));
         }
         const size_t per_points = point_batch_size(info_in, object);
         if (per_points == 0) return Error::MalformedPayload;

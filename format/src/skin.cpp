@@ -2,6 +2,7 @@
 #include "ellicast/format.h"
 
 #include "bytes.h"
+#include "point_runs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -286,22 +287,14 @@ Error ReceivedStream::take_joint_weights(ReceivedObject& object, const PacketVie
                       name + ": points " + std::to_string(run.first_index) + "+" + std::to_string(run.records.size()) +
                           " of " + std::to_string(object.info->point_count));
     bool news = false;
-    for (size_t i = 0; i < run.records.size(); ++i) {
-        auto it = object.weights.find(static_cast<uint32_t>(run.first_index + i));
-        if (it == object.weights.end()) {
-            news = true;
-        } else if (!(it->second == run.records[i])) {
-            return reject(where, Error::StreamMismatch,
-                          name + ": the record of point " + std::to_string(run.first_index + i) +
-                              " differs from the one received before");
-        }
-    }
+    if (auto differs = detail::compare_run(object.weights, run.first_index, run.records, news))
+        return reject(where, Error::StreamMismatch,
+                      name + ": the record of point " + std::to_string(*differs) + " differs from the one received before");
     if (!news) {
         ++counters_.duplicates;
         return Error::Ok;
     }
-    for (size_t i = 0; i < run.records.size(); ++i)
-        object.weights.emplace(static_cast<uint32_t>(run.first_index + i), run.records[i]);
+    detail::keep_run(object.weights, run.first_index, run.records);
     ++counters_.accepted;
     return Error::Ok;
 }

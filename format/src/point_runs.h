@@ -1,0 +1,41 @@
+// Runs of per-point records (JOINT_WEIGHTS, NORMALS): how a receiver compares and keeps them, and
+// how the packetizer cuts an object's NORMALS entries into runs. Internal to the format library.
+#pragma once
+
+#include "ellicast/format.h"
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+namespace ellicast::detail {
+
+// The comparisons of a run of records for points first, first + 1, ... against those held (spec
+// 21.2, 24.2, step 15): the index of the first point whose record differs from the one held (the
+// run is then rejected whole), or none. `news` tells whether the run brings a record not held.
+template <class Record>
+std::optional<uint32_t> compare_run(const std::map<uint32_t, Record>& held, uint32_t first,
+                                    const std::vector<Record>& records, bool& news) {
+    news = false;
+    for (size_t i = 0; i < records.size(); ++i) {
+        const uint32_t index = static_cast<uint32_t>(first + i);
+        auto it = held.find(index);
+        if (it == held.end()) news = true;
+        else if (!(it->second == records[i])) return index;
+    }
+    return std::nullopt;
+}
+
+// Keeps the records of points not held yet (the first copy of a record is kept).
+template <class Record>
+void keep_run(std::map<uint32_t, Record>& held, uint32_t first, const std::vector<Record>& records) {
+    for (size_t i = 0; i < records.size(); ++i) held.emplace(static_cast<uint32_t>(first + i), records[i]);
+}
+
+// The NORMALS payloads of one object's entries (one per point): runs of as many points as fit a
+// packet of `packet_size` bytes. Empty when an entry cannot fit (not at 128 bytes and 16 bits).
+std::vector<std::vector<uint8_t>> normals_payloads(const std::vector<NormalEntry>& entries, size_t packet_size,
+                                                   unsigned normal_bits);
+
+}  // namespace ellicast::detail
