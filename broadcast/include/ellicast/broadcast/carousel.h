@@ -1,10 +1,14 @@
 // The carousel: the order in which a sender repeats a stream's packets for receivers that tune in
 // at any moment and never ask for anything.
 //
-// After Bischoff & Kobbelt: the base (every packet a receiver needs before it can show anything:
-// STREAM_INFO, ELLIPSOIDS, and any later scene/material type; in short every packet that is not
-// POINTS) is repeated between chunks of point packets, b d1 b d2 ... b dn, and the whole cycle
-// repeats. A receiver that tunes in anywhere holds a complete base after at most one chunk plus one
+// After Bischoff & Kobbelt (spec/format.md section 12, Sender behaviour): the base (what a receiver
+// needs before it can show anything: STREAM_INFO, ELLIPSOIDS, SCENE, MATERIAL, MATERIAL_EXTENSIONS,
+// SKIN, and every type is_base_packet does not call detail) is repeated between chunks of detail
+// packets (POINTS or MAPPED_POINTS, TEXTURE_FRAGMENT, ANIMATION, MORPH_ANIMATION, JOINT_WEIGHTS,
+// MORPH_DELTAS, NORMALS, CONNECTIVITY, CONNECTIVITY_REPAIR), b d1 b d2 ... b dn, and the whole cycle
+// repeats. POINT_MAP packets are spread over the repetitions of the base (section 23.7), a repair
+// block's POINTS_REPAIR packets take turns with its POINTS packets (17.5), and a MANIFEST part goes
+// with the packets it lists (16.4). A receiver that tunes in anywhere holds a complete base after at most one chunk plus one
 // base (without loss; counted from the first whole packet received), and every packet after at
 // most one cycle. Inside each chunk the stream info comes again every few POINTS packets
 // (CarouselOptions::stream_info_every), since a receiver can show nothing without it.

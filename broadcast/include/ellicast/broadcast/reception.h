@@ -1,9 +1,12 @@
 // The receiving end of a broadcast, before any geometry: takes datagrams from anyone, keeps the
-// ellicast packets of one stream, counts and drops everything else, estimates the loss from
-// sequence gaps, and says when the base (and everything) has arrived.
+// ellicast packets of one stream (of the candidate streams it hears, the one that brings the most,
+// spec/format.md section 11.4; with the sender's key, only packets a MANIFEST signed with it lists,
+// section 16.3), counts and drops everything else, estimates the loss from sequence gaps, and says
+// when the base (and everything) has arrived.
 //
 // Safe to expose to a network: every datagram goes through the format's checks (magic, length,
-// CRC, stream id); memory is bounded by ReceivedStream's limits plus a fixed-size window of
+// CRC, stream id); memory is bounded by ReceivedStream's limits for each candidate stream (at most
+// Options::max_candidates), the authenticator's limits with a key, and a fixed-size window of
 // sequence numbers.
 #pragma once
 

@@ -1,4 +1,7 @@
-// The decoder: rebuilds a surface from whatever ellipsoids and surface points of an object arrived.
+// The decoder: rebuilds a surface from whatever ellipsoids and surface points of an object arrived,
+// as spec/format.md section 13 (Reconstruction, informative) describes; an object whose every point
+// and whole exact layer arrived comes back as its original triangles instead (section 19.4), with
+// the surface normals of section 24.3 where its points left them to the surface.
 //
 // Pipeline (Bischoff & Kobbelt 2002), one algorithm per source file:
 //   rasterize.cpp        ellipsoids -> a grid of clamped signed distances (sign = inside/outside)
@@ -11,7 +14,8 @@
 //   decoder.cpp          a whole object / stream, attribute transfer, snapshots, progress, timings
 //
 // Everything here is deterministic: the same ellipsoids and points (in any order, with duplicate
-// ellipsoids) give the same mesh, bit for bit. Points are inserted in stream order.
+// ellipsoids) give the same mesh, bit for bit. Points are inserted in the order of the received list
+// (index order) on an object with normals, otherwise in the bit-reversed order of their place in it.
 #pragma once
 
 #include "ellicast/codec/mesh.h"

@@ -1,5 +1,8 @@
-// The ellicast encoder: meshes in, a quantized stream (stream info + per-object ellipsoids and
-// points) out, ready for packetize_stream().
+// The ellicast encoder: meshes in, a quantized stream out (stream info and, per object, ellipsoids,
+// points and, where it sends them, the exact layer's coded triangles and the normal entries of
+// surface normals), ready for packetize_stream() and packetize_connectivity(). It is the reference
+// encoder of spec/format.md: section 12 (Sender behaviour), 19.6, 23.7 and 24.5 (the sender
+// behaviour of the exact layer, mapped points and surface normals).
 //
 // For each triangle mesh (after Bischoff & Kobbelt 2002):
 //  1. inside/outside from generalized winding numbers on a voxel grid (robust on open meshes);
@@ -12,7 +15,10 @@
 //     clear of the surface, else it is shrunk;
 //  5. the points: every original vertex, plus surface samples where triangles are large (low-poly
 //     models), welded by quantized position and attributes, in an order in which any subset is
-//     spread evenly over the surface.
+//     spread evenly over the surface;
+//  6. the exact layer: the original triangles coded over the points (format 1.3); the map level at
+//     which MAPPED_POINTS packets over a POINT_MAP are smallest, the points then in the map's order
+//     (1.7); and the normals left to the exact layer's surface where they agree with it (1.8).
 // Deterministic: the same meshes, options and seed give the same output, whatever the threads.
 #pragma once
 

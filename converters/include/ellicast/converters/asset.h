@@ -1,7 +1,9 @@
-// A scene as ellicast carries it: the objects of a stream plus the scene description (nodes,
-// meshes, materials, textures) of format 1.1. Read from glTF with the scene graph intact
-// (load_asset), rebuilt from what a receiver has (received_asset), written back to glTF/GLB with
-// the scene graph restored, optionally Draco-compressed or quantized (write_asset).
+// A scene as ellicast carries it: the objects of a stream plus the scene description of format 1.1
+// and later (nodes, meshes, materials with their extensions, textures, animations, skins with their
+// joint weights, morph targets: spec/format.md sections 15, 18 and 20 to 22). Read from glTF with
+// the scene graph intact (load_asset), rebuilt from what a receiver has (received_asset), written
+// back to glTF/GLB with the scene graph restored, optionally Draco-compressed or quantized
+// (write_asset).
 //
 // Objects are in the local frame of their mesh: a mesh instanced by several nodes is one set of
 // objects, sent once. Object i of an Asset is object i of the stream.

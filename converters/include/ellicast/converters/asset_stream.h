@@ -1,6 +1,7 @@
-// An Asset through a stream: its objects encoded (ellipsoids + points) and its scene cut into
-// SCENE / MATERIAL / TEXTURE_FRAGMENT packets on the way out; its objects decoded and its scene
-// rebuilt from whatever packets arrived on the way in.
+// An Asset through a stream: on the way out its objects encoded and cut into packets (geometry, skin
+// weights, morph targets, the exact layer, repair packets) and its scene cut into SCENE, MATERIAL,
+// MATERIAL_EXTENSIONS, TEXTURE_FRAGMENT, ANIMATION, MORPH_ANIMATION and SKIN packets; on the way in
+// its objects decoded and its scene rebuilt from whatever packets arrived.
 #pragma once
 
 #include "ellicast/codec/decoder.h"

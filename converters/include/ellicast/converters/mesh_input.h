@@ -1,5 +1,5 @@
-// Reading models into ellicast::Mesh objects: glTF 2.0 (.gltf, .glb, with KHR_draco_mesh_compression
-// and KHR_mesh_quantization) and OBJ / PLY / OFF / STL through OpenMesh.
+// Reading models into ellicast::Mesh objects: glTF 2.0 (.gltf, .glb, with KHR_draco_mesh_compression,
+// KHR_mesh_quantization and EXT_meshopt_compression) and OBJ / PLY / OFF / STL through OpenMesh.
 //
 // One Mesh per triangle primitive of every mesh instance of the default scene (node transforms
 // applied); point primitives become point sets; line primitives are skipped with a warning.
