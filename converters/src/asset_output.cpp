@@ -1023,4 +1023,14 @@ bool write_asset(const std::string& path, const Asset& asset, const AssetWriteOp
     return save_model(path, model, ext == ".glb", error);
 }
 
+bool write_asset_glb(const Asset& asset, const AssetWriteOptions& options, std::vector<uint8_t>& out,
+                     std::vector<std::string>& warnings, std::string& error) {
+    if (std::string bad = check_asset_write_options(options); !bad.empty()) {
+        error = bad;
+        return false;
+    }
+    tinygltf::Model model = AssetWriter("glb", asset, options, warnings).build();
+    return glb_bytes(model, out, error);
+}
+
 }  // namespace ellicast

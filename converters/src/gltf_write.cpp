@@ -110,6 +110,19 @@ bool valid_indices(const Mesh& mesh) {
     return true;
 }
 
+bool glb_bytes(tinygltf::Model& model, std::vector<uint8_t>& out, std::string& error) {
+    if (!model.buffers.empty()) model.buffers[0].uri.clear();  // buffer 0 with no uri goes to the GLB BIN chunk
+    tinygltf::TinyGLTF writer;
+    std::ostringstream stream;
+    if (!writer.WriteGltfSceneToStream(&model, stream, false, true)) {
+        error = "tinygltf could not serialize the model";
+        return false;
+    }
+    const std::string bytes = stream.str();
+    out.assign(bytes.begin(), bytes.end());
+    return true;
+}
+
 bool save_model(const std::string& path, tinygltf::Model& model, bool binary, std::string& error) {
     if (!model.buffers.empty()) {
         if (binary) {
@@ -120,15 +133,13 @@ bool save_model(const std::string& path, tinygltf::Model& model, bool binary, st
     }
     tinygltf::TinyGLTF writer;
     if (binary) {
-        std::ostringstream stream;
-        if (!writer.WriteGltfSceneToStream(&model, stream, false, true)) {
-            error = path + ": tinygltf could not serialize the model";
+        std::vector<uint8_t> bytes;
+        if (!glb_bytes(model, bytes, error)) {
+            error = path + ": " + error;
             return false;
         }
-        const std::string bytes = stream.str();
         std::string message;
-        if (write_file(path, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()),
-                       message) != Error::Ok) {
+        if (write_file(path, bytes, message) != Error::Ok) {
             error = "cannot write " + path + ": " + message;
             return false;
         }

@@ -55,6 +55,9 @@ tinygltf::Primitive add_primitive(tinygltf::Model& model, const Mesh& mesh);
 // True when every triangle index is below the vertex count.
 bool valid_indices(const Mesh& mesh);
 
+// The GLB bytes of `model` (buffer 0 as the BIN chunk), in memory. False with `error` otherwise.
+bool glb_bytes(tinygltf::Model& model, std::vector<uint8_t>& out, std::string& error);
+
 // Writes `model` to `path`: binary (.glb, buffer 0 as the BIN chunk) or JSON with buffer 0 in a
 // .bin of the same stem beside it. Writes through a temporary name. False with `error` otherwise.
 bool save_model(const std::string& path, tinygltf::Model& model, bool binary, std::string& error);

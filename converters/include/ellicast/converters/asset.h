@@ -112,6 +112,11 @@ std::string check_asset_write_options(const AssetWriteOptions& options);
 bool write_asset(const std::string& path, const Asset& asset, const AssetWriteOptions& options,
                  std::vector<std::string>& warnings, std::string& error);
 
+// The GLB file write_asset would write for a .glb, as bytes in memory (warnings name the asset "glb").
+// False with `error` when the options are invalid or the model cannot be serialized.
+bool write_asset_glb(const Asset& asset, const AssetWriteOptions& options, std::vector<uint8_t>& out,
+                     std::vector<std::string>& warnings, std::string& error);
+
 // Every present object under every node that shows it, in world space (node transforms applied,
 // normals by the inverse transpose, winding kept outward under a mirroring transform), named after
 // its node. Without nodes: the present objects as they are.
