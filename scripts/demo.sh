@@ -38,6 +38,7 @@ step "distance to the original (percent of the bounding-box diagonal)"
 "$ellicast" diff "$model" "$out/trefoil-lossy.glb"
 step "pictures: base only, after 1,600 points, every point, after 60% loss -> $out/trefoil-progress.png"
 "$ellicast" render "$out/trefoil.snap-o0-p0000000.glb" "$out/trefoil.snap-o0-p0001600.glb" "$out/trefoil.glb" \
-  "$out/trefoil-lossy.glb" -o "$out/trefoil-progress.png" --width 320 --height 320
+  "$out/trefoil-lossy.glb" -o "$out/trefoil-progress.png" --width 320 --height 320 \
+  --labels "base only (ellipsoids),1600 points,every packet (exact),60% of packets lost"
 printf '\nwrote %s\n' "$out" >&2
 ls -l "$out" >&2

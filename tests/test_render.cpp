@@ -58,6 +58,27 @@ TEST_CASE("panels side by side keep their pixels and are written as a PNG file")
     CHECK_FALSE(std::filesystem::exists(dir / "two.png.partial"));
 }
 
+TEST_CASE("a label is written in dark pixels on a light band across the top of a panel, and nowhere else") {
+    RenderOptions o;
+    o.width = o.height = 96;
+    std::array<double, 3> lo{-1, -1, -1}, hi{1, 1, 1};
+    const Image plain = render_meshes({octahedron()}, lo, hi, o);
+    Image labelled = plain;
+    draw_label(labelled, "60% lost", 2);
+    auto dark = [](const Image& img, int y0, int y1) {
+        size_t n = 0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < img.width; ++x) n += img.rgb[(size_t(y) * img.width + x) * 3] < 60;
+        return n;
+    };
+    CHECK(dark(labelled, 0, 28) > 40);        // the glyphs
+    CHECK(dark(plain, 0, 28) == 0);
+    CHECK(std::equal(plain.rgb.begin() + 28 * 96 * 3, plain.rgb.end(), labelled.rgb.begin() + 28 * 96 * 3));  // below the band
+    Image cut = plain;
+    draw_label(cut, std::string(200, 'W') + "\n\x01", 3);  // longer than the panel, control bytes: cut, no overrun
+    CHECK(cut.rgb.size() == plain.rgb.size());
+}
+
 TEST_CASE("ellicast render refuses an output that is not a PNG and one that would overwrite its input") {
     if (!test::have_sample("meshes/woody.obj")) return;
     auto dir = test::scratch_dir("render_cli");
@@ -68,4 +89,8 @@ TEST_CASE("ellicast render refuses an output that is not a PNG and one that woul
     CHECK(std::system((exe + " render " + model + " --width 64 --height 64 -o " + (dir / "w.png").string() +
                        " 2>/dev/null").c_str()) == 0);
     CHECK(std::filesystem::file_size(dir / "w.png") > 100);
+    // Labels: one a panel.
+    CHECK(std::system((exe + " render " + model + " " + model + " --labels one -o " + (dir / "l.png").string() + " 2>/dev/null").c_str()) != 0);
+    CHECK(std::system((exe + " render " + model + " " + model + " --width 64 --height 64 --labels 'one,two' -o " + (dir / "l.png").string() +
+                       " 2>/dev/null").c_str()) == 0);
 }

@@ -2,10 +2,12 @@
 #include "ellicast/converters/render.h"
 #include "ellicast/format.h"
 
+#include <stb_easy_font.h>
 #include <stb_image_write.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
@@ -169,6 +171,38 @@ Image side_by_side(const std::vector<Image>& panels) {
         x0 += p.width + gutter;
     }
     return out;
+}
+
+void draw_label(Image& image, const std::string& text, int scale) {
+    if (text.empty() || image.width <= 0 || image.height <= 0 || scale < 1) return;
+    std::string shown = text;
+    for (char& c : shown)
+        if (c < 32 || c > 126) c = '?';
+    // A light band behind the text, as high as a line and its margins.
+    const int margin = 2 * scale;
+    const int band = std::min(image.height, 12 * scale + 2 * margin);
+    for (int y = 0; y < band; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (int k = 0; k < 3; ++k) {
+                uint8_t& v = image.rgb[(size_t(y) * image.width + x) * 3 + k];
+                v = uint8_t((v + 3 * 245) / 4);
+            }
+    // stb_easy_font gives quads (4 vertices of x, y, z, colour: 16 bytes each), 6 units a line.
+    std::vector<char> quads(std::max<size_t>(4096, shown.size() * 300));
+    const int count = stb_easy_font_print(0, 0, shown.data(), nullptr, quads.data(), int(quads.size()));
+    for (int q = 0; q < count; ++q) {
+        float lo[2] = {1e9f, 1e9f}, hi[2] = {-1e9f, -1e9f};
+        for (int corner = 0; corner < 4; ++corner) {
+            float xy[2];
+            std::memcpy(xy, quads.data() + size_t(q) * 64 + corner * 16, sizeof xy);
+            for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], xy[k]), hi[k] = std::max(hi[k], xy[k]);
+        }
+        const int x0 = margin + int(std::lround(lo[0] * scale)), y0 = margin + int(std::lround(lo[1] * scale));
+        const int x1 = margin + int(std::lround(hi[0] * scale)), y1 = margin + int(std::lround(hi[1] * scale));
+        for (int y = std::max(0, y0); y < std::min(image.height, y1); ++y)
+            for (int x = std::max(0, x0); x < std::min(image.width, x1); ++x)
+                for (int k = 0; k < 3; ++k) image.rgb[(size_t(y) * image.width + x) * 3 + k] = 40;
+    }
 }
 
 void write_png(const std::string& path, const Image& image) {

@@ -37,6 +37,11 @@ void bounding_box(const std::vector<Mesh>& meshes, std::array<double, 3>& lo, st
 // Places images side by side (same height), separated by a thin white gutter.
 Image side_by_side(const std::vector<Image>& panels);
 
+// Writes `text` (printable ASCII; other bytes shown as '?') in dark grey on a light band across the
+// top of `image`, `scale` pixels a font pixel (stb_easy_font's 6-pixel-high glyphs); cut at the
+// image's right edge.
+void draw_label(Image& image, const std::string& text, int scale = 2);
+
 // Writes a PNG; throws std::runtime_error naming the file when it cannot.
 void write_png(const std::string& path, const Image& image);
 
