@@ -135,6 +135,30 @@ TEST_CASE("inspect summarizes stream info, packet types, objects and damage") {
     CHECK(contains(r.out, "conforms: yes"));
 }
 
+TEST_CASE("inspect names a freshly encoded stream's repair packets as repair not needed, not as duplicates") {
+    const auto dir = ellicast::test::scratch_dir("inspect_repair");
+    const std::string stream = (dir / "trefoil.ellc").string();
+    Result r = run_ellicast("encode -q '" + (ellicast::test::source_dir() / "samples" / "trefoil.obj").string() + "' -o '" +
+                            stream + "' --repair 1");
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    r = run_ellicast("inspect '" + stream + "'");
+    REQUIRE(r.code == 0);
+    CHECK_MESSAGE(contains(r.out, " 0 duplicates, "), r.out);
+    CHECK_MESSAGE(!contains(r.out, " 0 repair not needed"), r.out);
+    CHECK(contains(r.out, "repair not needed (what they protect arrived whole)"));
+    r = run_ellicast("inspect --json '" + stream + "'");
+    REQUIRE(r.code == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    CHECK(j["counters"]["duplicates"] == 0);
+    CHECK(j["counters"]["repair_not_needed"].get<int>() > 0);
+    // A repeat of a point packet is still a duplicate.
+    r = run_ellicast("schedule '" + stream + "' -o '" + (dir / "cycle.ellc").string() + "'");
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    r = run_ellicast("inspect --json '" + (dir / "cycle.ellc").string() + "'");
+    REQUIRE(r.code == 0);
+    CHECK(nlohmann::json::parse(r.out)["counters"]["duplicates"].get<int>() > 0);
+}
+
 TEST_CASE("inspect --json gives the same summary as machine-readable JSON") {
     Result r = run_ellicast("inspect --json " + vector_path("unusual/split_stream_info"));
     REQUIRE(r.code == 0);

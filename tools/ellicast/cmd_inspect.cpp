@@ -63,7 +63,9 @@ nlohmann::json to_json(const StreamReport& r, bool with_packets) {
         types.push_back({{"type", packet_type_name(type)}, {"code", type}, {"packets", c.packets}, {"bytes", c.bytes}});
     j["packet_types"] = types;
     const auto& c = r.stream.counters();
-    j["counters"] = {{"packets", r.packets.size()}, {"accepted", c.accepted}, {"duplicates", c.duplicates},
+    // A repair packet whose block was already whole is counted apart from duplicates.
+    j["counters"] = {{"packets", r.packets.size()}, {"accepted", c.accepted},
+                     {"duplicates", c.duplicates - r.repair_not_needed}, {"repair_not_needed", r.repair_not_needed},
                      {"skipped", c.skipped},        {"rejected", c.rejected}, {"held", c.pending}};
     json objects = json::array();
     for (size_t i = 0; i < r.stream.objects().size(); ++i) {
@@ -181,7 +183,8 @@ void print_text(const StreamReport& r, bool with_packets) {
         out << line;
     }
     const auto& c = r.stream.counters();
-    out << "packets: " << c.accepted << " accepted, " << c.duplicates << " duplicates, " << c.skipped << " skipped, "
+    out << "packets: " << c.accepted << " accepted, " << c.duplicates - r.repair_not_needed << " duplicates, "
+        << r.repair_not_needed << " repair not needed (what they protect arrived whole), " << c.skipped << " skipped, "
         << c.rejected << " rejected, " << c.pending << " held without stream info\n";
     const auto& objects = r.stream.objects();
     out << "objects: " << objects.size() << "\n";
@@ -268,7 +271,7 @@ int run_inspect(const InspectArgs& args) {
     return report.container_error == Error::Ok ? kExitOk : kExitInvalid;
 }
 
-const RegisterCommand kRegister{{50, [](CLI::App& app, int& exit_code) {
+const RegisterCommand kRegisterInspect{{50, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<InspectArgs>();
     auto* cmd = app.add_subcommand("inspect", "Summarize a recorded stream (.ellc): stream info, packets per type, "
                                               "objects, damaged regions");

@@ -53,7 +53,11 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         ReportPacket rp{p.offset, h, p.view.size, ""};
         if (e != Error::Ok) rp.result = error_name(e);
         else if (after.accepted > before.accepted) rp.result = "accepted";
-        else if (after.duplicates > before.duplicates) rp.result = "duplicate";
+        else if (after.duplicates > before.duplicates && (h.type == uint8_t(PacketType::PointsRepair) ||
+                                                          h.type == uint8_t(PacketType::ConnectivityRepair))) {
+            rp.result = "repair, not needed";  // its block was already whole
+            ++r.repair_not_needed;
+        } else if (after.duplicates > before.duplicates) rp.result = "duplicate";
         else if (after.skipped > before.skipped) rp.result = "skipped";
         else rp.result = "held";
         r.packets.push_back(rp);
@@ -80,7 +84,8 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
     {
         std::set<uint64_t> reported;
         for (const ReportPacket& p : r.packets)
-            if (p.result != "accepted" && p.result != "duplicate" && p.result != "skipped" && p.result != "held")
+            if (p.result != "accepted" && p.result != "duplicate" && p.result != "repair, not needed" &&
+                p.result != "skipped" && p.result != "held")
                 reported.insert(p.offset);
         for (const Rejection& rejection : r.stream.rejections())
             if (!reported.count(rejection.where))

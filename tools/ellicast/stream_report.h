@@ -47,6 +47,9 @@ struct StreamReport {
     std::map<std::string, uint64_t> versions;   // "1.0" -> packets
     std::map<uint32_t, uint64_t> stream_ids;    // every stream id seen in an intact packet
     uint64_t stream_info_parts = 0;             // STREAM_INFO packets taken (accepted or duplicate)
+    // Repair packets (POINTS_REPAIR, CONNECTIVITY_REPAIR) that brought nothing because what they
+    // protect was already whole: counted by the receiver as duplicates, reported as repair.
+    uint64_t repair_not_needed = 0;
     std::vector<Violation> violations;
     // Signed streams (spec 16.4): the manifest's structure, and its signatures when a key was given.
     auth::SignedRecordingCheck signing;
