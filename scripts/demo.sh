@@ -8,7 +8,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${ELLICAST_BUILD_DIR:-$root/build}
 out=${ELLICAST_DEMO_OUT:-$root/out/demo}
-bash "$root/scripts/setup.sh"
+bash "$root/scripts/setup.sh" --no-checkers ellicast  # only the tool the demo runs
 # out/demo is the demo's own folder and is started afresh; a folder given by the user must be new or empty.
 if [ -z "${ELLICAST_DEMO_OUT:-}" ]; then
   rm -rf "$out"

@@ -1,9 +1,22 @@
 #!/usr/bin/env bash
 # Installs what ellicast needs on Debian 12 (as root, or through sudo) and builds it into build/.
 # Safe to run again: it installs only what is missing and rebuilds incrementally.
+# Usage: bash scripts/setup.sh [--no-checkers] [TARGET...]
+#   TARGET...       build only these CMake targets (default: everything, the tests included);
+#                   scripts/demo.sh builds only the `ellicast` tool
+#   --no-checkers   skip the npm glTF checkers (glTF-Validator, glTF-Transform) the tests use
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${ELLICAST_BUILD_DIR:-$root/build}
+checkers=1
+targets=()
+for arg in "$@"; do
+  case "$arg" in
+    --no-checkers) checkers=0 ;;
+    -*) echo "setup: unknown option $arg (usage: setup.sh [--no-checkers] [TARGET...])" >&2; exit 2 ;;
+    *) targets+=(--target "$arg") ;;
+  esac
+done
 
 packages=(build-essential cmake pkg-config libtinygltf-dev libdraco-dev libopenmesh-dev libeigen3-dev
           libcli11-dev doctest-dev nlohmann-json3-dev libstb-dev libisal-dev libmeshoptimizer-dev libsodium-dev draco gnuplot-nox nodejs npm)
@@ -33,7 +46,7 @@ fi
 
 # glTF checkers used by the tests: the Khronos validator and glTF-Transform, kept in .cache/node.
 node_dir="$root/.cache/node"
-if [ ! -d "$node_dir/node_modules/gltf-validator" ] || [ ! -d "$node_dir/node_modules/@gltf-transform/cli" ]; then
+if [ "$checkers" = 1 ] && { [ ! -d "$node_dir/node_modules/gltf-validator" ] || [ ! -d "$node_dir/node_modules/@gltf-transform/cli" ]; }; then
   echo "setup: installing gltf-validator and @gltf-transform/cli (npm) into .cache/node" >&2
   mkdir -p "$node_dir"
   (cd "$node_dir" && [ -f package.json ] || echo '{"name":"ellicast-checkers","private":true}' > package.json)
@@ -42,4 +55,4 @@ if [ ! -d "$node_dir/node_modules/gltf-validator" ] || [ ! -d "$node_dir/node_mo
 fi
 
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release ${ELLICAST_CMAKE_ARGS:-} >/dev/null
-cmake --build "$build" -j "$(nproc)"
+cmake --build "$build" -j "$(nproc)" ${targets[@]+"${targets[@]}"}

@@ -131,7 +131,7 @@ int run_convert(const ConvertArgs& a) {
     return kExitOk;
 }
 
-const RegisterCommand registered({45, [](CLI::App& app, int& exit_code) {
+const RegisterCommand kRegisterConvert({45, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<ConvertArgs>();
     CLI::App* cmd = app.add_subcommand(
         "convert", "Encode and decode a model in one go with every packet (checks an asset end to end)");

@@ -183,7 +183,7 @@ int run_decode(const DecodeArgs& args) {
     return kExitOk;
 }
 
-const RegisterCommand kRegister{{40, [](CLI::App& app, int& exit_code) {
+const RegisterCommand kRegisterDecode{{40, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<DecodeArgs>();
     auto* cmd = app.add_subcommand("decode", "Rebuild the models of a recorded stream (.ellc) from the packets it holds");
     cmd->add_option("input", args->input, "recorded stream (.ellc)")->required();

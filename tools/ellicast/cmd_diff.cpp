@@ -53,7 +53,7 @@ int run_diff(const DiffArgs& args) {
     return kExitOk;
 }
 
-const RegisterCommand kRegister{{50, [](CLI::App& app, int& exit_code) {
+const RegisterCommand kRegisterDiff{{50, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<DiffArgs>();
     auto* cmd = app.add_subcommand("diff", "Surface distance between two models, both directions (any format ellicast reads)");
     cmd->add_option("a", args->a, "first model (the reference: percentages are of its bounding-box diagonal)")->required();

@@ -156,7 +156,7 @@ int run_encode(const EncodeArgs& a) {
     return kExitOk;
 }
 
-const RegisterCommand registered({10, [](CLI::App& app, int& exit_code) {
+const RegisterCommand kRegisterEncode({10, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<EncodeArgs>();
     CLI::App* cmd = app.add_subcommand("encode", "Encode a model (glTF, OBJ, PLY, OFF, STL) into a stream file (.ellc)");
     cmd->add_option("input", args->input, "model to encode")->required();

@@ -27,7 +27,7 @@ int run_keygen(const KeygenArgs& a) {
     return kExitOk;
 }
 
-const RegisterCommand registered{{12, [](CLI::App& app, int& exit_code) {
+const RegisterCommand kRegisterKeygen{{12, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<KeygenArgs>();
     auto* cmd = app.add_subcommand("keygen", "Make an Ed25519 key pair for signed streams: NAME.key (secret) and NAME.pub");
     cmd->add_option("name", args->name, "path and name of the key files, without extension")->required();

@@ -27,8 +27,8 @@
 namespace ellicast::cli {
 namespace {
 
-std::atomic<bool> g_stop{false};
-void on_receive_interrupt(int) { g_stop.store(true); }
+std::atomic<bool> g_receive_stop{false};
+void on_receive_interrupt(int) { g_receive_stop.store(true); }
 
 struct ReceiveArgs {
     std::string from;
@@ -238,7 +238,7 @@ int run_receive(const ReceiveArgs& a) {
             std::cerr << "ellicast: warning: snapshot: " << e << "\n";
     };
 
-    while (!g_stop.load()) {
+    while (!g_receive_stop.load()) {
         auto now = std::chrono::steady_clock::now();
         double elapsed = seconds_since(now);
         if (deadline_seconds > 0 && elapsed >= deadline_seconds) break;
@@ -337,7 +337,7 @@ int run_receive(const ReceiveArgs& a) {
     std::fprintf(stderr, "first packet after %s; base %s; everything %s\n", seconds_text(first_packet_at).c_str(),
                  base_at >= 0 ? ("complete after " + seconds_text(base_at)).c_str() : "incomplete",
                  complete_at >= 0 ? ("complete after " + seconds_text(complete_at)).c_str()
-                                  : (g_stop.load() ? "not complete (interrupted)" : "not complete at the deadline"));
+                                  : (g_receive_stop.load() ? "not complete (interrupted)" : "not complete at the deadline"));
     if (reception.candidate_count() > 1) {
         std::string heard;
         for (size_t i = 0; i < reception.candidate_count(); ++i) {
@@ -434,7 +434,7 @@ int run_receive(const ReceiveArgs& a) {
     return kExitOk;
 }
 
-const RegisterCommand registered{{63, [](CLI::App& app, int& exit_code) {
+const RegisterCommand kRegisterReceive{{63, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<ReceiveArgs>();
     auto* cmd = app.add_subcommand("receive", "Join a UDP broadcast at any moment and rebuild the model it carries");
     cmd->add_option("--from", args->from,

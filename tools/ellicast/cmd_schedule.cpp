@@ -46,7 +46,7 @@ int run_schedule(const ScheduleArgs& a) {
     return kExitOk;
 }
 
-const RegisterCommand registered{{60, [](CLI::App& app, int& exit_code) {
+const RegisterCommand kRegisterSchedule{{60, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<ScheduleArgs>();
     auto* cmd = app.add_subcommand("schedule", "Write the broadcast carousel of a stream (b d1 b d2 ... b dn) to a file");
     cmd->add_option("input", args->input, "stream file (.ellc)")->required()->check(CLI::ExistingFile);

@@ -14,8 +14,8 @@
 namespace ellicast::cli {
 namespace {
 
-std::atomic<bool> g_stop{false};
-void on_serve_interrupt(int) { g_stop.store(true); }
+std::atomic<bool> g_serve_stop{false};
+void on_serve_interrupt(int) { g_serve_stop.store(true); }
 
 struct ServeArgs {
     std::string input;
@@ -90,7 +90,7 @@ int run_serve(const ServeArgs& a) {
         std::fflush(stderr);
     };
     broadcast::ServeCounters counters;
-    bool ok = broadcast::serve_carousel(carousel, packets, sender, options, counters, error, progress, &g_stop);
+    bool ok = broadcast::serve_carousel(carousel, packets, sender, options, counters, error, progress, &g_serve_stop);
     if (tty && !a.quiet) std::fprintf(stderr, "\n");
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
@@ -100,11 +100,11 @@ int run_serve(const ServeArgs& a) {
                  with_commas(counters.slots).c_str(), with_commas(counters.datagrams).c_str(),
                  with_commas(counters.bytes).c_str(), seconds_text(elapsed).c_str(),
                  elapsed > 0 ? double(counters.bytes) * 8 / elapsed / 1e6 : 0.0,
-                 g_stop.load() ? " (interrupted)" : "");
+                 g_serve_stop.load() ? " (interrupted)" : "");
     return kExitOk;
 }
 
-const RegisterCommand registered{{62, [](CLI::App& app, int& exit_code) {
+const RegisterCommand kRegisterServe{{62, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<ServeArgs>();
     auto* cmd = app.add_subcommand("serve", "Broadcast a stream's carousel as UDP datagrams at a steady rate");
     cmd->add_option("input", args->input, "stream file (.ellc)")->required()->check(CLI::ExistingFile);

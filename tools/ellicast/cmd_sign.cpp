@@ -50,7 +50,7 @@ int run_sign(const SignArgs& a) {
     return kExitOk;
 }
 
-const RegisterCommand registered{{14, [](CLI::App& app, int& exit_code) {
+const RegisterCommand kRegisterSign{{14, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<SignArgs>();
     auto* cmd = app.add_subcommand("sign", "Sign a recorded stream (.ellc) with a secret key: MANIFEST packets (spec 16)");
     cmd->add_option("input", args->input, "recorded stream (.ellc)")->required();

@@ -108,7 +108,7 @@ int run_simulate(const SimulateArgs& a) {
     return kExitOk;
 }
 
-const RegisterCommand registered{{61, [](CLI::App& app, int& exit_code) {
+const RegisterCommand kRegisterSimulate{{61, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<SimulateArgs>();
     auto* cmd = app.add_subcommand("simulate", "Send a stream's carousel through a simulated lossy channel");
     cmd->add_option("input", args->input, "stream file (.ellc)")->required()->check(CLI::ExistingFile);

@@ -69,7 +69,7 @@ int run_validate(const ValidateArgs& args) {
     return code;
 }
 
-const RegisterCommand kRegister{{60, [](CLI::App& app, int& exit_code) {
+const RegisterCommand kRegisterValidate{{60, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<ValidateArgs>();
     auto* cmd = app.add_subcommand("validate",
                                    "Check that recorded streams (.ellc) conform to the format: exit 0 only if every "
