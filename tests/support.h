@@ -35,6 +35,15 @@ inline bool have_sample(const std::string& relative) {
     return false;
 }
 
+// `text` in single quotes for a shell command (built with +=: GCC 12 warns falsely, -Wrestrict, on
+// "'" + std::string).
+inline std::string shell_quoted(const std::string& text) {
+    std::string quoted = "'";
+    quoted += text;
+    quoted += "'";
+    return quoted;
+}
+
 // A fresh empty scratch directory for one test.
 inline std::filesystem::path scratch_dir(const std::string& name) {
     auto dir = binary_dir() / "test-scratch" / name;

@@ -301,7 +301,7 @@ TEST_CASE("ellicast decode of a mapped stream whose map did not arrive shows the
     if (!have_sample("meshes/spot.obj")) return;
     auto dir = scratch_dir("point_map_cli");
     int status = 0;
-    std::string out = run_command("'" + ellicast_exe().string() + "' encode -q -e 40 '" + sample("meshes/spot.obj") + "' -o '" +
+    std::string out = run_command(shell_quoted(ellicast_exe().string()) + " encode -q -e 40 '" + sample("meshes/spot.obj") + "' -o '" +
                                       (dir / "spot.ellc").string() + "'",
                                   status);
     REQUIRE_MESSAGE(status == 0, out);
@@ -322,7 +322,7 @@ TEST_CASE("ellicast decode of a mapped stream whose map did not arrive shows the
     }
     REQUIRE(maps > 0);
     REQUIRE(write_file((dir / "nomap.ellc").string(), write_container(kept), message) == Error::Ok);
-    out = run_command("'" + ellicast_exe().string() + "' decode '" + (dir / "nomap.ellc").string() + "' -o '" +
+    out = run_command(shell_quoted(ellicast_exe().string()) + " decode '" + (dir / "nomap.ellc").string() + "' -o '" +
                           (dir / "nomap.glb").string() + "'",
                       status);
     CHECK_MESSAGE(status == 0, out);
@@ -330,7 +330,7 @@ TEST_CASE("ellicast decode of a mapped stream whose map did not arrive shows the
                       std::string::npos,
                   out);
     CHECK(std::filesystem::exists(dir / "nomap.glb"));
-    out = run_command("'" + ellicast_exe().string() + "' validate '" + (dir / "nomap.ellc").string() + "'", status);
+    out = run_command(shell_quoted(ellicast_exe().string()) + " validate '" + (dir / "nomap.ellc").string() + "'", status);
     CHECK(status != 0);
     CHECK_MESSAGE(out.find("its point map holds 0 of") != std::string::npos, out);
 }

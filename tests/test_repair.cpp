@@ -284,7 +284,7 @@ TEST_CASE("under 50% loss a receiver holds every point after about two cycles wi
 
 TEST_CASE("command line: encode makes repair packets by default, --repair 0 none, validate flags a forged symbol") {
     const auto dir = test::scratch_dir("repair_cli");
-    const std::string exe = "'" + test::ellicast_exe().string() + "'";
+    const std::string exe = test::shell_quoted(test::ellicast_exe().string());
     const std::string sample = (test::source_dir() / "samples" / "trefoil.obj").string();
     int status = 0;
     auto run = [&](const std::string& args) { return test::run_command(exe + " " + args, status); };

@@ -345,7 +345,7 @@ TEST_CASE("key files: written once, secret kept private, the wrong kind of key r
 
 TEST_CASE("command line: keygen, encode --sign, validate and decode --key, sign") {
     const auto dir = test::scratch_dir("signed_cli");
-    const std::string exe = "'" + test::ellicast_exe().string() + "'";
+    const std::string exe = test::shell_quoted(test::ellicast_exe().string());
     const std::string sample = (test::source_dir() / "samples" / "trefoil.obj").string();
     int status = 0;
     auto run = [&](const std::string& args) { return test::run_command(exe + " " + args, status); };
