@@ -71,9 +71,9 @@ TEST_CASE("a label is written in dark pixels on a light band across the top of a
             for (int x = 0; x < img.width; ++x) n += img.rgb[(size_t(y) * img.width + x) * 3] < 60;
         return n;
     };
-    CHECK(dark(labelled, 0, 28) > 40);        // the glyphs
-    CHECK(dark(plain, 0, 28) == 0);
-    CHECK(std::equal(plain.rgb.begin() + 28 * 96 * 3, plain.rgb.end(), labelled.rgb.begin() + 28 * 96 * 3));  // below the band
+    CHECK(dark(labelled, 0, 32) > 40);  // the glyphs: the band is 12 font pixels and a margin of 2 above and below, 32 rows at scale 2
+    CHECK(dark(plain, 0, 32) == 0);
+    CHECK(std::equal(plain.rgb.begin() + 32 * 96 * 3, plain.rgb.end(), labelled.rgb.begin() + 32 * 96 * 3));  // below the band
     Image cut = plain;
     draw_label(cut, std::string(200, 'W') + "\n\x01", 3);  // longer than the panel, control bytes: cut, no overrun
     CHECK(cut.rgb.size() == plain.rgb.size());
