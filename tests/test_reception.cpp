@@ -58,20 +58,20 @@ TEST_CASE("one early forged STREAM_INFO with the real stream id does not lock th
     }
 }
 
-TEST_CASE("the candidates are bounded: packets of further streams count as another stream's") {
+TEST_CASE("the candidates are bounded: a stream heard once every place is taken takes the weakest one's place") {
     Reception::Options options;
     options.max_candidates = 3;
     Reception reception(options);
-    size_t strangers = 0;
     for (uint32_t id = 1; id <= 10; ++id)
-        for (const auto& p : test::synthetic_stream(2, 20, id, 1200, id)) {
-            reception.take(p);
-            if (id > 3) ++strangers;
-        }
-    CHECK(reception.candidate_count() == 3);
+        for (const auto& p : test::synthetic_stream(2, 20, id, 1200, id)) reception.take(p);
+    CHECK(reception.candidate_count() == 3);  // memory: at most three streams at a time
+    CHECK(reception.evictions() == 7);
     const auto real = test::synthetic_stream(40, 3000, 0xAAAA);
-    for (const auto& p : real) CHECK(reception.take(p) == Error::StreamMismatch);  // no room left
-    CHECK(reception.counters().other_stream >= strangers + real.size());
+    take_twice(reception, real);
+    CHECK(reception.candidate_count() == 3);
+    CHECK(reception.stream().stream_id() == 0xAAAA);
+    CHECK(reception.complete());
+    CHECK(reception.points_received() == 3000);
     // With the stream id given, only that stream is heard at all.
     Reception::Options only;
     only.stream_id = 0xAAAA;
@@ -82,6 +82,40 @@ TEST_CASE("the candidates are bounded: packets of further streams count as anoth
     take_twice(chosen, real);
     CHECK(chosen.candidate_count() == 1);
     CHECK(chosen.complete());
+}
+
+TEST_CASE("four forged STREAM_INFO datagrams of four stream ids sent before the real sender do not lock it out") {
+    // Issue 29, row 1: every candidate place was taken for good and the real stream never considered.
+    const auto real = test::synthetic_stream(40, 3000, 0xAAAA);
+    Reception reception;  // the default: four candidates
+    for (uint32_t id = 1; id <= 4; ++id) CHECK(reception.take(test::synthetic_stream(7, 50, id, 1200, id)[0]) == Error::Ok);
+    CHECK(reception.candidate_count() == 4);
+    CHECK(reception.take(real[0]) == Error::Ok);  // takes a forger's place
+    CHECK(reception.last_evicted() != 0);
+    CHECK(reception.evictions() == 1);
+    take_twice(reception, real);
+    CHECK(reception.stream().stream_id() == 0xAAAA);
+    CHECK(reception.complete());
+    CHECK(reception.points_received() == 3000);
+}
+
+TEST_CASE("a flood of new stream ids never takes the place of the stream shown") {
+    const auto real = test::synthetic_stream(40, 3000, 0xAAAA);
+    Reception reception;
+    const size_t half = real.size() / 2;
+    for (size_t i = 0; i < half; ++i) reception.take(real[i]);
+    REQUIRE(reception.stream().stream_id() == 0xAAAA);
+    const uint64_t serial = reception.candidate_serial(reception.chosen());
+    for (uint32_t id = 1; id <= 200; ++id) {
+        reception.take(test::synthetic_stream(7, 50, id, 1200, id)[0]);
+        CHECK((reception.last_evicted() >> reception.chosen() & 1) == 0);
+    }
+    CHECK(reception.candidate_count() == 4);
+    CHECK(reception.evictions() == 197);
+    CHECK(reception.candidate_serial(reception.chosen()) == serial);  // still the same candidate
+    for (size_t i = half; i < real.size(); ++i) reception.take(real[i]);
+    CHECK(reception.stream().stream_id() == 0xAAAA);
+    CHECK(reception.complete());
 }
 
 TEST_CASE("a small stream that completes first does not end a receiver that heard another one still arriving") {

@@ -88,6 +88,7 @@ Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
     ++counters_.datagrams;
     counters_.bytes += datagram.size();
     last_accepted_by_ = 0;
+    last_evicted_ = 0;
     released_accepted_.clear();
     if (truncated || datagram.size() > kMaxPacketSize) {
         ++counters_.oversized;
@@ -136,6 +137,26 @@ Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
     return e;
 }
 
+size_t Reception::place_for_new_candidate(uint32_t id) {
+    if (candidates_.size() < options_.max_candidates) {
+        candidates_.emplace_back(id, options_.limits, next_serial_++);
+        return candidates_.size() - 1;
+    }
+    size_t victim = SIZE_MAX;
+    for (size_t i = 0; i < candidates_.size(); ++i) {
+        if (i == chosen_) continue;
+        const Candidate& k = candidates_[i];
+        if (victim == SIZE_MAX || k.accepted < candidates_[victim].accepted ||
+            (k.accepted == candidates_[victim].accepted && k.last_accepted_at < candidates_[victim].last_accepted_at))
+            victim = i;
+    }
+    if (victim == SIZE_MAX) return SIZE_MAX;
+    candidates_[victim] = Candidate(id, options_.limits, next_serial_++);
+    last_evicted_ |= uint64_t(1) << victim;
+    ++evictions_;
+    return victim;
+}
+
 std::optional<Error> Reception::route(const PacketView& view, uint64_t where) {
     const uint32_t id = view.header.stream_id;
     bool any = false, taken = false, contradicted = true;
@@ -154,6 +175,7 @@ std::optional<Error> Reception::route(const PacketView& view, uint64_t where) {
             contradicted = false;
             if (k.stream.counters().accepted > before) {
                 ++k.accepted;
+                k.last_accepted_at = valid_;
                 last_accepted_by_ |= uint64_t(1) << i;
             } else {
                 ++k.duplicates;
@@ -165,19 +187,19 @@ std::optional<Error> Reception::route(const PacketView& view, uint64_t where) {
         }
     }
     // A stream id not heard before, or a STREAM_INFO every candidate of its id contradicts:
-    // a new candidate, while there is room.
+    // a new candidate, in a free place or in the weakest one's.
     if (!any || (!taken && contradicted)) {
-        if (candidates_.size() < options_.max_candidates) {
-            candidates_.emplace_back(id, options_.limits);
-            Candidate& k = candidates_.back();
+        if (const size_t place = place_for_new_candidate(id); place != SIZE_MAX) {
+            Candidate& k = candidates_[place];
             ++k.routed;
             const Error r = k.stream.add_parsed(view, where);
             if (r == Error::Ok) {
                 taken = true;
-                ok |= uint64_t(1) << (candidates_.size() - 1);
+                ok |= uint64_t(1) << place;
                 if (k.stream.counters().accepted > 0) {
                     ++k.accepted;
-                    last_accepted_by_ |= uint64_t(1) << (candidates_.size() - 1);
+                    k.last_accepted_at = valid_;
+                    last_accepted_by_ |= uint64_t(1) << place;
                 } else {
                     ++k.duplicates;
                 }

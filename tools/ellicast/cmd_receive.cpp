@@ -18,6 +18,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -172,7 +173,12 @@ int run_receive(const ReceiveArgs& a) {
             if (reception.chosen() < 64 && (by >> reception.chosen() & 1)) packets.push_back(bytes);
         return packets;
     };
-    size_t live_candidate = SIZE_MAX;  // the candidate the live reconstruction is built on
+    // The candidate the live reconstruction is built on, by serial (a place may be given to another
+    // candidate when the reception makes room).
+    uint64_t live_candidate = UINT64_MAX;
+    auto chosen_serial = [&]() {
+        return reception.chosen() < reception.candidate_count() ? reception.candidate_serial(reception.chosen()) : UINT64_MAX;
+    };
     std::vector<uint8_t> buffer(kMaxPacketSize + 1);
     LiveReconstruction live(a.grid);
 
@@ -256,7 +262,12 @@ int run_receive(const ReceiveArgs& a) {
             std::span<const uint8_t> bytes(buffer.data(), datagram.size);
             const uint64_t verified_before =
                 reception.authenticator() ? reception.authenticator()->counters().manifests_verified : 0;
-            if (reception.take(bytes, datagram.truncated) != Error::Ok) continue;
+            const Error taken = reception.take(bytes, datagram.truncated);
+            // A candidate dropped to make room: the packets it took are no longer its place's.
+            if (const uint64_t evicted = reception.last_evicted(); evicted != 0 && stream_output)
+                for (auto& [by, packet] : kept)
+                    if (by != ~uint64_t(0)) by &= ~evicted;
+            if (taken != Error::Ok) continue;
             if (first_packet_at < 0) first_packet_at = seconds_since(std::chrono::steady_clock::now());
             if (stream_output && reception.last_accepted_by() != 0)
                 kept.emplace_back(reception.last_accepted_by(), std::vector<uint8_t>(bytes.begin(), bytes.end()));
@@ -273,7 +284,7 @@ int run_receive(const ReceiveArgs& a) {
             base_at = seconds_since(std::chrono::steady_clock::now());
             if (!stream_output) {
                 if (!live.start(stream(), error)) return fail(kExitFailure, "building the base mesh: " + error);
-                live_candidate = reception.chosen();
+                live_candidate = chosen_serial();
                 shown_at = seconds_since(std::chrono::steady_clock::now());
                 if (!a.quiet)
                     std::fprintf(stderr, "%sbase mesh ready after %s (base complete after %s)\n", tty ? "\n" : "",
@@ -287,10 +298,10 @@ int run_receive(const ReceiveArgs& a) {
             complete_at = seconds_since(std::chrono::steady_clock::now());
             break;
         }
-        if (!stream_output && live.started() && reception.chosen() != live_candidate && reception.base_complete()) {
+        if (!stream_output && live.started() && chosen_serial() != live_candidate && reception.base_complete()) {
             // Another candidate has overtaken the one shown: show that one from its base.
             if (!live.start(stream(), error)) return fail(kExitFailure, "building the base mesh: " + error);
-            live_candidate = reception.chosen();
+            live_candidate = chosen_serial();
             if (!a.quiet)
                 std::fprintf(stderr, "%sswitched to stream id 0x%X (the candidate with the most packets)\n", tty ? "\n" : "",
                              stream().stream_id());

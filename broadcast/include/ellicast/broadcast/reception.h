@@ -61,8 +61,10 @@ private:
 
 // A receiver cannot tell a sender from a forger without a key, so it does not let the first packet
 // decide: each stream id it hears, and each STREAM_INFO that contradicts the one a candidate holds
-// for its stream id, starts a candidate stream of its own (at most Options::max_candidates; packets
-// of further ones are counted as another stream's). Every packet goes to every candidate of its
+// for its stream id, starts a candidate stream of its own. When Options::max_candidates are held, a
+// new one takes the place of the weakest candidate other than the one shown (the fewest packets
+// accepted, then the longest since it accepted one), so that a few forged datagrams sent before the
+// real stream cannot hold every place for good. Every packet goes to every candidate of its
 // stream id. The stream shown and written is the candidate that has accepted the most packets (the
 // first one on a tie): a real carousel repeats its stream info and base every cycle, so one early
 // forged STREAM_INFO cannot lock it out (spec 11.4). A key is the only defence against a forger
@@ -97,6 +99,12 @@ public:
     const ReceivedStream& candidate(size_t i) const { return candidates_.at(i).stream; }
     size_t chosen() const { return chosen_; }
     uint64_t last_accepted_by() const { return last_accepted_by_; }
+    // The candidates the last take() dropped to make room for a new one (bit i: candidate i; that
+    // place now holds another stream), and a number that tells candidates apart over time (a
+    // place reused by another candidate gets a new serial). Evictions so far, in all.
+    uint64_t last_evicted() const { return last_evicted_; }
+    uint64_t candidate_serial(size_t i) const { return candidates_.at(i).serial; }
+    uint64_t evictions() const { return evictions_; }
     // With a key: the packets held for their MANIFEST that the last take() released and that brought
     // something new, each with the candidates that took it (as last_accepted_by()). Moved out.
     std::vector<std::pair<uint64_t, std::vector<uint8_t>>> take_released_accepted() {
@@ -128,7 +136,10 @@ private:
         uint64_t accepted = 0;    // of those, brought new content
         uint64_t duplicates = 0;  // of those, brought nothing new
         uint64_t invalid = 0;     // of those, rejected (a contradicting STREAM_INFO included)
-        explicit Candidate(uint32_t id, const ReceivedStream::Limits& limits) : stream_id(id), stream(limits) {}
+        uint64_t serial = 0;      // the order in which candidates started
+        uint64_t last_accepted_at = 0;  // valid datagrams seen when it last accepted new content
+        Candidate(uint32_t id, const ReceivedStream::Limits& limits, uint64_t serial_number)
+            : stream_id(id), stream(limits), serial(serial_number) {}
     };
     // Gives an intact packet to the candidates of its stream id (starting one if there is room).
     // nullopt when there was none and no room: the caller counts it as another stream's.
@@ -142,6 +153,12 @@ private:
     uint64_t last_accepted_by_ = 0;
     ReceptionCounters counters_;  // datagrams dropped before reaching any candidate
     uint64_t valid_ = 0;          // datagrams that reached a candidate
+    uint64_t next_serial_ = 0;
+    uint64_t last_evicted_ = 0;
+    uint64_t evictions_ = 0;
+    // A place for a new candidate: appended while there is room, else the place of the weakest
+    // candidate but the chosen one. SIZE_MAX when none can be given.
+    size_t place_for_new_candidate(uint32_t id);
     ReceivedStream empty_;
     LossEstimator loss_;
 };
