@@ -460,6 +460,40 @@ TEST_CASE("write_asset leaves out what does not hold together and still writes a
     }
 }
 
+TEST_CASE("an unnamed node with nothing but the default transform is written as a node, never as JSON null") {
+    auto dir = scratch_dir("asset_output_empty_node");
+    Asset a;
+    Mesh tri;
+    tri.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    tri.triangles = {{0, 1, 2}};
+    a.objects = {tri};
+    a.scene.meshes = {SceneMesh{0, "m", {{0, kNone}}, {}}};
+    SceneNode root;
+    root.index = 0;
+    root.mesh = 0;
+    root.name = "root";
+    SceneNode leaf;  // Khronos SimpleSkin has one: no name, no mesh, no transform
+    leaf.index = 1;
+    leaf.parent = 0;
+    a.scene.nodes = {root, leaf};
+    for (const char* name : {"leaf.glb", "leaf.gltf"}) {
+        CAPTURE(name);
+        const fs::path out = dir / name;
+        write_ok(out, a, {});
+        check_valid(out);
+        nlohmann::json json;
+        if (fs::path(name).extension() == ".glb") {
+            json = read_glb(out).json;
+        } else {
+            std::ifstream in(out);
+            json = nlohmann::json::parse(in);
+        }
+        REQUIRE(json["nodes"].size() == 2);
+        for (const auto& node : json["nodes"]) CHECK(node.is_object());
+        CHECK(json["nodes"][0]["children"] == nlohmann::json::array({1}));
+    }
+}
+
 TEST_CASE("write_asset writes a texture as what its bytes are (the stream's image_type aside), leaves out a JPEG "
           "cut off in its header and keeps one cut off in its image data, naming each texture") {
     auto dir = scratch_dir("asset_output_images");

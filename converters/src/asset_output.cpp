@@ -98,6 +98,14 @@ public:
             model_.extensionsRequired.push_back(kQuantizationExtension);
         }
         for (const std::string& name : used_extensions_) model_.extensionsUsed.push_back(name);
+        // tinygltf writes a node with no property at all (an unnamed leaf with the default transform,
+        // as Khronos SimpleSkin has) as JSON null, which is invalid glTF: give it its identity
+        // translation explicitly, which means the same.
+        for (tinygltf::Node& node : model_.nodes)
+            if (node.name.empty() && node.mesh < 0 && node.skin < 0 && node.camera < 0 && node.children.empty() &&
+                node.matrix.empty() && node.translation.empty() && node.rotation.empty() && node.scale.empty() &&
+                node.weights.empty() && node.extensions.empty())
+                node.translation = {0, 0, 0};
         return std::move(model_);
     }
 
