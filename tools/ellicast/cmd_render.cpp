@@ -37,7 +37,7 @@ int run_render(const RenderArgs& args) {
     std::vector<Image> panels;
     for (size_t i = 0; i < args.inputs.size(); ++i) {
         panels.push_back(render_meshes(models[i], lo, hi, args.options));
-        if (!args.labels.empty()) draw_label(panels.back(), args.labels[i], std::max(1, args.options.width / 240));
+        if (!args.labels.empty()) draw_label(panels.back(), args.labels[i], std::max(1, args.options.width / 160));
     }
     try {
         write_png(args.output, side_by_side(panels));
