@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <regex>
 
 using namespace ellicast;
@@ -491,6 +492,119 @@ TEST_CASE("an unnamed node with nothing but the default transform is written as 
         REQUIRE(json["nodes"].size() == 2);
         for (const auto& node : json["nodes"]) CHECK(node.is_object());
         CHECK(json["nodes"][0]["children"] == nlohmann::json::array({1}));
+    }
+}
+
+namespace {
+
+// A triangle at node 0 skinned by skin 0 over joints at nodes 1 and 2 (children of node 0), with a
+// rotation track on node 1: what a conforming stream may carry, before the case breaks it.
+Asset skinned_triangle() {
+    Asset a;
+    Mesh tri;
+    tri.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    tri.triangles = {{0, 1, 2}};
+    a.objects = {tri};
+    VertexWeights w;
+    w.joints.assign(3, {0, 1, 0, 0});
+    w.weights.assign(3, {0.5f, 0.5f, 0, 0});
+    a.weights = {w};
+    a.scene.meshes = {SceneMesh{0, "m", {{0, kNone}}, {}}};
+    SceneNode root, j1, j2;
+    root.index = 0, root.mesh = 0, root.skin = 0, root.name = "root";
+    j1.index = 1, j1.parent = 0, j1.name = "j1";
+    j2.index = 2, j2.parent = 0, j2.name = "j2";
+    a.scene.nodes = {root, j1, j2};
+    SceneSkin skin;
+    SkinJoint first, second;  // identity inverse bind matrices
+    first.node = 1, second.node = 2;
+    skin.joints = {first, second};
+    a.scene.skins = {skin};
+    return a;
+}
+
+}  // namespace
+
+TEST_CASE("a conforming stream's skin or rotation keys that glTF forbids are normalized or left out with a "
+          "warning, and the file is valid (issue 29, row 6)") {
+    auto dir = scratch_dir("asset_output_skins");
+    auto write = [&](const Asset& a, const std::string& name, std::vector<std::string>& warnings) {
+        const fs::path out = dir / name;
+        write_ok(out, a, {}, &warnings);
+        check_valid(out);
+        return read_glb(out).json;
+    };
+    std::vector<std::string> warnings;
+    SUBCASE("as it is: skinned, with its skeleton") {
+        Asset a = skinned_triangle();
+        a.scene.skins[0].skeleton = 0;
+        auto json = write(a, "plain.glb", warnings);
+        CHECK(json["skins"].size() == 1);
+        CHECK(json["skins"][0]["skeleton"] == 0);
+        CHECK_MESSAGE(warnings.empty(), (warnings.empty() ? "" : warnings.front()));
+    }
+    SUBCASE("a node twice among the joints") {
+        Asset a = skinned_triangle();
+        a.scene.skins[0].joints[1].node = 1;
+        auto json = write(a, "twice.glb", warnings);
+        CHECK(!json.contains("skins"));
+        CHECK(any_of(warnings, "node 1 is more than one of its joints"));
+        CHECK(any_of(warnings, "written without skinning"));
+    }
+    SUBCASE("a zero inverse bind matrix") {
+        Asset a = skinned_triangle();
+        a.scene.skins[0].joints[0].inverse_bind.fill(0);
+        auto json = write(a, "zero_ibm.glb", warnings);
+        CHECK(!json.contains("skins"));
+        CHECK(any_of(warnings, "inverse bind matrix of joint 0 is not an affine transform"));
+    }
+    SUBCASE("an inverse bind matrix whose last row is off by rounding is snapped") {
+        Asset a = skinned_triangle();
+        a.scene.skins[0].joints[1].inverse_bind[15] = 0.9999999f;
+        a.scene.skins[0].joints[1].inverse_bind[3] = 1e-7f;
+        auto json = write(a, "rounded_ibm.glb", warnings);
+        CHECK(json["skins"].size() == 1);
+    }
+    SUBCASE("a huge inverse bind matrix (not finite)") {
+        Asset a = skinned_triangle();
+        a.scene.skins[0].joints[0].inverse_bind[12] = std::numeric_limits<float>::infinity();
+        auto json = write(a, "huge_ibm.glb", warnings);
+        CHECK(!json.contains("skins"));
+    }
+    SUBCASE("a skeleton that is not above every joint is left out") {
+        Asset a = skinned_triangle();
+        a.scene.skins[0].skeleton = 2;  // a sibling of joint 1
+        auto json = write(a, "skeleton.glb", warnings);
+        REQUIRE(json["skins"].size() == 1);
+        CHECK(!json["skins"][0].contains("skeleton"));
+        CHECK(any_of(warnings, "is not above every joint; written without it"));
+    }
+    SUBCASE("joints without a common root") {
+        Asset a = skinned_triangle();
+        a.scene.nodes[2].parent = kNone;  // joint 2 becomes a root of its own
+        auto json = write(a, "no_root.glb", warnings);
+        CHECK(!json.contains("skins"));
+        CHECK(any_of(warnings, "its joints have no common root"));
+    }
+    SUBCASE("rotation keys of zero and of another length") {
+        Asset a = skinned_triangle();
+        SceneAnimation animation;
+        SceneAnimation::Track track;
+        track.node = 1;
+        track.path = AnimationPath::Rotation;
+        track.times = {0, 1, 2};
+        track.values = {0, 0, 0, 0, 0, 0, 2, 0, 0.1f, 0.2f, 0.3f, 0.4f};
+        animation.tracks = {track};
+        SceneAnimation::Track nan = track;
+        nan.node = 2;
+        nan.values[0] = std::numeric_limits<float>::quiet_NaN();
+        animation.tracks.push_back(nan);
+        a.scene.animations = {animation};
+        auto json = write(a, "rotations.glb", warnings);
+        CHECK(any_of(warnings, "1 zero rotation(s) written as the identity"));
+        CHECK(any_of(warnings, "not a finite number; left out"));
+        REQUIRE(json["animations"].size() == 1);
+        CHECK(json["animations"][0]["channels"].size() == 1);
     }
 }
 

@@ -785,10 +785,35 @@ private:
                                                track.times.size(), {double(*lo)}, {double(*hi)});
                 const bool rotation = track.path == AnimationPath::Rotation;
                 const size_t components = weights ? 1 : rotation ? 4 : 3;
-                const int output_view = add_buffer_view(model_, track.values.data(), track.values.size() * 4, 0);
+                if (!std::all_of(track.values.begin(), track.values.end(), [](float v) { return std::isfinite(v); })) {
+                    warnings_.push_back(what + ": track " + std::to_string(t) + " has a value that is not a finite number; left out");
+                    continue;
+                }
+                // glTF wants unit rotations (the values; a cubic spline's tangents are free): each one
+                // further than 1e-6 from unit length is normalized, and a zero one becomes the identity.
+                std::vector<float> values = track.values;
+                if (rotation) {
+                    const bool cubic = track.interpolation == Interpolation::CubicSpline;
+                    size_t zero = 0;
+                    for (size_t q = cubic ? 4 : 0; q + 4 <= values.size(); q += cubic ? 12 : 4) {
+                        double length = 0;
+                        for (size_t k = 0; k < 4; ++k) length += double(values[q + k]) * values[q + k];
+                        length = std::sqrt(length);
+                        if (!(length > 1e-12) || !std::isfinite(length)) {
+                            ++zero;
+                            values[q] = values[q + 1] = values[q + 2] = 0, values[q + 3] = 1;
+                        } else if (std::abs(length - 1) > 1e-6) {  // a unit one keeps its bits
+                            for (size_t k = 0; k < 4; ++k) values[q + k] = float(values[q + k] / length);
+                        }
+                    }
+                    if (zero)
+                        warnings_.push_back(what + ": track " + std::to_string(t) + ": " + std::to_string(zero) +
+                                            " zero rotation(s) written as the identity");
+                }
+                const int output_view = add_buffer_view(model_, values.data(), values.size() * 4, 0);
                 const int output = add_accessor(model_, output_view, TINYGLTF_COMPONENT_TYPE_FLOAT,
                                                 weights ? TINYGLTF_TYPE_SCALAR : rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
-                                                track.values.size() / components);
+                                                values.size() / components);
                 tinygltf::AnimationSampler sampler;
                 sampler.input = input;
                 sampler.output = output;
@@ -822,12 +847,10 @@ private:
         const auto& nodes = asset_.scene.nodes;
         const auto& skins = asset_.scene.skins;
         std::vector<int> writable(skins.size(), 1);
+        std::vector<std::string> unwritable(skins.size());  // why a skin cannot be written
         for (size_t s = 0; s < skins.size(); ++s) {
-            if (skins[s].joints.empty()) writable[s] = 0;
-            for (const SkinJoint& j : skins[s].joints)
-                if (j.node >= nodes.size() || out[j.node] < 0) writable[s] = 0;
-            if (skins[s].skeleton != kNone && (skins[s].skeleton >= nodes.size() || out[skins[s].skeleton] < 0))
-                writable[s] = 0;
+            unwritable[s] = skin_problem(skins[s], out);
+            writable[s] = unwritable[s].empty();
         }
         std::map<size_t, std::vector<size_t>> users;  // asset mesh -> written nodes showing it
         for (size_t i = 0; i < nodes.size(); ++i)
@@ -835,18 +858,21 @@ private:
         for (const auto& [mesh, shown_by] : users) {
             size_t with_skin = 0;
             uint16_t joints = 0xFFFF;
+            std::string skin_why;
             for (size_t i : shown_by)
                 if (nodes[i].skin != kNone) {
                     ++with_skin;
-                    joints = nodes[i].skin < skins.size() && writable[nodes[i].skin]
-                                 ? std::min<uint16_t>(joints, uint16_t(skins[nodes[i].skin].joints.size()))
-                                 : 0;
+                    const bool can = nodes[i].skin < skins.size() && writable[nodes[i].skin];
+                    joints = can ? std::min<uint16_t>(joints, uint16_t(skins[nodes[i].skin].joints.size())) : 0;
+                    if (!can && skin_why.empty())
+                        skin_why = "skin " + std::to_string(nodes[i].skin) +
+                                   (nodes[i].skin < skins.size() ? ": " + unwritable[nodes[i].skin] : " does not exist");
                 }
             if (with_skin == 0) continue;
             const std::string what = path_ + ": mesh " + std::to_string(mesh);
             std::string why;
             if (with_skin < shown_by.size()) why = "it is shown both by skinned nodes and by nodes without a skin";
-            else if (joints == 0) why = "a skin of its nodes names a node that is not written";
+            else if (joints == 0) why = skin_why;
             for (const auto& p : asset_.scene.meshes[mesh].primitives) {
                 if (!why.empty() || !object_present(p.object)) continue;
                 const VertexWeights* w = p.object < asset_.weights.size() ? &asset_.weights[p.object] : nullptr;
@@ -872,6 +898,48 @@ private:
         }
     }
 
+    // The written root above asset node `i` (itself when it is written as a root).
+    size_t written_root(size_t i) const {
+        for (size_t steps = 0; parent_[i] >= 0 && steps < parent_.size(); ++steps) i = size_t(parent_[i]);
+        return i;
+    }
+    // Whether asset node `ancestor` is `i` or above it in the written graph.
+    bool written_at_or_above(size_t ancestor, size_t i) const {
+        for (size_t steps = 0; steps <= parent_.size(); ++steps) {
+            if (i == ancestor) return true;
+            if (parent_[i] < 0) return false;
+            i = size_t(parent_[i]);
+        }
+        return false;
+    }
+
+    // Why glTF cannot take `skin` over the written nodes (out[i] < 0: node i not written); empty when
+    // it can. A stream may carry what glTF forbids: a joint twice, an inverse bind matrix that is
+    // not an affine transform, joints without a common root.
+    std::string skin_problem(const SceneSkin& skin, const std::vector<int>& out) const {
+        const auto& nodes = asset_.scene.nodes;
+        if (skin.joints.empty()) return "it has no joint";
+        std::set<uint16_t> seen;
+        for (size_t j = 0; j < skin.joints.size(); ++j) {
+            const SkinJoint& joint = skin.joints[j];
+            if (joint.node >= nodes.size() || out[joint.node] < 0)
+                return "joint " + std::to_string(j) + " names node " + std::to_string(joint.node) + ", which is not written";
+            if (!seen.insert(joint.node).second)
+                return "node " + std::to_string(joint.node) + " is more than one of its joints (glTF joints are distinct)";
+            const auto& m = joint.inverse_bind;
+            const bool finite = std::all_of(m.begin(), m.end(), [](float v) { return std::isfinite(v); });
+            auto near = [](float v, float to) { return std::abs(v - to) <= 1e-5f; };  // write_skin snaps these
+            if (!finite || !near(m[3], 0) || !near(m[7], 0) || !near(m[11], 0) || !near(m[15], 1))
+                return "the inverse bind matrix of joint " + std::to_string(j) + " is not an affine transform";
+        }
+        const size_t root = written_root(skin.joints.front().node);
+        for (const SkinJoint& joint : skin.joints)
+            if (written_root(joint.node) != root) return "its joints have no common root";
+        if (skin.skeleton != kNone && (skin.skeleton >= nodes.size() || out[skin.skeleton] < 0))
+            return "its skeleton names node " + std::to_string(skin.skeleton) + ", which is not written";
+        return {};
+    }
+
     // The glTF skin of asset skin `s` (written once).
     void write_skin(uint16_t s, const std::vector<int>& out) {
         if (skin_out_.count(s)) return;
@@ -882,8 +950,20 @@ private:
         for (const SkinJoint& j : skin.joints) {
             g.joints.push_back(out[j.node]);
             matrices.insert(matrices.end(), j.inverse_bind.begin(), j.inverse_bind.end());
+            // glTF wants the last row exactly (0, 0, 0, 1); skin_problem let only rounding differ.
+            float* last = matrices.data() + matrices.size() - 16;
+            last[3] = last[7] = last[11] = 0, last[15] = 1;
         }
-        if (skin.skeleton != kNone) g.skeleton = out[skin.skeleton];
+        if (skin.skeleton != kNone) {
+            // glTF's skeleton is the joints' common root: one that is not is left out (it is optional).
+            const bool common = std::all_of(skin.joints.begin(), skin.joints.end(),
+                                            [&](const SkinJoint& j) { return written_at_or_above(skin.skeleton, j.node); });
+            if (common) g.skeleton = out[skin.skeleton];
+            else
+                warnings_.push_back(path_ + ": skin " + std::to_string(s) + (skin.name.empty() ? "" : " (" + skin.name + ")") +
+                                    ": its skeleton, node " + std::to_string(skin.skeleton) +
+                                    ", is not above every joint; written without it");
+        }
         const int view = add_buffer_view(model_, matrices.data(), matrices.size() * sizeof(float), 0);
         g.inverseBindMatrices = add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, skin.joints.size());
         skin_out_[s] = int(model_.skins.size());
