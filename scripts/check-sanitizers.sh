@@ -44,17 +44,21 @@ fi
 echo "== fuzzing: libFuzzer targets in build-fuzz/, ${fuzz_seconds} s each" >&2
 cmake -S "$root" -B "$root/build-fuzz" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DELLICAST_FUZZ=ON -DELLICAST_FORMAT_ONLY=ON \
   -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang "${launcher[@]}" >/dev/null
-cmake --build "$root/build-fuzz" -j "$jobs" --target fuzz_packet fuzz_container
+fuzz_targets=(packet container)
+pkg-config --exists libsodium && fuzz_targets+=(reception)  # the receiver's candidates need the auth library
+cmake --build "$root/build-fuzz" -j "$jobs" --target "${fuzz_targets[@]/#/fuzz_}"
 t3=$(date +%s)
 
 # Seeds: the conformance vectors; the packet target takes a mode byte (1: reseal checksums) and the
 # packets without the container header.
 corpus="$root/build-fuzz/corpus"
-mkdir -p "$corpus/container" "$corpus/packet" "$root/build-fuzz/crashes"
+mkdir -p "$corpus/container" "$corpus/packet" "$corpus/reception" "$root/build-fuzz/crashes"
 for f in "$root"/spec/vectors/*/*.ellc; do
   name="$(basename "$(dirname "$f")")_$(basename "$f" .ellc)"
   cp "$f" "$corpus/container/$name"
   { printf '\001'; tail -c +13 "$f"; } > "$corpus/packet/$name"
+  # The reception target: resealed, several senders (mode bit 2), four candidate places (bits 3-4).
+  { printf '\035'; tail -c +13 "$f"; } > "$corpus/reception/$name"
 done
 # Runs one fuzz target for fuzz_seconds on its corpus; exits on a finding. A fixed seed (-seed=1)
 # makes a run repeatable: a longer local run with the same seed, binary and corpus covers what CI's
@@ -74,7 +78,7 @@ run_target() {  # build dir, target, corpus dir, extra libFuzzer options...
     exit 1
   fi
 }
-for target in packet container; do
+for target in "${fuzz_targets[@]}"; do
   run_target "$root/build-fuzz" "$target" "$corpus/$target" -max_len=70000
 done
 t4=$(date +%s)
