@@ -159,6 +159,44 @@ TEST_CASE("inspect names a freshly encoded stream's repair packets as repair not
     CHECK(nlohmann::json::parse(r.out)["counters"]["duplicates"].get<int>() > 0);
 }
 
+TEST_CASE("validate --received tells a lossy recording (conforming but incomplete) from a broken one (offsets)") {
+    const auto dir = ellicast::test::scratch_dir("validate_received");
+    const std::string stream = (dir / "trefoil.ellc").string(), lossy = (dir / "lossy.ellc").string();
+    Result r = run_ellicast("encode -q '" + (ellicast::test::source_dir() / "samples" / "trefoil.obj").string() + "' -o '" +
+                            stream + "'");
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    r = run_ellicast("simulate '" + stream + "' -o '" + lossy + "' --loss 0.5 --seed 3");
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    // Plain validate: a lossy recording does not conform, but it says every violation is missing data.
+    r = run_ellicast("validate '" + lossy + "'");
+    CHECK(r.code == 1);
+    CHECK(contains(r.out, "points received; missing"));
+    CHECK(contains(r.out, "every one of them missing data"));
+    // --received: conforming but incomplete, what is missing listed.
+    r = run_ellicast("validate --received '" + lossy + "'");
+    CHECK_MESSAGE(r.code == 0, r.out);
+    CHECK(contains(r.out, "conforming but incomplete"));
+    CHECK(contains(r.out, "missing: object 0:"));
+    r = run_ellicast("validate --received -q '" + lossy + "'");
+    CHECK(r.code == 0);
+    CHECK(r.out.empty());
+    // A damaged byte in what arrived still fails, with its offset; the missing parts are counted, not listed.
+    std::vector<uint8_t> bytes = ellicast::test::read_bytes(lossy);
+    REQUIRE(bytes.size() > 3000);
+    bytes[3000] ^= 0xFF;
+    const std::string damaged = (dir / "damaged.ellc").string();
+    std::string message;
+    REQUIRE(ellicast::write_file(damaged, bytes, message) == ellicast::Error::Ok);
+    r = run_ellicast("validate --received '" + damaged + "'");
+    CHECK(r.code == 1);
+    CHECK(contains(r.out, "damaged bytes hold no valid packet"));
+    CHECK(contains(r.out, "offset "));
+    CHECK(contains(r.out, "in what arrived"));
+    CHECK(!contains(r.out, "points received; missing"));
+    // A complete stream passes either way.
+    CHECK(run_ellicast("validate --received -q '" + stream + "'").code == 0);
+}
+
 TEST_CASE("inspect --json gives the same summary as machine-readable JSON") {
     Result r = run_ellicast("inspect --json " + vector_path("unusual/split_stream_info"));
     REQUIRE(r.code == 0);

@@ -1,5 +1,8 @@
 // `ellicast validate FILE.ellc`: exit 0 only for a conforming recorded stream (spec/format.md 11.5);
-// otherwise every violation is listed with its byte offset and the exit code is 1.
+// otherwise every violation is listed with its byte offset and the exit code is 1. With --received,
+// a recording of a lossy reception passes when all that is wrong is what did not arrive: it says
+// "conforming but incomplete" and lists what is missing per object; anything wrong in what did
+// arrive still fails, with its offset.
 #include "commands.h"
 #include "stream_report.h"
 
@@ -15,10 +18,11 @@ namespace {
 struct ValidateArgs {
     std::vector<std::string> inputs;
     bool quiet = false;
+    bool received = false;
     std::string key;
 };
 
-int validate_one(const std::string& path, bool quiet, const auth::PublicKey* key) {
+int validate_one(const std::string& path, bool quiet, bool received, const auth::PublicKey* key) {
     std::vector<uint8_t> bytes;
     std::string message;
     if (read_file(path, bytes, message) != Error::Ok) return fail(kExitFailure, message);
@@ -45,13 +49,36 @@ int validate_one(const std::string& path, bool quiet, const auth::PublicKey* key
         }
         return kExitOk;
     }
+    const size_t missing = size_t(std::count_if(violations.begin(), violations.end(), [](const Violation& v) { return v.missing; }));
+    if (received && missing == violations.size()) {
+        // A lossy recording of a conforming stream: what arrived conforms, the rest is missing.
+        if (!quiet) {
+            std::cout << path << ": conforming but incomplete (a received recording: every packet in it conforms; "
+                      << missing << " part" << (missing == 1 ? "" : "s") << " of the stream did not arrive):\n";
+            for (const Violation& v : violations) std::cout << path << ":   missing: " << v.message << "\n";
+        }
+        return kExitOk;
+    }
     for (const Violation& v : violations) {
+        if (received && v.missing) continue;
         std::cout << path << ": ";
         if (v.offset) std::cout << "offset " << *v.offset << ": ";
-        std::cout << v.message << "\n";
+        std::cout << v.message << (v.missing ? " (missing)" : "") << "\n";
     }
-    std::cout << path << ": does not conform: " << violations.size() << " violation"
-              << (violations.size() == 1 ? "" : "s") << "\n";
+    if (received) {
+        std::cout << path << ": does not conform: " << violations.size() - missing << " violation"
+                  << (violations.size() - missing == 1 ? "" : "s") << " in what arrived (and " << missing
+                  << " part" << (missing == 1 ? "" : "s") << " missing, not listed)\n";
+    } else {
+        std::cout << path << ": does not conform: " << violations.size() << " violation"
+                  << (violations.size() == 1 ? "" : "s");
+        if (missing == violations.size())
+            std::cout << ", every one of them missing data: a recording of a lossy reception? (validate --received "
+                         "accepts one whose every packet conforms)";
+        else if (missing > 0)
+            std::cout << " (" << missing << " of them missing data)";
+        std::cout << "\n";
+    }
     return kExitInvalid;
 }
 
@@ -63,7 +90,7 @@ int run_validate(const ValidateArgs& args) {
     }
     int code = kExitOk;
     for (const auto& input : args.inputs) {
-        int c = validate_one(input, args.quiet, args.key.empty() ? nullptr : &key);
+        int c = validate_one(input, args.quiet, args.received, args.key.empty() ? nullptr : &key);
         code = std::max(code, c);
     }
     return code;
@@ -76,6 +103,9 @@ const RegisterCommand kRegisterValidate{{60, [](CLI::App& app, int& exit_code) {
                                    "file does; every violation is listed with its byte offset");
     cmd->add_option("files", args->inputs, "recorded streams (.ellc)")->required();
     cmd->add_flag("-q,--quiet", args->quiet, "print nothing for a conforming file");
+    cmd->add_flag("--received", args->received,
+                  "a recording of a reception: pass when all that is wrong is what did not arrive (\"conforming but "
+                  "incomplete\", listing what is missing); anything wrong in what arrived still fails");
     cmd->add_option("--key", args->key,
                     "public key (NAME.pub or 64 hex digits): the stream must be signed with it, every signature checked");
     cmd->callback([args, &exit_code] { exit_code = run_validate(*args); });

@@ -110,7 +110,8 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
     const auto& info = r.stream.info();
     if (!info) {
         r.violations.push_back({std::nullopt, contents.packets.empty() ? "no packets at all: no STREAM_INFO"
-                                                                       : "no valid STREAM_INFO: nothing can be decoded"});
+                                                                       : "no valid STREAM_INFO: nothing can be decoded",
+                                true});
     } else {
         for (const ReportPacket& p : r.packets)
             if (p.size > info->packet_size)
@@ -127,32 +128,33 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
                                               std::to_string(p.header.object_id) +
                                               (info && p.header.object_id >= objects.size()
                                                    ? " names an object beyond the object table"
-                                                   : " never got its STREAM_INFO entry")});
+                                                   : " never got its STREAM_INFO entry"),
+                                !(info && p.header.object_id >= objects.size())});
     }
     const auto& objects = r.stream.objects();
     for (size_t i = 0; i < objects.size(); ++i) {
         const ReceivedObject& o = objects[i];
         const std::string name = "object " + std::to_string(i);
         if (!o.info) {
-            r.violations.push_back({std::nullopt, name + ": no STREAM_INFO entry arrived"});
+            r.violations.push_back({std::nullopt, name + ": no STREAM_INFO entry arrived", true});
             continue;
         }
         std::string missing = missing_ranges(o.ellipsoids, o.info->ellipsoid_count);
         if (!missing.empty())
             r.violations.push_back({std::nullopt, name + ": " + std::to_string(o.ellipsoids.size()) + " of " +
                                                       std::to_string(o.info->ellipsoid_count) +
-                                                      " ellipsoids received; missing " + missing});
+                                                      " ellipsoids received; missing " + missing, true});
         missing = missing_ranges(o.points, o.info->point_count);
         if (!missing.empty())
             r.violations.push_back({std::nullopt, name + ": " + std::to_string(o.points.size()) + " of " +
                                                       std::to_string(o.info->point_count) + " points received; missing " +
-                                                      missing});
+                                                      missing, true});
         // Format 1.7 (spec 23.6): a mapped object's map holds every rank.
         if (o.info->mapped() && !o.map_complete())
             r.violations.push_back({std::nullopt, name + ": its point map holds " + std::to_string(o.map_ranks) + " of " +
                                                       std::to_string(o.info->point_count) + " ranks (" +
                                                       std::to_string(o.unplaced.size()) +
-                                                      " points held but not placed)"});
+                                                      " points held but not placed)", true});
         // Format 1.3, the exact layer (spec 19.4): announced, complete, and decodable with every point.
         if (o.connectivity && !o.info->exact_layer)
             r.violations.push_back({std::nullopt, name + ": CONNECTIVITY packets arrived but its entry does not "
@@ -163,7 +165,7 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
                                                       " of " +
                                                       (o.connectivity ? std::to_string(o.connectivity->coded_size)
                                                                       : std::string("?")) +
-                                                      " bytes)"});
+                                                      " bytes)", true});
         } else if (o.connectivity && o.connectivity->complete && missing.empty()) {
             std::vector<Triangle> triangles;
             std::string why;
@@ -192,7 +194,7 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             r.violations.push_back({std::nullopt, name + ": the NORMALS entries of " +
                                                       std::to_string(o.normal_entries.size()) + " of " +
                                                       std::to_string(o.info->point_count) + " points arrived; missing " +
-                                                      missing_ranges(o.normal_entries, o.info->point_count)});
+                                                      missing_ranges(o.normal_entries, o.info->point_count), true});
         }
     }
     // Format 1.2 repair packets: each symbol must be its row of the code over the points (spec 17.4).
@@ -212,9 +214,9 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
     // Format 1.1 scene tables: complete when present.
     if (r.stream.has_scene()) {
         std::string missing = missing_ranges(r.stream.scene_nodes(), r.stream.scene_node_count());
-        if (!missing.empty()) r.violations.push_back({std::nullopt, "scene: nodes missing: " + missing});
+        if (!missing.empty()) r.violations.push_back({std::nullopt, "scene: nodes missing: " + missing, true});
         missing = missing_ranges(r.stream.scene_meshes(), r.stream.scene_mesh_count());
-        if (!missing.empty()) r.violations.push_back({std::nullopt, "scene: meshes missing: " + missing});
+        if (!missing.empty()) r.violations.push_back({std::nullopt, "scene: meshes missing: " + missing, true});
         // Parent links that never reach a root (spec 15.1: no packet can be rejected for a cycle).
         const auto& nodes = r.stream.scene_nodes();
         std::string cyclic;
@@ -242,7 +244,7 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
     check_names(r.stream.materials(), "material(s)");
     if (!r.stream.materials().empty()) {
         std::string missing = missing_ranges(r.stream.materials(), r.stream.materials().begin()->second.material_count);
-        if (!missing.empty()) r.violations.push_back({std::nullopt, "materials missing: " + missing});
+        if (!missing.empty()) r.violations.push_back({std::nullopt, "materials missing: " + missing, true});
     }
     // A track of an animation or a morph animation that has not arrived whole or is not usable (spec
     // 20.2, 22.2): reported; its description when any key of it arrived.
@@ -250,12 +252,12 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
                                    const std::string& track) -> const AnimationTrackInfo* {
         const auto it = a.tracks.find(t);
         if (it == a.tracks.end()) {
-            r.violations.push_back({std::nullopt, track + ": no key received"});
+            r.violations.push_back({std::nullopt, track + ": no key received", true});
             return nullptr;
         }
         if (!it->second.complete)
             r.violations.push_back({std::nullopt, track + ": " + std::to_string(it->second.keys_held) + " of " +
-                                                      std::to_string(it->second.info.key_count) + " keys received"});
+                                                      std::to_string(it->second.info.key_count) + " keys received", true});
         else if (!it->second.usable)
             r.violations.push_back({std::nullopt, track + ": its times do not strictly increase across packets"});
         return &it->second.info;
@@ -263,7 +265,7 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
     // Spec 20.2: every animation complete, every track usable, its node recorded, one track per target.
     if (const auto count = r.stream.animation_count()) {
         std::string missing = missing_ranges(r.stream.animations(), *count);
-        if (!missing.empty()) r.violations.push_back({std::nullopt, "animations missing: " + missing});
+        if (!missing.empty()) r.violations.push_back({std::nullopt, "animations missing: " + missing, true});
         for (const auto& [index, a] : r.stream.animations()) {
             const std::string name = "animation " + std::to_string(index);
             if (!is_valid_utf8(a.name)) r.violations.push_back({std::nullopt, name + ": its name is not valid UTF-8"});
@@ -288,7 +290,7 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         const auto& skins = r.stream.skins();
         if (const auto count = r.stream.skin_count()) {
             std::string missing = missing_ranges(skins, *count);
-            if (!missing.empty()) r.violations.push_back({std::nullopt, "skins missing: " + missing});
+            if (!missing.empty()) r.violations.push_back({std::nullopt, "skins missing: " + missing, true});
         }
         auto recorded = [&](uint16_t node) {
             return node < r.stream.scene_node_count() && r.stream.scene_nodes().count(node) > 0;
@@ -298,7 +300,7 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             if (!is_valid_utf8(skin.name)) r.violations.push_back({std::nullopt, name + ": its name is not valid UTF-8"});
             if (!skin.complete())
                 r.violations.push_back({std::nullopt, name + ": " + std::to_string(skin.joints.size()) + " of " +
-                                                          std::to_string(skin.joint_count) + " joints received"});
+                                                          std::to_string(skin.joint_count) + " joints received", true});
             for (const auto& [j, joint] : skin.joints)
                 if (!recorded(joint.node))
                     r.violations.push_back({std::nullopt, name + " joint " + std::to_string(j) + ": its node " +
@@ -333,7 +335,7 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
                 r.violations.push_back({std::nullopt, name + ": a skinned node shows it, and " +
                                                           std::to_string(object.info->point_count - object.weights.size()) +
                                                           " of its points have no joint weights (" + gaps +
-                                                          (shown > 8 ? ", ..." : "") + ")"});
+                                                          (shown > 8 ? ", ..." : "") + ")", true});
             }
             for (const auto& [i, record] : object.weights) {
                 bool past = false;
@@ -355,7 +357,7 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         const auto& morphs = r.stream.morph_animations();
         if (const auto count = r.stream.morph_animation_count()) {
             std::string missing = missing_ranges(morphs, *count);
-            if (!missing.empty()) r.violations.push_back({std::nullopt, "morph animations missing: " + missing});
+            if (!missing.empty()) r.violations.push_back({std::nullopt, "morph animations missing: " + missing, true});
         }
         std::map<uint16_t, std::set<uint16_t>> written_nodes;  // by written animation: ANIMATION j, or 0x10000 + m
         for (const auto& [index, a] : morphs) {
@@ -409,17 +411,17 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             if (object.morph.size() < object.info->point_count)
                 r.violations.push_back({std::nullopt, name + ": a mesh with morph targets shows it, and " +
                                                           std::to_string(object.info->point_count - object.morph.size()) +
-                                                          " of its points have no displacements"});
+                                                          " of its points have no displacements", true});
         }
     }
     if (!r.stream.textures().empty()) {
         std::string missing = missing_ranges(r.stream.textures(), r.stream.textures().begin()->second.info.texture_count);
-        if (!missing.empty()) r.violations.push_back({std::nullopt, "textures missing: " + missing});
+        if (!missing.empty()) r.violations.push_back({std::nullopt, "textures missing: " + missing, true});
         for (const auto& [index, t] : r.stream.textures()) {
             const std::string name = "texture " + std::to_string(index);
             if (!t.complete) {
                 r.violations.push_back({std::nullopt, name + ": " + std::to_string(t.received_bytes) + " of " +
-                                                          std::to_string(t.info.image_size) + " image bytes received"});
+                                                          std::to_string(t.info.image_size) + " image bytes received", true});
                 continue;
             }
             // Spec 15.3/15.4: a complete texture must be a file of its image_type, with the header a

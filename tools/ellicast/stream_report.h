@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <map>
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,6 +29,10 @@ struct ReportPacket {
 struct Violation {
     std::optional<uint64_t> offset;
     std::string message;
+    // Something the stream declares that did not arrive (a lossy recording lacks it) rather than
+    // something wrong in what did: `validate --received` accepts a recording whose every violation
+    // is of this kind.
+    bool missing = false;
 };
 
 struct TypeCount {
@@ -55,6 +60,10 @@ struct StreamReport {
     auth::SignedRecordingCheck signing;
 
     bool conforms() const { return violations.empty(); }
+    // Every violation is missing data: a conforming stream that did not all arrive.
+    bool only_missing() const {
+        return std::all_of(violations.begin(), violations.end(), [](const Violation& v) { return v.missing; });
+    }
 };
 
 // Reads and checks the container held in `bytes` (read from `path`, used in messages only). With
