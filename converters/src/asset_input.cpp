@@ -798,7 +798,10 @@ public:
         if (!names.empty())
             warnings_.push_back(path_ + ": vertex attribute(s) " + join(names) +
                                 " not sent (ellicast carries POSITION, NORMAL, TEXCOORD_0 and COLOR_0" +
-                                (not_carried_attributes_.count("TANGENT") ? "; viewers compute missing tangents)" : ")"));
+                                (not_carried_attributes_.count("TANGENT")
+                                     ? "; TANGENT is rebuilt on output for normal-mapped materials from the normals and "
+                                       "texture coordinates)"
+                                     : ")"));
     }
 
 private:
