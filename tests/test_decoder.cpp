@@ -178,6 +178,29 @@ TEST_CASE("a fully received sphere ends as a closed mesh of original vertices on
     }
 }
 
+TEST_CASE("a deadline that has passed stops the insertion: the base comes back closed, and a note says how far it got") {
+    auto points = fibonacci_sphere(3000, 1.0);
+    auto info = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, points.size(), kAttrNormal);
+    Mesh mesh;
+    ObjectDecodeReport report;
+    std::string error;
+    DecodeOptions options;
+    options.deadline = std::chrono::steady_clock::now();  // already passed
+    REQUIRE(decode_object(info, {sphere_ellipsoid({0, 0, 0}, 1)}, points, 0, options, 0, mesh, report, error));
+    CHECK(report.has_surface);
+    CHECK(std::count(report.notes.begin(), report.notes.end(), "stopped at the deadline after inserting 0 of 3000 points") == 1);
+    CHECK(open_or_nonmanifold_edges(mesh) == 0);
+    CHECK(signed_volume(mesh) > 0);
+    // A deadline far ahead changes nothing.
+    Mesh whole;
+    ObjectDecodeReport whole_report;
+    options.deadline = std::chrono::steady_clock::now() + std::chrono::hours(1);
+    REQUIRE(decode_object(info, {sphere_ellipsoid({0, 0, 0}, 1)}, points, 0, options, 0, whole, whole_report, error));
+    CHECK(std::none_of(whole_report.notes.begin(), whole_report.notes.end(),
+                       [](const std::string& n) { return n.find("deadline") != std::string::npos; }));
+    CHECK(whole.positions.size() == points.size());
+}
+
 TEST_CASE("a stream far sparser than its base (a cube's 8 corners on a ball) ends as the cube, promptly") {
     // 8 original vertices against tens of thousands of marching-cubes vertices: the final forced
     // collapse must remove them all without re-indexing ever larger faces (it used to take ~10 s).

@@ -342,6 +342,11 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
     double snapshot_time = 0;
     const std::vector<uint32_t> order = insertion_order(points.size(), r.normals != nullptr);
     for (size_t k = 0; k < points.size(); ++k) {
+        if (options.deadline && (k & 255) == 0 && std::chrono::steady_clock::now() >= *options.deadline) {
+            report.notes.push_back("stopped at the deadline after inserting " + std::to_string(k) + " of " +
+                                   std::to_string(points.size()) + " points");
+            break;
+        }
         const size_t i = order[k];
         OpenMesh::VertexHandle v;
         Insertion kind = insert_point(r, uint32_t(i), points[i].position, v);

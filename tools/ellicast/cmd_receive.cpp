@@ -390,6 +390,13 @@ int run_receive(const ReceiveArgs& a) {
     std::vector<Mesh> objects(chosen.objects().size());
     size_t vertices = 0, faces = 0, built = 0, exact = 0;
     options.base_grid_nodes = shared_base_grid_nodes(chosen, options);
+    // --until bounds the whole command: the last decode inserts no point past the deadline, and an
+    // exact layer is not decoded once it has passed.
+    std::optional<std::chrono::steady_clock::time_point> deadline;
+    if (deadline_seconds > 0)
+        deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(deadline_seconds));
+    options.deadline = deadline;
+    auto past_deadline = [&] { return deadline && std::chrono::steady_clock::now() >= *deadline; };
     for (size_t i = 0; i < objects.size(); ++i) {
         const auto& object = chosen.objects()[i];
         if (!object.info) {
@@ -400,7 +407,10 @@ int run_receive(const ReceiveArgs& a) {
         // The exact layer (spec 19.4): every point and the whole connectivity give the original triangles.
         std::string why;
         bool unusable = false;
-        if (object.connectivity && exact_mesh(chosen, i, objects[i], why, unusable)) {
+        const bool late = object.connectivity && past_deadline();
+        if (late) {
+            std::fprintf(stderr, "object %zu: its exact layer is not decoded: the deadline (--until) has passed\n", i);
+        } else if (object.connectivity && exact_mesh(chosen, i, objects[i], why, unusable)) {
             std::fprintf(stderr, "object %zu: exact (the original %s triangles)\n", i,
                          with_commas(objects[i].triangles.size()).c_str());
             objects[i].name = "object" + std::to_string(i);
@@ -411,7 +421,7 @@ int run_receive(const ReceiveArgs& a) {
             continue;
         }
         if (unusable) std::fprintf(stderr, "ellicast: warning: object %zu: its exact layer is unusable (%s)\n", i, why.c_str());
-        else if (object.connectivity)
+        else if (object.connectivity && !late)
             std::fprintf(stderr, "object %zu: not exact yet (%s): reconstructed\n", i, why.c_str());
         if (!decode_object(*object.info, chosen.ellipsoids(i), chosen.points(i), chosen.info()->grid_hint, options, i,
                            objects[i], report, error)) {

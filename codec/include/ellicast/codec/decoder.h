@@ -24,9 +24,11 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -333,6 +335,9 @@ struct DecodeOptions {
     std::function<void(const std::string& stage, double fraction)> progress;
     // A snapshot of object `object` after `points` points (0 = the base). May be empty.
     std::function<void(size_t object, size_t points, const Mesh& mesh)> snapshot;
+    // When given, no point is inserted past this moment: the object is finished with the points
+    // inserted so far (a note says how many), so that a receiver's deadline bounds its last decode.
+    std::optional<std::chrono::steady_clock::time_point> deadline;
 };
 
 struct ObjectDecodeReport {
