@@ -69,10 +69,12 @@ if [ -x "$receiver" ]; then
   "$receiver" 127.0.0.1 "$port" "$work/received.glb" 1 60 2>"$work/receive.log" &
   receive_pid=$!
   sleep 0.5
-  "$build/ellicast" serve "$work/trefoil.ellc" --to "127.0.0.1:$port" --rate 8000000 --cycles 4 -q >"$work/serve.log" &
+  # Enough cycles that a datagram lost on a loaded machine comes round again; stopped once received.
+  "$build/ellicast" serve "$work/trefoil.ellc" --to "127.0.0.1:$port" --rate 8000000 --cycles 40 -q >"$work/serve.log" 2>&1 &
   serve_pid=$!
   receive_status=0
   wait "$receive_pid" || receive_status=$?
+  kill "$serve_pid" 2>/dev/null || true
   wait "$serve_pid" 2>/dev/null || true
   serve_pid=""
   tr '\r' '\n' <"$work/receive.log" | tail -n 3 >&2
