@@ -223,6 +223,30 @@ TEST_CASE("the coder round-trips holes, several parts, non-manifold edges, dupli
     CHECK(std::count(sorted.begin(), sorted.end(), canonical_indices({input[5]})[0]) == 1);
 }
 
+TEST_CASE("points that share positions (every one at one place, or clusters of ties) code and decode the same "
+          "triangles: the nearest-point search breaks ties by index (issue 29, row 2)") {
+    // Before, a search visited every point at the same distance: 40,000 points at one position took
+    // 9.9 s to encode (0.18 s now), and a stream whose corners are ranks made every decode step linear.
+    const uint32_t n = 120;
+    std::vector<Triangle> input;
+    for (uint32_t y = 0; y + 1 < n; ++y)
+        for (uint32_t x = 0; x + 1 < n; ++x) {
+            const uint32_t a = y * n + x;
+            input.push_back({a, a + 1, a + n + 1});
+            input.push_back({a, a + n + 1, a + n});
+        }
+    for (const uint32_t cluster : {n, uint32_t(3), uint32_t(40)}) {  // n: every point at one place
+        CAPTURE(cluster);
+        std::vector<std::array<uint32_t, 3>> positions;
+        for (uint32_t y = 0; y < n; ++y)
+            for (uint32_t x = 0; x < n; ++x) positions.push_back({x / cluster * 100, y / cluster * 100, 7});
+        if (cluster == 40)  // a few points apart from the ties, some with equal coordinates on one axis only
+            for (uint32_t i = 0; i < positions.size(); i += 97) positions[i] = {i % 1000, 0, i % 13};
+        const auto back = round_trip(positions, input);
+        CHECK(canonical_indices(back) == canonical_indices(input));
+    }
+}
+
 TEST_CASE("a large regular surface costs well under half a byte per vertex") {
     std::vector<std::array<uint32_t, 3>> positions;
     const uint32_t n = 120;

@@ -9,6 +9,7 @@
 #include "ellicast/format.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <deque>
 #include <numeric>
 #include <unordered_map>
@@ -133,9 +134,13 @@ private:
 
 // ---- the k points nearest to a prediction, ties by index (spec 19.2's candidates)
 
+// Ties matter: a stream may put every point at one position, and a search that visits every point
+// at equal distance made each step linear and a whole decode quadratic (issue 29). Points with equal
+// coordinates along a split are ordered by index, ties go to the lower indices first, and a subtree
+// is skipped when it cannot hold a point nearer than the k-th, or as near with a lower index.
 class KdTree {
 public:
-    explicit KdTree(const std::vector<std::array<uint32_t, 3>>& p) : p_(p), order_(p.size()) {
+    explicit KdTree(const std::vector<std::array<uint32_t, 3>>& p) : p_(p), order_(p.size()), min_index_(p.size()) {
         std::iota(order_.begin(), order_.end(), 0u);
         build(0, order_.size(), 0);
     }
@@ -148,13 +153,24 @@ public:
     }
 
 private:
-    void build(size_t lo, size_t hi, int axis) {
-        if (hi - lo <= 8) return;
+    // Builds the subtree over order_[lo, hi) and returns the lowest point index in it (kept by mid).
+    uint32_t build(size_t lo, size_t hi, int axis) {
+        if (hi - lo <= 8) return lowest_in_leaf(lo, hi);
         const size_t mid = (lo + hi) / 2;
-        std::nth_element(order_.begin() + lo, order_.begin() + mid, order_.begin() + hi,
-                         [&](uint32_t x, uint32_t y) { return p_[x][axis] < p_[y][axis]; });
-        build(lo, mid, (axis + 1) % 3);
-        build(mid + 1, hi, (axis + 1) % 3);
+        std::nth_element(order_.begin() + lo, order_.begin() + mid, order_.begin() + hi, [&](uint32_t x, uint32_t y) {
+            return p_[x][axis] < p_[y][axis] || (p_[x][axis] == p_[y][axis] && x < y);
+        });
+        const uint32_t left = build(lo, mid, (axis + 1) % 3), right = build(mid + 1, hi, (axis + 1) % 3);
+        return min_index_[mid] = std::min({left, right, order_[mid]});
+    }
+    uint32_t lowest_in_leaf(size_t lo, size_t hi) const {
+        uint32_t m = UINT32_MAX;
+        for (size_t j = lo; j < hi; ++j) m = std::min(m, order_[j]);
+        return m;
+    }
+    uint32_t lowest(size_t lo, size_t hi) const {
+        if (hi <= lo) return UINT32_MAX;
+        return hi - lo <= 8 ? lowest_in_leaf(lo, hi) : min_index_[(lo + hi) / 2];
     }
     static uint64_t dist2(const std::array<uint32_t, 3>& p, const std::array<int64_t, 3>& q) {
         uint64_t d = 0;
@@ -181,21 +197,23 @@ private:
         const size_t mid = (lo + hi) / 2;
         const uint32_t m = order_[mid];
         const int64_t split = p_[m][axis];
-        const bool left_first = q[axis] < split;
+        const bool left_first = q[axis] <= split;  // on the split: the lower indices first
         consider(m, q, a, b, k, best);
         const int next = (axis + 1) % 3;
         if (left_first) search(lo, mid, next, q, a, b, k, best);
         else search(mid + 1, hi, next, q, a, b, k, best);
-        // The other side holds points at least |q - split| away along this axis (ties included).
+        // The other side holds points at least |q - split| away along this axis (ties included): it
+        // can only matter with one nearer than the k-th, or as near with a lower index.
         const int64_t gap = q[axis] - split;
         const uint64_t plane = uint64_t(gap * gap);
-        if (best.size() < k || plane <= best.back().first) {
-            if (left_first) search(mid + 1, hi, next, q, a, b, k, best);
-            else search(lo, mid, next, q, a, b, k, best);
-        }
+        const size_t other_lo = left_first ? mid + 1 : lo, other_hi = left_first ? hi : mid;
+        if (best.size() < k || plane < best.back().first ||
+            (plane == best.back().first && lowest(other_lo, other_hi) < best.back().second))
+            search(other_lo, other_hi, next, q, a, b, k, best);
     }
     const std::vector<std::array<uint32_t, 3>>& p_;
     std::vector<uint32_t> order_;
+    std::vector<uint32_t> min_index_;  // by a subtree's mid: the lowest point index in it
 };
 
 int index_bits(size_t n) {
