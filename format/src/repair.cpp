@@ -206,36 +206,59 @@ Error packetize_repairs(const StreamInfo& info, uint16_t object_id, const std::v
 }
 
 Error check_repair_packet(const ReceivedStream& stream, const PacketView& packet, std::string& why) {
+    return RepairPacketChecker(stream, false).check(packet, why);
+}
+
+Error RepairPacketChecker::check(const PacketView& packet, std::string& why) {
     RepairPacket repair;
     if (decode_repair_payload(packet.payload, repair) != Error::Ok) {
         why = "malformed POINTS_REPAIR payload";
         return Error::MalformedPayload;
     }
     const uint16_t id = packet.header.object_id;
-    if (!stream.info() || id >= stream.objects().size() || !stream.objects()[id].info) {
+    if (!stream_.info() || id >= stream_.objects().size() || !stream_.objects()[id].info) {
         why = "no stream info entry for object " + std::to_string(id);
         return Error::MalformedPayload;
     }
-    const ReceivedObject& object = stream.objects()[id];
+    const ReceivedObject& object = stream_.objects()[id];
     const ObjectInfo& oi = *object.info;
     RepairBlock& block = repair.block;
-    if (!block.clip(oi.point_count) || repair.symbol.size() != repair_symbol_bytes(block, *stream.info(), oi)) {
+    if (!block.clip(oi.point_count) || repair.symbol.size() != repair_symbol_bytes(block, *stream_.info(), oi)) {
         why = "the block does not fit object " + std::to_string(id);
         return Error::MalformedPayload;
     }
-    std::vector<std::vector<uint8_t>> sources(block.source_count());
-    std::vector<QuantizedPoint> points;
-    for (uint32_t i = 0; i < block.source_count(); ++i) {
-        points.clear();
-        const uint32_t first = block.first_index + i * block.batch;
-        for (uint32_t n = 0; n < block.batch_points(i); ++n) {
-            auto it = object.points.find(first + n);
-            if (it == object.points.end()) return Error::Ok;  // incomplete: nothing to compare
-            points.push_back(it->second);
-        }
-        sources[i] = repair_source_symbol(block, points, *stream.info(), oi);
+    // A block other than the one the receiver holds at that index was rejected there (and reported).
+    if (held_blocks_only_) {
+        const auto held = object.repair_blocks.find(block.first_index);
+        if (held == object.repair_blocks.end() || !held->second.block.same_block(block)) return Error::Ok;
+    } else {
+        blocks_.clear();  // one packet, any block: nothing to keep
     }
-    if (repair_symbol(sources, repair.row) != repair.symbol) {
+    auto [it, fresh] = blocks_.try_emplace({id, block.first_index});
+    BlockState& state = it->second;
+    if (fresh) {
+        state.sources.resize(block.source_count());
+        std::vector<QuantizedPoint> points;
+        state.complete = true;
+        for (uint32_t i = 0; i < block.source_count() && state.complete; ++i) {
+            points.clear();
+            const uint32_t first = block.first_index + i * block.batch;
+            for (uint32_t n = 0; n < block.batch_points(i); ++n) {
+                auto p = object.points.find(first + n);
+                if (p == object.points.end()) {
+                    state.complete = false;  // incomplete: nothing to compare
+                    break;
+                }
+                points.push_back(p->second);
+            }
+            if (state.complete) state.sources[i] = repair_source_symbol(block, points, *stream_.info(), oi);
+        }
+        if (!state.complete) state.sources.clear();
+    }
+    if (!state.complete) return Error::Ok;
+    auto row = state.rows.find(repair.row);
+    if (row == state.rows.end()) row = state.rows.emplace(repair.row, repair_symbol(state.sources, repair.row)).first;
+    if (row->second != repair.symbol) {
         why = "row " + std::to_string(repair.row) + " of the block at point " + std::to_string(block.first_index) +
               " of object " + std::to_string(id) + " is not the repair symbol of the block's points";
         return Error::StreamMismatch;

@@ -198,10 +198,11 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         }
     }
     // Format 1.2 repair packets: each symbol must be its row of the code over the points (spec 17.4).
+    RepairPacketChecker repair_checker(r.stream);
     for (const ContainerPacket& p : contents.packets) {
         if (p.view.header.type != uint8_t(PacketType::PointsRepair)) continue;
         std::string why;
-        const Error e = check_repair_packet(r.stream, p.view, why);
+        const Error e = repair_checker.check(p.view, why);
         if (e == Error::StreamMismatch) r.violations.push_back({p.offset, "POINTS_REPAIR packet: " + why});
     }
     // Format 1.3: each CONNECTIVITY_REPAIR symbol must be its row of the code over the connectivity (spec 19.5).

@@ -333,4 +333,29 @@ Error check_connectivity_repair_packet(const ReceivedStream& stream, const Packe
 // `why`, when it is not; MalformedPayload when the packet does not fit the stream.
 Error check_repair_packet(const ReceivedStream& stream, const PacketView& packet, std::string& why);
 
+// The same check over a whole recording: each block's source symbols are built once and each row's
+// verdict is kept, so that many repair packets over one large block cost one pass over its points
+// (checking each packet alone took 39.5 s for 2.6 MB of rows over a 0.87M-point block, issue 29).
+// Only a packet whose block is the one the stream holds for its object at that index is compared (a
+// block that contradicts it was rejected by the receiver, which reports it), so the work is bounded
+// by the object's points, whatever the packets declare.
+class RepairPacketChecker {
+public:
+    // `held_blocks_only` false: compare any block that fits the object (check_repair_packet's way,
+    // for one packet against a stream that may not have taken it).
+    explicit RepairPacketChecker(const ReceivedStream& stream, bool held_blocks_only = true)
+        : stream_(stream), held_blocks_only_(held_blocks_only) {}
+    Error check(const PacketView& packet, std::string& why);
+
+private:
+    struct BlockState {
+        bool complete = false;                     // every point of the block is held
+        std::vector<std::vector<uint8_t>> sources;  // its source symbols, once built
+        std::map<uint8_t, std::vector<uint8_t>> rows;  // the symbols of rows computed so far
+    };
+    const ReceivedStream& stream_;
+    bool held_blocks_only_;
+    std::map<std::pair<uint16_t, uint32_t>, BlockState> blocks_;  // by object and first index
+};
+
 }  // namespace ellicast
