@@ -443,6 +443,22 @@ TEST_CASE("a validator finds a CONNECTIVITY_REPAIR symbol that is not its row, a
     REQUIRE(parse_packet(forged, view) == Error::Ok);
     CHECK(check_connectivity_repair_packet(stream, view, why) == Error::StreamMismatch);
     CHECK(why.find("is not that row") != std::string::npos);
+    // Over a recording, each row computed once: repeats keep their verdicts, and a symbol size other
+    // than the first one's is a mismatch itself (spec 19.5).
+    ConnectivityRepairChecker checker(stream);
+    PacketView real;
+    REQUIRE(parse_packet(repair, real) == Error::Ok);
+    for (int repeat = 0; repeat < 100; ++repeat) CHECK(checker.check(real, why) == Error::Ok);
+    CHECK(checker.check(view, why) == Error::StreamMismatch);
+    ConnectivityRepair resized;
+    REQUIRE(decode_connectivity_repair_payload(real.payload, resized) == Error::Ok);
+    resized.symbol_size = uint16_t(resized.symbol_size / 2);
+    resized.symbol.resize(resized.symbol_size);
+    const std::vector<uint8_t> other = write_packet(real.header, encode_connectivity_repair_payload(resized));
+    PacketView other_view;
+    REQUIRE(parse_packet(other, other_view) == Error::Ok);
+    CHECK(checker.check(other_view, why) == Error::StreamMismatch);
+    CHECK(why.find("symbol size") != std::string::npos);
 }
 
 TEST_CASE("snapshots of a complete stream follow the reconstruction as points arrive, not the exact layer") {

@@ -389,6 +389,32 @@ Error check_connectivity_repair_packet(const ReceivedStream& stream, const Packe
     return Error::StreamMismatch;
 }
 
+Error ConnectivityRepairChecker::check(const PacketView& packet, std::string& why) {
+    ConnectivityRepair r;
+    if (decode_connectivity_repair_payload(packet.payload, r) != Error::Ok) return Error::MalformedPayload;
+    const uint16_t id = packet.header.object_id;
+    if (id >= stream_.objects().size()) return Error::MalformedPayload;
+    const auto& c = stream_.objects()[id].connectivity;
+    if (!c || !c->complete || c->coded_size != r.coded_size || c->coded_crc != r.coded_crc) return Error::Ok;
+    auto [it, fresh] = objects_.try_emplace(id);
+    ObjectState& state = it->second;
+    if (fresh) {
+        state.symbol_size = r.symbol_size;
+        state.sources = connectivity_symbols(c->coded, r.symbol_size);
+    }
+    if (r.symbol_size != state.symbol_size) {  // spec 19.5: one symbol size, the pieces'
+        why = "object " + std::to_string(id) + ": a symbol size of " + std::to_string(r.symbol_size) +
+              " bytes where its first CONNECTIVITY_REPAIR packet has " + std::to_string(state.symbol_size);
+        return Error::StreamMismatch;
+    }
+    auto row = state.rows.find(r.row);
+    if (row == state.rows.end()) row = state.rows.emplace(r.row, repair_symbol(state.sources, r.row)).first;
+    if (row->second == r.symbol) return Error::Ok;
+    why = "object " + std::to_string(id) + ": the symbol of row " + std::to_string(r.row) +
+          " is not that row of the code over its connectivity";
+    return Error::StreamMismatch;
+}
+
 Error exact_triangles(const ReceivedStream& stream, size_t object, std::vector<Triangle>& out, std::string& why) {
     if (object >= stream.objects().size()) {
         why = "no such object";

@@ -206,10 +206,11 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         if (e == Error::StreamMismatch) r.violations.push_back({p.offset, "POINTS_REPAIR packet: " + why});
     }
     // Format 1.3: each CONNECTIVITY_REPAIR symbol must be its row of the code over the connectivity (spec 19.5).
+    ConnectivityRepairChecker connectivity_repair_checker(r.stream);
     for (const ContainerPacket& p : contents.packets) {
         if (p.view.header.type != uint8_t(PacketType::ConnectivityRepair)) continue;
         std::string why;
-        if (check_connectivity_repair_packet(r.stream, p.view, why) == Error::StreamMismatch)
+        if (connectivity_repair_checker.check(p.view, why) == Error::StreamMismatch)
             r.violations.push_back({p.offset, "CONNECTIVITY_REPAIR packet: " + why});
     }
     // Format 1.1 scene tables: complete when present.

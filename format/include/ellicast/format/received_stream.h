@@ -327,6 +327,25 @@ Error exact_triangles(const ReceivedStream& stream, size_t object, std::vector<T
 // StreamMismatch with `why` when it is not; MalformedPayload when the packet does not decode.
 Error check_connectivity_repair_packet(const ReceivedStream& stream, const PacketView& packet, std::string& why);
 
+// The same check over a whole recording: each row's symbol is computed once per object, and a packet
+// whose symbol size differs from the first one checked for its object is a mismatch itself (spec
+// 19.5: one symbol size), so that many forged rows over a large exact layer cost one pass over its
+// bytes a row, not one a packet.
+class ConnectivityRepairChecker {
+public:
+    explicit ConnectivityRepairChecker(const ReceivedStream& stream) : stream_(stream) {}
+    Error check(const PacketView& packet, std::string& why);
+
+private:
+    struct ObjectState {
+        uint16_t symbol_size = 0;
+        std::vector<std::vector<uint8_t>> sources;     // the coded connectivity cut into symbols
+        std::map<uint8_t, std::vector<uint8_t>> rows;  // the symbols of rows computed so far
+    };
+    const ReceivedStream& stream_;
+    std::map<uint16_t, ObjectState> objects_;
+};
+
 // For a validator (spec 11.5, 17.4): whether a POINTS_REPAIR packet's symbol is its row of the code
 // over the points `stream` holds. Ok when it is, or when the stream does not hold every point of the
 // block (nothing to compare with; the missing points are reported as such); StreamMismatch, with
