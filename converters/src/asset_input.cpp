@@ -427,10 +427,12 @@ private:
                 out.joints[i][k] = list[k].second;
             }
         }
-        if (more)
-            warnings_.push_back(where + ": " + std::to_string(more) + " of its " + std::to_string(n) +
-                                " vertices have more than four joint influences (JOINTS_1 / WEIGHTS_1); their four "
-                                "largest are sent");
+        if (more) {  // said once for the asset (warn_attributes), naming the first primitive
+            if (folded_.primitives++ == 0)  // `where` names the file first: keep what follows it
+                folded_.first = where.rfind(path_ + ": ", 0) == 0 ? where.substr(path_.size() + 2) : where;
+            folded_.vertices += more;
+            folded_.of += n;
+        }
         return out;
     }
 
@@ -793,6 +795,11 @@ private:
 
 public:
     void warn_attributes() {
+        if (folded_.primitives)
+            warnings_.push_back(path_ + ": " + std::to_string(folded_.vertices) + " of " + std::to_string(folded_.of) +
+                                " vertices have more than four joint influences (JOINTS_1 / WEIGHTS_1); their four "
+                                "largest are sent (" + std::to_string(folded_.primitives) + " primitive" +
+                                (folded_.primitives == 1 ? "" : "s") + ", the first " + folded_.first + ")");
         std::vector<std::string> names;
         for (const auto& [name, seen] : not_carried_attributes_) names.push_back(name);
         if (!names.empty())
@@ -822,6 +829,10 @@ private:
     std::map<int, image_file::Format> image_formats_;  // checked_image's answers
     std::optional<nlohmann::json> json_;                // the file's JSON, read when checked_image needs it
     std::map<std::string, bool> not_carried_attributes_;
+    struct {
+        size_t primitives = 0, vertices = 0, of = 0;  // skinned vertices folded to four influences
+        std::string first;                            // the first primitive that had any
+    } folded_;
 };
 
 }  // namespace
