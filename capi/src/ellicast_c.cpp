@@ -379,16 +379,20 @@ void ellicast_encode_options_init(ellicast_encode_options* options) {
 
 namespace {
 
-ellicast_status encode_path(const std::string& path, const std::string& shown_as, const ellicast_encode_options* options,
+// The caller's options (NULL: the defaults) into `out`; a struct older than this library's is refused.
+ellicast_status resolve_encode_options(const ellicast_encode_options* options, ellicast_encode_options& out,
+                                       const char* call) {
+    ellicast_encode_options_init(&out);
+    if (!options) return ELLICAST_OK;
+    if (options->struct_size < sizeof out)
+        return fail(ELLICAST_ERROR_ARGUMENT, std::string(call) + ": options.struct_size is " + std::to_string(options->struct_size) +
+                                                 ", expected " + std::to_string(sizeof out) + " (call ellicast_encode_options_init)");
+    out = *options;
+    return ELLICAST_OK;
+}
+
+ellicast_status encode_path(const std::string& path, const std::string& shown_as, const ellicast_encode_options& o,
                             ellicast_buffer* stream_out, const char* call) {
-    ellicast_encode_options o;
-    ellicast_encode_options_init(&o);
-    if (options) {
-        if (options->struct_size < sizeof o)
-            return fail(ELLICAST_ERROR_ARGUMENT, std::string(call) + ": options.struct_size is " + std::to_string(options->struct_size) +
-                                                     ", expected " + std::to_string(sizeof o) + " (call ellicast_encode_options_init)");
-        o = *options;
-    }
     EncodeOptions e;
     e.packet_size = uint16_t(o.packet_size > 65535 ? 0 : o.packet_size);
     e.position_bits = uint8_t(o.position_bits < 0 || o.position_bits > 255 ? 0 : o.position_bits);
@@ -455,7 +459,9 @@ ellicast_status ellicast_encode_file(const char* model_path, const ellicast_enco
     if (!stream_out) return null_argument(call, "stream_out");
     stream_out->data = nullptr;
     stream_out->size = 0;
-    return guarded(call, [&]() { return encode_path(model_path, model_path, options, stream_out, call); });
+    ellicast_encode_options o;
+    if (ellicast_status bad = resolve_encode_options(options, o, call); bad != ELLICAST_OK) return bad;
+    return guarded(call, [&]() { return encode_path(model_path, model_path, o, stream_out, call); });
 }
 
 ellicast_status ellicast_encode_memory(const void* data, size_t size, const char* type, const ellicast_encode_options* options,
@@ -472,20 +478,16 @@ ellicast_status ellicast_encode_memory(const void* data, size_t size, const char
     if (std::none_of(std::begin(known), std::end(known), [&](const char* k) { return extension == k; }))
         return fail(ELLICAST_ERROR_ARGUMENT, std::string(call) + ": type " + quoted_input(type, 20) +
                                                  " is not one of glb, gltf, obj, ply, off, stl");
+    ellicast_encode_options o;
+    if (ellicast_status bad = resolve_encode_options(options, o, call); bad != ELLICAST_OK) return bad;
+    o.allow_external_paths = 0;  // a buffer has no folder: a glTF must embed its buffers and images
     return guarded(call, [&]() -> ellicast_status {
         TemporaryFile file(extension);
         if (file.path().empty()) return fail(ELLICAST_ERROR_IO, std::string(call) + ": cannot create a temporary folder");
         std::string message;
         if (write_file(file.path(), {static_cast<const uint8_t*>(data), size}, message) != Error::Ok)
             return fail(ELLICAST_ERROR_IO, std::string(call) + ": " + message);
-        ellicast_encode_options o;
-        ellicast_encode_options_init(&o);
-        if (options) {
-            if (options->struct_size < sizeof o) return encode_path(file.path(), "(memory)", options, stream_out, call);
-            o = *options;
-        }
-        o.allow_external_paths = 0;  // a buffer has no folder: a glTF must embed its buffers and images
-        return encode_path(file.path(), "(" + extension + " in memory)", &o, stream_out, call);
+        return encode_path(file.path(), "(" + extension + " in memory)", o, stream_out, call);
     });
 }
 

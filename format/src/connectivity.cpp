@@ -376,17 +376,7 @@ Error packetize_connectivity_repairs(const StreamInfo& info, uint16_t object_id,
 }
 
 Error check_connectivity_repair_packet(const ReceivedStream& stream, const PacketView& packet, std::string& why) {
-    ConnectivityRepair r;
-    if (decode_connectivity_repair_payload(packet.payload, r) != Error::Ok) return Error::MalformedPayload;
-    const uint16_t id = packet.header.object_id;
-    if (id >= stream.objects().size()) return Error::MalformedPayload;
-    const auto& c = stream.objects()[id].connectivity;
-    if (!c || !c->complete || c->coded_size != r.coded_size || c->coded_crc != r.coded_crc) return Error::Ok;
-    const std::vector<uint8_t> expected = repair_symbol(connectivity_symbols(c->coded, r.symbol_size), r.row);
-    if (expected == r.symbol) return Error::Ok;
-    why = "object " + std::to_string(id) + ": the symbol of row " + std::to_string(r.row) +
-          " is not that row of the code over its connectivity";
-    return Error::StreamMismatch;
+    return ConnectivityRepairChecker(stream).check(packet, why);
 }
 
 Error ConnectivityRepairChecker::check(const PacketView& packet, std::string& why) {
