@@ -260,6 +260,16 @@ PacketHeader layer_header(PacketType type, uint32_t stream_id, uint32_t sequence
 
 uint32_t get32(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
 
+// Pieces and repair symbols of one size (spec 19.6): as few pieces as fit the packets, all as long
+// as each other (the last shorter by at most one byte a piece). A repair symbol is then no longer than
+// the coded connectivity (a box's 60 bytes had a 1,160-byte symbol), and a lost piece is one source
+// symbol lost, never parts of two.
+size_t connectivity_piece_size(size_t coded_size, size_t packet_size) {
+    const size_t capacity = packet_size - kPacketOverhead - kConnectivityHeaderSize;
+    const size_t k = (coded_size + capacity - 1) / capacity;
+    return k == 0 ? capacity : (coded_size + k - 1) / k;
+}
+
 }  // namespace
 
 std::vector<uint8_t> encode_connectivity_payload(const ConnectivityPiece& piece) {
@@ -294,7 +304,7 @@ Error packetize_connectivity(const StreamInfo& info, uint16_t object_id, uint32_
                              std::vector<std::vector<uint8_t>>& out) {
     if (coded.empty() || coded.size() > 16 * uint64_t(triangle_count) + 64 || info.packet_size <= kPacketOverhead + kConnectivityHeaderSize)
         return Error::MalformedPayload;
-    const size_t per_packet = info.packet_size - kPacketOverhead - kConnectivityHeaderSize;
+    const size_t per_packet = connectivity_piece_size(coded.size(), info.packet_size);
     ConnectivityPiece piece;
     piece.triangle_count = triangle_count;
     piece.coded_size = uint32_t(coded.size());
@@ -356,7 +366,7 @@ Error packetize_connectivity_repairs(const StreamInfo& info, uint16_t object_id,
                                      const std::vector<uint8_t>& coded, size_t count, uint32_t stream_id,
                                      uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out) {
     if (coded.empty() || info.packet_size <= kPacketOverhead + kConnectivityHeaderSize) return Error::MalformedPayload;
-    const size_t size = info.packet_size - kPacketOverhead - kConnectivityHeaderSize;
+    const size_t size = connectivity_piece_size(coded.size(), info.packet_size);
     const auto sources = connectivity_symbols(coded, size);
     const size_t k = sources.size();
     if (k > 127 || k + count > 255) return Error::MalformedPayload;

@@ -323,7 +323,9 @@ PointMapChoice choose_point_map(const std::vector<QuantizedPoint>& points, const
         uint64_t map_bytes = 0;
         for (const PointMapFragment& f : plan_point_map(cells, L, info.packet_size))
             map_bytes += kPacketOverhead + kPointMapHeaderSize + (point_map_tree_bits(f.cells, L, f.root_level, f.rice) + 7) / 8;
-        const size_t per = std::min<size_t>(points_per_packet(info.packet_size, info, object), 0xFFFF);
+        // An object smaller than a packet is one batch of its own size (the same ranks, spec 23.2,
+        // and a repair symbol no longer than its one MAPPED_POINTS packet).
+        const size_t per = std::min<size_t>({points_per_packet(info.packet_size, info, object), 0xFFFF, points.size()});
         if (per == 0) continue;
         const uint64_t point_bytes = batches_bytes(points.size(), per, point_record_bits(info, object));
         if (map_weight * double(map_bytes) + double(point_bytes) < best) {

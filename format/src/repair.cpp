@@ -159,6 +159,9 @@ std::vector<RepairBlock> plan_repair_blocks(uint32_t point_count, uint16_t batch
     std::vector<RepairBlock> out;
     max_sources = std::min<size_t>(max_sources, kMaxRepairRow);
     if (point_count == 0 || batch == 0 || max_sources == 0) return out;
+    // An object smaller than a packet: one batch of its points, so that the repair symbol is no
+    // longer than the one POINTS packet it protects.
+    if (point_count < batch) batch = uint16_t(point_count);
     const uint64_t batches = (uint64_t{point_count} + batch - 1) / batch;
     const uint64_t blocks = (batches + max_sources - 1) / max_sources;
     uint64_t next = 0;
