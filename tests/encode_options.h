@@ -28,6 +28,15 @@ inline EncodeOptions coarse_options() {
     return o;
 }
 
+// The tests of the points-only reconstruction (creases, sheets, samples): surface samples wherever
+// the spacing asks, as `ellicast encode --sample-budget -1` makes them. The default budget (a quarter
+// of an object's vertices) leaves a box with no samples at all: its exact layer brings it back, but a
+// reconstruction from points alone has nothing on its faces.
+inline EncodeOptions sampled(EncodeOptions o = {}) {
+    o.sample_budget = -1;
+    return o;
+}
+
 // Every packet of `encoded`, in transmission order, taken by a receiver.
 inline ReceivedStream receive_every_packet(const EncodeResult& encoded) {
     StreamPackets packets;

@@ -27,9 +27,10 @@ struct Decoded {
     SurfaceDistance d;  // original (A) against decoded (B)
 };
 
-// Encoded with the default options and decoded from every packet.
+// Encoded with the default options but every sample the spacing asks for (test::sampled), and
+// decoded from every point packet.
 Decoded encode_decode(const Mesh& original) {
-    const ReceivedStream stream = test::receive_every_packet(encode_meshes({original}, EncodeOptions{}));
+    const ReceivedStream stream = test::receive_every_packet(encode_meshes({original}, test::sampled()));
     std::vector<Mesh> meshes;
     StreamDecodeReport report;
     std::string error;

@@ -3,6 +3,8 @@
 #include "ellicast/codec/decoder.h"
 #include "ellicast/codec/encoder.h"
 #include "ellicast/codec/surface_distance.h"
+#include "ellicast/converters/asset.h"
+#include "ellicast/converters/asset_stream.h"
 #include "ellicast/converters/mesh_input.h"
 #include "ellicast/format.h"
 #include "encode_options.h"
@@ -20,6 +22,7 @@ using namespace ellicast;
 using ellicast::test::have_sample;
 using ellicast::test::fast_options;
 using ellicast::test::receive_every_packet;
+using ellicast::test::sampled;
 using ellicast::test::shared_samples;
 
 namespace {
@@ -43,7 +46,7 @@ std::vector<SurfacePoint> points_of(const EncodeResult& r) {
 
 TEST_CASE("surface samples lie on the faces of a cube, carry their face's normal and fill every face") {
     const Mesh box = cube();
-    EncodeOptions o = fast_options();
+    EncodeOptions o = sampled(fast_options());
     EncodeResult r = encode_meshes({box}, o);
     REQUIRE(r.reports[0].samples > 100);
     const auto pts = points_of(r);
@@ -89,7 +92,7 @@ TEST_CASE("an edge shared by two triangles is split at the same points from both
     Mesh quad;
     quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     quad.triangles = {{0, 1, 2}, {0, 2, 3}};
-    EncodeResult r = encode_meshes({quad}, fast_options());
+    EncodeResult r = encode_meshes({quad}, sampled(fast_options()));
     REQUIRE(r.reports[0].samples > 0);
     std::set<std::array<uint32_t, 3>> positions;
     for (const QuantizedPoint& q : r.contents[0].points) positions.insert(q.position);
@@ -109,7 +112,7 @@ TEST_CASE("an edge shared by two triangles is split at the same points from both
 
 TEST_CASE("sample spacing 0 sends the original vertices only, and the sample budget bounds the points") {
     const Mesh box = cube();
-    EncodeOptions o = fast_options();
+    EncodeOptions o = sampled(fast_options());
     o.sample_spacing = 0;
     EncodeResult plain = encode_meshes({box}, o);
     CHECK(plain.reports[0].samples == 0);
@@ -158,7 +161,7 @@ TEST_CASE("a capped model gets nearly the whole sample budget, not a spacing ste
     if (!have_sample("gltf/Fox/Fox.gltf")) return;
     LoadResult loaded = load_meshes((shared_samples() / "gltf/Fox/Fox.gltf").string());
     REQUIRE(loaded.meshes.size() == 1);
-    EncodeOptions o = fast_options();
+    EncodeOptions o = sampled(fast_options());
     o.sample_spacing = 0.003;  // far more samples than any budget below
     for (uint32_t budget : {5000u, 8000u, 12000u}) {
         o.max_samples = budget;
@@ -168,4 +171,57 @@ TEST_CASE("a capped model gets nearly the whole sample budget, not a spacing ste
         CHECK(r.reports[0].samples <= budget);
         CHECK(r.reports[0].samples >= 0.93 * budget);
     }
+}
+
+TEST_CASE("samples follow the vertices' bytes: none on a box, at most the budget per vertex") {
+    // Samples serve a receiver only until the exact layer is whole, and lengthen every cycle: the
+    // 24-vertex Box sample got 9,522 of them (a 127 KB stream for a 1 KB asset).
+    const Mesh box = cube();
+    EncodeOptions o = fast_options();
+    CHECK(encode_meshes({box}, o).reports[0].samples == 0);
+    CHECK(encode_meshes({box}, o).info.objects[0].point_count == 24);
+    o.sample_budget = 2;  // samples per vertex at most
+    const EncodeResult two = encode_meshes({box}, o);
+    CHECK(two.reports[0].samples <= 48);
+    CHECK(two.reports[0].samples > 24);
+    o.sample_budget = -1;  // the spacing's alone
+    CHECK(encode_meshes({box}, o).reports[0].samples > 1000);
+    o.sample_budget = -2;
+    CHECK_THROWS_AS(encode_meshes({box}, o), std::invalid_argument);
+    o.sample_budget = 1e6;
+    CHECK_THROWS_AS(encode_meshes({box}, o), std::invalid_argument);
+}
+
+TEST_CASE("the Box sample's whole stream, repair included, is under 2 KB and every packet brings the box back exactly") {
+    if (!have_sample("gltf/Box-glb/Box.glb")) return;
+    const Asset asset = load_asset((shared_samples() / "gltf/Box-glb/Box.glb").string());
+    EncodedAsset encoded;
+    std::string error;
+    REQUIRE_MESSAGE(encode_asset(asset, EncodeOptions{}, 1, true, encoded, error), error);
+    size_t bytes = 0;
+    ReceivedStream stream;
+    size_t where = 0;
+    for (const auto& p : encoded.packets) {
+        bytes += p.size();
+        REQUIRE(stream.add_packet(p, where++) == Error::Ok);
+    }
+    MESSAGE("the Box: " << encoded.packets.size() << " packets, " << bytes << " bytes");
+    CHECK(bytes < 2000);  // 1,789: 50 ellipsoids, 24 points, 12 triangles, a repair packet each (127,097 before)
+    std::vector<Mesh> decoded;
+    StreamDecodeReport report;
+    REQUIRE_MESSAGE(decode_stream(stream, DecodeOptions{}, decoded, report, error), error);
+    REQUIRE(decoded.size() == 1);
+    CHECK(decoded[0].triangles.size() == 12);  // the exact layer: the box itself
+}
+
+TEST_CASE("spot keeps the samples its large triangles need: fewer than a quarter of its vertices") {
+    if (!have_sample("meshes/spot.obj")) return;
+    LoadResult loaded = load_meshes((shared_samples() / "meshes/spot.obj").string());
+    REQUIRE(loaded.meshes.size() == 1);
+    EncodeOptions o = fast_options();
+    const EncodeResult r = encode_meshes(loaded.meshes, o);
+    const EncodeResult unbounded = encode_meshes(loaded.meshes, sampled(o));
+    MESSAGE("spot: " << r.reports[0].samples << " samples, " << unbounded.reports[0].samples << " without the budget");
+    CHECK(r.reports[0].samples == unbounded.reports[0].samples);
+    CHECK(r.reports[0].samples > 500);
 }

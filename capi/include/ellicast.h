@@ -194,7 +194,7 @@ ELLICAST_API ellicast_status ellicast_receiver_snapshot_glb(ellicast_receiver* r
  */
 
 typedef struct ellicast_encode_options {
-    size_t struct_size;        /* sizeof(ellicast_encode_options): set by _init */
+    size_t struct_size;        /* sizeof(ellicast_encode_options): set by _init; older, smaller structs are accepted */
     uint32_t stream_id;        /* written in every packet (default 1) */
     uint32_t packet_size;      /* largest packet in bytes, 128..65000 (default 1200: one datagram under the IPv6 minimum MTU) */
     int position_bits;         /* 8..16 (default 14) */
@@ -208,6 +208,10 @@ typedef struct ellicast_encode_options {
     /* Called with a stage name and the share done (0..1) while encoding; may be NULL. */
     void (*progress)(const char* stage, double fraction, void* user);
     void* progress_user;
+    /* Added in 1.1 (a caller built against 1.0 passes the smaller struct_size and gets the default):
+     * surface samples per original vertex of an object at most, -1..1000 (default 0.25; -1: no limit
+     * but the spacing's). */
+    double sample_budget;
 } ellicast_encode_options;
 
 /* Fills `options` with the defaults (those of `ellicast encode`). */

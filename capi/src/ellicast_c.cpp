@@ -12,6 +12,7 @@
 #include "ellicast/format.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -373,6 +374,7 @@ void ellicast_encode_options_init(ellicast_encode_options* options) {
     options->point_map = d.point_map;
     options->normal_tolerance = d.normal_tolerance;
     options->threads = d.threads;
+    options->sample_budget = d.sample_budget;
 }
 
 }  // extern "C"
@@ -384,10 +386,14 @@ ellicast_status resolve_encode_options(const ellicast_encode_options* options, e
                                        const char* call) {
     ellicast_encode_options_init(&out);
     if (!options) return ELLICAST_OK;
-    if (options->struct_size < sizeof out)
+    // The struct of version 1.0 ended with progress_user; a caller built against it keeps the
+    // defaults of the fields added since.
+    constexpr size_t kFirstSize = offsetof(ellicast_encode_options, sample_budget);
+    if (options->struct_size < kFirstSize || options->struct_size > 1 << 16)
         return fail(ELLICAST_ERROR_ARGUMENT, std::string(call) + ": options.struct_size is " + std::to_string(options->struct_size) +
                                                  ", expected " + std::to_string(sizeof out) + " (call ellicast_encode_options_init)");
-    out = *options;
+    std::memcpy(&out, options, std::min(sizeof out, options->struct_size));
+    out.struct_size = sizeof out;
     return ELLICAST_OK;
 }
 
@@ -399,6 +405,7 @@ ellicast_status encode_path(const std::string& path, const std::string& shown_as
     e.max_ellipsoids = o.max_ellipsoids;
     e.repair_ratio = o.repair_ratio;
     e.sample_spacing = o.sample_spacing;
+    e.sample_budget = o.sample_budget;
     e.point_map = o.point_map != 0;
     e.normal_tolerance = o.normal_tolerance;
     e.threads = o.threads;

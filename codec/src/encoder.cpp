@@ -42,6 +42,9 @@ std::string check_encode_options(const EncodeOptions& o) {
                std::to_string(o.sample_spacing) + ")";
     if (o.max_samples > 10000000)
         return "at most 10000000 surface samples per object (got " + std::to_string(o.max_samples) + ")";
+    if (!(o.sample_budget >= -1) || o.sample_budget > 1000)
+        return "the sample budget must be in [-1, 1000] (surface samples per vertex; -1: no limit; got " +
+               std::to_string(o.sample_budget) + ")";
     if (o.threads < 1 || o.threads > 256) return "threads must be 1..256 (got " + std::to_string(o.threads) + ")";
     if (!(o.repair_ratio >= 0) || o.repair_ratio > 4)
         return "the repair ratio must be in [0, 4] (repair symbols per source packet; got " + std::to_string(o.repair_ratio) + ")";
@@ -638,6 +641,8 @@ SurfaceSampleOptions sample_options(const Mesh& mesh, const Frame& frame, const 
     s.spacing = options.sample_spacing * diagonal * (sheet ? 0.5 : 1.0);
     s.crease_spacing = s.spacing / 2;
     s.max_samples = std::max<size_t>(options.max_samples, mesh.positions.size());
+    if (options.sample_budget >= 0)
+        s.max_samples = std::min(s.max_samples, size_t(options.sample_budget * double(mesh.positions.size())));
     return s;
 }
 

@@ -9,6 +9,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <ellicast.h>
 
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -155,6 +156,16 @@ static void check_bad_calls(void) {
     eo.struct_size = 8;
     CHECK(ellicast_encode_file(path, &eo, &out) == ELLICAST_ERROR_ARGUMENT && contains(ellicast_last_error(), "struct_size"),
           "encode options not initialized");
+    /* A caller built against 1.0 passes the struct as it ended there: accepted, with the default budget
+     * (its sample_budget field is not read, whatever the memory after the struct holds). */
+    ellicast_encode_options_init(&eo);
+    eo.sample_budget = -1000; /* absurd: refused when read, ignored when the caller's struct ends before it */
+    eo.struct_size = offsetof(ellicast_encode_options, sample_budget);
+    CHECK(ellicast_encode_file(path, &eo, &out) == ELLICAST_OK && out.data, "a 1.0-sized encode options struct");
+    ellicast_buffer_free(&out);
+    eo.struct_size = sizeof eo;
+    CHECK(ellicast_encode_file(path, &eo, &out) == ELLICAST_ERROR_ARGUMENT && contains(ellicast_last_error(), "sample budget"),
+          "absurd sample budget");
     CHECK(ellicast_encode_file("/nonexistent/model.obj", NULL, &out) == ELLICAST_ERROR_INPUT &&
               contains(ellicast_last_error(), "/nonexistent/model.obj"),
           "missing model names the file");

@@ -28,6 +28,7 @@ struct EncodeArgs {
     uint32_t seed = 1;
     double sample_spacing = EncodeOptions{}.sample_spacing;
     uint32_t max_samples = EncodeOptions{}.max_samples;
+    double sample_budget = EncodeOptions{}.sample_budget;
     uint32_t stream_id = 1;
     unsigned threads = 2;
     bool quiet = false;
@@ -60,6 +61,7 @@ int run_encode(const EncodeArgs& a) {
     options.seed = a.seed;
     options.sample_spacing = a.sample_spacing;
     options.max_samples = a.max_samples;
+    options.sample_budget = a.sample_budget;
     options.threads = a.threads;
     options.repair_ratio = a.repair;
     options.point_map = !a.no_point_map;
@@ -181,6 +183,10 @@ const RegisterCommand kRegisterEncode({10, [](CLI::App& app, int& exit_code) {
         ->capture_default_str();
     cmd->add_option("--max-samples", args->max_samples,
                     "most surface samples per object (or its vertex count if larger); the spacing grows to fit")
+        ->capture_default_str();
+    cmd->add_option("--sample-budget", args->sample_budget,
+                    "most surface samples per original vertex of an object: samples serve a receiver only until the "
+                    "exact layer is whole, and lengthen every cycle (-1: no limit but --max-samples), [-1, 1000]")
         ->capture_default_str();
     cmd->add_option("--stream-id", args->stream_id, "stream id written in every packet")->capture_default_str();
     cmd->add_option("--threads", args->threads, "worker threads (1..256; the result does not depend on it)")
