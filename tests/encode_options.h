@@ -28,12 +28,14 @@ inline EncodeOptions coarse_options() {
     return o;
 }
 
-// The tests of the points-only reconstruction (creases, sheets, samples): surface samples wherever
-// the spacing asks, as `ellicast encode --sample-budget -1` makes them. The default budget (a quarter
-// of an object's vertices) leaves a box with no samples at all: its exact layer brings it back, but a
-// reconstruction from points alone has nothing on its faces.
-inline EncodeOptions sampled(EncodeOptions o = {}) {
+// The tests of the points-only reconstruction and of the base (creases, sheets, samples, coverage):
+// surface samples wherever the spacing asks and ellipsoids up to max_ellipsoids, as `ellicast encode
+// --sample-budget -1 --base-ratio 0` makes them. The defaults size both by the object's bytes, which
+// leaves a box with no samples and 13 ellipsoids: its exact layer brings it back, but a reconstruction
+// from points alone has nothing on its faces.
+inline EncodeOptions unbudgeted(EncodeOptions o = {}) {
     o.sample_budget = -1;
+    o.base_ratio = 0;
     return o;
 }
 

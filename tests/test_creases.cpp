@@ -30,7 +30,7 @@ struct Decoded {
 // Encoded with the default options but every sample the spacing asks for (test::sampled), and
 // decoded from every point packet.
 Decoded encode_decode(const Mesh& original) {
-    const ReceivedStream stream = test::receive_every_packet(encode_meshes({original}, test::sampled()));
+    const ReceivedStream stream = test::receive_every_packet(encode_meshes({original}, test::unbudgeted()));
     std::vector<Mesh> meshes;
     StreamDecodeReport report;
     std::string error;

@@ -542,7 +542,7 @@ struct SampleDecode {
 SampleDecode encode_decode_sample(const std::string& name) {
     SampleDecode out;
     auto original = load_meshes((shared_samples() / name).string()).meshes;
-    EncodeResult encoded = encode_meshes(original, sampled());  // the reconstruction from points, samples and all
+    EncodeResult encoded = encode_meshes(original, unbudgeted());  // the reconstruction from points, samples and all
     StreamPackets packets;
     REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, packets) == Error::Ok);
     ReceivedStream stream;

@@ -30,7 +30,7 @@ struct Decoded {
 // Encodes `original` (default options unless given) and decodes every packet, or the stream info,
 // the ellipsoids and a seeded random half of the point packets; `base` receives the base mesh.
 Decoded encode_decode(const std::vector<Mesh>& original, bool half_of_the_points, EncodeResult* encoded_out = nullptr,
-                      const EncodeOptions& options = test::sampled(), Mesh* base = nullptr) {
+                      const EncodeOptions& options = test::unbudgeted(), Mesh* base = nullptr) {
     EncodeResult encoded = encode_meshes(original, options);
     StreamPackets packets;
     REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, packets) == Error::Ok);
@@ -109,7 +109,7 @@ TEST_CASE("a flat disc's thin base is one closed shell without holes, and the co
     // left gaps between them thinner than the grid, each a tunnel through the base (genus 55 and 32
     // loose bubbles) that no inserted point could close.
     Mesh base;
-    Decoded full = encode_decode({flat_disc()}, false, nullptr, test::sampled(), &base);
+    Decoded full = encode_decode({flat_disc()}, false, nullptr, test::unbudgeted(), &base);
     REQUIRE(!base.triangles.empty());
     // Euler characteristic V - E + F of the base, vertices welded by position: 2 for one sphere.
     std::map<std::array<float, 3>, uint32_t> id;
@@ -148,7 +148,7 @@ TEST_CASE("a sheet gets flat ellipsoids over its whole area when the budget is s
     Mesh square;
     square.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     square.triangles = {{0, 1, 2}, {0, 2, 3}};
-    EncodeOptions options = test::sampled();
+    EncodeOptions options = test::unbudgeted();
     options.max_ellipsoids = 60;
     EncodeResult encoded;
     Decoded full = encode_decode({square}, false, &encoded, options);

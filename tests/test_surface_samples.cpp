@@ -22,7 +22,7 @@ using namespace ellicast;
 using ellicast::test::have_sample;
 using ellicast::test::fast_options;
 using ellicast::test::receive_every_packet;
-using ellicast::test::sampled;
+using ellicast::test::unbudgeted;
 using ellicast::test::shared_samples;
 
 namespace {
@@ -46,7 +46,7 @@ std::vector<SurfacePoint> points_of(const EncodeResult& r) {
 
 TEST_CASE("surface samples lie on the faces of a cube, carry their face's normal and fill every face") {
     const Mesh box = cube();
-    EncodeOptions o = sampled(fast_options());
+    EncodeOptions o = unbudgeted(fast_options());
     EncodeResult r = encode_meshes({box}, o);
     REQUIRE(r.reports[0].samples > 100);
     const auto pts = points_of(r);
@@ -92,7 +92,7 @@ TEST_CASE("an edge shared by two triangles is split at the same points from both
     Mesh quad;
     quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     quad.triangles = {{0, 1, 2}, {0, 2, 3}};
-    EncodeResult r = encode_meshes({quad}, sampled(fast_options()));
+    EncodeResult r = encode_meshes({quad}, unbudgeted(fast_options()));
     REQUIRE(r.reports[0].samples > 0);
     std::set<std::array<uint32_t, 3>> positions;
     for (const QuantizedPoint& q : r.contents[0].points) positions.insert(q.position);
@@ -112,7 +112,7 @@ TEST_CASE("an edge shared by two triangles is split at the same points from both
 
 TEST_CASE("sample spacing 0 sends the original vertices only, and the sample budget bounds the points") {
     const Mesh box = cube();
-    EncodeOptions o = sampled(fast_options());
+    EncodeOptions o = unbudgeted(fast_options());
     o.sample_spacing = 0;
     EncodeResult plain = encode_meshes({box}, o);
     CHECK(plain.reports[0].samples == 0);
@@ -161,7 +161,7 @@ TEST_CASE("a capped model gets nearly the whole sample budget, not a spacing ste
     if (!have_sample("gltf/Fox/Fox.gltf")) return;
     LoadResult loaded = load_meshes((shared_samples() / "gltf/Fox/Fox.gltf").string());
     REQUIRE(loaded.meshes.size() == 1);
-    EncodeOptions o = sampled(fast_options());
+    EncodeOptions o = unbudgeted(fast_options());
     o.sample_spacing = 0.003;  // far more samples than any budget below
     for (uint32_t budget : {5000u, 8000u, 12000u}) {
         o.max_samples = budget;
@@ -220,7 +220,7 @@ TEST_CASE("spot keeps the samples its large triangles need: fewer than a quarter
     REQUIRE(loaded.meshes.size() == 1);
     EncodeOptions o = fast_options();
     const EncodeResult r = encode_meshes(loaded.meshes, o);
-    const EncodeResult unbounded = encode_meshes(loaded.meshes, sampled(o));
+    const EncodeResult unbounded = encode_meshes(loaded.meshes, unbudgeted(o));
     MESSAGE("spot: " << r.reports[0].samples << " samples, " << unbounded.reports[0].samples << " without the budget");
     CHECK(r.reports[0].samples == unbounded.reports[0].samples);
     CHECK(r.reports[0].samples > 500);

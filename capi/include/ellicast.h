@@ -212,6 +212,9 @@ typedef struct ellicast_encode_options {
      * surface samples per original vertex of an object at most, -1..1000 (default 0.25; -1: no limit
      * but the spacing's). */
     double sample_budget;
+    /* Added in 1.1 too: an object's ellipsoids take at most this multiple of the bytes of its points
+     * and triangles (at least 8), 0..1000 (default 1; 0: max_ellipsoids alone). */
+    double base_ratio;
 } ellicast_encode_options;
 
 /* Fills `options` with the defaults (those of `ellicast encode`). */

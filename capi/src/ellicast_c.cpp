@@ -375,6 +375,7 @@ void ellicast_encode_options_init(ellicast_encode_options* options) {
     options->normal_tolerance = d.normal_tolerance;
     options->threads = d.threads;
     options->sample_budget = d.sample_budget;
+    options->base_ratio = d.base_ratio;
 }
 
 }  // extern "C"
@@ -406,6 +407,7 @@ ellicast_status encode_path(const std::string& path, const std::string& shown_as
     e.repair_ratio = o.repair_ratio;
     e.sample_spacing = o.sample_spacing;
     e.sample_budget = o.sample_budget;
+    e.base_ratio = o.base_ratio;
     e.point_map = o.point_map != 0;
     e.normal_tolerance = o.normal_tolerance;
     e.threads = o.threads;

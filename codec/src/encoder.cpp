@@ -45,6 +45,9 @@ std::string check_encode_options(const EncodeOptions& o) {
     if (!(o.sample_budget >= -1) || o.sample_budget > 1000)
         return "the sample budget must be in [-1, 1000] (surface samples per vertex; -1: no limit; got " +
                std::to_string(o.sample_budget) + ")";
+    if (!(o.base_ratio >= 0) || o.base_ratio > 1000)
+        return "the base ratio must be in [0, 1000] (the base's bytes against the exact data's; got " +
+               std::to_string(o.base_ratio) + ")";
     if (o.threads < 1 || o.threads > 256) return "threads must be 1..256 (got " + std::to_string(o.threads) + ")";
     if (!(o.repair_ratio >= 0) || o.repair_ratio > 4)
         return "the repair ratio must be in [0, 4] (repair symbols per source packet; got " + std::to_string(o.repair_ratio) + ")";
@@ -478,7 +481,10 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     }
     if (interior == 0 && report.flat_ellipsoids == 0 && out.empty())
         warnings.push_back(mesh.name + ": no interior volume and no sheet found; no ellipsoids");
-    if (report.closed && interior > 0 && report.coverage + 1e-9 < options.coverage) {  // the target is for closed models
+    // The target is for closed models; an object whose bytes cap its base (base_ratio) falls short on
+    // purpose, which its report says (ellipsoid_budget), not a warning.
+    const bool capped_by_bytes = report.ellipsoid_budget > 0 && out.size() >= report.ellipsoid_budget;
+    if (report.closed && interior > 0 && report.coverage + 1e-9 < options.coverage && !capped_by_bytes) {
         char text[256];
         std::snprintf(text, sizeof text, "%s: the ellipsoids cover %.1f%% of the interior, below the target %.1f%% (%zu "
                       "ellipsoids; %s)", mesh.name.c_str(), 100 * report.coverage, 100 * options.coverage, out.size(),
@@ -646,6 +652,18 @@ SurfaceSampleOptions sample_options(const Mesh& mesh, const Frame& frame, const 
     return s;
 }
 
+// The ellipsoids an object's exact data warrants (EncodeOptions::base_ratio): the base's bytes at
+// most base_ratio times those of its vertices as point records and about a byte a triangle of
+// connectivity, at least 8 ellipsoids, at most max_ellipsoids.
+uint32_t ellipsoid_budget(const Mesh& mesh, const StreamInfo& info, const ObjectInfo& object, const EncodeOptions& options) {
+    if (options.base_ratio <= 0) return options.max_ellipsoids;
+    const double exact = double(mesh.positions.size()) * double(point_record_bits(info, object)) / 8.0 +
+                         double(mesh.triangles.size());
+    const double per_ellipsoid = double(info.packet_size) / double(std::max<size_t>(1, ellipsoids_per_packet(info.packet_size)));
+    const double wanted = std::ceil(options.base_ratio * exact / per_ellipsoid);
+    return uint32_t(std::clamp(wanted, 8.0, double(options.max_ellipsoids)));
+}
+
 // The encoder trusts nothing of a Mesh it is handed: sizes, indices and coordinates are checked.
 // Fills `oriented` with `mesh` repaired by orient_outward() and returns how many triangles it
 // turned (0: `oriented` is left empty and `mesh` is right as it is), with a warning saying what.
@@ -754,7 +772,10 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         ObjectContent content;
         const uint32_t object_seed = options.seed * 2654435761u + uint32_t(m) * 40503u + 1u;
         if (!mesh.is_point_set && !mesh.triangles.empty()) {
-            content.ellipsoids = encode_ellipsoids(mesh, object.frame, options, object_seed, seed_share, report,
+            EncodeOptions object_options = options;
+            object_options.max_ellipsoids = std::min(options.max_ellipsoids, ellipsoid_budget(mesh, info, object, options));
+            if (object_options.max_ellipsoids < options.max_ellipsoids) report.ellipsoid_budget = object_options.max_ellipsoids;
+            content.ellipsoids = encode_ellipsoids(mesh, object.frame, object_options, object_seed, seed_share, report,
                                                    result.warnings,
                                                    progress);
             grid_hint = std::max<uint16_t>(grid_hint, uint16_t(std::max({report.grid[0], report.grid[1], report.grid[2]})));

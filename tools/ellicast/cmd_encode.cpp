@@ -29,6 +29,7 @@ struct EncodeArgs {
     double sample_spacing = EncodeOptions{}.sample_spacing;
     uint32_t max_samples = EncodeOptions{}.max_samples;
     double sample_budget = EncodeOptions{}.sample_budget;
+    double base_ratio = EncodeOptions{}.base_ratio;
     uint32_t stream_id = 1;
     unsigned threads = 2;
     bool quiet = false;
@@ -62,6 +63,7 @@ int run_encode(const EncodeArgs& a) {
     options.sample_spacing = a.sample_spacing;
     options.max_samples = a.max_samples;
     options.sample_budget = a.sample_budget;
+    options.base_ratio = a.base_ratio;
     options.threads = a.threads;
     options.repair_ratio = a.repair;
     options.point_map = !a.no_point_map;
@@ -108,9 +110,12 @@ int run_encode(const EncodeArgs& a) {
         }
         std::string samples;
         if (r.samples) samples.append(" + ").append(std::to_string(r.samples)).append(" surface samples");
-        std::printf("  object %zu %-24s %u ellipsoids (%u for thin parts, %u flat) of %u candidates, %u points (%u vertices%s); "
+        const std::string budget = r.ellipsoid_budget > 0 ? " (at most " + std::to_string(r.ellipsoid_budget) +
+                                                                " for its bytes: --base-ratio)"
+                                                          : "";
+        std::printf("  object %zu %-24s %u ellipsoids%s (%u for thin parts, %u flat) of %u candidates, %u points (%u vertices%s); "
                     "%s, coverage %.1f%%, outside %.2f%%, surface near base %.1f%%\n",
-                    i, r.name.c_str(), r.ellipsoids, r.surface_ellipsoids, r.flat_ellipsoids, r.candidates, r.points,
+                    i, r.name.c_str(), r.ellipsoids, budget.c_str(), r.surface_ellipsoids, r.flat_ellipsoids, r.candidates, r.points,
                     r.vertices, samples.c_str(),
                     r.closed ? "closed" : "open", 100 * r.coverage, 100 * r.outside, 100 * r.surface_covered);
     }
@@ -187,6 +192,10 @@ const RegisterCommand kRegisterEncode({10, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--sample-budget", args->sample_budget,
                     "most surface samples per original vertex of an object: samples serve a receiver only until the "
                     "exact layer is whole, and lengthen every cycle (-1: no limit but --max-samples), [-1, 1000]")
+        ->capture_default_str();
+    cmd->add_option("--base-ratio", args->base_ratio,
+                    "an object's ellipsoids take at most this multiple of the bytes of its points and triangles "
+                    "(at least 8 ellipsoids; 0: --ellipsoids alone), [0, 1000]")
         ->capture_default_str();
     cmd->add_option("--stream-id", args->stream_id, "stream id written in every packet")->capture_default_str();
     cmd->add_option("--threads", args->threads, "worker threads (1..256; the result does not depend on it)")

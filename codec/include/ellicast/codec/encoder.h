@@ -63,6 +63,13 @@ struct EncodeOptions {
     // of 2.5, the Duck after 1.35 instead of never within 4, with no worse a picture before.
     // Negative: no limit but max_samples. [-1, 1000]
     double sample_budget = 0.25;
+    // The base follows the bytes too: an object's ellipsoids take at most this multiple of the bytes
+    // its exact data is estimated at (its vertices as point records, a byte a triangle), and at least
+    // 8 ellipsoids; never more than max_ellipsoids. A 4-vertex square had 295 ellipsoids (4.9 KB)
+    // for 99 bytes of points and triangles, the 24-vertex Box 50 (832 bytes) for 278: the first
+    // picture of an object that small costs more than the object itself. 0: max_ellipsoids alone.
+    // [0, 1000]
+    double base_ratio = 1.0;
     unsigned threads = 2;            // worker threads (results do not depend on it)
     // Repair packets (format 1.2, spec 17): POINTS_REPAIR symbols per block of POINTS packets, as a
     // multiple of the block's source count (blocks hold at most floor(255 / (1 + ratio)) POINTS
@@ -97,6 +104,7 @@ struct ObjectReport {
     uint32_t samples = 0;             // surface samples added to the vertices (distinct position and attributes)
     uint32_t candidates = 0;          // candidate ellipsoids grown
     uint32_t ellipsoids = 0;          // ellipsoids sent
+    uint32_t ellipsoid_budget = 0;    // the ellipsoids its bytes warrant (EncodeOptions::base_ratio), when below max_ellipsoids; else 0
     uint32_t surface_ellipsoids = 0;  // of those, chosen for surface (thin parts) rather than volume
     uint32_t flat_ellipsoids = 0;     // of those, flat ones straddling a sheet without inside
     uint32_t shrunk = 0;              // ellipsoids shrunk after quantization to stay inside
