@@ -127,7 +127,16 @@ for what in "$@"; do
       [ -n "${ELLICAST_CORPUS:-}" ] && folders+=("$ELLICAST_CORPUS")
       python3 "$root/bench/corpus.py" "$build/ellicast" "$root/.cache/node/node_modules" "$results/corpus" "${folders[@]}" > /dev/null
       rm -rf "$results/corpus/out"
-      cat "$results/corpus/corpus.md" ;;
+      cat "$results/corpus/corpus.md"
+      # What the exact asset costs against Draco and gltfpack (issue 27): the same assets and the
+      # shared meshes. gltfpack (npm, a WebAssembly build) is only needed here.
+      node_bin="$root/.cache/node/node_modules/.bin"
+      [ -x "$node_bin/gltfpack" ] || (cd "$root/.cache/node" && npm install --no-audit --no-fund --loglevel=error gltfpack@0.25.0 >/dev/null) ||
+        echo "bench: gltfpack could not be installed; its column stays empty" >&2
+      echo "== corpus bytes: ellicast content against Draco and gltfpack (bench/corpus_bytes.py)" >&2
+      python3 "$root/bench/corpus_bytes.py" "$build/ellicast" "$node_bin" "$results/corpus" "$samples/meshes" "${folders[@]}" > /dev/null
+      rm -rf "$results/corpus/work"
+      cat "$results/corpus/bytes.md" ;;
     *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, first-picture, full-quality, broadcast, compare, corpus)" >&2; exit 2 ;;
   esac
 done
