@@ -249,10 +249,54 @@ TEST_CASE("ellipsoids only give the closed base with geometric normals and a not
     std::string error;
     REQUIRE(decode_object(info, {sphere_ellipsoid({0, 0, 0}, 1)}, {}, 0, DecodeOptions{}, 0, mesh, report, error));
     CHECK(report.has_surface);
-    CHECK(mesh.triangles.size() == report.base_faces);
+    // The base, simplified to the object's size: 100 points warrant at most 5,000 triangles.
+    CHECK(mesh.triangles.size() == report.base_faces - report.simplified_faces);
+    CHECK(mesh.triangles.size() <= 5000);
     CHECK(open_or_nonmanifold_edges(mesh) == 0);
     CHECK(mesh.normals.size() == mesh.positions.size());
     CHECK(mesh.texcoords.empty());  // nothing to take them from
+}
+
+TEST_CASE("a partial reconstruction is no larger than its object: a coarser base, its filler simplified, every received point kept") {
+    // A 12-triangle cube came back as 60,000 triangles from its ellipsoids; the 2CylinderEngine's
+    // 1.8 MB after one cycle at 50% loss as a 73 MB glTF (5.3 MB now).
+    const auto sphere = fibonacci_sphere(400, 1.0);
+    const std::vector<SurfacePoint> received(sphere.begin(), sphere.begin() + 150);
+    auto info = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, 400, kAttrNormal);
+    std::string error;
+    DecodeOptions unlimited;
+    unlimited.faces_per_point = 0;
+    Mesh full, small;
+    ObjectDecodeReport full_report, small_report;
+    REQUIRE(decode_object(info, {sphere_ellipsoid({0, 0, 0}, 1)}, received, 0, unlimited, 0, full, full_report, error));
+    REQUIRE(decode_object(info, {sphere_ellipsoid({0, 0, 0}, 1)}, received, 0, DecodeOptions{}, 0, small, small_report, error));
+    MESSAGE("unlimited " << full.triangles.size() << " triangles (base " << full_report.base_faces << "), simplified "
+                         << small.triangles.size() << " (base " << small_report.base_faces << ")");
+    CHECK(full_report.simplified_faces == 0);
+    CHECK(full.triangles.size() > 10000);
+    CHECK(small.triangles.size() <= 5000);  // max(5,000, 4 a point of 400)
+    CHECK(small_report.faces_out == small.triangles.size());
+    CHECK(small_report.simplified_faces > 0);
+    // Its base was over eight times the budget: built on a coarser grid first, and the report says so.
+    CHECK(small_report.base_faces < full_report.base_faces);
+    CHECK(std::any_of(small_report.notes.begin(), small_report.notes.end(),
+                      [](const std::string& n) { return n.find("lowered to") != std::string::npos; }));
+    CHECK(open_or_nonmanifold_edges(small) == 0);
+    // Every received point is still a vertex, bit for bit.
+    std::set<std::array<float, 3>> vertices(small.positions.begin(), small.positions.end());
+    for (const SurfacePoint& p : received) CHECK(vertices.count(p.position) == 1);
+    // And the shape is the same: within 0.1% of the diagonal of the unsimplified one.
+    SurfaceDistance d;
+    REQUIRE(surface_distance({full}, {small}, {}, d, error));
+    CHECK(d.percent(d.a_to_b.rms) <= 0.1);
+    CHECK(d.percent(d.b_to_a.rms) <= 0.1);
+    // A complete object is not touched: its filler is gone already, and its size is its own.
+    Mesh whole;
+    ObjectDecodeReport whole_report;
+    auto info400 = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, 400, kAttrNormal);
+    REQUIRE(decode_object(info400, {sphere_ellipsoid({0, 0, 0}, 1)}, sphere, 0, DecodeOptions{}, 0, whole, whole_report, error));
+    CHECK(whole_report.complete);
+    CHECK(whole_report.simplified_faces == 0);
 }
 
 TEST_CASE("points without ellipsoids become a point set and the report says why") {

@@ -23,6 +23,7 @@ struct DecodeArgs {
     std::string output;
     size_t snapshots = 0;
     int grid = 0;
+    double faces_per_point = DecodeOptions{}.faces_per_point;
     bool quiet = false;
     bool no_exact = false;    // --no-exact: always the reconstruction
     std::string key;          // --key: decode only what this sender signed
@@ -93,6 +94,7 @@ int run_decode(const DecodeArgs& args) {
     ProgressBar bar(!args.quiet);
     DecodeOptions options;
     options.grid_resolution = args.grid;
+    options.faces_per_point = args.faces_per_point;
     options.exact = !args.no_exact;
     options.snapshot_every = args.snapshots;
     options.progress = [&](const std::string& stage, double fraction) { bar.update(stage, fraction); };
@@ -158,8 +160,11 @@ int run_decode(const DecodeArgs& args) {
         if (o.exact)
             std::printf(" (exact: the original triangles)");
         else if (o.has_surface)
-            std::printf(" (base %zu vertices, %zu faces; %zu marching-cubes vertices left; %zu flips, %zu collapses)",
-                        o.base_vertices, o.base_faces, o.mc_vertices_left, o.flips, o.collapses);
+            std::printf(" (base %zu vertices, %zu faces; %zu marching-cubes vertices left; %zu flips, %zu collapses%s)",
+                        o.base_vertices, o.base_faces, o.mc_vertices_left, o.flips, o.collapses,
+                        o.simplified_faces > 0
+                            ? ("; " + std::to_string(o.simplified_faces) + " base triangles simplified away").c_str()
+                            : "");
         else
             std::printf(" (point set)");
         if (!o.exact && o.has_connectivity)
@@ -196,6 +201,11 @@ const RegisterCommand kRegisterDecode{{40, [](CLI::App& app, int& exit_code) {
                     "grid resolution for the base (cells along the object's frame; default: the stream's hint, "
                     "else " + std::to_string(kDefaultGridResolution) + ")")
         ->check(CLI::Range(kMinGridResolution, kMaxGridResolution));
+    cmd->add_option("--faces-per-point", args->faces_per_point,
+                    "an incomplete object is written with at most this many triangles per point of its stream "
+                    "(at least 5000), the base simplified around the points received; 0: the whole base")
+        ->check(CLI::Range(0.0, 1000.0))
+        ->capture_default_str();
     cmd->add_flag("--draco", args->write.draco, "glTF output: compress triangle meshes with KHR_draco_mesh_compression");
     cmd->add_flag("--quantize", args->write.quantize, "glTF output: quantize attributes with KHR_mesh_quantization");
     cmd->add_option("--key", args->key,
