@@ -332,11 +332,14 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
         report.complete || options.faces_per_point <= 0
             ? 0
             : std::max<size_t>(options.min_faces, size_t(options.faces_per_point * double(info.point_count)));
-    if (face_budget > 0 && options.grid_resolution <= 0 && base.n_faces() > 8 * face_budget &&
+    // With no point received the base is all there is to show (the first picture): a grid for about
+    // the budget itself, so that no simplification is needed and the picture stays quick.
+    const double base_factor = points.empty() ? 1.0 : 8.0;
+    if (face_budget > 0 && options.grid_resolution <= 0 && base.n_faces() > base_factor * double(face_budget) &&
         resolution > kMinGridResolution) {
         const int wanted = resolution;
         resolution = std::max(kMinGridResolution,
-                              int(std::floor(resolution * std::sqrt(8.0 * double(face_budget) / double(base.n_faces())))));
+                              int(std::floor(resolution * std::sqrt(base_factor * double(face_budget) / double(base.n_faces())))));
         EllipsoidGrid coarser;
         size_t skipped = 0;
         if (resolution < wanted && rasterize_ellipsoids(ellipsoids, info.frame, resolution, coarser, error, &skipped) &&
@@ -418,7 +421,8 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
 
     auto t4 = std::chrono::steady_clock::now();
     out = extract_mesh(r, info, points);
-    if (face_budget > 0) {
+    // The grid's estimate can overshoot a little: a base alone is trimmed only past twice the budget.
+    if (face_budget > 0 && (!points.empty() || out.triangles.size() > 2 * face_budget)) {
         report.simplified_faces = detail::simplify_filler(out, points, face_budget);
     }
     report.timings.output = seconds_since(t4);
