@@ -341,8 +341,9 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
         resolution = std::max(kMinGridResolution,
                               int(std::floor(resolution * std::sqrt(base_factor * double(face_budget) / double(base.n_faces())))));
         EllipsoidGrid coarser;
-        size_t skipped = 0;
-        if (resolution < wanted && rasterize_ellipsoids(ellipsoids, info.frame, resolution, coarser, error, &skipped) &&
+        size_t skipped = 0;    // counted already, at the first grid
+        std::string ignored;   // a failure keeps the first grid, and the call's error stays empty
+        if (resolution < wanted && rasterize_ellipsoids(ellipsoids, info.frame, resolution, coarser, ignored, &skipped) &&
             !coarser.empty()) {
             DecoderTriMesh smaller = marching_cubes(coarser);
             if (smaller.n_faces() > 0) {

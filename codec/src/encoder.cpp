@@ -660,8 +660,8 @@ uint32_t ellipsoid_budget(const Mesh& mesh, const StreamInfo& info, const Object
     const double exact = double(mesh.positions.size()) * double(point_record_bits(info, object)) / 8.0 +
                          double(mesh.triangles.size());
     const double per_ellipsoid = double(info.packet_size) / double(std::max<size_t>(1, ellipsoids_per_packet(info.packet_size)));
-    const double wanted = std::ceil(options.base_ratio * exact / per_ellipsoid);
-    return uint32_t(std::clamp(wanted, 8.0, double(options.max_ellipsoids)));
+    const double wanted = std::max(8.0, std::ceil(options.base_ratio * exact / per_ellipsoid));
+    return uint32_t(std::min(wanted, double(options.max_ellipsoids)));  // max_ellipsoids may be under 8
 }
 
 // The encoder trusts nothing of a Mesh it is handed: sizes, indices and coordinates are checked.
@@ -773,7 +773,7 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         const uint32_t object_seed = options.seed * 2654435761u + uint32_t(m) * 40503u + 1u;
         if (!mesh.is_point_set && !mesh.triangles.empty()) {
             EncodeOptions object_options = options;
-            object_options.max_ellipsoids = std::min(options.max_ellipsoids, ellipsoid_budget(mesh, info, object, options));
+            object_options.max_ellipsoids = ellipsoid_budget(mesh, info, object, options);
             if (object_options.max_ellipsoids < options.max_ellipsoids) report.ellipsoid_budget = object_options.max_ellipsoids;
             content.ellipsoids = encode_ellipsoids(mesh, object.frame, object_options, object_seed, seed_share, report,
                                                    result.warnings,
