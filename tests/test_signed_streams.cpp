@@ -462,3 +462,151 @@ TEST_CASE("a flood of forged MANIFESTs with the right key id costs a bounded num
     CHECK(c.manifests_failed + c.manifests_unchecked + c.manifests_verified + c.manifests_repeated >= taken * 20 / 21);
     CHECK(reception.complete());
 }
+
+// ------------------------------------------------------------------------------------------------
+// Format 1.9: parts bound to a content (spec 25). Row 4 of the hostile streams: two contents signed
+// with one key under one stream id, spliced.
+
+namespace {
+
+struct Split {
+    Packets manifests, info, ellipsoids, points;
+};
+Split split(const Packets& packets) {
+    Split s;
+    for (const auto& p : packets) {
+        const uint8_t type = p[6];
+        if (type == static_cast<uint8_t>(PacketType::Manifest)) s.manifests.push_back(p);
+        else if (type == static_cast<uint8_t>(PacketType::StreamInfo)) s.info.push_back(p);
+        else if (type == static_cast<uint8_t>(PacketType::Ellipsoids)) s.ellipsoids.push_back(p);
+        else s.points.push_back(p);
+    }
+    return s;
+}
+
+std::set<PacketDigest> listed_by(const Packets& manifests) {
+    std::set<PacketDigest> out;
+    for (const auto& m : manifests) {
+        ManifestPart part;
+        REQUIRE(decode_manifest_payload(view_of(m).payload, part) == Error::Ok);
+        out.insert(part.digests.begin(), part.digests.end());
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("signing binds every part to the content id of its STREAM_INFO, and writes scheme 1 on request") {
+    const auth::KeyPair key = key_from(1);
+    const Packets packets = test::synthetic_stream(40, 3000);
+    StreamInfoPart info;
+    REQUIRE(decode_stream_info_payload(view_of(packets[0]).payload, info) == Error::Ok);
+    for (uint8_t scheme : {kManifestSchemeBound, kManifestSchemeEd25519}) {
+        CAPTURE(int(scheme));
+        Packets manifests;
+        std::string error;
+        REQUIRE(auth::sign_packets(packets, key, 1200, 0, manifests, error, scheme) == Error::Ok);
+        for (const auto& m : manifests) {
+            const PacketView v = view_of(m);
+            CHECK(v.header.version_minor == (scheme == kManifestSchemeBound ? 9 : 2));
+            ManifestPart part;
+            REQUIRE(decode_manifest_payload(v.payload, part) == Error::Ok);
+            CHECK(part.scheme == scheme);
+            CHECK(part.content_id == (scheme == kManifestSchemeBound ? info.info.content_id : 0u));
+            CHECK(auth::verify_manifest(m, part, key.public_key));
+            // The content id is signed: changing it breaks the signature.
+            if (scheme == kManifestSchemeBound) {
+                auto altered = forge(m, kHeaderSize + 24);
+                ManifestPart p2;
+                REQUIRE(decode_manifest_payload(view_of(altered).payload, p2) == Error::Ok);
+                CHECK_FALSE(auth::verify_manifest(altered, p2, key.public_key));
+            }
+        }
+    }
+    // Two contents in one list cannot be signed as one.
+    Packets mixed = packets;
+    mixed.push_back(test::synthetic_stream(40, 2000)[0]);
+    Packets manifests;
+    std::string error;
+    CHECK(auth::sign_packets(mixed, key, 1200, 0, manifests, error) == Error::MalformedPayload);
+    CHECK(error.find("one content") != std::string::npos);
+}
+
+TEST_CASE("a receiver with the key never mixes two contents signed with it under one stream id") {
+    const auth::KeyPair key = key_from(1);
+    // Two contents under the same stream id, both signed (scheme 2) with the same key.
+    const Split a = split(signed_stream(key, 0x5EED, 3000));
+    const Split b = split(signed_stream(key, 0x5EED, 2000));
+    REQUIRE(!a.info.empty());
+    REQUIRE(!b.points.empty());
+    const std::set<PacketDigest> listed_a = listed_by(a.manifests);
+
+    SUBCASE("live: the other content's points come first, are held, and are rejected once the stream shows its "
+            "content; its STREAM_INFO later cannot switch it") {
+        auth::Authenticator filter(key.public_key);
+        ReceivedStream decoder;
+        uint64_t where = 0;
+        auto feed = [&](const Packets& packets) {
+            for (const auto& p : packets) {
+                const auto verdict = filter.take(view_of(p), p, where);
+                if (verdict == auth::Authenticator::Verdict::Pass) decoder.add_packet(p, where);
+                for (auto& r : filter.take_released()) decoder.add_packet(r.bytes, r.where);
+                ++where;
+            }
+        };
+        feed(a.manifests);
+        feed(b.manifests);
+        feed(b.points);  // authenticated (for content b) but the stream shows no content yet: held
+        CHECK(filter.counters().held == b.points.size());
+        CHECK(decoder.counters().accepted == 0);
+        feed(a.info);  // the stream shows content a: b's points are rejected, not released
+        feed(a.ellipsoids);
+        feed(b.info);  // another content's STREAM_INFO: rejected, the stream keeps its content
+        CHECK(filter.content(0x5EED) == decoder.info()->content_id);
+        CHECK(filter.counters().held == 0);
+        size_t rejected_points = 0;
+        for (const auto& p : b.points) rejected_points += !listed_a.count(packet_digest(p));
+        CHECK(rejected_points > 0);
+        CHECK(filter.counters().not_authenticated == rejected_points + b.info.size());
+        // What reached the decoder: content a's STREAM_INFO, its ellipsoids, and no point of b that a's
+        // manifest does not list.
+        REQUIRE(decoder.objects().size() == 1);
+        const size_t before = decoder.objects()[0].points.size();
+        feed(a.points);
+        CHECK(decoder.objects()[0].points.size() == 3000);
+        CHECK(before < 3000);
+        CHECK(decoder.info()->objects[0].point_count == 3000);
+    }
+    SUBCASE("live: a content's own points before its STREAM_INFO are released after it, in arrival order") {
+        auth::Authenticator filter(key.public_key);
+        uint64_t where = 0;
+        for (const auto& p : a.manifests) filter.take(view_of(p), p, where++);
+        for (const auto& p : a.points) CHECK(filter.take(view_of(p), p, where++) == auth::Authenticator::Verdict::Held);
+        CHECK(filter.take(view_of(a.info[0]), a.info[0], where++) == auth::Authenticator::Verdict::Pass);
+        const auto released = filter.take_released();
+        REQUIRE(released.size() == a.points.size());
+        for (size_t i = 0; i < released.size(); ++i) CHECK(released[i].bytes == a.points[i]);
+        CHECK(filter.counters().not_authenticated == 0);
+    }
+    SUBCASE("a recording: the spliced file decodes to the first content alone") {
+        Packets file = a.manifests;
+        file.insert(file.end(), b.manifests.begin(), b.manifests.end());
+        file.insert(file.end(), b.points.begin(), b.points.end());
+        file.insert(file.end(), a.info.begin(), a.info.end());
+        file.insert(file.end(), a.ellipsoids.begin(), a.ellipsoids.end());
+        const std::vector<uint8_t> bytes = write_container(file);
+        const ContainerContents contents = read_container(bytes);
+        const auth::RecordingAuthentication r = auth::authenticate_recording(contents.packets, bytes, key.public_key);
+        for (size_t i = 0; i < contents.packets.size(); ++i) {
+            const ContainerPacket& p = contents.packets[i];
+            if (p.view.header.type != static_cast<uint8_t>(PacketType::Points)) continue;
+            const bool ours = listed_a.count(packet_digest(std::span<const uint8_t>(bytes).subspan(p.offset, p.view.size)));
+            CHECK((r.verdicts[i] == auth::Authenticator::Verdict::Pass) == ours);
+        }
+        // And the conformance check names the two contents under one stream id.
+        const auth::SignedRecordingCheck check = auth::check_signed_recording(contents.packets, bytes, &key.public_key);
+        bool named = false;
+        for (const auto& problem : check.problems) named |= problem.message.find("content_id") != std::string::npos;
+        CHECK(named);
+    }
+}

@@ -2,6 +2,7 @@
 #include "ellicast/auth.h"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace ellicast::auth {
 
@@ -22,6 +23,53 @@ Authenticator::Verdict Authenticator::reject(uint64_t where, Error e, std::strin
     return Verdict::Rejected;
 }
 
+namespace {
+// A STREAM_INFO's own content id (payload offset 12), when its payload is long enough (spec 25.2).
+std::optional<uint32_t> stream_info_content(uint8_t type, std::span<const uint8_t> payload) {
+    if (type != static_cast<uint8_t>(PacketType::StreamInfo) || payload.size() < 16) return std::nullopt;
+    return uint32_t{payload[12]} | uint32_t{payload[13]} << 8 | uint32_t{payload[14]} << 16 |
+           uint32_t{payload[15]} << 24;
+}
+
+std::string hex32(uint32_t v) {
+    char text[16];
+    std::snprintf(text, sizeof text, "0x%08X", v);
+    return text;
+}
+
+std::string type_of(const std::vector<uint8_t>& bytes) {
+    return bytes.size() > 6 ? packet_type_name(bytes[6]) : std::string("?");
+}
+}  // namespace
+
+Authenticator::Judgement Authenticator::judge(const PacketDigest& digest, uint32_t stream_id,
+                                              std::optional<uint32_t> info_content) const {
+    auto it = listed_.find(digest);
+    if (it == listed_.end()) return Judgement::Unlisted;
+    const Binding& b = it->second;
+    if (b.unbound) return Judgement::Pass;                                     // rule 1
+    auto c = content_.find(stream_id);
+    if (info_content)  // rule 2: a STREAM_INFO of its own content, and of the stream's when it has one
+        return b.binds(*info_content) && (c == content_.end() || c->second == *info_content) ? Judgement::Pass
+                                                                                             : Judgement::OtherContent;
+    if (c == content_.end()) return Judgement::AwaitContent;                   // rule 4
+    return b.binds(c->second) ? Judgement::Pass : Judgement::OtherContent;     // rule 3
+}
+
+bool Authenticator::passed(uint32_t stream_id, std::optional<uint32_t> info_content) {
+    ++counters_.passed;
+    return info_content && content_.emplace(stream_id, *info_content).second;
+}
+
+std::string Authenticator::other_content_detail(uint8_t type, uint32_t stream_id) const {
+    auto c = content_.find(stream_id);
+    if (c == content_.end())
+        return packet_type_name(type) + " packet that verified MANIFEST parts list only for another content than "
+                                        "its own content id";
+    return packet_type_name(type) + " packet that verified MANIFEST parts list only for another content than " +
+           hex32(c->second) + ", the one stream " + std::to_string(stream_id) + " shows (spliced from another stream?)";
+}
+
 Authenticator::Verdict Authenticator::take(const PacketView& packet, std::span<const uint8_t> bytes, uint64_t where) {
     last_error_ = Error::Ok;
     bytes = bytes.first(std::min(bytes.size(), packet.size));
@@ -31,50 +79,97 @@ Authenticator::Verdict Authenticator::take(const PacketView& packet, std::span<c
     }
     if (packet.header.type == static_cast<uint8_t>(PacketType::Manifest)) return take_manifest(packet, bytes, where);
     const PacketDigest digest = packet_digest(bytes);
-    if (listed_.count(digest)) {
-        ++counters_.passed;
-        return Verdict::Pass;
-    }
     const uint32_t stream_id = packet.header.stream_id;
-    if (complete_streams_.count(stream_id))
-        return reject(where, Error::NotAuthenticated,
-                      packet_type_name(packet.header.type) + " packet that the verified manifest of stream " +
-                          std::to_string(stream_id) + " does not list");
+    const std::optional<uint32_t> info_content = stream_info_content(packet.header.type, packet.payload);
+    switch (judge(digest, stream_id, info_content)) {
+    case Judgement::Pass:
+        // A STREAM_INFO that gives its stream a content releases what waited for it, after itself.
+        if (passed(stream_id, info_content)) settle();
+        return Verdict::Pass;
+    case Judgement::OtherContent:
+        return reject(where, Error::NotAuthenticated, other_content_detail(packet.header.type, stream_id));
+    case Judgement::AwaitContent:
+        break;
+    case Judgement::Unlisted:
+        if (complete_streams_.count(stream_id))
+            return reject(where, Error::NotAuthenticated,
+                          packet_type_name(packet.header.type) + " packet that the verified manifest of stream " +
+                              std::to_string(stream_id) + " does not list");
+        break;
+    }
     const size_t cost = bytes.size() + kHeldPacketCost;
-    if (limits_.max_held_packets == 0 || cost > limits_.max_held_bytes)
+    if (limits_.max_held_packets == 0 || cost > limits_.max_held_bytes) {
+        if (listed_.count(digest))
+            return reject(where, Error::NotAuthenticated,
+                          packet_type_name(packet.header.type) + " packet listed only for a content that stream " +
+                              std::to_string(stream_id) + " never showed (no STREAM_INFO of it was authenticated)");
         return reject(where, Error::NotAuthenticated,
                       packet_type_name(packet.header.type) + " packet that no verified MANIFEST lists");
+    }
+    hold(digest, stream_id, info_content, bytes, where);
+    return Verdict::Held;
+}
+
+void Authenticator::hold(const PacketDigest& digest, uint32_t stream_id, std::optional<uint32_t> info_content,
+                         std::span<const uint8_t> bytes, uint64_t where) {
+    const size_t cost = bytes.size() + kHeldPacketCost;
     while (!held_.empty() &&
            (held_.size() + 1 > limits_.max_held_packets || held_bytes_ + cost > limits_.max_held_bytes))
         drop_oldest();
-    held_.push_back({digest, stream_id, std::vector<uint8_t>(bytes.begin(), bytes.end()), where});
+    held_.push_back({digest, stream_id, info_content, std::vector<uint8_t>(bytes.begin(), bytes.end()), where});
     held_bytes_ += cost;
     counters_.held = held_.size();
-    return Verdict::Held;
+}
+
+void Authenticator::settle() {
+    // Until nothing changes: a released STREAM_INFO can give a stream the content others wait for.
+    for (bool changed = true; changed;) {
+        changed = false;
+        std::deque<Held> keep;
+        for (Held& h : held_) {
+            const Judgement j = judge(h.digest, h.stream_id, h.info_content);
+            if (j == Judgement::Unlisted || j == Judgement::AwaitContent) {
+                keep.push_back(std::move(h));
+                continue;
+            }
+            held_bytes_ -= h.bytes.size() + kHeldPacketCost;
+            if (j == Judgement::OtherContent) {
+                reject(h.where, Error::NotAuthenticated, other_content_detail(h.bytes[6], h.stream_id));
+                continue;
+            }
+            if (passed(h.stream_id, h.info_content)) changed = true;
+            ++counters_.released;
+            released_.push_back({std::move(h.bytes), h.where});
+        }
+        held_.swap(keep);
+    }
+    counters_.held = held_.size();
 }
 
 void Authenticator::drop_oldest() {
     Held& h = held_.front();
     held_bytes_ -= h.bytes.size() + kHeldPacketCost;
     const uint64_t where = h.where;
-    const std::string type = h.bytes.size() > 6 ? packet_type_name(h.bytes[6]) : "?";
+    const std::string type = type_of(h.bytes);
+    const bool listed = listed_.count(h.digest) > 0;
     held_.pop_front();
     counters_.held = held_.size();
     reject(where, Error::NotAuthenticated,
-           type + " packet held for a MANIFEST that did not come before the hold was full");
+           type + (listed ? " packet held for its stream's STREAM_INFO, which did not come before the hold was full"
+                          : " packet held for a MANIFEST that did not come before the hold was full"));
 }
 
 void Authenticator::reject_unlisted(uint32_t stream_id) {
     std::deque<Held> keep;
     for (Held& h : held_) {
-        if (h.stream_id != stream_id) {
+        if (h.stream_id != stream_id || listed_.count(h.digest)) {
             keep.push_back(std::move(h));
             continue;
         }
         held_bytes_ -= h.bytes.size() + kHeldPacketCost;
         reject(h.where, Error::NotAuthenticated,
-               (h.bytes.size() > 6 ? packet_type_name(h.bytes[6]) : std::string("?")) +
-                   " packet that the verified manifest of stream " + std::to_string(stream_id) + " does not list");
+               type_of(h.bytes) + " packet that the verified manifest of stream " + std::to_string(stream_id) +
+                   " does not list");
     }
     held_.swap(keep);
     counters_.held = held_.size();
@@ -87,7 +182,7 @@ Authenticator::Verdict Authenticator::take_manifest(const PacketView& packet, st
         ++counters_.malformed;
         return reject(where, Error::MalformedPayload, "MANIFEST whose length, part or digest range is inconsistent");
     }
-    if (part.scheme != kManifestSchemeEd25519) {
+    if (!is_known_manifest_scheme(part.scheme)) {
         ++counters_.unknown_scheme;
         return Verdict::Manifest;
     }
@@ -125,25 +220,19 @@ Authenticator::Verdict Authenticator::take_manifest(const PacketView& packet, st
     }
     verified_manifests_.insert(self);
     ++counters_.manifests_verified;
-    std::unordered_set<PacketDigest, DigestHash> fresh(part.digests.begin(), part.digests.end());
-    listed_.insert(part.digests.begin(), part.digests.end());
-    // Release what this part lists, in arrival order.
-    std::deque<Held> keep;
-    for (Held& h : held_) {
-        if (fresh.count(h.digest)) {
-            held_bytes_ -= h.bytes.size() + kHeldPacketCost;
-            released_.push_back({std::move(h.bytes), h.where});
-            ++counters_.released;
-            ++counters_.passed;
-        } else {
-            keep.push_back(std::move(h));
-        }
+    const bool bound = part.scheme == kManifestSchemeBound;
+    for (const PacketDigest& d : part.digests) {
+        Binding& b = listed_[d];
+        if (!bound) b.unbound = true;
+        else if (!b.binds(part.content_id)) b.contents.push_back(part.content_id);
     }
-    held_.swap(keep);
-    counters_.held = held_.size();
+    // Release what this part authenticates, in arrival order (or reject what it lists for another content).
+    settle();
     // Once every part of one manifest of this stream verified, unlisted packets cannot be listed.
     const uint32_t stream_id = packet.header.stream_id;
-    std::set<uint16_t>& parts = parts_[stream_id][{part.part_count, part.packet_count}];
+    std::set<uint16_t>& parts =
+        parts_[stream_id][{bound ? std::optional<uint32_t>(part.content_id) : std::nullopt, part.part_count,
+                           part.packet_count}];
     parts.insert(part.part);
     if (parts.size() == part.part_count && complete_streams_.insert(stream_id).second) reject_unlisted(stream_id);
     return Verdict::Manifest;
@@ -179,10 +268,16 @@ RecordingAuthentication authenticate_recording(const std::vector<ContainerPacket
     out.verdicts.assign(packets.size(), Authenticator::Verdict::Rejected);
     out.errors.assign(packets.size(), Error::Ok);
     auto bytes_of = [&](const ContainerPacket& p) { return file_bytes.subspan(p.offset, p.view.size); };
-    for (int pass = 0; pass < 2; ++pass)
+    // Pass 0: every MANIFEST; pass 1: the STREAM_INFO packets that can give a stream its content, in
+    // file order (the first that passes gives it, spec 25.2); pass 2: every other packet.
+    auto pass_of = [](const PacketView& v) {
+        if (v.header.type == static_cast<uint8_t>(PacketType::Manifest)) return 0;
+        if (v.header.type == static_cast<uint8_t>(PacketType::StreamInfo) && v.payload.size() >= 16) return 1;
+        return 2;
+    };
+    for (int pass = 0; pass < 3; ++pass)
         for (size_t i = 0; i < packets.size(); ++i) {
-            const bool manifest = packets[i].view.header.type == static_cast<uint8_t>(PacketType::Manifest);
-            if (manifest != (pass == 0)) continue;
+            if (pass_of(packets[i].view) != pass) continue;
             out.verdicts[i] = a.take(packets[i].view, bytes_of(packets[i]), packets[i].offset);
             if (out.verdicts[i] == Authenticator::Verdict::Rejected) out.errors[i] = a.last_error();
         }

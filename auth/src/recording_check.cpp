@@ -1,4 +1,4 @@
-// The conformance of a signed recording (spec 16.4), for `validate` and `inspect`.
+// The conformance of a signed recording (spec 16.4, 25.3), for `validate` and `inspect`.
 #include "ellicast/auth.h"
 
 #include <algorithm>
@@ -21,15 +21,22 @@ SignedRecordingCheck check_signed_recording(const std::vector<ContainerPacket>& 
     // Distinct parts by digest, per stream id; the digests of every other packet, per stream id.
     std::map<uint32_t, std::map<PacketDigest, Part>> parts;
     std::map<uint32_t, std::map<PacketDigest, uint64_t>> others;  // digest -> first offset
+    // stream id -> (offset, content id) of its STREAM_INFO packets, for scheme 2 (spec 25.3)
+    std::map<uint32_t, std::vector<std::pair<uint64_t, uint32_t>>> infos;
     for (const ContainerPacket& p : packets) {
         const PacketDigest digest = packet_digest(bytes_of(p));
         if (!is_manifest(p)) {
             others[p.view.header.stream_id].emplace(digest, p.offset);
+            const auto& payload = p.view.payload;
+            if (p.view.header.type == static_cast<uint8_t>(PacketType::StreamInfo) && payload.size() >= 16)
+                infos[p.view.header.stream_id].push_back(
+                    {p.offset, uint32_t{payload[12]} | uint32_t{payload[13]} << 8 | uint32_t{payload[14]} << 16 |
+                                   uint32_t{payload[15]} << 24});
             continue;
         }
         ManifestPart part;
         if (decode_manifest_payload(p.view.payload, part) != Error::Ok) continue;  // the decoder rejects it
-        if (part.scheme != kManifestSchemeEd25519) continue;  // a later scheme's: skipped, as decoders do
+        if (!is_known_manifest_scheme(part.scheme)) continue;  // a later scheme's: skipped, as decoders do
         ++out.manifest_packets;
         out.is_signed = true;
         if (out.key_id.empty()) out.key_id = to_hex(part.key_id);
@@ -53,9 +60,11 @@ SignedRecordingCheck check_signed_recording(const std::vector<ContainerPacket>& 
         bool consistent = true;
         for (const auto& [digest, p] : of_stream) {
             const ManifestPart& m = p.part;
-            if (m.part_count != first.part_count || m.packet_count != first.packet_count || m.key_id != first.key_id) {
+            if (m.part_count != first.part_count || m.packet_count != first.packet_count || m.key_id != first.key_id ||
+                m.scheme != first.scheme || m.content_id != first.content_id) {
                 out.problems.push_back({p.offset, "MANIFEST part " + std::to_string(m.part) +
-                                                      " disagrees with the others on part_count, packet_count or key_id"});
+                                                      " disagrees with the others on part_count, packet_count, "
+                                                      "key_id, scheme or content_id (one stream id, one content)"});
                 consistent = false;
                 continue;
             }
@@ -66,6 +75,12 @@ SignedRecordingCheck check_signed_recording(const std::vector<ContainerPacket>& 
             }
         }
         if (!consistent) continue;
+        if (first.scheme == kManifestSchemeBound)
+            for (const auto& [offset, content] : infos[stream_id])
+                if (content != first.content_id)
+                    out.problems.push_back({offset, "STREAM_INFO of content id " + std::to_string(content) +
+                                                        ", but the manifest" + stream + " is bound to content id " +
+                                                        std::to_string(first.content_id)});
         if (by_index.size() != first.part_count) {
             out.problems.push_back({std::nullopt, "manifest" + stream + ": " + std::to_string(by_index.size()) + " of " +
                                                       std::to_string(first.part_count) + " parts present"});

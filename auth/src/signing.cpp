@@ -4,6 +4,7 @@
 #include <sodium.h>
 
 #include <algorithm>
+#include <optional>
 #include <set>
 
 namespace ellicast::auth {
@@ -24,16 +25,21 @@ int part_class(uint8_t type) {
 }  // namespace
 
 Error sign_packets(const std::vector<std::vector<uint8_t>>& packets, const KeyPair& key, size_t packet_size,
-                   uint32_t first_sequence, std::vector<std::vector<uint8_t>>& manifests, std::string& error) {
+                   uint32_t first_sequence, std::vector<std::vector<uint8_t>>& manifests, std::string& error,
+                   uint8_t scheme) {
     manifests.clear();
+    if (!is_known_manifest_scheme(scheme)) {
+        error = "MANIFEST scheme " + std::to_string(scheme) + " is not one this library writes (1 or 2)";
+        return Error::MalformedPayload;
+    }
     if (!available()) {
         error = "libsodium cannot be initialized";
         return Error::IoError;
     }
-    const size_t capacity = digests_per_manifest_packet(packet_size);
+    const size_t capacity = digests_per_manifest_packet(packet_size, scheme);
     if (capacity == 0) {
         error = "a MANIFEST packet of " + std::to_string(packet_size) + " bytes has no room for a digest (at least " +
-                std::to_string(kPacketOverhead + kManifestFixedSize + kManifestSignatureSize + kPacketDigestSize) +
+                std::to_string(kPacketOverhead + manifest_fixed_size(scheme) + kManifestSignatureSize + kPacketDigestSize) +
                 " bytes)";
         return Error::MalformedPayload;
     }
@@ -44,6 +50,7 @@ Error sign_packets(const std::vector<std::vector<uint8_t>>& packets, const KeyPa
     // Parts: runs of at most `capacity` packets of one class (base or detail).
     std::vector<std::pair<size_t, size_t>> runs;  // [begin, end)
     uint32_t stream_id = 0;
+    std::optional<uint32_t> content_id;  // of the STREAM_INFO packets: what scheme 2 binds the parts to
     for (size_t i = 0; i < packets.size(); ++i) {
         PacketView view;
         if (parse_packet(packets[i], view) != Error::Ok) {
@@ -60,6 +67,17 @@ Error sign_packets(const std::vector<std::vector<uint8_t>>& packets, const KeyPa
                     ", the first had " + std::to_string(stream_id) + ": a manifest signs one stream";
             return Error::MalformedPayload;
         }
+        if (view.header.type == static_cast<uint8_t>(PacketType::StreamInfo) && view.payload.size() >= 16) {
+            // The content id a receiver binds with: the u32 at payload offset 12 (spec 25.2).
+            const uint8_t* c = view.payload.data() + 12;
+            const uint32_t id = uint32_t{c[0]} | uint32_t{c[1]} << 8 | uint32_t{c[2]} << 16 | uint32_t{c[3]} << 24;
+            if (content_id && *content_id != id) {
+                error = "packet " + std::to_string(i) + " is a STREAM_INFO of content id " + std::to_string(id) +
+                        ", an earlier one said " + std::to_string(*content_id) + ": a manifest signs one content";
+                return Error::MalformedPayload;
+            }
+            content_id = id;
+        }
         const int kind = part_class(view.header.type);
         const bool same_class = !runs.empty() && part_class(packets[runs.back().first][6]) == kind;
         if (same_class && runs.back().second - runs.back().first < capacity) runs.back().second = i + 1;
@@ -70,12 +88,19 @@ Error sign_packets(const std::vector<std::vector<uint8_t>>& packets, const KeyPa
         error = std::to_string(runs.size()) + " MANIFEST parts needed, at most 65535 (use larger packets)";
         return Error::MalformedPayload;
     }
-    std::vector<uint8_t> secret(crypto_sign_SECRETKEYBYTES);
     PublicKey derived{};
+    std::vector<uint8_t> secret(crypto_sign_SECRETKEYBYTES);
     crypto_sign_seed_keypair(derived.data(), secret.data(), key.seed.data());
+    sodium_memzero(secret.data(), secret.size());
+    if (derived != key.public_key) {
+        error = "the key pair is inconsistent: its public key is not the one its seed derives";
+        return Error::MalformedPayload;
+    }
     const auto key_id = key_id_of(std::span<const uint8_t, 32>(key.public_key));
     for (size_t r = 0; r < runs.size(); ++r) {
         ManifestPart part;
+        part.scheme = scheme;
+        part.content_id = scheme == kManifestSchemeBound ? content_id.value_or(0) : 0;
         part.part = static_cast<uint16_t>(r);
         part.part_count = static_cast<uint16_t>(runs.size());
         part.packet_count = static_cast<uint32_t>(packets.size());
@@ -83,24 +108,26 @@ Error sign_packets(const std::vector<std::vector<uint8_t>>& packets, const KeyPa
         part.key_id = key_id;
         for (size_t i = runs[r].first; i < runs[r].second; ++i) part.digests.push_back(packet_digest(packets[i]));
         PacketHeader h;
-        h.version_minor = kManifestMinor;
-        h.type = static_cast<uint8_t>(PacketType::Manifest);
-        h.flags = kFlagSkippable;
+        h.version_minor = scheme == kManifestSchemeBound ? kBoundManifestMinor : kManifestMinor;
         h.stream_id = stream_id;
         h.sequence = first_sequence + static_cast<uint32_t>(r);
-        h.object_id = kStreamObjectId;
-        std::vector<uint8_t> packet = write_packet(h, encode_manifest_payload(part));
-        const std::vector<uint8_t> message = manifest_signed_message(packet);
-        crypto_sign_detached(part.signature.data(), nullptr, message.data(), message.size(), secret.data());
-        manifests.push_back(write_packet(h, encode_manifest_payload(part)));
-    }
-    sodium_memzero(secret.data(), secret.size());
-    if (derived != key.public_key) {
-        error = "the key pair is inconsistent: its public key is not the one its seed derives";
-        manifests.clear();
-        return Error::MalformedPayload;
+        manifests.push_back(signed_manifest_packet(h, std::move(part), key));
     }
     return Error::Ok;
+}
+
+std::vector<uint8_t> signed_manifest_packet(PacketHeader header, ManifestPart part, const KeyPair& key) {
+    header.type = static_cast<uint8_t>(PacketType::Manifest);
+    header.flags = kFlagSkippable;
+    header.object_id = kStreamObjectId;
+    std::vector<uint8_t> secret(crypto_sign_SECRETKEYBYTES);
+    PublicKey derived{};
+    crypto_sign_seed_keypair(derived.data(), secret.data(), key.seed.data());
+    std::vector<uint8_t> packet = write_packet(header, encode_manifest_payload(part));
+    const std::vector<uint8_t> message = manifest_signed_message(packet);
+    crypto_sign_detached(part.signature.data(), nullptr, message.data(), message.size(), secret.data());
+    sodium_memzero(secret.data(), secret.size());
+    return write_packet(header, encode_manifest_payload(part));
 }
 
 bool verify_manifest(std::span<const uint8_t> packet, const ManifestPart& part, const PublicKey& key) {

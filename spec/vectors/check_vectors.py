@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent format 1.8 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.9 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
@@ -29,7 +29,9 @@ POINT_MAP and MAPPED_POINTS packets of spec section 23: their checks and compari
 the fragments decoded here, the ranks of spec 23.2, the records held but not placed and those placed, and
 POINTS_REPAIR over mapped records, spec 23.5; for format 1.8 the object entry's surface-normals flag and the
 NORMALS packets of spec section 24: their checks and comparisons, the normal entries held by index, and the
-surface normal of every point of an exact object, summed here over its exact triangle list, spec 24.3) so
+surface normal of every point of an exact object, summed here over its exact triangle list, spec 24.3; for
+format 1.9 the MANIFEST scheme 2 of spec section 25: its layout with the content_id, and the bindings of
+the authenticated digests judged against each stream id's content, spec 25.2) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -64,6 +66,7 @@ KNOWN_16 = {0x16: "MORPH_ANIMATION", 0x08: "MORPH_DELTAS"}
 KNOWN_17 = {0x09: "MAPPED_POINTS", 0x0A: "POINT_MAP"}
 # Format 1.8 (spec sections 4 and 24): skippable, belongs to an object.
 KNOWN_18 = {0x0B: "NORMALS"}
+# Format 1.9 (spec section 25) adds no type: MANIFEST scheme 2 (decode_manifest, authenticate).
 SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14, 0x15, 0x16}  # JOINT_WEIGHTS and MORPH_DELTAS belong to an object
 PATHS = ("translation", "rotation", "scale")
 INTERPOLATIONS = ("LINEAR", "STEP", "CUBICSPLINE")
@@ -160,7 +163,7 @@ def read_container(buf):
     return None, packets, damaged
 
 
-def decode_stream_info(p, minor=8):
+def decode_stream_info(p, minor=9):
     """Spec 5.1..5.3. Returns (fields, object_count, first_object, entries) or None if malformed. `minor`: the
     packet's version_minor (the entries' map fields are read only from 1.7 on, spec 23.1, the surface-normals
     flag only from 1.8 on, spec 24.1)."""
@@ -1013,28 +1016,38 @@ def packet_digest(h):
 
 
 def decode_manifest(payload):
-    """Spec 16.2: None when malformed, dict(scheme=...) alone for a later scheme, else every field."""
+    """Spec 16.2, and for scheme 2 spec 25.1: None when malformed, dict(scheme=...) alone for a later scheme,
+    else every field (content_id None for scheme 1)."""
     if len(payload) == 0:
         return None
-    if payload[0] != 1:
-        return dict(scheme=payload[0])
-    if len(payload) < 88:
+    scheme = payload[0]
+    if scheme not in (1, 2):
+        return dict(scheme=scheme)
+    # Scheme 2 has the content_id (u32) at offset 24, before the digests: 4 bytes more.
+    fixed = 88 if scheme == 1 else 92
+    if len(payload) < fixed:
         return None
     part, part_count, n, packet_count, first = struct.unpack_from("<HHHII", payload, 2)
-    if len(payload) != 88 + 16 * n or part_count == 0 or part >= part_count or first + n > packet_count:
+    if len(payload) != fixed + 16 * n or part_count == 0 or part >= part_count or first + n > packet_count:
         return None
-    return dict(scheme=1, part=part, part_count=part_count, packet_count=packet_count, first=first,
-                key_id=payload[16:24], digests=[payload[24 + 16 * i:40 + 16 * i] for i in range(n)],
-                signature=payload[24 + 16 * n:])
+    content_id = struct.unpack_from("<I", payload, 24)[0] if scheme == 2 else None
+    at = fixed - 64  # the first digest
+    return dict(scheme=scheme, part=part, part_count=part_count, packet_count=packet_count, first=first,
+                key_id=payload[16:24], content_id=content_id,
+                digests=[payload[at + 16 * i:at + 16 + 16 * i] for i in range(n)], signature=payload[at + 16 * n:])
 
 
 def authenticate(packets):
-    """Spec 16.3 for a recording: every MANIFEST first, then every other packet in file order."""
+    """Spec 16.3 for a recording, with the bindings of spec 25.2 (last paragraph): every MANIFEST first, then
+    each stream id's content from its first STREAM_INFO in file order that rules 1 and 2 pass, then every
+    other packet in file order by rules 1 to 3."""
     key_id = hashlib.sha256(VECTORS_KEY).digest()[:8]
     counters = dict(passed=0, manifests_verified=0, manifests_repeated=0, manifests_failed=0, malformed=0,
                     unknown_scheme=0, not_authenticated=0)
     verdicts, manifests = {}, []
-    listed, verified = set(), set()
+    # Spec 25.2: digest -> its bindings, the content_id of every verified scheme-2 part that lists it, and None
+    # (the mark "unbound") when a verified scheme-1 part lists it.
+    bindings, verified = {}, set()
     for offset, size, h in packets:
         if h["type"] != 0x20:
             continue
@@ -1044,18 +1057,21 @@ def authenticate(packets):
             entry["malformed"] = True
             counters["malformed"] += 1
             verdicts[offset] = "malformed payload"
-        elif m["scheme"] != 1:
+        elif m["scheme"] not in (1, 2):
             entry.update(malformed=False, scheme=m["scheme"])
             counters["unknown_scheme"] += 1
             verdicts[offset] = "skipped"
         else:
+            # Spec 16.2, 25.1: the signed message is made the same way for both schemes.
             message = MANIFEST_CONTEXT + digest_input(h)[:-64]
             ok = m["key_id"] == key_id and ed25519_verify(VECTORS_KEY, message, m["signature"])
-            entry.update(malformed=False, scheme=1, part=m["part"], part_count=m["part_count"],
+            entry.update(malformed=False, scheme=m["scheme"], part=m["part"], part_count=m["part_count"],
                          packet_count=m["packet_count"], first=m["first"], key_id=m["key_id"].hex(),
                          digests=[d.hex() for d in m["digests"]],
                          signed_message_sha256=hashlib.sha256(message).hexdigest(),
                          signature=m["signature"].hex(), verified=ok)
+            if m["scheme"] == 2:
+                entry["content_id"] = m["content_id"]
             digest = packet_digest(h)
             if digest in verified:
                 counters["manifests_repeated"] += 1
@@ -1066,15 +1082,36 @@ def authenticate(packets):
             else:
                 verified.add(digest)
                 counters["manifests_verified"] += 1
-                listed.update(m["digests"])
+                for d in m["digests"]:
+                    bindings.setdefault(d, set()).add(m["content_id"])
                 verdicts[offset] = "manifest"
         manifests.append(entry)
+
+    def passes(h, digest, content):
+        """Spec 25.2 rules 1 to 3 for a packet other than MANIFEST; `content` that of its stream id, or None."""
+        bound = bindings.get(digest)
+        if bound is None:  # not authenticated: no verified part lists it
+            return False
+        if None in bound:  # rule 1: unbound
+            return True
+        if h["type"] == 1 and len(h["payload"]) >= 16:  # rule 2: a STREAM_INFO of its own content, and the stream's
+            own = struct.unpack_from("<I", h["payload"], 12)[0]
+            return own in bound and (content is None or content == own)
+        return content is not None and content in bound  # rule 3; a stream without a content passes nothing
+
+    # Spec 25.2: each stream id's content, from the first STREAM_INFO of at least 16 payload bytes, in file
+    # order, that rules 1 and 2 pass (a shorter one sets nothing).
+    contents = {}
+    for offset, size, h in packets:
+        if h["type"] == 1 and len(h["payload"]) >= 16 and h["stream_id"] not in contents and \
+                passes(h, packet_digest(h), None):
+            contents[h["stream_id"]] = struct.unpack_from("<I", h["payload"], 12)[0]
     plist = []
     passed = Receiver()
     for offset, size, h in packets:
         digest = packet_digest(h)
         if h["type"] != 0x20:
-            if digest in listed:
+            if passes(h, digest, contents.get(h["stream_id"])):
                 verdicts[offset] = "pass"
                 counters["passed"] += 1
                 passed.add(h, offset)
@@ -1387,7 +1424,8 @@ class Receiver:
             # Spec 22.1: checked at step 11, before the packet can be held.
             return self.reject(offset, "malformed payload")
         elif t == 0x20:
-            # A decoder checks the layout and takes nothing (spec 16.2); verifying needs a key.
+            # A decoder checks the layout (scheme 1, spec 16.2; scheme 2, spec 25.1; a later scheme's is not
+            # checked) and takes nothing; verifying needs a key.
             if decode_manifest(h["payload"]) is None:
                 return self.reject(offset, "malformed payload")
             self.counters["skipped"] += 1

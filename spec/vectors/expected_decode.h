@@ -1,4 +1,4 @@
-// The expected decode of a conformance vector as JSON: what a format 1.8 decoder makes of a container
+// The expected decode of a conformance vector as JSON: what a format 1.9 decoder makes of a container
 // file (spec/format.md sections 10 and 11). The vector generator (make_vectors.cpp) writes it next to
 // each .ellc; tests/test_conformance.cpp recomputes it with the library and compares. The JSON layout
 // is described in spec/vectors/README.md.
@@ -742,7 +742,7 @@ inline nlohmann::json signed_json(const ContainerContents& contents, const std::
         json m = {{"offset", p.offset}};
         if (decode_manifest_payload(p.view.payload, part) != Error::Ok) {
             m["malformed"] = true;
-        } else if (part.scheme != kManifestSchemeEd25519) {
+        } else if (!is_known_manifest_scheme(part.scheme)) {
             m["malformed"] = false;
             m["scheme"] = part.scheme;
             packets.back()["verdict"] = "skipped";  // a later scheme's MANIFEST: skipped, verified or not
@@ -757,6 +757,7 @@ inline nlohmann::json signed_json(const ContainerContents& contents, const std::
             m["packet_count"] = part.packet_count;
             m["first"] = part.first;
             m["key_id"] = hex(part.key_id);
+            if (part.scheme == kManifestSchemeBound) m["content_id"] = part.content_id;
             m["digests"] = digests;
             m["signed_message_sha256"] = hex(sha256(message));
             m["signature"] = hex(part.signature);

@@ -1389,25 +1389,33 @@ struct SignedStream {
     Packets listed;     // the packets they list, in listed order
 };
 
-SignedStream signed_stream(uint64_t seed, uint16_t packet_size, const auth::KeyPair& key) {
-    StreamInfo info = default_info({make_object({-1, -1, -1}, 2, 6, 48, kAttrNormal)}, packet_size);
+// Scheme 1 (format 1.2) unless told otherwise: the signed* vectors of section 16; the signed_bound*
+// vectors of section 25 are signed with scheme 2.
+SignedStream signed_stream(uint64_t seed, uint16_t packet_size, const auth::KeyPair& key,
+                           uint8_t scheme = kManifestSchemeEd25519, uint32_t points = 48) {
+    StreamInfo info = default_info({make_object({-1, -1, -1}, 2, 6, points, kAttrNormal)}, packet_size);
     Stream s = make_stream(info, kStreamId, seed);
     SignedStream out;
     out.listed = s.all();
     std::string error;
-    if (auth::sign_packets(out.listed, key, packet_size, 0, out.manifests, error) != Error::Ok) {
+    if (auth::sign_packets(out.listed, key, packet_size, 0, out.manifests, error, scheme) != Error::Ok) {
         std::cerr << "make_vectors: signing failed: " << error << "\n";
         std::exit(1);
     }
     return out;
 }
 
+// Packets numbered in file order.
+Packets signed_numbered(Packets p) {
+    for (uint32_t i = 0; i < p.size(); ++i) restamp_packet(p[i], i);
+    return p;
+}
+
 // MANIFEST parts first, then the listed packets, numbered in file order.
 Packets signed_file(const SignedStream& s) {
     Packets out = s.manifests;
     out.insert(out.end(), s.listed.begin(), s.listed.end());
-    for (uint32_t i = 0; i < out.size(); ++i) restamp_packet(out[i], i);
-    return out;
+    return signed_numbered(out);
 }
 
 // Offsets in a MANIFEST packet (header included).
@@ -1460,13 +1468,13 @@ void signed_vectors(Writer& w) {
     {
         SignedStream s = signed_stream(44, 300, key);
         Packets out = signed_file(s);
-        // A MANIFEST of a later scheme (2) with a layout of its own: skipped, whatever its length.
+        // A MANIFEST of a later scheme (3) with a layout of its own: skipped, whatever its length.
         Packet later = s.manifests[0];
-        std::vector<uint8_t> payload = {2, 0, 0xAB, 0xCD, 0xEF};
+        std::vector<uint8_t> payload = {3, 0, 0xAB, 0xCD, 0xEF};
         out.insert(out.begin() + 1, with_payload(later, payload));
         for (uint32_t i = 0; i < out.size(); ++i) restamp_packet(out[i], i);
         w.write("unusual", "signed_unknown_scheme",
-                "a signed stream plus a 5-byte MANIFEST of scheme 2: a 1.2 decoder skips it (spec 16.2), with or "
+                "a signed stream plus a 5-byte MANIFEST of scheme 3: a decoder skips it (spec 16.2), with or "
                 "without a key; the scheme-1 parts verify",
                 out);
     }
@@ -1565,6 +1573,86 @@ void signed_vectors(Writer& w) {
         Packets out = signed_file(s);
         m.edit(out[0]);
         w.write("faulty", m.name, m.description, out);
+    }
+}
+
+// ------------------------------------------------------------------------------------------------
+// Format 1.9: MANIFEST scheme 2, bound to a content (spec 25). The same small 1.0 stream as the
+// signed* vectors, signed with scheme 2: its MANIFEST packets say 1.9 and carry the content id of its
+// STREAM_INFO.
+
+void bound_manifest_vectors(Writer& w) {
+    const auth::KeyPair key = conformance::vectors_key();
+    {
+        SignedStream s = signed_stream(70, 300, key, kManifestSchemeBound);
+        w.write("valid", "signed_bound",
+                "a stream signed with scheme 2 (format 1.9): two MANIFEST parts bound to the STREAM_INFO's content "
+                "id before the 1.0 packets they list; the stream's content is set by its STREAM_INFO and every "
+                "packet passes",
+                signed_file(s));
+    }
+    {
+        // The STREAM_INFO last: a recording takes the content from it, whatever its place (spec 25.2).
+        SignedStream s = signed_stream(71, 300, key, kManifestSchemeBound);
+        Packets out = s.manifests;
+        out.insert(out.end(), s.listed.begin() + 1, s.listed.end());
+        out.push_back(s.listed[0]);
+        w.write("unusual", "signed_bound_info_last",
+                "a scheme-2 signed stream whose only STREAM_INFO is its last packet: a recording takes the "
+                "stream's content from it (spec 25.2), so the ELLIPSOIDS and POINTS packets before it pass too",
+                signed_numbered(out));
+    }
+    {
+        // Two contents signed with the same key under the same stream id, spliced: the first's manifest,
+        // STREAM_INFO and ELLIPSOIDS, the second's manifest and POINTS (row 4 of the hostile streams).
+        SignedStream a = signed_stream(72, 300, key, kManifestSchemeBound);
+        SignedStream b = signed_stream(73, 300, key, kManifestSchemeBound, 40);  // other points: none shared
+        Packets out = a.manifests;
+        out.insert(out.end(), b.manifests.begin(), b.manifests.end());
+        for (const Packet& p : a.listed)
+            if (p[6] != uint8_t(PacketType::Points)) out.push_back(p);
+        for (const Packet& p : b.listed)
+            if (p[6] == uint8_t(PacketType::Points)) out.push_back(p);
+        out.push_back(b.listed[0]);  // and last, the second's STREAM_INFO: it cannot switch the stream (rule 2)
+        w.write("faulty", "signed_bound_spliced",
+                "two contents signed with scheme 2 by the vectors' key under one stream id, spliced: the first's "
+                "STREAM_INFO and ELLIPSOIDS (48 points declared), the second's POINTS (40 points on the same sphere, "
+                "none the same packet), both manifests (all four parts verify), then the second's STREAM_INFO: the "
+                "stream shows the first content, whose manifest does not list the POINTS packets: each is rejected (not "
+                "authenticated), and so is the second STREAM_INFO (another content's). Without a key the points would "
+                "be decoded as the first content's",
+                signed_numbered(out));
+    }
+    {
+        // A part bound to another content than its STREAM_INFO's (a signer's error): the STREAM_INFO is
+        // rejected by rule 2, the stream gets no content, and nothing it lists passes.
+        SignedStream s = signed_stream(74, 300, key, kManifestSchemeBound);
+        Packets manifests;
+        for (const Packet& m : s.manifests) {
+            PacketView view;
+            ManifestPart part;
+            parse_packet(m, view);
+            decode_manifest_payload(view.payload, part);
+            part.content_id ^= 0x00010000u;
+            manifests.push_back(auth::signed_manifest_packet(view.header, part, key));
+        }
+        const Packets out = signed_file({manifests, s.listed});
+        w.write("faulty", "signed_bound_content_mismatch",
+                "a scheme-2 manifest whose parts (signatures valid) are bound to content id 0x00010000 XOR that of "
+                "the STREAM_INFO they list: the STREAM_INFO is rejected (not authenticated: listed for another "
+                "content), the stream gets no content, and every other packet is rejected too",
+                out);
+    }
+    {
+        SignedStream s = signed_stream(75, 300, key, kManifestSchemeBound);
+        Packets out = signed_file(s);
+        std::vector<uint8_t> payload = payload_of(out[0]);
+        payload.resize(91);
+        out[0] = with_payload(out[0], payload);
+        w.write("faulty", "signed_bound_manifest_short",
+                "a scheme-2 MANIFEST of 91 bytes (less than 92): malformed payload; the packets only it listed are "
+                "not authenticated",
+                out);
     }
 }
 
@@ -7214,6 +7302,7 @@ int main(int argc, char** argv) {
     faulty_vectors(w);
     scene_vectors(w);
     signed_vectors(w);
+    bound_manifest_vectors(w);
     repair_vectors(w);
     extensions_vectors(w);
     exact_vectors(w);

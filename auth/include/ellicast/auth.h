@@ -8,6 +8,7 @@
 
 #include <ellicast/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -17,6 +18,8 @@
 #include <set>
 #include <span>
 #include <string>
+#include <tuple>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -53,10 +56,19 @@ bool write_key_pair(const std::string& secret_path, const std::string& public_pa
 // id, none of them a MANIFEST) in the given order, at most `packet_size` bytes each, numbered from
 // `first_sequence`. A new part starts where the listed packets change between what a first picture
 // needs (STREAM_INFO, ELLIPSOIDS), the rest of the base and detail (POINTS and TEXTURE_FRAGMENT), so
-// that a carousel can send each part with the packets it lists (spec 16.4). MalformedPayload (with `error`) when the packets are not such a list, there are
-// more than 65535 parts, or the packet size leaves no room for a digest.
+// that a carousel can send each part with the packets it lists (spec 16.4). Scheme 2 (format 1.9, the
+// default) binds every part to the content id of the STREAM_INFO packets listed (spec 25.1; 0 when
+// there is none); scheme 1 (format 1.2) writes the unbound parts of older signers. MalformedPayload
+// (with `error`) when the packets are not such a list, their STREAM_INFO packets name two contents,
+// there are more than 65535 parts, or the packet size leaves no room for a digest.
 Error sign_packets(const std::vector<std::vector<uint8_t>>& packets, const KeyPair& key, size_t packet_size,
-                   uint32_t first_sequence, std::vector<std::vector<uint8_t>>& manifests, std::string& error);
+                   uint32_t first_sequence, std::vector<std::vector<uint8_t>>& manifests, std::string& error,
+                   uint8_t scheme = kManifestSchemeBound);
+
+// One MANIFEST packet: `part` (its fields as given, signature aside) under `header` (type, flags and
+// object id are set here), signed with `key`. sign_packets makes its parts with it; a test or a
+// conformance vector can make a part sign_packets would not (another content id, say).
+std::vector<uint8_t> signed_manifest_packet(PacketHeader header, ManifestPart part, const KeyPair& key);
 
 // Signs a recorded or freshly encoded stream in place: its distinct packets (the first copy of each;
 // MANIFEST packets already there are dropped, so signing again replaces the signature) preceded by
@@ -80,9 +92,11 @@ struct DigestHash {
     }
 };
 
-// A receiver's filter with the sender's public key (spec 16.3). Every intact packet goes through
-// take(); a packet comes out to the decoder only once a verified MANIFEST lists its digest: at once
-// (Pass), or later from take_released() when the MANIFEST that lists it arrives after it.
+// A receiver's filter with the sender's public key (spec 16.3, 25.2). Every intact packet goes through
+// take(); a packet comes out to the decoder only once a verified MANIFEST lists its digest for the
+// content its stream shows (the content id of the first STREAM_INFO passed; a scheme-1 part lists
+// for any content): at once (Pass), or later from take_released() when the MANIFEST that lists it,
+// or the STREAM_INFO that gives its stream a content, arrives after it.
 class Authenticator {
 public:
     struct Limits {
@@ -106,7 +120,7 @@ public:
         Pass,       // listed by a verified MANIFEST: give it to the decoder
         Manifest,   // a MANIFEST that verified now (or an unknown scheme, skipped): nothing to decode
         Repeat,     // a copy of a MANIFEST verified before
-        Held,       // kept until a MANIFEST lists it
+        Held,       // kept until a MANIFEST lists it, or its stream has a content
         Rejected,   // see last_error(): bad manifest signature, not authenticated, malformed payload
     };
     struct Counters {
@@ -118,7 +132,7 @@ public:
         uint64_t manifests_unchecked = 0; // dropped unchecked: the verification budget was spent
         uint64_t malformed = 0;           // malformed MANIFEST payloads
         uint64_t unknown_scheme = 0;      // MANIFESTs of a later scheme, skipped
-        uint64_t not_authenticated = 0;   // rejected: listed by no verified MANIFEST
+        uint64_t not_authenticated = 0;   // rejected: listed by no verified MANIFEST for the content shown
         uint64_t held = 0;                // currently held
     };
     struct Released {
@@ -143,30 +157,58 @@ public:
     // Whether every part of a manifest of `stream_id` has verified (then unlisted packets of that
     // stream are rejected at once instead of held).
     bool manifest_complete(uint32_t stream_id) const { return complete_streams_.count(stream_id) > 0; }
+    // The content a stream shows: the content id of its first STREAM_INFO passed (spec 25.2).
+    std::optional<uint32_t> content(uint32_t stream_id) const {
+        auto it = content_.find(stream_id);
+        return it == content_.end() ? std::nullopt : std::optional<uint32_t>(it->second);
+    }
     // Why nothing is authenticated, for a message: "" once a MANIFEST verified.
     std::string problem() const;
     const PublicKey& key() const { return key_; }
 
 private:
+    // What verified MANIFEST parts say of one digest (spec 25.2): listed by a scheme-1 part
+    // (unbound: for any content), and the content ids of the scheme-2 parts that list it.
+    struct Binding {
+        bool unbound = false;
+        std::vector<uint32_t> contents;
+        bool binds(uint32_t content) const {
+            return unbound || std::find(contents.begin(), contents.end(), content) != contents.end();
+        }
+    };
+    enum class Judgement { Pass, OtherContent, AwaitContent, Unlisted };
     struct Held {
         PacketDigest digest;
         uint32_t stream_id;
+        std::optional<uint32_t> info_content;  // a STREAM_INFO's own content id
         std::vector<uint8_t> bytes;
         uint64_t where;
     };
     Verdict take_manifest(const PacketView& packet, std::span<const uint8_t> bytes, uint64_t where);
     Verdict reject(uint64_t where, Error e, std::string detail);
+    Judgement judge(const PacketDigest& digest, uint32_t stream_id, std::optional<uint32_t> info_content) const;
+    // A packet judged Pass: counts it, and a STREAM_INFO sets its stream's content when it has none.
+    // Returns whether it set one.
+    bool passed(uint32_t stream_id, std::optional<uint32_t> info_content);
+    // Held packets judged again (after a MANIFEST verified, or a stream got its content): those that
+    // pass are released in arrival order, those bound to another content rejected.
+    void settle();
+    std::string other_content_detail(uint8_t type, uint32_t stream_id) const;
+    void hold(const PacketDigest& digest, uint32_t stream_id, std::optional<uint32_t> info_content,
+              std::span<const uint8_t> bytes, uint64_t where);
     void drop_oldest();
     void reject_unlisted(uint32_t stream_id);
 
     PublicKey key_;
     std::array<uint8_t, kKeyIdSize> key_id_;
     Limits limits_;
-    std::unordered_set<PacketDigest, DigestHash> listed_;
+    std::unordered_map<PacketDigest, Binding, DigestHash> listed_;
     std::unordered_set<PacketDigest, DigestHash> verified_manifests_;
-    // stream id -> (part_count, packet_count) -> parts verified
-    std::map<uint32_t, std::map<std::pair<uint16_t, uint32_t>, std::set<uint16_t>>> parts_;
+    // stream id -> (scheme-2 content id or none, part_count, packet_count) -> parts verified
+    std::map<uint32_t, std::map<std::tuple<std::optional<uint32_t>, uint16_t, uint32_t>, std::set<uint16_t>>> parts_;
     std::set<uint32_t> complete_streams_;
+    // stream id -> the content it shows: that of the first STREAM_INFO passed (spec 25.2)
+    std::map<uint32_t, uint32_t> content_;
     std::deque<Held> held_;
     size_t held_bytes_ = 0;
     // Verifications left in the budget, and packets counted toward the next one (Limits).

@@ -3,8 +3,8 @@
 // packets, the skippable flag) and the packet types. Follows spec/format.md sections 3 (Packet
 // structure), 4 (Packet types) and 9 (Versioning).
 //
-// This library implements format 1.8 (kFormatMajor.kSpecMinor), which includes every earlier minor
-// version: it reads streams of format 1.0 to 1.8 (and packets of a later minor version as section 9
+// This library implements format 1.9 (kFormatMajor.kSpecMinor), which includes every earlier minor
+// version: it reads streams of format 1.0 to 1.9 (and packets of a later minor version as section 9
 // says), and each packet it writes says the minor version its layout calls for: 1.1 (kFormatMinor)
 // for the types of 1.0 and 1.1, and for the types and fields added later the versions below.
 #pragma once
@@ -41,8 +41,10 @@ inline constexpr uint8_t kMapMinor = 7;
 // 1.8 added NORMALS and the object entry's surface-normals flag (spec 24); STREAM_INFO packets say
 // 1.8 only in a stream with an object that has surface normals.
 inline constexpr uint8_t kSurfaceNormalsMinor = 8;
+// 1.9 added MANIFEST scheme 2, bound to a content (spec 25); those MANIFEST packets say 1.9.
+inline constexpr uint8_t kBoundManifestMinor = 9;
 // The newest format version this library reads and writes (spec/format.md's version).
-inline constexpr uint8_t kSpecMinor = 8;
+inline constexpr uint8_t kSpecMinor = 9;
 
 inline constexpr std::array<uint8_t, 4> kPacketMagic = {0xE1, 'L', 'C', 'S'};
 inline constexpr size_t kHeaderSize = 20;                       // bytes before the payload
