@@ -610,3 +610,37 @@ TEST_CASE("a receiver with the key never mixes two contents signed with it under
         CHECK(named);
     }
 }
+
+TEST_CASE("command line: encode --sign gives each content its own stream id unless --stream-id is given") {
+    const auto dir = test::scratch_dir("signed_stream_ids");
+    const std::string exe = test::shell_quoted(test::ellicast_exe().string());
+    int status = 0;
+    auto run = [&](const std::string& args) { return test::run_command(exe + " " + args, status); };
+    const std::string k = (dir / "alice").string();
+    run("keygen '" + k + "'");
+    REQUIRE(status == 0);
+    auto stream_id_of = [](const std::filesystem::path& file) {
+        const ContainerContents c = read_container(test::read_bytes(file));
+        REQUIRE(!c.packets.empty());
+        std::set<uint32_t> ids;
+        for (const auto& p : c.packets) ids.insert(p.view.header.stream_id);
+        REQUIRE(ids.size() == 1);
+        return *ids.begin();
+    };
+    const std::string trefoil = (test::source_dir() / "samples" / "trefoil.obj").string();
+    run("encode -q '" + trefoil + "' -o '" + (dir / "a.ellc").string() + "' --sign '" + k + ".key'");
+    REQUIRE(status == 0);
+    // Another content of the same model: other surface samples.
+    run("encode -q '" + trefoil + "' -o '" + (dir / "b.ellc").string() + "' --sign '" + k + ".key' --sample-budget 0");
+    REQUIRE(status == 0);
+    run("encode -q '" + trefoil + "' -o '" + (dir / "c.ellc").string() + "' --sign '" + k + ".key' --stream-id 7");
+    REQUIRE(status == 0);
+    run("encode -q '" + trefoil + "' -o '" + (dir / "d.ellc").string() + "'");
+    REQUIRE(status == 0);
+    CHECK(stream_id_of(dir / "a.ellc") != stream_id_of(dir / "b.ellc"));
+    CHECK(stream_id_of(dir / "a.ellc") != 1u);
+    CHECK(stream_id_of(dir / "c.ellc") == 7u);
+    CHECK(stream_id_of(dir / "d.ellc") == 1u);  // unsigned: the default as before
+    run("validate '" + (dir / "a.ellc").string() + "' --key '" + k + ".pub'");
+    CHECK(status == 0);
+}

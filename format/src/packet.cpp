@@ -142,13 +142,22 @@ Error parse_packet(std::span<const uint8_t> bytes, PacketView& out) {
 
 namespace ellicast {
 
-bool restamp_packet(std::vector<uint8_t>& packet, uint32_t sequence) {
+namespace {
+// Sets one u32 header field of a valid packet and reseals it.
+bool set_header_u32(std::vector<uint8_t>& packet, size_t offset, uint32_t value) {
     PacketView view;
     if (parse_packet(packet, view) != Error::Ok) return false;
-    detail::set_u32(packet.data() + 12, sequence);
+    detail::set_u32(packet.data() + offset, value);
     const size_t body = packet.size() - kChecksumSize;
     detail::set_u32(packet.data() + body, crc32c(packet.data(), body));
     return true;
+}
+}  // namespace
+
+bool restamp_packet(std::vector<uint8_t>& packet, uint32_t sequence) { return set_header_u32(packet, 12, sequence); }
+
+bool set_packet_stream_id(std::vector<uint8_t>& packet, uint32_t stream_id) {
+    return set_header_u32(packet, 8, stream_id);
 }
 
 }  // namespace ellicast

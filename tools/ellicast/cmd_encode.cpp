@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace ellicast::cli {
 
@@ -31,6 +32,7 @@ struct EncodeArgs {
     double sample_budget = EncodeOptions{}.sample_budget;
     double base_ratio = EncodeOptions{}.base_ratio;
     uint32_t stream_id = 1;
+    bool stream_id_given = false;  // --stream-id on the command line (else a signed stream takes its content id)
     unsigned threads = 2;
     bool quiet = false;
     bool allow_external_paths = false;
@@ -39,6 +41,18 @@ struct EncodeArgs {
     bool no_point_map = false;
     double normal_tolerance = EncodeOptions{}.normal_tolerance;
 };
+
+// The content id the stream's STREAM_INFO carries (spec 5.4).
+std::optional<uint32_t> content_id_of(const std::vector<std::vector<uint8_t>>& packets) {
+    for (const auto& bytes : packets) {
+        PacketView view;
+        StreamInfoPart info;
+        if (parse_packet(bytes, view) == Error::Ok && view.header.type == static_cast<uint8_t>(PacketType::StreamInfo) &&
+            decode_stream_info_payload(view.payload, info, view.header.version_minor) == Error::Ok)
+            return info.info.content_id;
+    }
+    return std::nullopt;
+}
 
 int run_encode(const EncodeArgs& a) {
     auto start = std::chrono::steady_clock::now();
@@ -92,8 +106,20 @@ int run_encode(const EncodeArgs& a) {
     for (const auto& w : encoded.warnings) std::cerr << "ellicast: warning: " << w << "\n";
 
     size_t manifest_parts = 0;
-    if (!a.sign.empty())
+    if (!a.sign.empty()) {
+        // Each content signed under its own stream id unless one was chosen (spec 25.3): two contents
+        // signed under one could otherwise be spliced by a receiver that accepts older, unbound parts.
+        if (!a.stream_id_given) {
+            const std::optional<uint32_t> content = content_id_of(out.packets);
+            if (content) {
+                for (auto& p : out.packets) set_packet_stream_id(p, *content);
+                std::printf("stream id 0x%08X (%u): the content id, a signed stream's own (--stream-id chooses "
+                            "another)\n",
+                            unsigned(*content), unsigned(*content));
+            }
+        }
         if (int code = sign_packets_with_key(a.sign, out.packets, manifest_parts); code != kExitOk) return code;
+    }
     std::vector<uint8_t> file = write_container(out.packets);
     std::string message;
     if (write_file(a.output, file, message) != Error::Ok) return fail(kExitFailure, message);
@@ -197,7 +223,9 @@ const RegisterCommand kRegisterEncode({10, [](CLI::App& app, int& exit_code) {
                     "an object's ellipsoids take at most this multiple of the bytes of its points and triangles "
                     "(at least 8 ellipsoids; 0: --ellipsoids alone), [0, 1000]")
         ->capture_default_str();
-    cmd->add_option("--stream-id", args->stream_id, "stream id written in every packet")->capture_default_str();
+    CLI::Option* stream_id = cmd->add_option("--stream-id", args->stream_id,
+                                             "stream id written in every packet (default 1; with --sign, the "
+                                             "content id, so that each signed content has its own)");
     cmd->add_option("--threads", args->threads, "worker threads (1..256; the result does not depend on it)")
         ->capture_default_str();
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
@@ -216,7 +244,10 @@ const RegisterCommand kRegisterEncode({10, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--sign", args->sign, "sign the stream with this secret key (NAME.key from `ellicast keygen`)");
     cmd->add_flag("--allow-external-paths", args->allow_external_paths,
                   "read glTF buffers and images outside the model's folder (refused by default)");
-    cmd->callback([args, &exit_code] { exit_code = run_encode(*args); });
+    cmd->callback([args, stream_id, &exit_code] {
+        args->stream_id_given = stream_id->count() > 0;
+        exit_code = run_encode(*args);
+    });
 }});
 
 }  // namespace

@@ -65,5 +65,8 @@ Error parse_packet(std::span<const uint8_t> bytes, PacketView& out);
 // counts transmissions (a carousel's repeats get new numbers); receivers estimate loss from its gaps
 // and never use it to identify content. Returns false if `packet` is not a valid packet.
 bool restamp_packet(std::vector<uint8_t>& packet, uint32_t sequence);
+// Sets the stream id of a serialized packet and recomputes its checksum (a signer that gives each
+// content its own stream id, spec 25.3). Returns false if `packet` is not a valid packet.
+bool set_packet_stream_id(std::vector<uint8_t>& packet, uint32_t stream_id);
 
 }  // namespace ellicast
