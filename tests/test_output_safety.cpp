@@ -86,3 +86,48 @@ TEST_CASE("outputs never overwrite an input, its buffers or images, and a plante
     CHECK(write_file((dir / "no-such-folder" / "x.bin").string(), bytes, message) == Error::IoError);
     CHECK(message.find("no-such-folder") != std::string::npos);
 }
+
+TEST_CASE("convert DIR OUTDIR converts a catalogue one process an asset: a broken asset fails alone, the table says so") {
+    const fs::path dir = scratch_dir("catalogue");
+    const fs::path in = dir / "assets", out = dir / "converted";
+    fs::create_directories(in / "nested");
+    for (const char* name : {"Cameras", "SimpleMorph"})
+        fs::copy(source_dir() / "samples" / "khronos" / name, in / (name == std::string("Cameras") ? "" : "nested") / name,
+                 fs::copy_options::recursive);
+    std::ofstream(in / "broken.glb", std::ios::binary) << "glTF\x02\x00\x00\x00 not really";
+    std::ofstream(in / "notes.txt") << "not an asset";
+    // A validator that accepts everything but the morph asset.
+    const fs::path validator = dir / "validator.sh";
+    std::ofstream(validator) << "#!/bin/sh\ncase \"$1\" in *Morph*) echo '{\"numErrors\": 2, \"numWarnings\": 1}';; "
+                                "*) echo '{\"numErrors\": 0, \"numWarnings\": 3}';; esac\n";
+    fs::permissions(validator, fs::perms::owner_all);
+    std::string log;
+    const int status = run("convert " + shell_quoted(in.string()) + " " + shell_quoted(out.string()) +
+                               " -q -j 2 --validator " + shell_quoted(validator.string()),
+                           &log);
+    INFO(log);
+    CHECK(status == 1);  // one failure and one validator rejection
+    CHECK(fs::exists(out / "Cameras" / "Cameras.gltf"));
+    CHECK(fs::exists(out / "nested" / "SimpleMorph" / "SimpleMorph.gltf"));
+    CHECK(fs::exists(out / "broken.glb.log"));
+    CHECK_FALSE(fs::exists(out / "broken.glb"));
+    const std::string table = text_of(out / "catalogue.md");
+    CHECK(table.find("| Cameras/Cameras.gltf | ok |") != std::string::npos);
+    CHECK(table.find("0 errors, 3 warnings") != std::string::npos);
+    CHECK(table.find("2 errors, 1 warnings") != std::string::npos);
+    CHECK(table.find("| broken.glb | failed: ") != std::string::npos);
+    CHECK(table.find("notes.txt") == std::string::npos);
+    CHECK(log.find("3 assets: 2 converted, 1 failed, 1 rejected by the validator") != std::string::npos);
+    // The output folder inside the input folder is left out of the next run's assets.
+    const fs::path inside = in / "converted";
+    CHECK(run("convert " + shell_quoted(in.string()) + " " + shell_quoted(inside.string()) + " -q", &log) == 1);
+    CHECK(run("convert " + shell_quoted(in.string()) + " " + shell_quoted(inside.string()) + " -q", &log) == 1);
+    CHECK(log.find("3 assets:") != std::string::npos);
+    // Never into the input folder itself or a folder that holds it; --jobs only for folders.
+    CHECK(run("convert " + shell_quoted(in.string()) + " " + shell_quoted(in.string()), &log) == 2);
+    CHECK(log.find("outputs could replace inputs") != std::string::npos);
+    CHECK(run("convert " + shell_quoted((in / "nested").string()) + " " + shell_quoted(in.string()), &log) == 2);
+    CHECK(run("convert " + shell_quoted((in / "Cameras" / "Cameras.gltf").string()) + " " +
+                  shell_quoted((dir / "c.glb").string()) + " -j 2",
+              &log) == 2);
+}

@@ -1,6 +1,8 @@
 // `ellicast convert IN OUT [--draco|--quantize]`: encode and decode in one go with every packet, to
-// check an asset end to end (a glTF comes out with its scene, materials and textures).
+// check an asset end to end (a glTF comes out with its scene, materials and textures). With a folder,
+// every glTF under it (convert_catalogue.cpp).
 #include "commands.h"
+#include "convert_catalogue.h"
 #include "progress.h"
 
 #include "ellicast/converters/asset_stream.h"
@@ -30,9 +32,30 @@ struct ConvertArgs {
     bool quiet = false;
     bool allow_external_paths = false;
     AssetWriteOptions write;
+    int jobs = 1;           // with a folder: conversions at once
+    std::string validator;  // with a folder: a command run on each output
 };
 
+// A folder: each asset through this command in a process of its own, with the same options.
+int run_convert_folder(const ConvertArgs& a) {
+    CatalogueArgs c;
+    c.input = a.input;
+    c.output = a.output;
+    c.jobs = a.jobs;
+    c.validator = a.validator;
+    c.quiet = a.quiet;
+    c.forwarded = {"-e", std::to_string(a.ellipsoids), "-c", std::to_string(a.coverage), "--position-bits",
+                   std::to_string(a.position_bits), "--packet-size", std::to_string(a.packet_size), "--seed",
+                   std::to_string(a.seed), "--threads", std::to_string(a.threads), "--grid", std::to_string(a.grid)};
+    if (a.write.draco) c.forwarded.push_back("--draco");
+    if (a.write.quantize) c.forwarded.push_back("--quantize");
+    if (a.allow_external_paths) c.forwarded.push_back("--allow-external-paths");
+    return run_convert_catalogue(c);
+}
+
 int run_convert(const ConvertArgs& a) {
+    if (std::filesystem::is_directory(a.input)) return run_convert_folder(a);
+    if (a.jobs != 1 || !a.validator.empty()) return fail(kExitUsage, "--jobs and --validator are for a folder of assets");
     const auto start = std::chrono::steady_clock::now();
     MeshFileType type;
     if (!mesh_file_type_from_path(a.output, type))
@@ -135,8 +158,19 @@ const RegisterCommand kRegisterConvert({45, [](CLI::App& app, int& exit_code) {
     auto args = std::make_shared<ConvertArgs>();
     CLI::App* cmd = app.add_subcommand(
         "convert", "Encode and decode a model in one go with every packet (checks an asset end to end)");
-    cmd->add_option("input", args->input, "model to convert (glTF, OBJ, PLY, OFF, STL)")->required();
-    cmd->add_option("output", args->output, "model to write: .glb, .gltf (+ .bin), .ply or .obj")->required();
+    cmd->add_option("input", args->input,
+                    "model to convert (glTF, OBJ, PLY, OFF, STL), or a folder: every .gltf/.glb under it")
+        ->required();
+    cmd->add_option("output", args->output,
+                    "model to write: .glb, .gltf (+ .bin), .ply or .obj; for a folder, the folder to write into (the "
+                    "same relative paths, a log beside each output, and catalogue.md)")
+        ->required();
+    cmd->add_option("-j,--jobs", args->jobs, "with a folder: assets converted at once, each in its own process (1..64)")
+        ->capture_default_str();
+    cmd->add_option("--validator", args->validator,
+                    "with a folder: a command run on each output (its path appended), which prints a JSON line with "
+                    "numErrors and numWarnings or exits non-zero on an invalid file; e.g. 'node tests/gltf_validate.js' "
+                    "with NODE_PATH naming gltf-validator's node_modules");
     cmd->add_option("-e,--ellipsoids", args->ellipsoids, "most ellipsoids per object (1..100000)")->capture_default_str();
     cmd->add_option("-c,--coverage", args->coverage, "fraction of the interior volume to cover, (0, 1]")
         ->capture_default_str();
