@@ -533,3 +533,41 @@ TEST_CASE("a point cloud drawn with a normal-mapped material gets tangents too: 
     REQUIRE_MESSAGE(write_asset(path.string(), out, AssetWriteOptions{}, warnings, error), error);
     check_gltf_clean(path);
 }
+
+TEST_CASE("convert writes a glTF as its input was stored: Draco stays Draco, quantized stays quantized, --plain asks for plain") {
+    const fs::path dir = scratch_dir("convert_like_input");
+    const std::string exe = quoted_program(ellicast_exe()), trefoil = (source_dir() / "samples" / "trefoil.obj").string();
+    int status = 0;
+    auto convert = [&](const std::string& options, const fs::path& in, const fs::path& out) {
+        const std::string log = run_command(exe + "convert -q " + options + " '" + in.string() + "' '" + out.string() + "'", status);
+        REQUIRE_MESSAGE(status == 0, log);
+        check_valid(out);
+        return log;
+    };
+    convert("--draco", trefoil, dir / "draco.glb");
+    convert("--quantize", trefoil, dir / "quantized.glb");
+    convert("", trefoil, dir / "plain.glb");
+    const Asset draco = load_asset((dir / "draco.glb").string()), quantized = load_asset((dir / "quantized.glb").string());
+    REQUIRE(draco.source_draco);
+    REQUIRE(quantized.source_quantized);
+    CHECK_FALSE(load_asset((dir / "plain.glb").string()).source_draco);
+
+    std::string log = convert("", dir / "draco.glb", dir / "draco_again.glb");
+    CHECK(log.find("output written Draco") != std::string::npos);
+    CHECK(load_asset((dir / "draco_again.glb").string()).source_draco);
+    // The same meshes the same way: about the input's size (the exact layer gives back the triangles).
+    CHECK(fs::file_size(dir / "draco_again.glb") <= 1.1 * double(fs::file_size(dir / "draco.glb")));
+    log = convert("", dir / "quantized.glb", dir / "quantized_again.glb");
+    CHECK(log.find("output written quantized") != std::string::npos);
+    CHECK(load_asset((dir / "quantized_again.glb").string()).source_quantized);
+    CHECK(fs::file_size(dir / "quantized_again.glb") <= 1.1 * double(fs::file_size(dir / "quantized.glb")));
+    convert("--plain", dir / "draco.glb", dir / "plain_again.glb");
+    const Asset plain = load_asset((dir / "plain_again.glb").string());
+    CHECK_FALSE(plain.source_draco);
+    CHECK_FALSE(plain.source_quantized);
+    // Asked for explicitly, the other way wins; --plain with either is refused.
+    convert("--quantize", dir / "draco.glb", dir / "asked.glb");
+    CHECK(load_asset((dir / "asked.glb").string()).source_quantized);
+    run_command(exe + "convert -q --plain --draco '" + trefoil + "' '" + (dir / "x.glb").string() + "'", status);
+    CHECK(status == 2);
+}

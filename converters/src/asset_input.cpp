@@ -878,6 +878,11 @@ Asset load_asset(const std::string& path, const InputOptions& options) {
     GltfAssetReader reader(path, model, images, asset);
     reader.read();
     reader.warn_attributes();
+    for (const auto& ext : model.extensionsUsed) {
+        asset.source_draco |= ext == "KHR_draco_mesh_compression";
+        asset.source_quantized |= ext == "KHR_mesh_quantization";
+        asset.source_meshopt |= ext == "EXT_meshopt_compression";
+    }
     return asset;
 }
 

@@ -32,6 +32,7 @@ struct ConvertArgs {
     bool quiet = false;
     bool allow_external_paths = false;
     AssetWriteOptions write;
+    bool plain = false;     // glTF output without Draco or quantization even when the input had them
     int jobs = 1;           // with a folder: conversions at once
     std::string validator;  // with a folder: a command run on each output
 };
@@ -49,6 +50,7 @@ int run_convert_folder(const ConvertArgs& a) {
                    std::to_string(a.seed), "--threads", std::to_string(a.threads), "--grid", std::to_string(a.grid)};
     if (a.write.draco) c.forwarded.push_back("--draco");
     if (a.write.quantize) c.forwarded.push_back("--quantize");
+    if (a.plain) c.forwarded.push_back("--plain");
     if (a.allow_external_paths) c.forwarded.push_back("--allow-external-paths");
     return run_convert_catalogue(c);
 }
@@ -63,6 +65,7 @@ int run_convert(const ConvertArgs& a) {
     if (std::string bad = check_asset_write_options(a.write); !bad.empty()) return fail(kExitUsage, bad);
     if ((a.write.draco || a.write.quantize) && type != MeshFileType::Glb && type != MeshFileType::Gltf)
         return fail(kExitUsage, "--draco and --quantize need a .glb or .gltf output");
+    if (a.plain && (a.write.draco || a.write.quantize)) return fail(kExitUsage, "--plain excludes --draco and --quantize");
     if (output_clobbers_input(a.output, {a.input})) return kExitUsage;
     if (type == MeshFileType::Gltf &&
         output_clobbers_input(std::filesystem::path(a.output).replace_extension(".bin").string(), {a.input}))
@@ -87,6 +90,22 @@ int run_convert(const ConvertArgs& a) {
         return fail(kExitFailure, e.what());
     }
     for (const auto& w : asset.warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
+    // A glTF output is written as its input was stored, unless told otherwise: Draco stays Draco, a
+    // quantized input comes back quantized (meshopt, which ellicast does not write, as quantized: its
+    // nearest), so that an output is not several times its input for the same meshes.
+    AssetWriteOptions write = a.write;
+    std::string written_like;
+    if (!a.plain && !write.draco && !write.quantize && (type == MeshFileType::Glb || type == MeshFileType::Gltf)) {
+        if (asset.source_draco) {
+            write.draco = true;
+            written_like = "Draco (KHR_draco_mesh_compression), as the input";
+        } else if (asset.source_quantized || asset.source_meshopt) {
+            write.quantize = true;
+            written_like = asset.source_meshopt ? "quantized (KHR_mesh_quantization; the input's EXT_meshopt_compression "
+                                                  "is not written)"
+                                                : "quantized (KHR_mesh_quantization), as the input";
+        }
+    }
 
     auto bar = std::make_shared<ProgressBar>(!a.quiet);
     encode.progress = [bar](const std::string& stage, double f) { bar->update(stage, f); };
@@ -112,11 +131,12 @@ int run_convert(const ConvertArgs& a) {
     bar->finish();
     if (!ok) return fail(kExitFailure, a.input + ": " + error);
     std::vector<std::string> warnings = decoded.warnings;
-    if (!write_asset(a.output, decoded, a.write, warnings, error)) return fail(kExitFailure, error);
+    if (!write_asset(a.output, decoded, write, warnings, error)) return fail(kExitFailure, error);
     for (const auto& w : warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
 
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s -> %s\n", a.input.c_str(), a.output.c_str());
+    if (!written_like.empty()) std::printf("output written %s (--plain for plain glTF)\n", written_like.c_str());
     // Every packet of the stream counts: the repair packets, the exact layer and the skin weights too.
     size_t all_bytes = 0;
     for (const auto& p : encoded.packets) all_bytes += p.size();
@@ -182,6 +202,9 @@ const RegisterCommand kRegisterConvert({45, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--grid", args->grid, "decoder grid resolution (0: the stream's hint)")->capture_default_str();
     cmd->add_flag("--draco", args->write.draco, "glTF output: compress triangle meshes with KHR_draco_mesh_compression");
     cmd->add_flag("--quantize", args->write.quantize, "glTF output: quantize attributes with KHR_mesh_quantization");
+    cmd->add_flag("--plain", args->plain,
+                  "glTF output: plain accessors even when the input was Draco-compressed or quantized (by default "
+                  "the output is written as the input was)");
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
     cmd->add_flag("--allow-external-paths", args->allow_external_paths,
                   "read glTF buffers and images outside the model's folder (refused by default)");

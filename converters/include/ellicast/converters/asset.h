@@ -52,6 +52,10 @@ struct Asset {
     SceneDescription scene;
     // What was dropped, repaired or ignored, one sentence each.
     std::vector<std::string> warnings;
+    // How the input's meshes were stored (glTF's extensionsUsed: KHR_draco_mesh_compression,
+    // KHR_mesh_quantization, EXT_meshopt_compression), so that a conversion can write its output
+    // the same way (AssetWriteOptions like_input).
+    bool source_draco = false, source_quantized = false, source_meshopt = false;
 };
 
 // Reads a model with its scene. glTF (.gltf, .glb): the default scene's nodes (names, transforms,
