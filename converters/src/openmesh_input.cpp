@@ -1,9 +1,11 @@
 // OBJ, PLY, OFF and STL through OpenMesh's readers, into the same Mesh a glTF primitive gives:
-// per-corner texture coordinates (OBJ "vt") split vertices at seams, colours become linear RGBA.
+// per-corner texture coordinates (OBJ "vt") split vertices at seams, colours become linear RGBA;
+// faces of more than three corners are triangulated here (polygon.h), not fanned by OpenMesh.
 #include "ellicast/converters/mesh_input.h"
+#include "ellicast/converters/polygon.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
 #include <algorithm>
@@ -31,7 +33,50 @@ struct InputTraits : public OpenMesh::DefaultTraits {
     HalfedgeAttributes(OpenMesh::Attributes::TexCoord2D | OpenMesh::Attributes::PrevHalfedge);
     FaceAttributes(OpenMesh::Attributes::None);
 };
-using InputMesh = OpenMesh::TriMesh_ArrayKernelT<InputTraits>;
+// A polygon mesh: each face keeps its corners in the file's order, with their texture coordinates
+// (a triangle mesh would fan every polygon from its first corner, wrong for a concave one).
+using InputMesh = OpenMesh::PolyMesh_ArrayKernelT<InputTraits>;
+
+// A non-simple polygon of more corners than this is refused: its fan would cover area outside it
+// and make the encoder's inside test slow (every point near every long triangle of the fan).
+constexpr size_t kMaxFannedCorners = 4096;
+
+// OpenMesh's importer, but with the check for a corner given twice in a face sorted instead of
+// pairwise (O(n^2): 200,000 corners took seconds); faces of up to 64 corners go through
+// OpenMesh's own code unchanged.
+class PolygonImporter : public OpenMesh::IO::ImporterT<InputMesh> {
+public:
+    explicit PolygonImporter(InputMesh& mesh) : ImporterT(mesh), mesh_(mesh) {}
+
+    OpenMesh::FaceHandle add_face(const VHandles& indices) override {
+        if (indices.size() <= 64) return ImporterT::add_face(indices);
+        VHandles sorted = indices;
+        std::sort(sorted.begin(), sorted.end());
+        for (auto vh : sorted)
+            if (!mesh_.is_valid_handle(vh)) {
+                omerr() << "ImporterT: Face contains invalid vertex index\n";
+                return OpenMesh::FaceHandle();
+            }
+        if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+            omerr() << "ImporterT: Face has equal vertices\n";
+            return OpenMesh::FaceHandle();
+        }
+        OpenMesh::FaceHandle fh = mesh_.add_face(indices);
+        if (!fh.is_valid()) {
+            // Non-manifold: the face gets vertices of its own, as OpenMesh's importer does.
+            VHandles own(indices.size());
+            for (size_t j = 0; j < indices.size(); ++j) {
+                const auto p = mesh_.point(indices[j]);
+                own[j] = mesh_.add_vertex(p);
+            }
+            fh = mesh_.add_face(own);
+        }
+        return fh;
+    }
+
+private:
+    InputMesh& mesh_;
+};
 
 float srgb_to_linear(float c) {
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
@@ -447,7 +492,8 @@ LoadResult load_openmesh(const std::string& path) {
     bool ok;
     {
         CapturedErrors capture;
-        ok = OpenMesh::IO::read_mesh(om, path, opt);
+        PolygonImporter importer(om);
+        ok = OpenMesh::IO::IOManager().read(path, importer, opt);
         reader_messages = capture.lines();
     }
     if (!ok) {
@@ -510,22 +556,44 @@ LoadResult load_openmesh(const std::string& path) {
     };
 
     mesh.triangles.reserve(om.n_faces());
+    std::vector<uint32_t> corners;
+    std::vector<std::array<float, 3>> points;
+    size_t not_simple = 0;
     for (auto fh : om.faces()) {
-        std::array<uint32_t, 3> tri{};
-        int k = 0;
+        corners.clear();
+        points.clear();
         for (auto heh : om.fh_range(fh)) {
-            if (k == 3) break;
             auto vh = om.to_vertex_handle(heh);
             if (corner_uv) {
                 auto t = om.texcoord2D(heh);
                 std::array<float, 2> uv{t[0], t[1]};
-                tri[k++] = emit(vh, &uv);
+                corners.push_back(emit(vh, &uv));
             } else {
-                tri[k++] = emit(vh, nullptr);
+                corners.push_back(emit(vh, nullptr));
             }
         }
-        if (k == 3) mesh.triangles.push_back(tri);
+        if (corners.size() == 3) {
+            mesh.triangles.push_back({corners[0], corners[1], corners[2]});
+            continue;
+        }
+        if (corners.size() < 3) continue;
+        for (uint32_t c : corners) points.push_back(mesh.positions[c]);
+        PolygonTriangulation split = triangulate_polygon(points);
+        if (!split.simple) {
+            ++not_simple;
+            if (corners.size() > kMaxFannedCorners)
+                throw InputError(path + ": face " + std::to_string(fh.idx() + 1) + " has " + std::to_string(corners.size()) +
+                                 " corners and is not a simple polygon in its plane (it crosses or touches itself, or "
+                                 "has no area); ellicast splits such a face as a fan from its first corner only up to " +
+                                 std::to_string(kMaxFannedCorners) + " corners");
+        }
+        for (const auto& t : split.triangles) mesh.triangles.push_back({corners[t[0]], corners[t[1]], corners[t[2]]});
     }
+    if (not_simple)
+        result.warnings.push_back(path + ": " + std::to_string(not_simple) +
+                                  (not_simple == 1 ? " polygon face is" : " polygon faces are") +
+                                  " not simple in its plane (self-crossing, self-touching or without area): split as a "
+                                  "fan from the first corner, which may cover area outside the face");
     // Vertices no face uses are original vertices too (the bunny has about a thousand): keep them.
     const std::array<float, 2> no_uv{0, 0};
     for (auto vh : om.vertices())
