@@ -755,3 +755,45 @@ TEST_CASE("a normal-mapped material's primitives get tangents along u, perpendic
         }
     }
 }
+
+TEST_CASE("morph targets are written sparse where that is smaller: a few moved vertices, none, or all of them dense") {
+    Asset asset = load_asset((source_dir() / "samples" / "trefoil.obj").string());
+    REQUIRE(asset.objects.size() == 1);
+    const size_t n = asset.objects[0].positions.size();
+    REQUIRE(n > 300);
+    VertexMorph morph;
+    morph.targets = 3;
+    morph.attributes = kMorphPosition;
+    const size_t per = morph_record_values(morph.targets, morph.attributes);
+    morph.values.assign(n * per, 0.0f);
+    for (size_t v : {3u, 40u, 41u, 200u, 299u}) morph.values[v * per + morph_slot_offset(morph.attributes, 0, kMorphPosition) + 1] = 0.25f;
+    for (size_t v = 0; v < n; ++v) morph.values[v * per + morph_slot_offset(morph.attributes, 1, kMorphPosition)] = -0.5f;
+    asset.morphs = {morph};
+    asset.scene.meshes[0].weights = {0.0f, 1.0f, 0.0f};
+    const fs::path glb = scratch_dir("sparse_targets") / "targets.glb";
+    std::vector<std::string> warnings;
+    std::string error;
+    REQUIRE_MESSAGE(write_asset(glb.string(), asset, AssetWriteOptions{}, warnings, error), error);
+    check_valid(glb);
+    const Glb g = read_glb(glb);
+    const auto& targets = g.json["meshes"][0]["primitives"][0]["targets"];
+    REQUIRE(targets.size() == 3);
+    const auto& few = g.json["accessors"][targets[0]["POSITION"].get<int>()];
+    CHECK_FALSE(few.contains("bufferView"));
+    REQUIRE(few.contains("sparse"));
+    CHECK(few["sparse"]["count"] == 5);
+    CHECK(few["count"] == n);
+    CHECK(few["min"][1] == 0.0);
+    CHECK(few["max"][1] == 0.25);
+    const auto& all = g.json["accessors"][targets[1]["POSITION"].get<int>()];
+    CHECK(all.contains("bufferView"));
+    CHECK_FALSE(all.contains("sparse"));
+    const auto& none = g.json["accessors"][targets[2]["POSITION"].get<int>()];
+    CHECK_FALSE(none.contains("bufferView"));
+    CHECK_FALSE(none.contains("sparse"));
+    // Read back: the same displacements everywhere.
+    const Asset back = load_asset(glb.string());
+    REQUIRE(back.morphs.size() == 1);
+    REQUIRE(back.morphs[0].values.size() == morph.values.size());
+    CHECK(back.morphs[0].values == morph.values);
+}

@@ -613,13 +613,13 @@ private:
                     for (size_t v = 0; v < n; ++v)
                         for (size_t k = 0; k < 3; ++k) d[v][k] = morph.values[v * per + offset + k];
                 }
-                target["POSITION"] = add_float_attribute(model_, d, TINYGLTF_TYPE_VEC3, true);
+                target["POSITION"] = add_displacements(model_, d, true);
             }
             if (write_normal) {
                 const size_t offset = morph_slot_offset(morph.attributes, t, kMorphNormal);
                 for (size_t v = 0; v < n; ++v)
                     for (size_t k = 0; k < 3; ++k) d[v][k] = morph.values[v * per + offset + k];
-                target["NORMAL"] = add_float_attribute(model_, d, TINYGLTF_TYPE_VEC3, false);
+                target["NORMAL"] = add_displacements(model_, d, false);
             }
             prim.targets.push_back(std::move(target));
         }

@@ -42,6 +42,44 @@ int add_accessor(tinygltf::Model& model, int view, int component_type, int type,
     return int(model.accessors.size()) - 1;
 }
 
+int add_displacements(tinygltf::Model& model, const std::vector<std::array<float, 3>>& values, bool with_bounds) {
+    std::vector<uint32_t> moved;
+    for (size_t i = 0; i < values.size(); ++i)
+        if (values[i][0] != 0 || values[i][1] != 0 || values[i][2] != 0) moved.push_back(uint32_t(i));
+    const size_t index_size = values.size() <= 0x100 ? 1 : values.size() <= 0x10000 ? 2 : 4;
+    const size_t dense = values.size() * sizeof(values[0]);
+    // Each buffer view is padded to 4 bytes: counted, so that sparse is chosen only where it is smaller.
+    const size_t sparse = (moved.size() * index_size + 3) / 4 * 4 + moved.size() * sizeof(values[0]);
+    if (sparse >= dense) return add_float_attribute(model, values, TINYGLTF_TYPE_VEC3, with_bounds);
+    std::vector<double> mn, mx;
+    if (with_bounds) {
+        mn.assign(3, 0.0);  // the zeros count too
+        mx.assign(3, 0.0);
+        for (uint32_t i : moved)
+            for (size_t k = 0; k < 3; ++k)
+                mn[k] = std::min(mn[k], double(values[i][k])), mx[k] = std::max(mx[k], double(values[i][k]));
+    }
+    const int accessor = add_accessor(model, -1, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, values.size(), mn, mx);
+    if (moved.empty()) return accessor;  // all zeros: no buffer view, no sparse (glTF: initialized with zeros)
+    std::vector<uint8_t> indices(moved.size() * index_size);
+    for (size_t j = 0; j < moved.size(); ++j)
+        for (size_t b = 0; b < index_size; ++b) indices[j * index_size + b] = uint8_t(moved[j] >> (8 * b));
+    std::vector<std::array<float, 3>> moved_values;
+    moved_values.reserve(moved.size());
+    for (uint32_t i : moved) moved_values.push_back(values[i]);
+    auto& a = model.accessors[size_t(accessor)];
+    a.sparse.isSparse = true;
+    a.sparse.count = int(moved.size());
+    a.sparse.indices.bufferView = add_buffer_view(model, indices.data(), indices.size(), 0);
+    a.sparse.indices.byteOffset = 0;
+    a.sparse.indices.componentType = index_size == 1   ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE
+                                     : index_size == 2 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
+                                                       : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    a.sparse.values.bufferView = add_buffer_view(model, moved_values.data(), moved_values.size() * sizeof(moved_values[0]), 0);
+    a.sparse.values.byteOffset = 0;
+    return accessor;
+}
+
 std::vector<std::array<float, 3>> unit_normals(const std::vector<std::array<float, 3>>& normals) {
     std::vector<std::array<float, 3>> out(normals.size());
     for (size_t i = 0; i < normals.size(); ++i) {

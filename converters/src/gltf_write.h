@@ -39,6 +39,12 @@ int add_float_attribute(tinygltf::Model& model, const std::vector<std::array<flo
     return add_accessor(model, view, TINYGLTF_COMPONENT_TYPE_FLOAT, type, values.size(), mn, mx);
 }
 
+// A morph target's displacements (VEC3 floats): sparse where that is smaller, as glTF allows and as
+// exporters write them (a target that moves a few vertices of many): no buffer view (zeros) and the
+// non-zero displacements with their indices; a target that moves nothing is zeros alone. Dense
+// otherwise. With bounds when asked (POSITION: glTF requires them, over every vertex).
+int add_displacements(tinygltf::Model& model, const std::vector<std::array<float, 3>>& values, bool with_bounds);
+
 // Normals as the spec wants them: unit length (a zero or non-finite normal becomes +Z).
 std::vector<std::array<float, 3>> unit_normals(const std::vector<std::array<float, 3>>& normals);
 
