@@ -590,3 +590,53 @@ TEST_CASE("glTF animation channels: every interpolation and a normalized rotatio
     CHECK(any_warning(a, "channel 3: it moves morph target weights of a node whose mesh's morph targets are not sent"));
     CHECK(any_warning(a, "channel 5: its key times are not finite, non-negative and strictly increasing"));
 }
+
+TEST_CASE("the command line says a warning of one kind once, naming the first part and counting the others; --verbose lists each") {
+    using namespace ellicast::test;
+    namespace fs = std::filesystem;
+    // Five meshes, each with one zero-area triangle the reader drops (one warning a primitive).
+    Asset asset = load_asset((source_dir() / "samples" / "trefoil.obj").string());
+    REQUIRE(asset.objects.size() == 1);
+    Mesh part = asset.objects[0];
+    const uint32_t base = uint32_t(part.positions.size());
+    for (float x : {0.0f, 0.5f, 1.0f}) part.positions.push_back({x, x, x});  // three points on a line
+    if (part.has_normals()) part.normals.resize(part.positions.size(), {0, 0, 1});
+    if (part.has_texcoords()) part.texcoords.resize(part.positions.size(), {0, 0});
+    part.triangles.push_back({base, base + 1, base + 2});
+    asset = Asset{};
+    for (uint16_t i = 0; i < 5; ++i) {
+        asset.objects.push_back(part);
+        SceneMesh mesh;
+        mesh.index = i;
+        mesh.name = "part" + std::to_string(i);
+        mesh.primitives.push_back({i, kNone});
+        asset.scene.meshes.push_back(mesh);
+        SceneNode node;
+        node.index = i;
+        node.mesh = i;
+        node.name = mesh.name;
+        node.translation = {3.0f * i, 0, 0};
+        asset.scene.nodes.push_back(node);
+    }
+    const fs::path dir = scratch_dir("grouped_warnings");
+    std::vector<std::string> warnings;
+    std::string error;
+    REQUIRE_MESSAGE(write_asset((dir / "parts.glb").string(), asset, AssetWriteOptions{}, warnings, error), error);
+    int status = 0;
+    const std::string exe = shell_quoted(ellicast_exe().string()) + " encode -q " + shell_quoted((dir / "parts.glb").string()) +
+                            " -o " + shell_quoted((dir / "parts.ellc").string());
+    std::string log = run_command(exe, status);
+    REQUIRE_MESSAGE(status == 0, log);
+    auto count = [](const std::string& text, const std::string& needle) {
+        size_t n = 0;
+        for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
+        return n;
+    };
+    CHECK(count(log, "degenerate (zero-area) triangles dropped") == 1);
+    CHECK(log.find("(and 4 more like it: part1 primitive 0, part2 primitive 0, part3 primitive 0, part4 primitive 0; "
+                   "--verbose lists each)") != std::string::npos);
+    log = run_command(exe + " --verbose", status);
+    REQUIRE_MESSAGE(status == 0, log);
+    CHECK(count(log, "degenerate (zero-area) triangles dropped") == 5);
+    CHECK(log.find("more like it") == std::string::npos);
+}

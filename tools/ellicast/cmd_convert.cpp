@@ -30,6 +30,7 @@ struct ConvertArgs {
     unsigned threads = 2;
     int grid = 0;
     bool quiet = false;
+    bool verbose = false;  // every warning on its own line
     bool allow_external_paths = false;
     AssetWriteOptions write;
     bool plain = false;     // glTF output without Draco or quantization even when the input had them
@@ -89,7 +90,7 @@ int run_convert(const ConvertArgs& a) {
     } catch (const InputError& e) {
         return fail(kExitFailure, e.what());
     }
-    for (const auto& w : asset.warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
+    print_warnings(asset.warnings, a.verbose);
     // A glTF output is written as its input was stored, unless told otherwise: Draco stays Draco, a
     // quantized input comes back quantized (meshopt, which ellicast does not write, as quantized: its
     // nearest), so that an output is not several times its input for the same meshes.
@@ -114,7 +115,7 @@ int run_convert(const ConvertArgs& a) {
     bool ok = encode_asset(asset, encode, 1, is_gltf_file(a.input), encoded, error);
     bar->finish();
     if (!ok) return fail(kExitFailure, a.input + ": " + error);
-    for (const auto& w : encoded.encoded.warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
+    print_warnings(encoded.encoded.warnings, a.verbose);
 
     // Every packet arrives, in transmission order.
     ReceivedStream stream;
@@ -132,7 +133,7 @@ int run_convert(const ConvertArgs& a) {
     if (!ok) return fail(kExitFailure, a.input + ": " + error);
     std::vector<std::string> warnings = decoded.warnings;
     if (!write_asset(a.output, decoded, write, warnings, error)) return fail(kExitFailure, error);
-    for (const auto& w : warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
+    print_warnings(warnings, a.verbose);
 
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s -> %s\n", a.input.c_str(), a.output.c_str());
@@ -206,6 +207,7 @@ const RegisterCommand kRegisterConvert({45, [](CLI::App& app, int& exit_code) {
                   "glTF output: plain accessors even when the input was Draco-compressed or quantized (by default "
                   "the output is written as the input was)");
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
+    cmd->add_flag("--verbose", args->verbose, "every warning on a line of its own (by default three or more of a kind are one line)");
     cmd->add_flag("--allow-external-paths", args->allow_external_paths,
                   "read glTF buffers and images outside the model's folder (refused by default)");
     cmd->callback([args, &exit_code] { exit_code = run_convert(*args); });

@@ -25,6 +25,7 @@ struct DecodeArgs {
     int grid = 0;
     double faces_per_point = DecodeOptions{}.faces_per_point;
     bool quiet = false;
+    bool verbose = false;  // every warning on its own line
     bool no_exact = false;    // --no-exact: always the reconstruction
     std::string key;          // --key: decode only what this sender signed
     AssetWriteOptions write;  // --draco, --quantize
@@ -133,7 +134,7 @@ int run_decode(const DecodeArgs& args) {
     auto tw = std::chrono::steady_clock::now();
     std::vector<std::string> warnings = asset.warnings;
     if (!write_asset(args.output, asset, args.write, warnings, error)) return fail(kExitFailure, error);
-    for (const auto& w : warnings) std::fprintf(stderr, "ellicast: warning: %s\n", w.c_str());
+    print_warnings(warnings, args.verbose);
     double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tw).count();
 
     const auto& c = stream.counters();
@@ -213,6 +214,7 @@ const RegisterCommand kRegisterDecode{{40, [](CLI::App& app, int& exit_code) {
     cmd->add_flag("--no-exact", args->no_exact,
                   "reconstruct every object, also one whose exact layer (original triangles) arrived whole");
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
+    cmd->add_flag("--verbose", args->verbose, "every warning on a line of its own (by default three or more of a kind are one line)");
     cmd->callback([args, &exit_code] { exit_code = run_decode(*args); });
 }}};
 

@@ -35,6 +35,7 @@ struct EncodeArgs {
     bool stream_id_given = false;  // --stream-id on the command line (else a signed stream takes its content id)
     unsigned threads = 2;
     bool quiet = false;
+    bool verbose = false;  // every warning on its own line
     bool allow_external_paths = false;
     std::string sign;  // secret key file: sign the stream (spec 16)
     double repair = EncodeOptions{}.repair_ratio;
@@ -92,7 +93,7 @@ int run_encode(const EncodeArgs& a) {
     } catch (const InputError& e) {
         return fail(kExitFailure, e.what());
     }
-    for (const auto& w : asset.warnings) std::cerr << "ellicast: warning: " << w << "\n";
+    print_warnings(asset.warnings, a.verbose);
     const bool with_scene = is_gltf_file(a.input);
 
     auto bar = std::make_shared<ProgressBar>(!a.quiet);
@@ -103,7 +104,7 @@ int run_encode(const EncodeArgs& a) {
     bar->finish();
     if (!ok) return fail(kExitFailure, a.input + ": " + error);
     const EncodeResult& encoded = out.encoded;
-    for (const auto& w : encoded.warnings) std::cerr << "ellicast: warning: " << w << "\n";
+    print_warnings(encoded.warnings, a.verbose);
 
     size_t manifest_parts = 0;
     if (!a.sign.empty()) {
@@ -229,6 +230,7 @@ const RegisterCommand kRegisterEncode({10, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--threads", args->threads, "worker threads (1..256; the result does not depend on it)")
         ->capture_default_str();
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
+    cmd->add_flag("--verbose", args->verbose, "every warning on a line of its own (by default three or more of a kind are one line)");
     cmd->add_option("--repair", args->repair,
                     "POINTS_REPAIR packets per POINTS packet, per block (format 1.2): a carousel sends them in turn "
                     "with the POINTS packets so that a receiver under loss gets every point sooner; 0: none, [0, 4]")

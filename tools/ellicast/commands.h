@@ -39,6 +39,10 @@ int fail(int code, const std::string& message);
 // "ellicast: warning: PATH: ...". Returns false with `error` naming the file and the problem.
 bool load_model(const std::string& path, std::vector<Mesh>& meshes, std::string& error, const InputOptions& options = {});
 
+// Prints warnings on stderr as "ellicast: warning: ...": three or more of one kind (the same words
+// about different parts) as one line naming the first and counting the rest, unless `verbose`.
+void print_warnings(const std::vector<std::string>& warnings, bool verbose);
+
 // Refuses to overwrite an input: true (and an error printed) when `output` is the same file as one
 // of `inputs`.
 bool output_clobbers_input(const std::string& output, const std::vector<std::string>& inputs);
