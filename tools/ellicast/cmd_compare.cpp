@@ -32,6 +32,7 @@ struct CompareArgs {
     size_t steps = 16;
     double horizon = 4, long_horizon = 8, long_from = 0.4;
     int mds_block_data = compare::DracoMds::kDefaultBlockData;
+    int draco_speed = 0;  // Draco's encoding and decoding speed: 0 gives the smallest file (draco_encoder -cl 10)
     uint64_t seed = 1;
     int packet_size = 1200;
     uint32_t ellipsoids = 400;
@@ -63,7 +64,8 @@ std::string reproduce_command(const CompareArgs& a) {
       << a.trials << " --curve-trials " << a.curve_trials << " --seed " << a.seed << " --steps-per-cycle " << a.steps
       << " --horizon " << a.horizon << " --long-horizon " << a.long_horizon << " --long-from " << a.long_from
       << " --packet-size " << a.packet_size << " --ellipsoids " << a.ellipsoids << " --base-share " << a.base_share
-      << " --rs-redundancy " << a.fec_redundancy << " --mds-block-data " << a.mds_block_data << " --samples " << a.samples << " --hole-threshold "
+      << " --rs-redundancy " << a.fec_redundancy << " --mds-block-data " << a.mds_block_data << " --draco-speed "
+      << a.draco_speed << " --samples " << a.samples << " --hole-threshold "
       << a.hole_threshold << " -o " << a.output;
     return s.str();
 }
@@ -90,6 +92,7 @@ int run_compare(const CompareArgs& a) {
         if (!(h >= 1 && h <= 100)) return fail(kExitUsage, "--horizon and --long-horizon must be in [1, 100] cycles, not " + text(h));
     if (!(a.long_from >= 0 && a.long_from <= 1)) return fail(kExitUsage, "--long-from must be in [0, 1]");
     if (a.mds_block_data < 1 || a.mds_block_data > 254) return fail(kExitUsage, "--mds-block-data must be in [1, 254]");
+    if (a.draco_speed < 0 || a.draco_speed > 10) return fail(kExitUsage, "--draco-speed must be in [0, 10]");
     for (double p : a.loss)
         if (!(p >= 0 && p < 1)) return fail(kExitUsage, "--loss " + text(p) + " is outside [0, 1)");
     for (double b : a.burst)
@@ -139,7 +142,8 @@ int run_compare(const CompareArgs& a) {
         es.encode.progress = nullptr;
         ellicast_repeat = std::make_unique<EllicastScheme>(mesh, es);
         bar->update("Draco baselines", 0);
-        DracoSettings ds;  // glTF-Transform's defaults
+        DracoSettings ds;  // glTF-Transform's quantization; the speed a broadcaster encoding offline would pick
+        ds.encoding_speed = ds.decoding_speed = a.draco_speed;
         if (fec_redundancy < 0) fec_redundancy = ellicast->repetition_overhead();
         whole = std::make_unique<DracoWhole>(mesh, ds, size_t(a.packet_size));
         bar->update("Draco baselines", 0.3);
@@ -209,8 +213,12 @@ int run_compare(const CompareArgs& a) {
              "original's surface farther than "
           << a.hole_threshold << "% of the diagonal from the reconstruction; all in % of the original's bounding-box diagonal.";
         setup.metric = m.str();
-        setup.notes.push_back("Draco settings: glTF-Transform's defaults (Edgebreaker, 14-bit positions, 10-bit normals, "
-                              "12-bit texture coordinates, 8-bit colours, speed 5/5), the same attributes as ellicast.");
+        setup.notes.push_back("Draco settings: Edgebreaker, glTF-Transform's quantization (14-bit positions, 10-bit "
+                              "normals, 12-bit texture coordinates, 8-bit colours), encoding and decoding speed " +
+                              std::to_string(a.draco_speed) + "/" + std::to_string(a.draco_speed) +
+                              (a.draco_speed == 0 ? " (the smallest file, as draco_encoder -cl 10; --draco-speed)"
+                                                  : " (--draco-speed; 0 gives the smallest file)") +
+                              ", the same attributes as ellicast.");
         std::ostringstream fecnote;
         fecnote << "draco-rs-repeat redundancy " << fec->redundancy() << " parity per data packet"
                 << (a.fec_redundancy == "auto" ? ": ellicast's repetition overhead (the bytes it spends repeating its base)" : "")
@@ -295,6 +303,10 @@ RegisterCommand reg{{80, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--long-from", args->long_from, "Loss rate from which the long horizon applies")->capture_default_str();
     cmd->add_option("--mds-block-data", args->mds_block_data,
                     "draco-mds: data symbols per block at most (each block has 255 symbols)")
+        ->capture_default_str();
+    cmd->add_option("--draco-speed", args->draco_speed,
+                    "Draco baselines: encoding and decoding speed, 0 (smallest file, what a broadcaster encoding "
+                    "offline picks) .. 10 (fastest)")
         ->capture_default_str();
     cmd->add_option("--packet-size", args->packet_size, "Packet size in bytes, the same for every scheme")->capture_default_str();
     cmd->add_option("--ellipsoids", args->ellipsoids, "ellicast: ellipsoids at most")->capture_default_str();
