@@ -74,10 +74,16 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             r.violations.push_back({p.offset, packet_type_name(h.type) + " packet rejected: " + error_name(e) +
                                                   (detail.empty() ? "" : " (" + detail + ")")});
         }
-        // The format 1.0 types are critical; the 1.1 scene types are sent skippable (spec section 4).
-        if ((h.type <= uint8_t(PacketType::Points) || h.type == uint8_t(PacketType::MappedPoints) ||
-             h.type == uint8_t(PacketType::PointMap)) && h.skippable())
+        // The format 1.0 types, MAPPED_POINTS and POINT_MAP are critical; every other type this
+        // format assigns is sent skippable (spec 3.1, 9.1): a decoder that does not know it may skip it.
+        const bool critical = h.type <= uint8_t(PacketType::Points) || h.type == uint8_t(PacketType::MappedPoints) ||
+                              h.type == uint8_t(PacketType::PointMap);
+        if (critical && h.skippable())
             r.violations.push_back({p.offset, packet_type_name(h.type) + " packet marked skippable (flags bit 0 must be 0 for a format 1.0 type, MAPPED_POINTS and POINT_MAP)"});
+        else if (!critical && is_known_packet_type(h.type) && !h.skippable())
+            r.violations.push_back({p.offset, packet_type_name(h.type) +
+                                                  " packet marked critical (flags bit 0 must be 1 for this type: a "
+                                                  "decoder that does not know it would reject it, spec 3.1, 9.1)"});
     }
     // Packets held for their stream info and rejected when it arrived (their result when read was
     // "held"): each is a violation at its own offset too.
