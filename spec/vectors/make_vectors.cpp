@@ -2560,6 +2560,22 @@ void exact_vectors(Writer& w) {
 
     // Where object 0's CONNECTIVITY packet is in `good`.
     const size_t conn0 = s.info_packets.size() + s.ellipsoids.size() + s.points.size();
+    {
+        // The versions the reference packetizer writes (spec 9.1): STREAM_INFO, ELLIPSOIDS and POINTS say
+        // 1.1, CONNECTIVITY 1.3. Flags bit 8 is read from a STREAM_INFO of any minor version (spec 5.2).
+        Packets file = good;
+        for (size_t i = 0; i < conn0; ++i) {
+            file[i][5] = 1;
+            reseal(file[i]);
+        }
+        w.write("valid", "exact_info_1_1",
+                std::string(kExact) + ", with its STREAM_INFO, ELLIPSOIDS and POINTS packets saying 1.1 and its "
+                "CONNECTIVITY packets 1.3, as the reference packetizer writes them (spec 9.1): flags bit 8 (the exact "
+                "layer) is read from a STREAM_INFO packet whatever minor version it says, 1.0 to 1.2 included (spec "
+                "5.2, 9), so objects 0 and 1 announce an exact layer, take their CONNECTIVITY packets and are exact; "
+                "decodes as valid/exact",
+                file);
+    }
     if (s.connectivity[0].size() != 1 || s.connectivity[1].size() != 1) {
         std::cerr << "make_vectors: the exact objects should fit one CONNECTIVITY packet each\n";
         std::exit(1);
