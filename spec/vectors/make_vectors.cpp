@@ -769,6 +769,31 @@ void faulty_vectors(Writer& w) {
                 p);
     }
     {
+        // Payloads too short for their 8 bytes of fixed fields (spec 6, 7): checked at step 13, once the
+        // object's entry is known, so a copy sent before the STREAM_INFO is held, then rejected.
+        auto short_first = [&](size_t at) {
+            Packet copy = base[at];
+            put32(copy, 12, 1000);
+            std::vector<uint8_t> payload = payload_of(copy);
+            payload.resize(7);
+            Packets p = {with_payload(copy, payload)};
+            p.insert(p.end(), base.begin(), base.end());
+            return p;
+        };
+        w.write("faulty", "ellipsoids_payload_short",
+                "a copy of the first ELLIPSOIDS packet (sequence 1000) cut to a payload of 7 bytes, too short for its "
+                "fixed fields, before the STREAM_INFO: held (its checks need the object's entry, spec 11.1), then "
+                "rejected when the STREAM_INFO releases it (malformed payload, spec 6: shorter than 8 bytes); the "
+                "intact packets decode",
+                short_first(ell));
+        w.write("faulty", "points_payload_short",
+                "a copy of the first POINTS packet (sequence 1000) cut to a payload of 7 bytes, too short for its fixed "
+                "fields, before the STREAM_INFO: held (its checks need the object's entry, spec 11.1), then rejected "
+                "when the STREAM_INFO releases it (malformed payload, spec 7: shorter than 8 bytes); the intact "
+                "packets decode",
+                short_first(pts));
+    }
+    {
         // Held packets and the order of their outcomes (spec 11.1, last paragraph): the stream of
         // valid/two_objects with STREAM_INFO last, and four defective copies held with the rest.
         // When the STREAM_INFO is accepted, the copies naming objects beyond its table are rejected
@@ -2663,6 +2688,12 @@ void exact_vectors(Writer& w) {
          "held (its checks need the object's entry, spec 11.1), then rejected when released (malformed payload, "
          "spec 19.1: no data byte)",
          [](Packet& p) { p = with_payload(p, std::vector<uint8_t>(p.begin() + kHeaderSize, p.begin() + kConnData)); },
+         true},
+        {"exact_payload_short",
+         "a CONNECTIVITY packet of object 0 cut to a payload of 15 bytes (shorter than its 16 bytes of fixed fields: "
+         "no offset, no data byte), before the STREAM_INFO: held (its checks need the object's entry, spec 11.1), then "
+         "rejected when released (malformed payload, spec 19.1: shorter than 16 bytes)",
+         [](Packet& p) { p = with_payload(p, std::vector<uint8_t>(p.begin() + kHeaderSize, p.begin() + kConnData - 1)); },
          true},
         {"exact_piece_past_end",
          "after the stream, a CONNECTIVITY packet of object 0 whose piece (all the coded bytes) starts at offset 1: "
@@ -6458,6 +6489,16 @@ void map_vectors(Writer& w) {
 
     // ---- faulty: MAPPED_POINTS (spec 23.4) ----
     const std::string mp_copy = mapped_desc + ", then (sequence 1000) a copy of the MAPPED_POINTS packet of points ";
+    {
+        std::vector<uint8_t> payload = payload_of(mapped[0]);
+        payload.resize(7);
+        w.write("faulty", "map_points_payload_short",
+                "a copy of the MAPPED_POINTS packet of points 0..27 (sequence 1000) cut to a payload of 7 bytes, too "
+                "short for its fixed fields, first, before the STREAM_INFO of " + mapped_desc +
+                    ": held (its checks need the object's entry, spec 11.1), then, when the STREAM_INFO releases it, "
+                    "rejected, malformed payload (spec 23.4, step 13: shorter than 8 bytes)",
+                before_info(with_payload(mapped[0], payload)));
+    }
     {
         std::vector<uint8_t> payload = payload_of(mapped[0]);
         payload.push_back(0);
