@@ -2746,6 +2746,40 @@ void exact_vectors(Writer& w) {
                 "(stream mismatch) and the bytes discarded (spec 19.1); object 0 is not exact",
                 file);
     }
+    {
+        // Spec 19.1: the connectivity's description outlives a CRC discard. After exact_crc_wrong, the
+        // intact packet again is accepted and completes it; a packet whose coded_crc is that of the
+        // changed bytes (and whose bytes match it) contradicts the kept description.
+        Packets wrong = good;
+        wrong[conn0][kConnData + 3] ^= 0x20;
+        reseal(wrong[conn0]);
+        Packets resent = wrong;
+        Packet intact = good[conn0];
+        put32(intact, 12, 1000);
+        reseal(intact);
+        resent.push_back(intact);
+        w.write("faulty", "exact_crc_wrong_resent",
+                std::string(kExact) + ", with one byte of object 0's coded connectivity changed in its only "
+                "CONNECTIVITY packet (resealed), as in faulty/exact_crc_wrong, then (sequence 1000, after the stream) "
+                "the intact packet: the first is rejected (stream mismatch) and the bytes discarded, the description "
+                "kept (spec 19.1); the intact packet agrees with it, brings every byte anew and is accepted, the CRC-32C "
+                "matches: object 0 is exact",
+                resent);
+        Packets other = wrong;
+        Packet changed_crc = wrong[conn0];
+        put32(changed_crc, 12, 1000);
+        std::vector<uint8_t> bytes(changed_crc.begin() + kConnData, changed_crc.end() - kChecksumSize);
+        put32(changed_crc, kConnCrc, crc32c(bytes.data(), bytes.size()));
+        reseal(changed_crc);
+        other.push_back(changed_crc);
+        w.write("faulty", "exact_crc_wrong_description_kept",
+                std::string(kExact) + ", with one byte of object 0's coded connectivity changed in its only "
+                "CONNECTIVITY packet (resealed), as in faulty/exact_crc_wrong, then (sequence 1000, after the stream) "
+                "the same changed bytes with coded_crc their CRC-32C: the first is rejected (stream mismatch) and its "
+                "bytes discarded, but the description it set is kept (spec 19.1), so the second, whose coded_crc "
+                "differs from it, is rejected too (stream mismatch) and brings nothing; object 0 is not exact",
+                other);
+    }
     // Coded connectivity no encoder writes, with a matching CRC: unusable when decoded (spec 19.2).
     auto replaced_connectivity = [&](const std::vector<uint8_t>& coded) {
         Packets file = good;
