@@ -372,6 +372,18 @@ void unusual_vectors(Writer& w) {
         Stream s = make_stream(info, kStreamId, 13);
         w.write("unusual", "no_objects", "a stream with an empty object table: one STREAM_INFO packet with object_count 0 and no entries",
                 s.all());
+        // The same part again (a carousel's repetition, sequence 1): a part without entries counts as
+        // accepted every time it is taken (spec 5.4).
+        Packets twice = s.all();
+        Packet again = twice.at(0);
+        put32(again, 12, 1);
+        reseal(again);
+        twice.push_back(again);
+        w.write("unusual", "no_objects_repeated",
+                "the stream of unusual/no_objects with its STREAM_INFO packet (object_count 0, entry_count 0) sent again "
+                "(sequence 1, resealed): a part without entries counts as accepted, also when repeated (spec 5.4), so "
+                "both copies are accepted and neither is a duplicate",
+                twice);
     }
     {
         StreamInfo info = default_info({make_object({-1, -1, -1}, 2, 0, 50, kAttrColor, ObjectKind::PointSet)});
