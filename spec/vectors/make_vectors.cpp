@@ -12,6 +12,8 @@
 #include <ellicast/auth.h>
 #include <ellicast/format.h>
 
+#include <sodium.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -1535,6 +1537,61 @@ void signed_vectors(Writer& w) {
         w.write("faulty", "signed_tampered_manifest",
                 "part 0 of the manifest has one bit of a digest flipped (checksum valid): its signature fails (bad "
                 "manifest signature) and the packets only it listed are not authenticated",
+                out);
+    }
+    {
+        // Spec 16.3: R of small order is rejected. Part 0's signature replaced by (R, S) with R the encoding
+        // of the neutral element (01 00 .. 00) and S = k a mod L (a the vectors' secret scalar, k the
+        // SHA-512 of R || A || message mod L): [S]B - [k]A is then the neutral element, whose encoding is R,
+        // so the cofactorless equation holds and only the small-order rule rejects the signature.
+        SignedStream s = signed_stream(49, 300, key);
+        Packets out = signed_file(s);
+        Packet& m = out[0];
+        PacketView view;
+        ManifestPart part;
+        if (parse_packet(m, view) != Error::Ok || decode_manifest_payload(view.payload, part) != Error::Ok ||
+            sodium_init() < 0) {
+            std::cerr << "make_vectors: cannot take part 0 of the signed stream apart\n";
+            std::exit(1);
+        }
+        const std::vector<uint8_t> message = manifest_signed_message(m);
+        std::array<uint8_t, 32> r{};
+        r[0] = 1;
+        uint8_t h[64], k[32], az[64], wide[64] = {}, a[32], sig_s[32];
+        crypto_hash_sha512_state st;
+        crypto_hash_sha512_init(&st);
+        crypto_hash_sha512_update(&st, r.data(), r.size());
+        crypto_hash_sha512_update(&st, key.public_key.data(), key.public_key.size());
+        crypto_hash_sha512_update(&st, message.data(), message.size());
+        crypto_hash_sha512_final(&st, h);
+        crypto_core_ed25519_scalar_reduce(k, h);
+        crypto_hash_sha512(az, key.seed.data(), key.seed.size());
+        az[0] &= 248;
+        az[31] &= 127;
+        az[31] |= 64;
+        std::memcpy(wide, az, 32);
+        crypto_core_ed25519_scalar_reduce(a, wide);
+        crypto_core_ed25519_scalar_mul(sig_s, k, a);
+        // Check the equation: [S]B = [k]A.
+        uint8_t sb[32], ka[32];
+        if (crypto_scalarmult_ed25519_base_noclamp(sb, sig_s) != 0 ||
+            crypto_scalarmult_ed25519_noclamp(ka, k, key.public_key.data()) != 0 || std::memcmp(sb, ka, 32) != 0) {
+            std::cerr << "make_vectors: the small-order R signature does not meet the equation\n";
+            std::exit(1);
+        }
+        std::copy(r.begin(), r.end(), part.signature.begin());
+        std::copy(sig_s, sig_s + 32, part.signature.begin() + 32);
+        m = write_packet(view.header, encode_manifest_payload(part));
+        if (manifest_signed_message(m) != message) {
+            std::cerr << "make_vectors: the signed message changed\n";
+            std::exit(1);
+        }
+        w.write("faulty", "signed_small_order_r",
+                "part 0 of the manifest with its signature replaced by R = 01 00 .. 00 (the encoding of the neutral "
+                "element, a point of small order) and S = k a mod L (a the vectors' secret scalar, k = SHA-512(R || A "
+                "|| message) mod L), so that [S]B - [k]A is the neutral element and its encoding equals R: the "
+                "cofactorless equation holds, but R is of small order (spec 16.3): bad manifest signature; the "
+                "packets only part 0 lists are not authenticated",
                 out);
     }
     {
