@@ -2849,6 +2849,19 @@ void exact_vectors(Writer& w) {
                 "differs from it, is rejected too (stream mismatch) and brings nothing; object 0 is not exact",
                 other);
     }
+    {
+        // Spec 3.1, 11.5: a skippable type written with bit 0 clear. A decoder that knows CONNECTIVITY
+        // reads it all the same; one that does not would reject it: the file does not conform.
+        Packets file = good;
+        file[conn0][7] &= uint8_t(~kFlagSkippable);
+        reseal(file[conn0]);
+        w.write("faulty", "exact_marked_critical",
+                std::string(kExact) + ", with object 0's CONNECTIVITY packet's flags bit 0 cleared (resealed): a "
+                "decoder that knows the type decodes it as in valid/exact, both objects exact, nothing rejected; the "
+                "file does not conform (spec 3.1: a skippable type's packets carry bit 0 set; a 1.2 decoder would "
+                "reject this one as an unknown critical type)",
+                file);
+    }
     // Coded connectivity no encoder writes, with a matching CRC: unusable when decoded (spec 19.2).
     auto replaced_connectivity = [&](const std::vector<uint8_t>& coded) {
         Packets file = good;
