@@ -591,7 +591,7 @@ TEST_CASE("glTF animation channels: every interpolation and a normalized rotatio
     CHECK(any_warning(a, "channel 5: its key times are not finite, non-negative and strictly increasing"));
 }
 
-TEST_CASE("the command line says a warning of one kind once, naming the first part and counting the others; --verbose lists each") {
+TEST_CASE("the command line says a warning of one kind once, naming the first part and counting the others, and --verbose lists each") {
     using namespace ellicast::test;
     namespace fs = std::filesystem;
     // Five meshes, each with one zero-area triangle the reader drops (one warning a primitive).
