@@ -131,3 +131,21 @@ TEST_CASE("a hollow ball's inner wall faces its cavity and is left alone, facing
     CHECK(mended.reports[0].turned_faces == inner_right.triangles.size());
     CHECK(records(right.contents[0]) == records(mended.contents[0]));
 }
+
+TEST_CASE("a flat part has no inside: a label's two quads (a card's faces, rounding noise off their plane) keep their winding, without a warning") {
+    // The labels of Khronos ClearCoatTest: a front quad at z = 0 facing +z and a back one at z = -0.01
+    // facing -z, each off its plane by about 4e-8 (as exported); judged by the sign of their noise
+    // volume they were "turned to face outward" with a warning.
+    Mesh label;
+    const float noise = 3.75e-8f;
+    label.positions = {{-2, -0.23f, -noise}, {2, -0.23f, -noise}, {2, 0.23f, noise}, {-2, 0.23f, noise},
+                       {2, -0.23f, -0.01f}, {-2, -0.23f, -0.0100001f}, {-2, 0.23f, -0.01000008f}, {2, 0.23f, -0.0100004f}};
+    label.triangles = {{0, 1, 2}, {3, 0, 2}, {4, 5, 6}, {7, 4, 6}};
+    const EncodeResult r = encode_meshes({label}, fast_options());
+    CHECK(r.reports[0].turned_faces == 0);
+    CHECK_FALSE(warned_about(r, "face inward"));
+    CHECK_FALSE(warned_about(r, "faces inward"));
+    // Turned round, it is left turned round: a flat part has no side to prefer.
+    const EncodeResult t = encode_meshes({turned_round(label)}, fast_options());
+    CHECK(t.reports[0].turned_faces == 0);
+}

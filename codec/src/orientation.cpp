@@ -15,7 +15,9 @@
 //    it bounds a cavity and faces inward. Nesting is counted by ray crossings against the other
 //    closed parts whose bounding box holds the point, with a bound on the work. An open part is
 //    turned by its signed volume only when that is clear (more than half of its unsigned volume
-//    about its centre); otherwise it keeps the orientation most of its triangles had.
+//    about its centre); otherwise, and for a flat part (a volume under 1e-5 of its area times its
+//    size: a label's quad, whose volume is rounding noise), it keeps the orientation most of its
+//    triangles had.
 // Degenerate triangles (two corners at one position) are left as they are.
 #include "encoder_internal.h"
 
@@ -163,7 +165,7 @@ std::vector<std::array<uint32_t, 3>> orient_outward(const Mesh& mesh, const std:
     };
 
     // 2. Which way each part faces.
-    std::vector<double> volume(parts.size(), 0), unsigned_volume(parts.size(), 0);
+    std::vector<double> volume(parts.size(), 0), unsigned_volume(parts.size(), 0), area(parts.size(), 0);
     for (size_t id = 0; id < parts.size(); ++id) {
         Part& part = parts[id];
         for (uint32_t f : part.faces)
@@ -180,6 +182,9 @@ std::vector<std::array<uint32_t, 3>> orient_outward(const Mesh& mesh, const std:
                               a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
             volume[id] += v;
             unsigned_volume[id] += std::abs(v);
+            const V3 u = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+            area[id] += 0.5 * std::sqrt(std::pow(u[1] * w[2] - u[2] * w[1], 2) + std::pow(u[2] * w[0] - u[0] * w[2], 2) +
+                                        std::pow(u[0] * w[1] - u[1] * w[0], 2));
         }
     }
 
@@ -217,7 +222,12 @@ std::vector<std::array<uint32_t, 3>> orient_outward(const Mesh& mesh, const std:
     for (size_t id = 0; id < parts.size(); ++id) {
         const Part& part = parts[id];
         bool reverse;
-        const bool clear = std::abs(volume[id]) > (part.closed ? 1e-9 : 0.5) * unsigned_volume[id];
+        // A flat part (a label, a card's face: its volume about its centre is rounding noise next to
+        // its area times its size) has no inside: it keeps the orientation it came with.
+        const double size = std::sqrt(std::pow(part.hi[0] - part.lo[0], 2) + std::pow(part.hi[1] - part.lo[1], 2) +
+                                      std::pow(part.hi[2] - part.lo[2], 2));
+        const bool flat = unsigned_volume[id] <= 1e-5 * area[id] * size;
+        const bool clear = !flat && std::abs(volume[id]) > (part.closed ? 1e-9 : 0.5) * unsigned_volume[id];
         if (clear) {
             const bool want_positive = depth[id] % 2 == 0;
             reverse = (volume[id] > 0) != want_positive;
