@@ -874,7 +874,11 @@ Asset load_asset(const std::string& path, const InputOptions& options) {
     if (std::filesystem::file_size(path, ec) == 0) throw InputError(path + ": the file is empty");
     tinygltf::Model model;
     CapturedImages images;
-    load_model(path, model, capture_image, &images, asset.warnings, options);
+    // Material extensions and texture transforms travel (MATERIAL_EXTENSIONS, spec 18): a required one
+    // is not "ignored" here (KHR_materials_variants is not carried: named in warn_not_carried).
+    load_model(path, model, capture_image, &images, asset.warnings, options, [](const std::string& ext) {
+        return (ext.rfind("KHR_materials_", 0) == 0 && ext != "KHR_materials_variants") || ext == "KHR_texture_transform";
+    });
     GltfAssetReader reader(path, model, images, asset);
     reader.read();
     reader.warn_attributes();

@@ -592,7 +592,8 @@ void check_resource_uris(const std::string& path, const std::vector<uint8_t>& by
 }  // namespace
 
 void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadImageDataFunction image_loader,
-                void* image_user_data, std::vector<std::string>& warnings, const InputOptions& options) {
+                void* image_user_data, std::vector<std::string>& warnings, const InputOptions& options,
+                const std::function<bool(const std::string&)>& carried) {
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(image_loader, image_user_data);
     std::string err, warn;
@@ -621,6 +622,7 @@ void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadI
     for (const auto& ext : model.extensionsRequired) {
         if (kGeometryExtensions.count(ext)) continue;
         if (appearance_only(ext)) {
+            if (carried && carried(ext)) continue;
             warnings.push_back(path + ": required extension " + ext +
                                " only changes appearance; ignored (geometry is sent)");
             continue;

@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 
 #include <set>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,9 +29,11 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
 
 // Reads `path` as .gltf or .glb (chosen by its magic) into `model`, images going through
 // `image_loader`. Throws InputError when the file cannot be read, is not glTF 2.x, or requires an
-// extension that is neither a geometry extension above nor appearance-only (those give a warning).
+// extension that is neither a geometry extension above nor appearance-only (those give a warning,
+// unless `carried` says the caller carries them: the scene reader carries material extensions).
 void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadImageDataFunction image_loader,
-                void* image_user_data, std::vector<std::string>& warnings, const InputOptions& options);
+                void* image_user_data, std::vector<std::string>& warnings, const InputOptions& options,
+                const std::function<bool(const std::string&)>& carried = {});
 
 // The file a glTF's relative URI names, percent-decoded, relative to the folder of `model_path`.
 // Unless `options` allow it, throws InputError (naming `what` and the URI) when it leaves that
