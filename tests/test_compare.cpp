@@ -3,6 +3,7 @@
 
 #include "ellicast/compare/channel_trace.h"
 #include "ellicast/compare/ellicast_scheme.h"
+#include "ellicast/compare/hybrid_scheme.h"
 #include "ellicast/compare/erasure_code.h"
 #include "ellicast/compare/experiment.h"
 #include "ellicast/compare/metric.h"
@@ -609,4 +610,42 @@ TEST_CASE("ellicast's can_show agrees with its decoder on random sets of packets
     }
     CHECK(shown > 5);
     CHECK(shown < 30);
+}
+
+TEST_CASE("ellipsoids+draco-mds: ellicast's base at its carousel share, Draco symbols elsewhere; the base's surface until Draco decodes") {
+    if (!test::have_sample("meshes/spot.obj")) return;
+    Mesh spot = load_sample("meshes/spot.obj");
+    EllicastSettings settings;
+    settings.encode.threads = 1;
+    EllicastScheme ellicast(spot, settings);
+    DracoMds mds(spot, DracoSettings{}, 1200);
+    EllipsoidsDracoMds hybrid(ellicast, mds);
+    const size_t nb = hybrid.packets().size() - mds.packets().size();
+    REQUIRE(nb >= 2);
+    // One period: every base packet equally often, every Draco symbol as often as in draco-mds's own.
+    std::vector<size_t> sent(hybrid.packets().size(), 0);
+    for (uint64_t n = 0; n < hybrid.period(); ++n) ++sent.at(hybrid.packet_at(n));
+    for (size_t i = 1; i < nb; ++i) CHECK(sent[i] == sent[0]);
+    CHECK(sent[0] * nb == hybrid.base_slots());
+    for (size_t i = nb; i < sent.size(); ++i) CHECK(sent[i] == 1);
+    const double share = double(hybrid.base_slots()) / double(hybrid.period());
+    CHECK(std::abs(share - ellicast.base_share()) < 0.5 * double(nb) / double(hybrid.period()) + 0.02);
+    // The base alone shows the ellipsoids' surface; the Draco symbols alone, the exact model.
+    std::vector<uint32_t> base(nb), draco;
+    std::iota(base.begin(), base.end(), 0u);
+    for (uint32_t i = uint32_t(nb); i < hybrid.packets().size(); ++i) draco.push_back(i);
+    Mesh out;
+    CHECK_FALSE(hybrid.can_show({}));
+    REQUIRE(hybrid.can_show(base));
+    REQUIRE(hybrid.reconstruct(base, out));
+    CHECK(out.triangles.size() > 0);
+    CHECK_FALSE(hybrid.complete(base));
+    REQUIRE(hybrid.complete(draco));
+    REQUIRE(hybrid.reconstruct(draco, out));
+    CHECK(out.triangles.size() == spot.triangles.size());
+    // Once Draco decodes, the base held no longer matters.
+    std::vector<uint32_t> both = base;
+    both.insert(both.end(), draco.begin(), draco.end());
+    CHECK(hybrid.outcome_key(both) == hybrid.outcome_key(draco));
+    CHECK(hybrid.outcome_key(base) != hybrid.outcome_key(draco));
 }

@@ -6,6 +6,7 @@
 #include "ellicast/compare/channel_trace.h"
 #include "ellicast/compare/ellicast_scheme.h"
 #include "ellicast/compare/experiment.h"
+#include "ellicast/compare/hybrid_scheme.h"
 #include "ellicast/compare/metric.h"
 #include "ellicast/compare/report.h"
 #include "ellicast/compare/schemes.h"
@@ -127,6 +128,7 @@ int run_compare(const CompareArgs& a) {
     std::unique_ptr<DracoRsRepeat> fec;
     std::unique_ptr<DracoMds> mds;
     std::unique_ptr<DracoClusters> clusters;
+    std::unique_ptr<EllipsoidsDracoMds> hybrid;  // ellicast's base + draco-mds
     try {
         EllicastSettings es;
         es.encode.max_ellipsoids = a.ellipsoids;
@@ -150,6 +152,7 @@ int run_compare(const CompareArgs& a) {
         fec = std::make_unique<DracoRsRepeat>(mesh, ds, size_t(a.packet_size), fec_redundancy);
         bar->update("Draco baselines", 0.4);
         mds = std::make_unique<DracoMds>(mesh, ds, size_t(a.packet_size), a.mds_block_data);
+        hybrid = std::make_unique<EllipsoidsDracoMds>(*ellicast, *mds);
         bar->update("Draco baselines", 0.6);
         clusters = std::make_unique<DracoClusters>(mesh, ds, size_t(a.packet_size));
         bar->update("Draco baselines", 1);
@@ -177,7 +180,8 @@ int run_compare(const CompareArgs& a) {
     metric.threshold_percent = a.hole_threshold;
     metric.threads = 1;
 
-    std::vector<const Scheme*> schemes{ellicast.get(), ellicast_repeat.get(), whole.get(), fec.get(), mds.get(), clusters.get()};
+    std::vector<const Scheme*> schemes{ellicast.get(), ellicast_repeat.get(), whole.get(),   fec.get(),
+                                       mds.get(),      hybrid.get(),          clusters.get()};
     ExperimentResult result;
     std::vector<std::string> plots;
     try {
