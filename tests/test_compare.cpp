@@ -612,7 +612,7 @@ TEST_CASE("ellicast's can_show agrees with its decoder on random sets of packets
     CHECK(shown < 30);
 }
 
-TEST_CASE("ellipsoids+draco-mds: ellicast's base at its carousel share, Draco symbols elsewhere; the base's surface until Draco decodes") {
+TEST_CASE("ellipsoids+draco-mds: ellicast's base at its carousel share, Draco symbols elsewhere, the base's surface until Draco decodes") {
     if (!test::have_sample("meshes/spot.obj")) return;
     Mesh spot = load_sample("meshes/spot.obj");
     EllicastSettings settings;
