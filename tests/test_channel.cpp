@@ -239,6 +239,10 @@ TEST_CASE("ellicast simulate gives the same losses for the same seed and for the
     std::string log = test::read_text(dir / "a.ellc.log");
     CHECK(log.find("base complete") != std::string::npos);
     CHECK(log.find("estimated loss") != std::string::npos);
+    // The expected base wait is at the channel's rate, not at what this short run happened to lose;
+    // from a recorded trace, at what the trace lost.
+    CHECK(log.find("expected at the channel's 20.0% loss") != std::string::npos);
+    CHECK(test::read_text(dir / "c.ellc.log").find("expected at the trace's ") != std::string::npos);
     // Without loss, one cycle from slot 0 is exactly the schedule.
     REQUIRE(simulate("clean.ellc", {"--tune-in", "0", "--cycles", "1"}) != 0);  // --tune-in given twice
     REQUIRE(test::run_ellicast({"simulate", (dir / "in.ellc").string(), "-o", (dir / "clean.ellc").string()},

@@ -98,10 +98,20 @@ int run_simulate(const SimulateArgs& a) {
                                             : 0.0,
                 when(full_at).c_str());
     broadcast::CarouselStats stats = broadcast::carousel_stats(carousel);
-    std::printf("schedule: worst-case base wait without loss %s bytes; expected at %.1f%% loss %s bytes\n",
-                with_commas(stats.worst_base_wait_bytes).c_str(), 100.0 * double(trace.lost_count()) / double(slots),
-                with_commas(static_cast<uint64_t>(broadcast::expected_wait_bytes(
-                                carousel, broadcast::WaitFor::Base, double(trace.lost_count()) / double(slots), 256)))
+    // The expectation at the channel's loss rate (--loss), not at what one short run happened to lose;
+    // a recorded trace has no rate of its own but what it lost.
+    const bool from_trace = !a.channel.trace_in.empty();
+    double rate = from_trace ? double(trace.lost_count()) / double(slots) : a.channel.loss;
+    if (!from_trace && a.channel.gilbert_elliott.size() == 4) {  // its long-run rate
+        const auto& ge = a.channel.gilbert_elliott;  // good_to_bad, bad_to_good, loss_good, loss_bad
+        const double bad = ge[0] + ge[1] > 0 ? ge[0] / (ge[0] + ge[1]) : 0;
+        rate = (1 - bad) * ge[2] + bad * ge[3];
+    }
+    std::printf("schedule: worst-case base wait without loss %s bytes; expected at %s %.1f%% loss %s bytes\n",
+                with_commas(stats.worst_base_wait_bytes).c_str(), from_trace ? "the trace's" : "the channel's",
+                100.0 * rate,
+                with_commas(static_cast<uint64_t>(
+                                broadcast::expected_wait_bytes(carousel, broadcast::WaitFor::Base, rate, 256)))
                     .c_str());
     std::printf("wrote %s: %s packets\n", a.output.c_str(), with_commas(kept.size()).c_str());
     if (!a.channel.trace_out.empty()) std::printf("wrote the trace to %s\n", a.channel.trace_out.c_str());
