@@ -622,14 +622,34 @@ TEST_CASE("ellipsoids+draco-mds: ellicast's base at its carousel share, Draco sy
     EllipsoidsDracoMds hybrid(ellicast, mds);
     const size_t nb = hybrid.packets().size() - mds.packets().size();
     REQUIRE(nb >= 2);
-    // One period: every base packet equally often, every Draco symbol as often as in draco-mds's own.
+    // One period: every ELLIPSOIDS packet equally often, each after a STREAM_INFO part, every Draco
+    // symbol as often as in draco-mds's own period.
     std::vector<size_t> sent(hybrid.packets().size(), 0);
-    for (uint64_t n = 0; n < hybrid.period(); ++n) ++sent.at(hybrid.packet_at(n));
-    for (size_t i = 1; i < nb; ++i) CHECK(sent[i] == sent[0]);
-    CHECK(sent[0] * nb == hybrid.base_slots());
+    size_t base_sent = 0, ellipsoids_sent = 0;
+    uint32_t previous_base = UINT32_MAX;
+    for (uint64_t n = 0; n < hybrid.period(); ++n) {
+        const uint32_t p = hybrid.packet_at(n);
+        ++sent.at(p);
+        if (p >= nb) continue;
+        ++base_sent;
+        if (hybrid.packets()[p][6] == uint8_t(PacketType::Ellipsoids)) {
+            ++ellipsoids_sent;
+            if (previous_base != UINT32_MAX) CHECK(hybrid.packets()[previous_base][6] == uint8_t(PacketType::StreamInfo));
+        }
+        previous_base = p;
+    }
+    CHECK(base_sent == hybrid.base_slots());
+    size_t per_ellipsoids = 0;
+    for (size_t i = 0; i < nb; ++i)
+        if (hybrid.packets()[i][6] == uint8_t(PacketType::Ellipsoids)) {
+            if (per_ellipsoids == 0) per_ellipsoids = sent[i];
+            CHECK(sent[i] == per_ellipsoids);
+        }
+    CHECK(per_ellipsoids > 0);
+    CHECK(2 * ellipsoids_sent == base_sent);
     for (size_t i = nb; i < sent.size(); ++i) CHECK(sent[i] == 1);
     const double share = double(hybrid.base_slots()) / double(hybrid.period());
-    CHECK(std::abs(share - ellicast.base_share()) < 0.5 * double(nb) / double(hybrid.period()) + 0.02);
+    CHECK(std::abs(share - ellicast.base_share()) < double(2 * nb) / double(hybrid.period()) + 0.02);
     // The base alone shows the ellipsoids' surface; the Draco symbols alone, the exact model.
     std::vector<uint32_t> base(nb), draco;
     std::iota(base.begin(), base.end(), 0u);

@@ -20,19 +20,28 @@ EllipsoidsDracoMds::EllipsoidsDracoMds(const EllicastScheme& ellicast, const Dra
         }
     }
     if (base_.empty()) throw CompareError("ellipsoids+draco-mds: the ellicast stream has no base packets");
+    std::vector<uint32_t> infos, ellipsoids;
+    for (uint32_t i = 0; i < base_.size(); ++i)
+        (packets_[i][6] == static_cast<uint8_t>(PacketType::StreamInfo) ? infos : ellipsoids).push_back(i);
+    for (size_t k = 0; k < ellipsoids.size(); ++k) {
+        if (!infos.empty()) order_.push_back(infos[k % infos.size()]);
+        order_.push_back(ellipsoids[k]);
+    }
+    for (size_t k = ellipsoids.size(); k < infos.size(); ++k) order_.push_back(infos[k]);  // parts left over
     packets_.insert(packets_.end(), mds.packets().begin(), mds.packets().end());
     // One period: the MDS schedule's period and a whole number of rounds of the base, about the
     // carousel's base share of the slots.
     const double share = std::clamp(ellicast.base_share(), 0.0, 0.9);
     const double wanted = double(mds.period()) * share / (1 - share);
-    const uint64_t rounds = std::max<uint64_t>(1, uint64_t(std::llround(wanted / double(base_.size()))));
-    base_slots_ = rounds * base_.size();
+    const uint64_t rounds = std::max<uint64_t>(1, uint64_t(std::llround(wanted / double(order_.size()))));
+    base_slots_ = rounds * order_.size();
     period_ = mds.period() + base_slots_;
 }
 
 std::string EllipsoidsDracoMds::describe() const {
     std::ostringstream s;
-    s << "ellicast's base (" << base_.size() << " STREAM_INFO and ELLIPSOIDS packets) in " << base_slots_ << " of every "
+    s << "ellicast's base (" << base_.size() << " STREAM_INFO and ELLIPSOIDS packets, a STREAM_INFO before each "
+      << "ELLIPSOIDS) in " << base_slots_ << " of every "
       << period_ << " slots (" << std::llround(100.0 * double(base_slots_) / double(period_))
       << "%, spread evenly), draco-mds (" << mds_.packets().size()
       << " symbols) in the others: the ellipsoids' surface until the Draco file decodes, then the exact model";
@@ -43,7 +52,7 @@ uint32_t EllipsoidsDracoMds::packet_at(uint64_t n) const {
     const uint64_t q = n / period_, r = n % period_;
     // Base slots spread evenly over the period: slot r is a base slot when the count steps there.
     const uint64_t before = r * base_slots_ / period_, after = (r + 1) * base_slots_ / period_;
-    if (after > before) return uint32_t((q * base_slots_ + before) % base_.size());
+    if (after > before) return order_[(q * base_slots_ + before) % order_.size()];
     const uint64_t mds_slot = q * (period_ - base_slots_) + (r - before);
     return uint32_t(base_.size() + mds_.packet_at(mds_slot));
 }

@@ -14,9 +14,11 @@ namespace ellicast::compare {
 
 class EllipsoidsDracoMds : public Scheme {
 public:
-    // Copies the base packets of `ellicast` and every packet of `mds`; both must outlive nothing
-    // (decoding goes through them, so they must outlive this scheme). The base takes `ellicast`'s
-    // base share of the slots, rounded so that every base packet goes out equally often.
+    // Copies the base packets of `ellicast` and every packet of `mds` (decoding goes through both
+    // schemes, so they must outlive this one). The base takes `ellicast`'s base share of the slots in
+    // whole rounds of its order: a STREAM_INFO part before each ELLIPSOIDS packet, so that a receiver
+    // needs two base slots in a row for its first picture (ellicast's own carousel repeats the stream
+    // info every 8 packets).
     EllipsoidsDracoMds(const EllicastScheme& ellicast, const DracoMds& mds);
 
     std::string name() const override { return "ellipsoids+draco-mds"; }
@@ -37,7 +39,8 @@ private:
 
     const EllicastScheme& ellicast_;
     const DracoMds& mds_;
-    std::vector<uint32_t> base_;  // our packet i < base_.size(): ellicast packet base_[i]
+    std::vector<uint32_t> base_;   // our packet i < base_.size(): ellicast packet base_[i]
+    std::vector<uint32_t> order_;  // the base's round robin (our indices): a STREAM_INFO before each ELLIPSOIDS
     uint64_t period_ = 0, base_slots_ = 0;
 };
 
