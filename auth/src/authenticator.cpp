@@ -24,13 +24,6 @@ Authenticator::Verdict Authenticator::reject(uint64_t where, Error e, std::strin
 }
 
 namespace {
-// A STREAM_INFO's own content id (payload offset 12), when its payload is long enough (spec 25.2).
-std::optional<uint32_t> stream_info_content(uint8_t type, std::span<const uint8_t> payload) {
-    if (type != static_cast<uint8_t>(PacketType::StreamInfo) || payload.size() < 16) return std::nullopt;
-    return uint32_t{payload[12]} | uint32_t{payload[13]} << 8 | uint32_t{payload[14]} << 16 |
-           uint32_t{payload[15]} << 24;
-}
-
 std::string hex32(uint32_t v) {
     char text[16];
     std::snprintf(text, sizeof text, "0x%08X", v);
@@ -80,7 +73,7 @@ Authenticator::Verdict Authenticator::take(const PacketView& packet, std::span<c
     if (packet.header.type == static_cast<uint8_t>(PacketType::Manifest)) return take_manifest(packet, bytes, where);
     const PacketDigest digest = packet_digest(bytes);
     const uint32_t stream_id = packet.header.stream_id;
-    const std::optional<uint32_t> info_content = stream_info_content(packet.header.type, packet.payload);
+    const std::optional<uint32_t> info_content = stream_info_content_id(packet.header.type, packet.payload);
     switch (judge(digest, stream_id, info_content)) {
     case Judgement::Pass:
         // A STREAM_INFO that gives its stream a content releases what waited for it, after itself.

@@ -27,11 +27,8 @@ SignedRecordingCheck check_signed_recording(const std::vector<ContainerPacket>& 
         const PacketDigest digest = packet_digest(bytes_of(p));
         if (!is_manifest(p)) {
             others[p.view.header.stream_id].emplace(digest, p.offset);
-            const auto& payload = p.view.payload;
-            if (p.view.header.type == static_cast<uint8_t>(PacketType::StreamInfo) && payload.size() >= 16)
-                infos[p.view.header.stream_id].push_back(
-                    {p.offset, uint32_t{payload[12]} | uint32_t{payload[13]} << 8 | uint32_t{payload[14]} << 16 |
-                                   uint32_t{payload[15]} << 24});
+            if (const auto content = stream_info_content_id(p.view.header.type, p.view.payload))
+                infos[p.view.header.stream_id].push_back({p.offset, *content});
             continue;
         }
         ManifestPart part;

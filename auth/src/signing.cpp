@@ -67,12 +67,10 @@ Error sign_packets(const std::vector<std::vector<uint8_t>>& packets, const KeyPa
                     ", the first had " + std::to_string(stream_id) + ": a manifest signs one stream";
             return Error::MalformedPayload;
         }
-        if (view.header.type == static_cast<uint8_t>(PacketType::StreamInfo) && view.payload.size() >= 16) {
-            // The content id a receiver binds with: the u32 at payload offset 12 (spec 25.2).
-            const uint8_t* c = view.payload.data() + 12;
-            const uint32_t id = uint32_t{c[0]} | uint32_t{c[1]} << 8 | uint32_t{c[2]} << 16 | uint32_t{c[3]} << 24;
-            if (content_id && *content_id != id) {
-                error = "packet " + std::to_string(i) + " is a STREAM_INFO of content id " + std::to_string(id) +
+        // The content id a receiver binds with (spec 25.2).
+        if (const auto id = stream_info_content_id(view.header.type, view.payload)) {
+            if (content_id && *content_id != *id) {
+                error = "packet " + std::to_string(i) + " is a STREAM_INFO of content id " + std::to_string(*id) +
                         ", an earlier one said " + std::to_string(*content_id) + ": a manifest signs one content";
                 return Error::MalformedPayload;
             }

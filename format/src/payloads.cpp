@@ -124,6 +124,11 @@ size_t stream_info_entry_size(const StreamInfo& info) {
     return kObjectEntrySize;
 }
 
+std::optional<uint32_t> stream_info_content_id(uint8_t type, std::span<const uint8_t> payload) {
+    if (type != static_cast<uint8_t>(PacketType::StreamInfo) || payload.size() < 16) return std::nullopt;
+    return get_u32(payload.data() + 12);
+}
+
 Error decode_stream_info_payload(std::span<const uint8_t> payload, StreamInfoPart& out, uint8_t version_minor) {
     if (payload.size() < kStreamInfoFixedSize) return Error::MalformedPayload;
     const uint8_t* p = payload.data();

@@ -47,10 +47,8 @@ struct EncodeArgs {
 std::optional<uint32_t> content_id_of(const std::vector<std::vector<uint8_t>>& packets) {
     for (const auto& bytes : packets) {
         PacketView view;
-        StreamInfoPart info;
-        if (parse_packet(bytes, view) == Error::Ok && view.header.type == static_cast<uint8_t>(PacketType::StreamInfo) &&
-            decode_stream_info_payload(view.payload, info, view.header.version_minor) == Error::Ok)
-            return info.info.content_id;
+        if (parse_packet(bytes, view) != Error::Ok) continue;
+        if (const auto content = stream_info_content_id(view.header.type, view.payload)) return content;
     }
     return std::nullopt;
 }

@@ -42,6 +42,7 @@ struct CatalogueJob {
     std::string validator;  // the validator's verdict, "" when none ran
     bool validator_failed = false;
     double seconds = 0;
+    std::chrono::steady_clock::time_point started;
 };
 
 std::string ascii_lower(std::string s) {
@@ -188,8 +189,7 @@ int run_convert_catalogue(const CatalogueArgs& a) {
     if (ec) return fail(kExitFailure, "cannot find the ellicast executable (/proc/self/exe): " + ec.message());
 
     ProgressBar bar(!a.quiet);
-    std::map<pid_t, size_t> running;
-    std::map<pid_t, std::chrono::steady_clock::time_point> started;
+    std::map<pid_t, size_t> running;  // child -> its job
     size_t next = 0, done = 0;
     auto launch = [&](CatalogueJob& job) -> bool {
         fs::create_directories(job.output.parent_path(), ec);
@@ -212,7 +212,7 @@ int run_convert_catalogue(const CatalogueArgs& a) {
             return false;
         }
         running[pid] = size_t(&job - jobs.data());
-        started[pid] = std::chrono::steady_clock::now();
+        job.started = std::chrono::steady_clock::now();
         return true;
     };
     bar.update("catalogue", 0.0);
@@ -230,7 +230,7 @@ int run_convert_catalogue(const CatalogueArgs& a) {
         if (it == running.end()) continue;
         CatalogueJob& job = jobs[it->second];
         job.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-        job.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started[pid]).count();
+        job.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - job.started).count();
         running.erase(it);
         read_convert_log(job);
         if (job.exit_code == 0 && !a.validator.empty()) run_output_validator(a.validator, job);

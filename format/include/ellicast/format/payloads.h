@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -43,6 +44,10 @@ std::vector<uint8_t> encode_points_payload(const PointBatch& batch, const Stream
 // `version_minor`: that of the packet; the entries' map fields (spec 23.1) are read only from 1.7 on.
 Error decode_stream_info_payload(std::span<const uint8_t> payload, StreamInfoPart& out,
                                  uint8_t version_minor = kSpecMinor);
+// The content id of a STREAM_INFO packet (the u32 at payload offset 12, spec 5.4) without decoding the
+// rest, as a receiver with a key binds packets to it (spec 25.2); none for another type or a payload
+// shorter than 16 bytes.
+std::optional<uint32_t> stream_info_content_id(uint8_t type, std::span<const uint8_t> payload);
 Error decode_ellipsoids_payload(std::span<const uint8_t> payload, EllipsoidBatch& out);
 // Needs the object's info: the record size depends on its attributes and the bit depths. For a
 // mapped object (MAPPED_POINTS, spec 23.4) the positions are the offsets inside the points' cells,
