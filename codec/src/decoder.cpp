@@ -558,7 +558,14 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
             }
             if (unusable) exact_note = "its exact layer is unusable (" + why + "): reconstructed";
         }
-        if (!decode_object(*objects[i].info, stream.ellipsoids(i), stream.points(i), info.grid_hint, shared, i, mesh,
+        std::vector<SurfacePoint> points = stream.points(i);
+        size_t held = 0;
+        if (options.insert_if) {
+            const size_t before = points.size();
+            std::erase_if(points, [&](const SurfacePoint& p) { return !options.insert_if(i, p.position); });
+            held = before - points.size();
+        }
+        if (!decode_object(*objects[i].info, stream.ellipsoids(i), points, info.grid_hint, shared, i, mesh,
                            report.objects[i], object_error)) {
             // One object that cannot be built does not cost the others theirs.
             if (!exact_note.empty()) report.objects[i].notes.push_back(exact_note);
@@ -568,6 +575,9 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
             continue;
         }
         if (!exact_note.empty()) report.objects[i].notes.push_back(exact_note);
+        if (held > 0)
+            report.objects[i].notes.push_back(std::to_string(held) + " of " + std::to_string(held + points.size()) +
+                                              " points held outside the region of interest (not inserted)");
         if (const auto& c = objects[i].connectivity) {  // decode_object starts its report afresh
             report.objects[i].has_connectivity = true;
             report.objects[i].connectivity_bytes = c->received_bytes;

@@ -50,18 +50,9 @@ Eigen::Matrix4d node_matrix(const SceneNode& n) {
     return m;
 }
 
-
-std::vector<Mesh> flatten_asset(const Asset& asset) {
-    std::vector<Mesh> out;
-    const auto& nodes = asset.scene.nodes;
-    auto present = [&](size_t o) { return o < asset.objects.size() && !asset.objects[o].positions.empty(); };
-    if (nodes.empty()) {
-        for (size_t o = 0; o < asset.objects.size(); ++o)
-            if (present(o)) out.push_back(asset.objects[o]);
-        return out;
-    }
-    // World transforms, following parents; a node in or under a cycle (or a parent outside the table)
-    // gets none and shows nothing.
+// World transforms, following parents; a node in or under a cycle (or a parent outside the table)
+// gets none and shows nothing.
+static std::vector<std::optional<Eigen::Matrix4d>> node_world_matrices(const std::vector<SceneNode>& nodes) {
     std::vector<std::optional<Eigen::Matrix4d>> world(nodes.size());
     for (size_t i = 0; i < nodes.size(); ++i) {
         Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
@@ -78,6 +69,19 @@ std::vector<Mesh> flatten_asset(const Asset& asset) {
         }
         if (ok && m.allFinite()) world[i] = m;
     }
+    return world;
+}
+
+std::vector<Mesh> flatten_asset(const Asset& asset) {
+    std::vector<Mesh> out;
+    const auto& nodes = asset.scene.nodes;
+    auto present = [&](size_t o) { return o < asset.objects.size() && !asset.objects[o].positions.empty(); };
+    if (nodes.empty()) {
+        for (size_t o = 0; o < asset.objects.size(); ++o)
+            if (present(o)) out.push_back(asset.objects[o]);
+        return out;
+    }
+    const std::vector<std::optional<Eigen::Matrix4d>> world = node_world_matrices(nodes);
     for (size_t i = 0; i < nodes.size(); ++i) {
         if (!world[i] || nodes[i].mesh == kNone || nodes[i].mesh >= asset.scene.meshes.size()) continue;
         const SceneMesh& mesh = asset.scene.meshes[nodes[i].mesh];
@@ -88,6 +92,31 @@ std::vector<Mesh> flatten_asset(const Asset& asset) {
                      (mesh.primitives.size() > 1 ? "#" + std::to_string(p) : "");
             out.push_back(std::move(m));
         }
+    }
+    return out;
+}
+
+}  // namespace ellicast
+
+namespace ellicast {
+
+std::vector<std::vector<std::array<double, 16>>> object_world_transforms(const Asset& asset) {
+    std::vector<std::vector<std::array<double, 16>>> out(asset.objects.size());
+    auto as_array = [](const Eigen::Matrix4d& m) {
+        std::array<double, 16> a;
+        Eigen::Map<Eigen::Matrix4d>(a.data()) = m;
+        return a;
+    };
+    const auto& nodes = asset.scene.nodes;
+    if (nodes.empty()) {
+        for (auto& o : out) o.push_back(as_array(Eigen::Matrix4d::Identity()));
+        return out;
+    }
+    const auto world = node_world_matrices(nodes);
+    for (size_t i = 0; i < nodes.size(); ++i) {
+        if (!world[i] || nodes[i].mesh == kNone || nodes[i].mesh >= asset.scene.meshes.size()) continue;
+        for (const auto& primitive : asset.scene.meshes[nodes[i].mesh].primitives)
+            if (primitive.object < out.size()) out[primitive.object].push_back(as_array(*world[i]));
     }
     return out;
 }

@@ -1,6 +1,7 @@
 // `ellicast decode IN.ellc -o OUT.glb|.gltf|.ply|.obj [--snapshots N] [--grid R] [--draco|--quantize]`:
 // rebuild the models from whatever packets a recorded stream holds, in their scene when it has one.
 #include "commands.h"
+#include "region_option.h"
 #include "progress.h"
 
 #include "ellicast/codec/decoder.h"
@@ -29,6 +30,7 @@ struct DecodeArgs {
     bool no_exact = false;    // --no-exact: always the reconstruction
     std::string key;          // --key: decode only what this sender signed
     AssetWriteOptions write;  // --draco, --quantize
+    std::string region;       // --region: refine only there (region_option.h)
 };
 
 std::string snapshot_path(const std::string& output, size_t object, size_t points) {
@@ -79,6 +81,11 @@ int run_decode(const DecodeArgs& args) {
     if (std::string bad = check_asset_write_options(args.write); !bad.empty()) return fail(kExitUsage, bad);
     if ((args.write.draco || args.write.quantize) && type != MeshFileType::Glb && type != MeshFileType::Gltf)
         return fail(kExitUsage, "--draco and --quantize need a .glb or .gltf output");
+    Region region;
+    if (!args.region.empty()) {
+        std::string error;
+        if (!parse_region(args.region, region, error)) return fail(kExitUsage, error);
+    }
     if (type == MeshFileType::Gltf) {
         auto bin = std::filesystem::path(args.output).replace_extension(".bin").string();
         if (output_clobbers_input(bin, {args.input})) return kExitUsage;
@@ -99,6 +106,7 @@ int run_decode(const DecodeArgs& args) {
     options.exact = !args.no_exact;
     options.snapshot_every = args.snapshots;
     options.progress = [&](const std::string& stage, double fraction) { bar.update(stage, fraction); };
+    if (!args.region.empty()) options.insert_if = region_filter(region, stream);
     std::string snapshot_error;
     size_t snapshots_written = 0;
     if (args.snapshots > 0) {
@@ -211,6 +219,10 @@ const RegisterCommand kRegisterDecode{{40, [](CLI::App& app, int& exit_code) {
     cmd->add_flag("--quantize", args->write.quantize, "glTF output: quantize attributes with KHR_mesh_quantization");
     cmd->add_option("--key", args->key,
                     "public key (NAME.pub or 64 hex digits): decode only the packets a MANIFEST signed with it lists");
+    cmd->add_option("--region", args->region,
+                    "refine only inside a region, holding the other points: box:X0,Y0,Z0,X1,Y1,Z1 or "
+                    "view:EX,EY,EZ,TX,TY,TZ,FOV[,ASPECT] (a camera's position, target and field of view in degrees; "
+                    "world coordinates). An object whose exact layer is whole is still written exact");
     cmd->add_flag("--no-exact", args->no_exact,
                   "reconstruct every object, also one whose exact layer (original triangles) arrived whole");
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");

@@ -345,6 +345,10 @@ struct DecodeOptions {
     // When given, no point is inserted past this moment: the object is finished with the points
     // inserted so far (a note says how many), so that a receiver's deadline bounds its last decode.
     std::optional<std::chrono::steady_clock::time_point> deadline;
+    // A region of interest (decode --region): a point for which this returns false (object index,
+    // dequantized position in the object's frame) is held, not inserted; an object's exact layer,
+    // when whole, is still used. Empty: every point is inserted.
+    std::function<bool(size_t object, const std::array<float, 3>& position)> insert_if;
 };
 
 struct ObjectDecodeReport {

@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -125,6 +126,11 @@ bool write_asset_glb(const Asset& asset, const AssetWriteOptions& options, std::
 // normals by the inverse transpose, winding kept outward under a mirroring transform), named after
 // its node. Without nodes: the present objects as they are.
 std::vector<Mesh> flatten_asset(const Asset& asset);
+
+// For each object of `asset`, the world transforms (4x4, column-major) of the nodes that show it,
+// as flatten_asset applies them; with no scene graph, every object has the identity alone. An
+// object no node shows has none.
+std::vector<std::vector<std::array<double, 16>>> object_world_transforms(const Asset& asset);
 
 // A node's local transform: its matrix, or T * R * S.
 Eigen::Matrix4d node_matrix(const SceneNode& node);
