@@ -6,6 +6,8 @@
 #include "broadcast_cli.h"
 #include "commands.h"
 #include "live_reconstruction.h"
+#include "live_view.h"
+#include "region_option.h"
 #include "progress.h"
 
 #include "ellicast/codec/decoder.h"
@@ -17,6 +19,7 @@
 #include <ellicast/format.h>
 
 #include <atomic>
+#include <optional>
 #include <chrono>
 #include <cstdint>
 #include <csignal>
@@ -43,6 +46,11 @@ struct ReceiveArgs {
     size_t max_pending_mb = ReceivedStream::Limits{}.max_pending_bytes >> 20;
     bool quiet = false;
     std::string key;  // accept only the stream this public key signs (spec 16.3)
+    bool view = false;  // serve the live view (live_view.h)
+    std::string view_bind = "127.0.0.1";
+    uint16_t view_port = 8765;
+    std::string three, reference;
+    double view_linger = -1;  // seconds to keep the page after the end (-1: until interrupted)
 };
 
 // A moment at which to write a snapshot: when the base is complete, at a share of the points, or
@@ -126,6 +134,18 @@ bool write_model(const std::string& path, const ReceivedStream& stream, std::vec
     return write_meshes(path, meshes, error);
 }
 
+// After the reception: the page stays for `linger` seconds, or until Ctrl-C when negative.
+void keep_serving(LiveView& view, double linger) {
+    g_receive_stop.store(false);
+    std::signal(SIGINT, on_receive_interrupt);
+    std::signal(SIGTERM, on_receive_interrupt);
+    if (linger < 0) std::fprintf(stderr, "view: the page stays at %s until Ctrl-C\n", view.url().c_str());
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(linger < 0 ? 1e9 : linger);
+    while (!g_receive_stop.load() && std::chrono::steady_clock::now() < until) view.poll(std::chrono::milliseconds(100));
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+}
+
 int run_receive(const ReceiveArgs& a) {
     double deadline_seconds = -1;
     if (a.until != "complete") {
@@ -181,6 +201,25 @@ int run_receive(const ReceiveArgs& a) {
     };
     std::vector<uint8_t> buffer(kMaxPacketSize + 1);
     LiveReconstruction live(a.grid);
+    // The page shows the live reconstruction: with --view it is built whatever the output.
+    const bool live_wanted = !stream_output || a.view;
+    std::optional<LiveView> view;
+    uint64_t region_applied = 0;
+    if (a.view) {
+        LiveViewOptions view_options;
+        view_options.bind = a.view_bind;
+        view_options.port = a.view_port;
+        view_options.three_dir = a.three;
+        view_options.reference = a.reference;
+        view_options.title = "reception on " + a.from;
+        view.emplace();
+        if (!view->start(view_options, error)) return fail(kExitFailure, "--view: " + error);
+        std::fprintf(stderr, "view: %s\n", view->url().c_str());
+        if (view->reachable_from_other_hosts())
+            std::fprintf(stderr, "ellicast: warning: --view-bind %s: the page can be opened from other hosts\n",
+                         a.view_bind.c_str());
+        std::fflush(stderr);
+    }
 
     std::signal(SIGINT, on_receive_interrupt);
     std::signal(SIGTERM, on_receive_interrupt);
@@ -251,7 +290,7 @@ int run_receive(const ReceiveArgs& a) {
         // Wait for datagrams only when there is no reconstruction work to do; then read every
         // datagram that is waiting before working again.
         const bool busy = live.started() && !live.caught_up(stream());
-        double wait = busy ? 0.0 : 0.2;
+        double wait = busy ? 0.0 : (view ? 0.05 : 0.2);
         if (deadline_seconds > 0) wait = std::min(wait, deadline_seconds - elapsed);
         for (int n = 0; n < 1024; ++n) {
             broadcast::Datagram datagram;
@@ -282,7 +321,7 @@ int run_receive(const ReceiveArgs& a) {
         }
         if (base_at < 0 && reception.base_complete()) {
             base_at = seconds_since(std::chrono::steady_clock::now());
-            if (!stream_output) {
+            if (live_wanted) {
                 if (!live.start(stream(), error)) return fail(kExitFailure, "building the base mesh: " + error);
                 live_candidate = chosen_serial();
                 shown_at = seconds_since(std::chrono::steady_clock::now());
@@ -298,7 +337,7 @@ int run_receive(const ReceiveArgs& a) {
             complete_at = seconds_since(std::chrono::steady_clock::now());
             break;
         }
-        if (!stream_output && live.started() && chosen_serial() != live_candidate && reception.base_complete()) {
+        if (live_wanted && live.started() && chosen_serial() != live_candidate && reception.base_complete()) {
             // Another candidate has overtaken the one shown: show that one from its base.
             if (!live.start(stream(), error)) return fail(kExitFailure, "building the base mesh: " + error);
             live_candidate = chosen_serial();
@@ -306,8 +345,16 @@ int run_receive(const ReceiveArgs& a) {
                 std::fprintf(stderr, "%sswitched to stream id 0x%X (the candidate with the most packets)\n", tty ? "\n" : "",
                              stream().stream_id());
         }
-        if (!stream_output && live.started()) live.work(stream(), std::chrono::milliseconds(20));
+        if (view && live.started() && view->region_version() != region_applied) {
+            region_applied = view->region_version();
+            live.set_region(view->region() ? region_filter(*view->region(), stream()) : LiveReconstruction::InsertIf{});
+        }
+        if (live_wanted && live.started() && !live.caught_up(stream())) live.work(stream(), std::chrono::milliseconds(20));
         now = std::chrono::steady_clock::now();
+        if (view) {
+            view->update(reception, live, seconds_since(now), {});
+            view->poll(std::chrono::milliseconds(0));
+        }
         const uint64_t shown_points = stream_output ? reception.points_received() : live.inserted();
         const double share = reception.points_declared() ? 100.0 * double(shown_points) / double(reception.points_declared()) : 0.0;
         for (auto& s : snapshots) {
@@ -320,6 +367,13 @@ int run_receive(const ReceiveArgs& a) {
             print_progress(false);
             last_progress = now;
         }
+    }
+    if (view) {
+        // The page's last picture: everything inserted (the final decode below writes the output).
+        while (live.started() && !live.caught_up(stream()) && !g_receive_stop.load())
+            live.work(stream(), std::chrono::milliseconds(100));
+        view->update(reception, live, seconds_since(std::chrono::steady_clock::now()), {}, true);
+        view->poll(std::chrono::milliseconds(0));
     }
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
@@ -372,6 +426,7 @@ int run_receive(const ReceiveArgs& a) {
         const auto packets = kept_of_chosen();
         if (!write_received(a.output, packets, error)) return fail(kExitFailure, error);
         std::fprintf(stderr, "wrote %s: %s packets\n", a.output.c_str(), with_commas(packets.size()).c_str());
+        if (view) keep_serving(*view, a.view_linger);
         return kExitOk;
     }
     // The final model: everything received, decoded in stream order (deterministic: the same as
@@ -452,6 +507,7 @@ int run_receive(const ReceiveArgs& a) {
     std::fprintf(stderr, "decoded in %s; wrote %s: %zu object(s) (%zu exact), %s vertices, %s triangles\n",
                  seconds_text(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()).c_str(),
                  a.output.c_str(), built, exact, with_commas(vertices).c_str(), with_commas(faces).c_str());
+    if (view) keep_serving(*view, a.view_linger);
     return kExitOk;
 }
 
@@ -480,6 +536,21 @@ const RegisterCommand kRegisterReceive{{63, [](CLI::App& app, int& exit_code) {
         ->check(CLI::Range(size_t(1), size_t(4096)));
     cmd->add_option("--key", args->key,
                     "public key (NAME.pub or 64 hex digits): accept only packets a MANIFEST signed with it lists");
+    auto* view_flag = cmd->add_flag("--view", args->view,
+                  "watch the reception in a web page (three.js): http://127.0.0.1:8765/ unless --view-bind/--view-port say otherwise");
+    cmd->add_option("--view-bind", args->view_bind,
+                    "address the page is served on (default 127.0.0.1: this machine only)")
+        ->needs(view_flag);
+    cmd->add_option("--view-port", args->view_port, "TCP port of the page (default 8765; 0: any free port)")
+        ->needs(view_flag);
+    cmd->add_option("--three", args->three, "three.js's npm package folder (default: the one scripts/setup.sh installs)")
+        ->needs(view_flag);
+    cmd->add_option("--reference", args->reference, "the original model: the page shows the surface error against it")
+        ->needs(view_flag);
+    cmd->add_option("--view-linger", args->view_linger,
+                    "seconds to keep serving the page after the output is written (default: until Ctrl-C)")
+        ->check(CLI::Range(0.0, 1e7))
+        ->needs(view_flag);
     cmd->add_flag("-q,--quiet", args->quiet, "no progress on stderr");
     cmd->callback([args, &exit_code] { exit_code = run_receive(*args); });
 }}};
