@@ -322,6 +322,7 @@ int run_receive(const ReceiveArgs& a) {
         if (base_at < 0 && reception.base_complete()) {
             base_at = seconds_since(std::chrono::steady_clock::now());
             if (live_wanted) {
+                if (view) view->publish_preview(reception, seconds_since(std::chrono::steady_clock::now()));
                 if (!live.start(stream(), error)) return fail(kExitFailure, "building the base mesh: " + error);
                 live_candidate = chosen_serial();
                 shown_at = seconds_since(std::chrono::steady_clock::now());

@@ -113,6 +113,7 @@ int run_view(const ViewArgs& a) {
     double base_at = -1, complete_at = -1;
     double last_progress = -1;
     uint64_t region_applied = 0;
+    uint64_t final_changes = 0, final_region = 0;  // what the last status after the end showed
     while (!g_view_stop.load()) {
         const double now = seconds();
         while (slots_sent < slots && sent_at(slots_sent) <= now) slots_lost += trace.lost(slots_sent++);
@@ -123,9 +124,12 @@ int run_view(const ViewArgs& a) {
             reception.take(bytes);
         }
         if (!live.started() && reception.base_complete()) {
+            view.publish_preview(reception, now);
             if (!live.start(reception.stream(), error)) return fail(kExitFailure, "building the base mesh: " + error);
-            base_at = now;
-            if (!a.quiet) std::fprintf(stderr, "base shown after %s\n", seconds_text(now).c_str());
+            base_at = seconds();
+            if (!a.quiet)
+                std::fprintf(stderr, "base whole after %s, its mesh built after %s\n", seconds_text(now).c_str(),
+                             seconds_text(base_at).c_str());
         }
         if (live.started() && view.region_version() != region_applied) {
             // The page turned: points held outside the old view may now be inserted.
@@ -146,6 +150,13 @@ int run_view(const ViewArgs& a) {
                          with_commas(slots_lost).c_str());
         } else if (!ended) {
             view.update(reception, live, now, {slots_sent, slots_lost});
+        } else if (live.changes() != final_changes || view.region_version() != final_region) {
+            // After the end the page may still turn (refining where it looks): show what changed.
+            view.update(reception, live, now, {slots_sent, slots_lost}, true);
+        }
+        if (ended) {
+            final_changes = live.changes();
+            final_region = view.region_version();
         }
         if (!a.quiet && !ended && now - last_progress >= 1.0) {
             last_progress = now;
@@ -162,7 +173,8 @@ int run_view(const ViewArgs& a) {
         view.poll(std::chrono::milliseconds(static_cast<int64_t>(std::clamp(wait, 0.0, 0.2) * 1000)));
     }
     if (base_at < 0) std::fprintf(stderr, "ellicast: warning: the base never became whole: nothing was shown\n");
-    std::fprintf(stderr, "view: %llu model(s) published\n", static_cast<unsigned long long>(view.models_published()));
+    std::fprintf(stderr, "view: %llu model(s) published, %s building them\n",
+                 static_cast<unsigned long long>(view.models_published()), seconds_text(view.publish_seconds()).c_str());
     return kExitOk;
 }
 

@@ -91,6 +91,8 @@ void LiveReconstruction::set_region(InsertIf insert_if) {
 
 size_t LiveReconstruction::work(const ReceivedStream& stream, std::chrono::microseconds budget) {
     if (!started_) return 0;
+    // An object whose exact layer is whole needs none of its remaining points inserted.
+    take_exact_layers(stream);
     const auto deadline = std::chrono::steady_clock::now() + budget;
     size_t done = 0, held = 0;
     const size_t received_now = insert_if_ ? received_points(stream) : 0;

@@ -182,6 +182,7 @@ bool LiveView::start(const LiveViewOptions& options, std::string& error) {
     });
     server_.route("/model.glb", [this](const std::string&, const std::string&) {
         if (glb_.empty()) return viewer::http_error(404, "no model yet: the base has not arrived");
+        ++model_fetches_;
         viewer::HttpResponse r;
         r.content_type = "model/gltf-binary";
         r.body = glb_;
@@ -219,8 +220,33 @@ bool LiveView::start(const LiveViewOptions& options, std::string& error) {
 }
 
 void LiveView::publish_model(const broadcast::Reception& reception, const LiveReconstruction& live, double seconds) {
+    publish_asset(received_asset(reception.stream(), live.objects()), seconds);
+}
+
+void LiveView::publish_preview(const broadcast::Reception& reception, double seconds) {
+    const ReceivedStream& stream = reception.stream();
+    if (!stream.info()) return;
+    std::vector<Mesh> objects(stream.objects().size());
+    DecodeOptions options;
+    options.faces_per_point = 0;
+    for (size_t i = 0; i < objects.size(); ++i) {
+        const auto& info = stream.objects()[i].info;
+        if (!info || info->kind != ObjectKind::Surface) continue;
+        const int hint = stream.info()->grid_hint > 0 ? stream.info()->grid_hint : kDefaultGridResolution;
+        options.grid_resolution = std::clamp(hint / 2, kMinGridResolution, 48);
+        ObjectDecodeReport report;
+        std::string error;
+        if (!decode_object(*info, stream.ellipsoids(i), {}, stream.info()->grid_hint, options, i, objects[i], report, error))
+            objects[i] = Mesh{};
+    }
+    publish_asset(received_asset(stream, std::move(objects)), seconds);
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(200);
+    while (model_fetches_ < server_.event_clients() && std::chrono::steady_clock::now() < until)
+        server_.poll(std::chrono::milliseconds(10));
+}
+
+void LiveView::publish_asset(const Asset& asset, double seconds) {
     const auto t0 = std::chrono::steady_clock::now();
-    Asset asset = received_asset(reception.stream(), live.objects());
     std::vector<uint8_t> bytes;
     std::vector<std::string> warnings;
     std::string error;
@@ -229,12 +255,14 @@ void LiveView::publish_model(const broadcast::Reception& reception, const LiveRe
         return;
     }
     glb_.assign(bytes.begin(), bytes.end());
+    model_fetches_ = 0;
     triangles_ = 0;
     std::vector<Mesh> flat = flatten_asset(asset);
     for (const auto& m : flat) triangles_ += m.triangles.size();
     if (!reference_.empty()) shown_ = std::move(flat);
     ++model_version_;
     last_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    publish_seconds_ += last_build_seconds_;
     server_.send_event("model", "{\"version\":" + std::to_string(model_version_) + ",\"bytes\":" +
                                     std::to_string(glb_.size()) + ",\"triangles\":" + std::to_string(triangles_) +
                                     ",\"seconds\":" + view_json_number(seconds) + "}");

@@ -10,6 +10,7 @@
 
 #include "ellicast/codec/mesh.h"
 #include "ellicast/codec/region.h"
+#include "ellicast/converters/asset.h"
 
 #include <ellicast/broadcast/reception.h>
 #include <ellicast/viewer/http_server.h>
@@ -47,6 +48,11 @@ public:
     // changed (at most every min_interval; at once when an object turned exact or `final`).
     void update(const broadcast::Reception& reception, const LiveReconstruction& live, double seconds,
                 const ChannelFacts& channel, bool final = false);
+    // The first picture, before the live reconstruction builds its base: every surface object's
+    // base on a coarse grid (a few tens of milliseconds), published at once; then serves the page
+    // until each open page has fetched it (at most 200 ms), so that it shows while the full base
+    // is built.
+    void publish_preview(const broadcast::Reception& reception, double seconds);
     // Serves the page for at most `timeout`.
     void poll(std::chrono::milliseconds timeout) { server_.poll(timeout); }
     size_t viewers() const { return server_.event_clients(); }
@@ -55,9 +61,12 @@ public:
     const std::optional<Region>& region() const { return region_; }
     uint64_t region_version() const { return region_version_; }
     uint64_t models_published() const { return model_version_; }
+    // Seconds spent building the published models (the reconstruction's meshes to GLB).
+    double publish_seconds() const { return publish_seconds_; }
 
 private:
     void publish_model(const broadcast::Reception& reception, const LiveReconstruction& live, double seconds);
+    void publish_asset(const Asset& asset, double seconds);
     std::string status_json(const broadcast::Reception& reception, const LiveReconstruction& live, double seconds,
                             const ChannelFacts& channel) const;
 
@@ -68,6 +77,7 @@ private:
     std::vector<Mesh> shown_;      // the model published last, world space (kept with a reference)
     std::string glb_;              // the current model
     uint64_t model_version_ = 0;
+    uint64_t model_fetches_ = 0;  // /model.glb answered for the current version
     uint64_t published_changes_ = UINT64_MAX;
     size_t published_exact_ = 0;
     uint64_t triangles_ = 0;
@@ -81,6 +91,7 @@ private:
     std::optional<Region> region_;
     uint64_t region_version_ = 0;
     double last_error_seconds_ = 0;
+    double publish_seconds_ = 0;
 };
 
 // three.js's npm package folder: `given` when not empty (an error when it holds no

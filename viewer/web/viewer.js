@@ -9,11 +9,27 @@ import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 const view = window.ellicastView = {
   connected: false, status: null, modelVersion: 0, shownVersion: 0, triangles: 0,
   loads: 0, loadErrors: 0, frames: 0, fps: 0, problem: null,
+  // Per model shown: milliseconds from its "model" event to its first frame drawn, and the
+  // seconds after tune-in at which the receiver published it.
+  latencies: [], published: [],
 };
+const announced = new Map();  // model version -> (performance.now() of its event, seconds after tune-in)
 
+// A software renderer (SwiftShader, llvmpipe) draws every pixel on the CPU: no multisampling and one
+// pixel per CSS pixel there, so that orbiting stays smooth.
+function softwareRenderer() {
+  const probe = document.createElement('canvas').getContext('webgl2');
+  if (!probe) return false;
+  const info = probe.getExtension('WEBGL_debug_renderer_info');
+  const name = info ? probe.getParameter(info.UNMASKED_RENDERER_WEBGL) : '';
+  probe.getExtension('WEBGL_lose_context')?.loseContext();
+  return /SwiftShader|llvmpipe|software/i.test(name);
+}
+const software = softwareRenderer();
+view.software = software;
 const canvas = document.getElementById('scene');
-const renderer = new THREE.WebGLRenderer({ canvas, antialias: window.devicePixelRatio < 2 });
-renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: !software && window.devicePixelRatio < 2 });
+renderer.setPixelRatio(software ? 1 : Math.min(window.devicePixelRatio, 2));
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(0xf4f4f2);
 const camera = new THREE.PerspectiveCamera(40, 1, 0.001, 1000);
@@ -36,11 +52,15 @@ let shown = null;      // the glTF scene shown
 let framed = false;    // the camera was fitted to the first model
 let loading = false;
 
+// Frames are drawn when something changed (the camera, the model, the size), not continuously: the
+// page's thread stays free to fetch and parse the next model.
+let needsRender = true;
 function resize() {
   const w = canvas.clientWidth, h = canvas.clientHeight;
   renderer.setSize(w, h, false);
   camera.aspect = w / Math.max(h, 1);
   camera.updateProjectionMatrix();
+  needsRender = true;
 }
 window.addEventListener('resize', resize);
 resize();
@@ -71,6 +91,27 @@ function frame(object) {
   return true;
 }
 
+// In a software renderer the physically based shading costs most of a frame: there (or with
+// ?shading=lambert) the model is drawn with Lambert materials that keep the colours, textures,
+// vertex colours, transparency and sidedness; ?shading=pbr keeps glTF's own.
+const shading = new URLSearchParams(location.search).get('shading');
+const lambert = shading === 'lambert' || (software && shading !== 'pbr');
+view.shading = lambert ? 'lambert' : 'pbr';
+function simplifyMaterials(root) {
+  root.traverse((o) => {
+    if (!o.isMesh) return;
+    const swap = (m) => {
+      if (!m.isMeshStandardMaterial) return m;
+      const l = new THREE.MeshLambertMaterial({
+        color: m.color, map: m.map, vertexColors: m.vertexColors, side: m.side, transparent: m.transparent,
+        opacity: m.opacity, alphaTest: m.alphaTest, emissive: m.emissive, emissiveMap: m.emissiveMap, name: m.name,
+      });
+      m.dispose();
+      return l;
+    };
+    o.material = Array.isArray(o.material) ? o.material.map(swap) : swap(o.material);
+  });
+}
 const loader = new GLTFLoader();
 async function loadLatest() {
   if (loading) return;
@@ -81,10 +122,12 @@ async function loadLatest() {
       const response = await fetch(`/model.glb?v=${version}`, { cache: 'no-store' });
       if (!response.ok) throw new Error(`model ${version}: HTTP ${response.status}`);
       const gltf = await loader.parseAsync(await response.arrayBuffer(), '');
+      if (lambert) simplifyMaterials(gltf.scene);
       if (shown) { scene.remove(shown); dispose(shown); }
       shown = gltf.scene;
       scene.add(shown);
       if (!framed) framed = frame(shown);
+      needsRender = true;
       let triangles = 0;
       shown.traverse((o) => {
         if (o.isMesh && o.geometry) {
@@ -94,6 +137,14 @@ async function loadLatest() {
       });
       view.triangles = triangles;
       view.shownVersion = version;
+      const event = announced.get(version);
+      if (event) {
+        requestAnimationFrame(() => {
+          view.latencies.push(performance.now() - event.at);
+          view.published.push(event.seconds);
+        });
+      }
+      for (const v of announced.keys()) if (v <= version) announced.delete(v);
       view.loads += 1;
       document.getElementById('model').textContent = `#${version}, ${triangles.toLocaleString('en')} triangles`;
     }
@@ -181,7 +232,11 @@ function connect() {
   events.addEventListener('status', (e) => showStatus(JSON.parse(e.data)));
   events.addEventListener('model', (e) => {
     const m = JSON.parse(e.data);
-    if (m.version > view.modelVersion) { view.modelVersion = m.version; loadLatest(); }
+    if (m.version > view.modelVersion) {
+      announced.set(m.version, { at: performance.now(), seconds: m.seconds });
+      view.modelVersion = m.version;
+      loadLatest();
+    }
   });
   events.addEventListener('problem', (e) => showProblem(JSON.parse(e.data)));
   events.addEventListener('error', () => {
@@ -216,19 +271,46 @@ refine.addEventListener('change', () => {
 });
 view.refineWhereILook = (on) => { refine.checked = on; refine.dispatchEvent(new Event('change')); };
 
+controls.addEventListener('change', () => { needsRender = true; });
 let fpsFrames = 0, fpsSince = performance.now();
 function animate() {
   requestAnimationFrame(animate);
-  controls.update();
-  renderer.render(scene, camera);
-  view.frames += 1;
-  fpsFrames += 1;
+  controls.update();  // damping: keeps moving (and asking for frames) a moment after the mouse stops
   const now = performance.now();
+  if (needsRender) {
+    needsRender = false;
+    renderer.render(scene, camera);
+    view.frames += 1;
+    fpsFrames += 1;
+  }
   if (now - fpsSince >= 1000) {
     view.fps = fpsFrames * 1000 / (now - fpsSince);
-    document.getElementById('fps').textContent = `${view.fps.toFixed(0)} frames/s`;
+    document.getElementById('fps').textContent = `${view.fps.toFixed(0)} frames/s drawn${software ? ' (software renderer)' : ''}`;
     fpsFrames = 0;
     fpsSince = now;
   }
 }
 animate();
+
+// Frames a second while orbiting for `ms` milliseconds (a full turn), drawing every frame.
+view.measureOrbit = (ms = 2000) => new Promise((resolve) => {
+  const start = performance.now(), offset = camera.position.clone().sub(controls.target);
+  let frames = 0;
+  function step() {
+    const t = performance.now() - start;
+    const angle = 2 * Math.PI * t / ms;
+    const turned = offset.clone().applyAxisAngle(new THREE.Vector3(0, 1, 0), angle);
+    camera.position.copy(controls.target).add(turned);
+    camera.lookAt(controls.target);
+    renderer.render(scene, camera);
+    frames += 1;
+    if (t < ms) requestAnimationFrame(step);
+    else {
+      camera.position.copy(controls.target).add(offset);
+      camera.lookAt(controls.target);
+      needsRender = true;
+      resolve(frames * 1000 / t);
+    }
+  }
+  requestAnimationFrame(step);
+});
