@@ -74,6 +74,8 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
     case PacketType::Animation: e = take_animation(packet, where); break;
     case PacketType::Skin: e = take_skin(packet, where); break;
     case PacketType::MorphAnimation: e = take_morph_animation(packet, where); break;
+    case PacketType::Camera: e = take_camera(packet, where); break;
+    case PacketType::Light: e = take_light(packet, where); break;
     case PacketType::Manifest: {
         // A decoder checks its layout and takes nothing from it: verifying signatures is the
         // job of the filter in front of it (spec 16.3), which needs the sender's key.

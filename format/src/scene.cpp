@@ -101,7 +101,14 @@ std::vector<uint8_t> node_record(const SceneNode& n) {
         for (float f : n.rotation) put_f32(body, f);
         for (float f : n.scale) put_f32(body, f);
     }
-    if (n.skin != kNone) put_u16(body, n.skin);  // format 1.5 (spec 21): only when the node has one
+    // Format 1.5 (spec 21): the skin only when the node has one, or (format 1.10, spec 26.1) when the
+    // camera and light follow it, which they do only when the node has one of them.
+    const bool camera_light = n.camera != kNone || n.light != kNone;
+    if (n.skin != kNone || camera_light) put_u16(body, n.skin);
+    if (camera_light) {
+        put_u16(body, n.camera);
+        put_u16(body, n.light);
+    }
     return body;
 }
 
@@ -175,6 +182,9 @@ Error decode_scene_payload(std::span<const uint8_t> payload, SceneBatch& out, ui
             // Format 1.5 (spec 21): a skin when the packet says 1.5 or later and at least two bytes
             // follow the transform (in an older packet they are fields of a later version it knew not of).
             if (version_minor >= kSkinMinor && !body.failed && body.left() >= 2) n.skin = body.u16();
+            // Format 1.10 (spec 26.1): a camera, then a light, each when two more bytes follow.
+            if (version_minor >= kCameraLightMinor && !body.failed && body.left() >= 2) n.camera = body.u16();
+            if (version_minor >= kCameraLightMinor && !body.failed && body.left() >= 2) n.light = body.u16();
             if (body.failed || n.index >= batch.node_count || n.parent == n.index ||
                 (n.parent != kNone && n.parent >= batch.node_count) || (n.mesh != kNone && n.mesh >= batch.mesh_count) ||
                 !all_finite(n.matrix) || !all_finite(n.translation) || !all_finite(n.rotation) || !all_finite(n.scale))
@@ -336,9 +346,15 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
     for (size_t i = 0; i < scene.nodes.size(); ++i) {
         const SceneNode& n = scene.nodes[i];
         if (n.index != i || n.parent == n.index || (n.parent != kNone && n.parent >= node_count) ||
-            (n.mesh != kNone && n.mesh >= mesh_count) || (n.skin != kNone && (n.skin >= scene.skins.size() || n.mesh == kNone)))
+            (n.mesh != kNone && n.mesh >= mesh_count) || (n.skin != kNone && (n.skin >= scene.skins.size() || n.mesh == kNone)) ||
+            (n.camera != kNone && n.camera >= scene.cameras.size()) || (n.light != kNone && n.light >= scene.lights.size()))
             return Error::MalformedPayload;
     }
+    if (scene.cameras.size() > 0xFFFE || scene.lights.size() > 0xFFFE) return Error::MalformedPayload;
+    for (const SceneCamera& c : scene.cameras)
+        if (!valid_camera(c)) return Error::MalformedPayload;
+    for (const SceneLight& l : scene.lights)
+        if (!valid_light(l)) return Error::MalformedPayload;
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
         if (scene.meshes[i].index != i || scene.meshes[i].weights.size() > 255 || !all_finite(scene.meshes[i].weights))
             return Error::MalformedPayload;
@@ -360,8 +376,13 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
         if (batch.nodes.empty() && batch.meshes.empty()) return;
         const bool skinned = std::any_of(batch.nodes.begin(), batch.nodes.end(), [](const SceneNode& n) { return n.skin != kNone; });
         const bool morphed = std::any_of(batch.meshes.begin(), batch.meshes.end(), [](const SceneMesh& m) { return !m.weights.empty(); });
+        const bool viewed = std::any_of(batch.nodes.begin(), batch.nodes.end(),
+                                        [](const SceneNode& n) { return n.camera != kNone || n.light != kNone; });
         packets.scene.push_back(emit(PacketType::Scene, encode_scene_payload(batch),
-                                     morphed ? kMorphMinor : skinned ? kSkinMinor : kFormatMinor));
+                                     viewed    ? kCameraLightMinor
+                                     : morphed ? kMorphMinor
+                                     : skinned ? kSkinMinor
+                                               : kFormatMinor));
         batch.nodes.clear();
         batch.meshes.clear();
         used = kSceneHeaderSize;
@@ -372,7 +393,8 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
         return true;
     };
     for (SceneNode n : scene.nodes) {
-        const size_t fixed = 3 + 7 + 1 + (n.has_matrix ? 64 : 40) + (n.skin != kNone ? 2 : 0);
+        const bool camera_light = n.camera != kNone || n.light != kNone;
+        const size_t fixed = 3 + 7 + 1 + (n.has_matrix ? 64 : 40) + (n.skin != kNone || camera_light ? 2 : 0) + (camera_light ? 4 : 0);
         if (!fit_name(n.name, fixed)) return Error::MalformedPayload;
         const size_t size = fixed + n.name.size();
         if (used + size > capacity) flush();
@@ -517,6 +539,21 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
             piece.joints.assign(skin.joints.begin() + std::ptrdiff_t(first), skin.joints.begin() + std::ptrdiff_t(first + n));
             packets.skins.push_back(emit(PacketType::Skin, encode_skin_payload(piece), kSkinMinor));
         }
+    }
+    // CAMERA and LIGHT (format 1.10, spec 26): one record a packet, a name cut to what fits.
+    for (size_t i = 0; i < scene.cameras.size(); ++i) {
+        SceneCamera c = scene.cameras[i];
+        c.index = static_cast<uint16_t>(i);
+        c.camera_count = static_cast<uint16_t>(scene.cameras.size());
+        c.name = utf8_prefix(c.name, std::min(kMaxName, capacity - kCameraFixedSize));
+        packets.cameras_lights.push_back(emit(PacketType::Camera, encode_camera_payload(c), kCameraLightMinor));
+    }
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        SceneLight l = scene.lights[i];
+        l.index = static_cast<uint16_t>(i);
+        l.light_count = static_cast<uint16_t>(scene.lights.size());
+        l.name = utf8_prefix(l.name, std::min(kMaxName, capacity - kLightFixedSize));
+        packets.cameras_lights.push_back(emit(PacketType::Light, encode_light_payload(l), kCameraLightMinor));
     }
     out = std::move(packets);
     return Error::Ok;

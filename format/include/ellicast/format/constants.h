@@ -3,8 +3,8 @@
 // packets, the skippable flag) and the packet types. Follows spec/format.md sections 3 (Packet
 // structure), 4 (Packet types) and 9 (Versioning).
 //
-// This library implements format 1.9 (kFormatMajor.kSpecMinor), which includes every earlier minor
-// version: it reads streams of format 1.0 to 1.9 (and packets of a later minor version as section 9
+// This library implements format 1.10 (kFormatMajor.kSpecMinor), which includes every earlier minor
+// version: it reads streams of format 1.0 to 1.10 (and packets of a later minor version as section 9
 // says), and each packet it writes says the minor version its layout calls for: 1.1 (kFormatMinor)
 // for the types of 1.0 and 1.1, and for the types and fields added later the versions below.
 #pragma once
@@ -43,8 +43,11 @@ inline constexpr uint8_t kMapMinor = 7;
 inline constexpr uint8_t kSurfaceNormalsMinor = 8;
 // 1.9 added MANIFEST scheme 2, bound to a content (spec 25); those MANIFEST packets say 1.9.
 inline constexpr uint8_t kBoundManifestMinor = 9;
+// 1.10 added CAMERA, LIGHT and the SCENE node record's camera and light (spec 26); SCENE packets say
+// 1.10 only when a node record of theirs carries them.
+inline constexpr uint8_t kCameraLightMinor = 10;
 // The newest format version this library reads and writes (spec/format.md's version).
-inline constexpr uint8_t kSpecMinor = 9;
+inline constexpr uint8_t kSpecMinor = 10;
 
 inline constexpr std::array<uint8_t, 4> kPacketMagic = {0xE1, 'L', 'C', 'S'};
 inline constexpr size_t kHeaderSize = 20;                       // bytes before the payload
@@ -78,8 +81,10 @@ enum class PacketType : uint8_t {
     Animation = 0x14,   // 1.4, skippable: keys of one track of an animation
     Skin = 0x15,        // 1.5, skippable: joints and inverse bind matrices of a skin
     MorphAnimation = 0x16,  // 1.6, skippable: keys of one track of morph target weights
+    Camera = 0x17,      // 1.10, skippable: one glTF camera
+    Light = 0x18,       // 1.10, skippable: one punctual light (KHR_lights_punctual)
     Manifest = 0x20,    // 1.2, skippable: signed digests of the stream's other packets
-    // 0x00 is invalid; 0x0C..0x0F reserved for geometry; 0x17..0x1F reserved for the scene;
+    // 0x00 is invalid; 0x0C..0x0F reserved for geometry; 0x19..0x1F reserved for the scene;
     // 0x21..0x7F future; 0x80..0xFF experimental.
 };
 
@@ -91,7 +96,7 @@ inline bool is_points_type(uint8_t type) {
 // Name of a packet type ("STREAM_INFO", ...), or "UNKNOWN(0xNN)".
 std::string packet_type_name(uint8_t type);
 
-// True for the types this implementation decodes (every type up to format 1.8).
+// True for the types this implementation decodes (every type up to format 1.10).
 bool is_known_packet_type(uint8_t type);
 
 // An index into one of the scene's tables (spec 15, 21, 22) that names nothing.

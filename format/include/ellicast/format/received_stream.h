@@ -217,6 +217,13 @@ public:
     std::optional<uint16_t> morph_animation_count() const { return morph_animation_count_; }
     const std::map<uint16_t, ReceivedAnimation>& morph_animations() const { return morph_animations_; }
 
+    // Cameras and punctual lights (format 1.10, spec 26): what has arrived, by index, and the table
+    // sizes of the CAMERA and LIGHT packets accepted.
+    std::optional<uint16_t> camera_count() const { return camera_count_; }
+    const std::map<uint16_t, SceneCamera>& cameras() const { return cameras_; }
+    std::optional<uint16_t> light_count() const { return light_count_; }
+    const std::map<uint16_t, SceneLight>& lights() const { return lights_; }
+
 private:
     Error take_animation(const PacketView& packet, uint64_t where);
     Error take_morph_animation(const PacketView& packet, uint64_t where);
@@ -225,6 +232,8 @@ private:
                     std::map<uint16_t, ReceivedAnimation>& table, const char* type, uint64_t where);
     Error take_morph_deltas(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_skin(const PacketView& packet, uint64_t where);
+    Error take_camera(const PacketView& packet, uint64_t where);
+    Error take_light(const PacketView& packet, uint64_t where);
     Error take_joint_weights(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_scene(const PacketView& packet, uint64_t where);
     Error take_material(const PacketView& packet, uint64_t where);
@@ -282,6 +291,9 @@ private:
     std::map<uint16_t, ReceivedSkin> skins_;
     std::optional<uint16_t> morph_animation_count_;
     std::map<uint16_t, ReceivedAnimation> morph_animations_;
+    std::optional<uint16_t> camera_count_, light_count_;
+    std::map<uint16_t, SceneCamera> cameras_;
+    std::map<uint16_t, SceneLight> lights_;
 };
 
 // The objects a receiver waits for joint weights of (spec 21.3): those of the meshes of the node

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "ellicast/format/animation.h"
+#include "ellicast/format/camera_light.h"
 #include "ellicast/format/constants.h"
 #include "ellicast/format/error.h"
 #include "ellicast/format/skin.h"
@@ -36,6 +37,8 @@ struct SceneNode {
     std::array<float, 4> rotation{0, 0, 0, 1};  // quaternion x, y, z, w (glTF order)
     std::array<float, 3> scale{1, 1, 1};
     uint16_t skin = kNone;  // format 1.5 (spec 21): index into the skin table
+    uint16_t camera = kNone;  // format 1.10 (spec 26.1): index into the camera table
+    uint16_t light = kNone;   // format 1.10 (spec 26.1): index into the light table
     bool operator==(const SceneNode&) const = default;
 };
 
@@ -129,10 +132,15 @@ struct SceneDescription {
     std::vector<Texture> textures;
     std::vector<SceneAnimation> animations;  // format 1.4
     std::vector<SceneSkin> skins;            // format 1.5: SceneNode::skin indexes it
+    // Format 1.10 (spec 26): SceneNode::camera and ::light index them; index and count are filled in
+    // by packetize_scene.
+    std::vector<SceneCamera> cameras;
+    std::vector<SceneLight> lights;
 };
 
 std::vector<uint8_t> encode_scene_payload(const SceneBatch& batch);
-// `version_minor`: that of the packet; a node record's skin (spec 21) is read only from 1.5 on.
+// `version_minor`: that of the packet; a node record's skin (spec 21) is read only from 1.5 on, its
+// camera and light (spec 26.1) only from 1.10 on.
 Error decode_scene_payload(std::span<const uint8_t> payload, SceneBatch& out, uint8_t version_minor = kSpecMinor);
 std::vector<uint8_t> encode_material_payload(const Material& material);
 Error decode_material_payload(std::span<const uint8_t> payload, Material& out);
@@ -148,6 +156,7 @@ struct ScenePackets {
     std::vector<std::vector<uint8_t>> animations; // ANIMATION packets, track by track (format 1.4), then
                                                   // MORPH_ANIMATION packets (format 1.6)
     std::vector<std::vector<uint8_t>> skins;      // SKIN packets, skin by skin (format 1.5)
+    std::vector<std::vector<uint8_t>> cameras_lights;  // CAMERA, then LIGHT packets (format 1.10)
 };
 
 // Cuts a scene description into packets of at most `packet_size` bytes, numbered from
@@ -155,7 +164,9 @@ struct ScenePackets {
 // 255 bytes, a record does not fit one packet, a reference points outside its table, or an image is
 // empty or over 4 GiB; for animations when a table has more than 65535 entries, a track has no key,
 // values of another count than its keys need, a float that is not finite, negative or not strictly
-// increasing times, a cubic spline of one key, or a node outside the node table.
+// increasing times, a cubic spline of one key, or a node outside the node table; for cameras and
+// lights (format 1.10) when a table has more than 65534 entries, a record breaks spec 26.2 / 26.3, or a
+// node names one outside its table.
 Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_t stream_id, uint32_t first_sequence,
                       ScenePackets& out);
 
