@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent format 1.9 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.10 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
@@ -31,7 +31,10 @@ POINTS_REPAIR over mapped records, spec 23.5; for format 1.8 the object entry's 
 NORMALS packets of spec section 24: their checks and comparisons, the normal entries held by index, and the
 surface normal of every point of an exact object, summed here over its exact triangle list, spec 24.3; for
 format 1.9 the MANIFEST scheme 2 of spec section 25: its layout with the content_id, and the bindings of
-the authenticated digests judged against each stream id's content, spec 25.2) so
+the authenticated digests judged against each stream id's content, spec 25.2; for format 1.10 the CAMERA and
+LIGHT packets and the node record's camera and light fields of spec section 26: their checks (the limits of
+glTF and KHR_lights_punctual on the f32 values) and comparisons, and the cameras and lights a receiver shows
+on its nodes, spec 26.4) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -67,7 +70,12 @@ KNOWN_17 = {0x09: "MAPPED_POINTS", 0x0A: "POINT_MAP"}
 # Format 1.8 (spec sections 4 and 24): skippable, belongs to an object.
 KNOWN_18 = {0x0B: "NORMALS"}
 # Format 1.9 (spec section 25) adds no type: MANIFEST scheme 2 (decode_manifest, authenticate).
-SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14, 0x15, 0x16}  # JOINT_WEIGHTS and MORPH_DELTAS belong to an object
+# Format 1.10 (spec sections 4 and 26): skippable, stream-level.
+KNOWN_110 = {0x17: "CAMERA", 0x18: "LIGHT"}
+SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14, 0x15, 0x16} | set(KNOWN_110)  # JOINT_WEIGHTS and MORPH_DELTAS belong to an object
+# The real numbers pi and pi / 2, exactly enough: every f32 is a double, and none lies between pi and
+# the double nearest it (spec 26.2, 26.3 compare the f32 values with the real numbers).
+PI = Fraction(314159265358979323846264338327950288, 10 ** 35)
 PATHS = ("translation", "rotation", "scale")
 INTERPOLATIONS = ("LINEAR", "STEP", "CUBICSPLINE")
 NONE = 0xFFFF
@@ -361,6 +369,10 @@ def decode_scene(p, minor=6):
             # two bytes follow it; a record without them (one stray byte is not a field) has none. Bytes
             # after it, and any bytes after the transform in an older packet, are ignored.
             n["skin"] = b.take("<H")[0] if minor >= 5 and not b.failed and len(b.data) - b.pos >= 2 else NONE
+            # Format 1.10 (spec 26.1): in a packet that says 1.10 or later, a u16 camera after the skin when two
+            # bytes follow it, then a u16 light when two more follow; a field not read is 0xFFFF.
+            n["camera"] = b.take("<H")[0] if minor >= 10 and not b.failed and len(b.data) - b.pos >= 2 else NONE
+            n["light"] = b.take("<H")[0] if minor >= 10 and not b.failed and len(b.data) - b.pos >= 2 else NONE
             floats = n.get("matrix", []) + n.get("translation", []) + n.get("rotation", []) + n.get("scale", [])
             if b.failed or index >= node_count or parent == index or (parent != NONE and parent >= node_count) \
                     or (mesh != NONE and mesh >= mesh_count) or not finite(floats):
@@ -409,9 +421,48 @@ def decode_material(p):
                 refs=refs, name=p[88:].decode("utf-8", errors="replace"), has_extensions=bool(p[7] & 1))
 
 
-def node_json(n):
-    return dict(n, parent=None if n["parent"] == NONE else n["parent"], mesh=None if n["mesh"] == NONE else n["mesh"],
-                skin=None if n["skin"] == NONE else n["skin"])
+def node_json(n, viewed=False):
+    out = dict(n, parent=None if n["parent"] == NONE else n["parent"], mesh=None if n["mesh"] == NONE else n["mesh"],
+               skin=None if n["skin"] == NONE else n["skin"], camera=None if n["camera"] == NONE else n["camera"],
+               light=None if n["light"] == NONE else n["light"])
+    if not viewed:  # the README: the keys of format 1.10 are there only in a file of format 1.10
+        del out["camera"], out["light"]
+    return out
+
+
+def decode_camera(p):
+    """Spec 26.2: dict of the camera's fields, or None when malformed (rules 1..6)."""
+    if len(p) < 24 or len(p) != 24 + p[5]:
+        return None
+    index, count, projection = struct.unpack_from("<HHB", p, 0)
+    a, b, znear, zfar = struct.unpack_from("<4f", p, 8)
+    if index >= count or projection > 1 or not finite([a, b, znear, zfar]):
+        return None
+    if projection == 0:
+        if a < 0 or b <= 0 or Fraction(b) >= PI or znear <= 0 or zfar < 0 or (zfar != 0 and zfar <= znear):
+            return None
+    elif a <= 0 or b <= 0 or znear < 0 or zfar <= znear:
+        return None
+    return dict(index=index, count=count, projection=projection, a=a, b=b, znear=znear, zfar=zfar, name=p[24:])
+
+
+def decode_light(p):
+    """Spec 26.3: dict of the light's fields, or None when malformed (rules 1..7)."""
+    if len(p) < 36 or len(p) != 36 + p[5]:
+        return None
+    index, count, kind = struct.unpack_from("<HHB", p, 0)
+    values = struct.unpack_from("<7f", p, 8)
+    color, intensity, rng, inner, outer = list(values[:3]), values[3], values[4], values[5], values[6]
+    if index >= count or kind > 2 or not finite(values):
+        return None
+    if any(c < 0 or c > 1 for c in color) or intensity < 0 or rng < 0:
+        return None
+    if (kind == 0 and rng != 0) or (kind != 2 and (inner != 0 or outer != 0)):
+        return None
+    if kind == 2 and (inner < 0 or outer <= inner or Fraction(outer) > PI / 2):
+        return None
+    return dict(index=index, count=count, type=kind, color=color, intensity=intensity, range=rng, inner=inner,
+                outer=outer, name=p[36:])
 
 
 def decode_skin(p):
@@ -1374,6 +1425,8 @@ class Receiver:
         # index -> dict(track_count, joins, name (bytes), tracks: index -> dict(desc (node, C, interp, key_count), keys))
         self.morphs = {}
         self.material_count = None  # that of the materials and patches held
+        self.camera_count, self.cameras = None, {}  # format 1.10: table size of the CAMERA packets, index -> fields
+        self.light_count, self.lights = None, {}  # likewise for LIGHT
         self.stream_id = None
         self.info = None
         self.object_count = 0
@@ -1393,7 +1446,8 @@ class Receiver:
             return self.reject(offset, "stream mismatch")
         t = h["type"]
         if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12 and t not in KNOWN_13 and t not in KNOWN_14
-                                   and t not in KNOWN_15 and t not in KNOWN_16 and t not in KNOWN_17 and t not in KNOWN_18)
+                                   and t not in KNOWN_15 and t not in KNOWN_16 and t not in KNOWN_17 and t not in KNOWN_18
+                                   and t not in KNOWN_110)
                                   or not self.know_11):
             if not h["flags"] & 1:
                 return self.reject(offset, "unknown critical type")
@@ -1417,6 +1471,8 @@ class Receiver:
             result = self.skin(h, offset)
         elif t == 0x16:
             result = self.morph_animation(h, offset)
+        elif t in (0x17, 0x18):
+            result = self.camera_light(h, offset)
         elif t == 0x07 and decode_joint_weights(h["payload"]) is None:
             # Spec 21.2: checked at step 11, before the packet can be held.
             return self.reject(offset, "malformed payload")
@@ -1835,6 +1891,45 @@ class Receiver:
                     obj["recovered"] += 1
         block["recovered"] = True
 
+    def camera_light(self, h, offset):
+        """Spec 26.2 / 26.3: the checks, then the table size, then the record against the one held (floats as
+        numbers, the name as bytes); the first of an index is accepted, an identical one a duplicate."""
+        camera = h["type"] == 0x17
+        d = (decode_camera if camera else decode_light)(h["payload"])
+        if d is None:
+            return self.reject(offset, "malformed payload")
+        count = self.camera_count if camera else self.light_count
+        table = self.cameras if camera else self.lights
+        if count is not None and d["count"] != count:
+            return self.reject(offset, "stream mismatch")
+        if d["index"] in table:
+            if table[d["index"]] != d:  # Python's float equality: +0 == -0
+                return self.reject(offset, "stream mismatch")
+            return self.news(False)
+        table[d["index"]] = d
+        if camera:
+            self.camera_count = d["count"]
+        else:
+            self.light_count = d["count"]
+        return self.news(True)
+
+    def cameras_lights_json(self):
+        cameras, lights = [], []
+        for k in sorted(self.cameras):
+            c = self.cameras[k]
+            persp = c["projection"] == 0
+            cameras.append({"index": k, "name": c["name"].decode("utf-8", errors="replace"),
+                            "projection": "perspective" if persp else "orthographic",
+                            ("aspect_ratio" if persp else "xmag"): c["a"], ("yfov" if persp else "ymag"): c["b"],
+                            "znear": c["znear"], "zfar": c["zfar"]})
+        for k in sorted(self.lights):
+            l = self.lights[k]
+            lights.append(dict(index=k, name=l["name"].decode("utf-8", errors="replace"),
+                               type=("directional", "point", "spot")[l["type"]], color=l["color"],
+                               intensity=l["intensity"], range=l["range"], inner_cone_angle=l["inner"],
+                               outer_cone_angle=l["outer"]))
+        return dict(camera_count=self.camera_count, cameras=cameras, light_count=self.light_count, lights=lights)
+
     def news(self, fresh):
         self.counters["accepted" if fresh else "duplicates"] += 1
         return "accepted" if fresh else "duplicate"
@@ -2193,7 +2288,7 @@ class Receiver:
                     out.append(dict(index=m, tracks=[], morph_only=True, morph_tracks=morphs))
         return out
 
-    def scene_json(self):
+    def scene_json(self, viewed=False):
         nodes = [self.nodes[k] for k in sorted(self.nodes)]
         meshes = [self.meshes[k] for k in sorted(self.meshes)]
         textures = []
@@ -2216,7 +2311,7 @@ class Receiver:
         sized = self.scene_counts not in (None, (0, 0))  # sizes 0 and 0 are listed as null (README)
         return dict(node_count=self.scene_counts[0] if sized else None,
                     mesh_count=self.scene_counts[1] if sized else None,
-                    nodes=[node_json(n) for n in nodes],
+                    nodes=[node_json(n, viewed) for n in nodes],
                     meshes=[dict(m, primitives=[dict(object=q["object"], material=None if q["material"] == NONE
                                                      else q["material"]) for q in m["primitives"]]) for m in meshes],
                     material_count=self.material_count,
@@ -2226,10 +2321,11 @@ class Receiver:
                     texture_count=self.textures[min(self.textures)]["desc"]["texture_count"] if self.textures else None,
                     textures=textures, animation_count=self.animation_count, animations=self.animations_json(),
                     skin_count=self.skin_count, skins=self.skins_json(), morph_animation_count=self.morph_count,
-                    morph_animations=self.animations_json(morph=True), shown=self.shown())
+                    morph_animations=self.animations_json(morph=True), shown=self.shown(viewed),
+                    **(self.cameras_lights_json() if viewed else {}))
 
-    def shown(self):
-        """Spec 15.4 and 18.4: what a receiver shows."""
+    def shown(self, viewed=False):
+        """Spec 15.4 and 18.4: what a receiver shows (and spec 26.4: the cameras and lights on shown nodes)."""
         done = [k for k in sorted(self.textures) if self.textures[k]["complete"]]
         materials, waiting, ignored, waiting_extensions = [], [], [], []
         for k in sorted(self.materials):
@@ -2270,10 +2366,20 @@ class Receiver:
                 mesh = self.nodes[k]["mesh"]
                 nodes.append(dict(index=k, mesh=mesh if mesh != NONE and mesh in self.meshes else None))
         shown_nodes = [n["index"] for n in nodes]
-        return dict(textures=done, materials=materials, waiting=waiting, waiting_extensions=waiting_extensions,
-                    ignored_references=ignored, nodes=nodes, animations=self.shown_animations(set(shown_nodes)),
-                    skinned=self.skinned(shown_nodes),
-                    morphed=[k for k in sorted(self.meshes) if self.shown_with_targets(self.meshes[k])])
+        out = dict(textures=done, materials=materials, waiting=waiting, waiting_extensions=waiting_extensions,
+                   ignored_references=ignored, nodes=nodes, animations=self.shown_animations(set(shown_nodes)),
+                   skinned=self.skinned(shown_nodes),
+                   morphed=[k for k in sorted(self.meshes) if self.shown_with_targets(self.meshes[k])])
+        if viewed:
+            with_camera, with_light, waiting_view = [], [], []
+            for k in shown_nodes:
+                camera, light = self.nodes[k]["camera"], self.nodes[k]["light"]
+                if camera != NONE:
+                    (with_camera if camera in self.cameras else waiting_view).append(dict(node=k, camera=camera))
+                if light != NONE:
+                    (with_light if light in self.lights else waiting_view).append(dict(node=k, light=light))
+            out.update(node_cameras=with_camera, node_lights=with_light, waiting_cameras_lights=waiting_view)
+        return out
 
 
 class RangeDecoder:
@@ -2487,7 +2593,8 @@ def decode(buf):
         old.add(h, offset)
         name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or KNOWN_12.get(h["type"]) or \
             KNOWN_13.get(h["type"]) or KNOWN_14.get(h["type"]) or KNOWN_15.get(h["type"]) or KNOWN_16.get(h["type"]) or \
-            KNOWN_17.get(h["type"]) or KNOWN_18.get(h["type"]) or "UNKNOWN(0x%02X)" % h["type"]
+            KNOWN_17.get(h["type"]) or KNOWN_18.get(h["type"]) or KNOWN_110.get(h["type"]) or \
+            "UNKNOWN(0x%02X)" % h["type"]
         plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
                           flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
                           object_id=h["object_id"], payload_length=h["payload_length"], result=result))
@@ -2497,7 +2604,10 @@ def decode(buf):
     out["stream_info"] = info(r)
     out["objects"] = objects_json(r)
     any_scene = any(h["type"] in SCENE_TYPES for _, _, h in packets)
-    out["scene"] = r.scene_json() if any_scene else None
+    # Format 1.10 (README): the camera and light keys are there when the file holds a CAMERA or LIGHT packet
+    # or a SCENE packet that says 1.10 or later.
+    viewed = any(h["type"] in KNOWN_110 or (h["type"] == 0x10 and h["minor"] >= 10) for _, _, h in packets)
+    out["scene"] = r.scene_json(viewed) if any_scene else None
     if any_scene:
         # The same objects but for their format 1.5 influence records and format 1.6 displacement records,
         # which a 1.0 decoder skips (README).

@@ -352,7 +352,8 @@ inline bool is_scene_type(uint8_t type) {
     return type == uint8_t(PacketType::Scene) || type == uint8_t(PacketType::Material) ||
            type == uint8_t(PacketType::TextureFragment) || type == uint8_t(PacketType::MaterialExtensions) ||
            type == uint8_t(PacketType::Animation) || type == uint8_t(PacketType::Skin) ||
-           type == uint8_t(PacketType::MorphAnimation);
+           type == uint8_t(PacketType::MorphAnimation) || type == uint8_t(PacketType::Camera) ||
+           type == uint8_t(PacketType::Light);
 }
 
 inline nlohmann::json none_or(uint16_t v) { return v == kNone ? nlohmann::json(nullptr) : nlohmann::json(v); }
@@ -376,7 +377,32 @@ inline std::array<const TextureRef*, 5> texture_refs(const Material& m) {
             &m.emissive_texture};
 }
 
-inline nlohmann::json node_json(const SceneNode& n) {
+// Format 1.10 (spec 26.2, 26.3): a camera and a light as received, the fields named as glTF names them.
+inline nlohmann::json camera_json(const SceneCamera& c) {
+    const bool perspective = c.projection == CameraProjection::Perspective;
+    return {{"index", c.index},
+            {"name", replace_invalid_utf8(c.name)},
+            {"projection", perspective ? "perspective" : "orthographic"},
+            {perspective ? "aspect_ratio" : "xmag", shortest(c.a)},
+            {perspective ? "yfov" : "ymag", shortest(c.b)},
+            {"znear", shortest(c.znear)},
+            {"zfar", shortest(c.zfar)}};
+}
+inline nlohmann::json light_json(const SceneLight& l) {
+    static const char* types[] = {"directional", "point", "spot"};
+    return {{"index", l.index},
+            {"name", replace_invalid_utf8(l.name)},
+            {"type", types[static_cast<int>(l.type)]},
+            {"color", floats(l.color.data(), 3)},
+            {"intensity", shortest(l.intensity)},
+            {"range", shortest(l.range)},
+            {"inner_cone_angle", shortest(l.inner_cone)},
+            {"outer_cone_angle", shortest(l.outer_cone)}};
+}
+
+// `viewed`: the file is one of format 1.10 (a CAMERA or LIGHT packet, or a SCENE packet that says 1.10
+// or later): its nodes say their camera and light; before, the keys are left out.
+inline nlohmann::json node_json(const SceneNode& n, bool viewed = false) {
     nlohmann::json j = {{"index", n.index}, {"parent", none_or(n.parent)}, {"mesh", none_or(n.mesh)}, {"name", replace_invalid_utf8(n.name)}};
     if (n.has_matrix) {
         j["matrix"] = floats(n.matrix.data(), 16);
@@ -386,6 +412,10 @@ inline nlohmann::json node_json(const SceneNode& n) {
         j["scale"] = floats(n.scale.data(), 3);
     }
     j["skin"] = none_or(n.skin);  // format 1.5 (spec 21): null for a record without a skin or with 0xFFFF
+    if (viewed) {  // format 1.10 (spec 26.1): null for a record without the field or with 0xFFFF
+        j["camera"] = none_or(n.camera);
+        j["light"] = none_or(n.light);
+    }
     return j;
 }
 
@@ -540,7 +570,7 @@ inline bool mesh_shown_with_targets(const ReceivedStream& s, const SceneMesh& me
 // patch path with how much of the texture arrived, or for their patch); references on other sets
 // ignored; nodes whose parent chain reaches a root through arrived nodes, with their mesh when its
 // record arrived.
-inline nlohmann::json shown_json(const ReceivedStream& s) {
+inline nlohmann::json shown_json(const ReceivedStream& s, bool viewed = false) {
     using nlohmann::json;
     json textures = json::array(), materials = json::array(), waiting = json::array(), ignored = json::array(),
          nodes = json::array(), waiting_extensions = json::array();
@@ -648,16 +678,36 @@ inline nlohmann::json shown_json(const ReceivedStream& s) {
         }
         if (ok && any) skinned.push_back({{"node", index}, {"skin", n.skin}});
     }
-    return {{"textures", textures}, {"materials", materials}, {"waiting", waiting},
-            {"waiting_extensions", waiting_extensions}, {"ignored_references", ignored}, {"nodes", nodes},
-            {"animations", animations}, {"skinned", skinned}, {"morphed", morphed}};
+    json out = {{"textures", textures}, {"materials", materials}, {"waiting", waiting},
+                {"waiting_extensions", waiting_extensions}, {"ignored_references", ignored}, {"nodes", nodes},
+                {"animations", animations}, {"skinned", skinned}, {"morphed", morphed}};
+    if (viewed) {
+        // Format 1.10 (spec 26.4): among the nodes shown above, in node order, those whose camera (light)
+        // arrived, with it; and those whose record names one that has not arrived.
+        json with_camera = json::array(), with_light = json::array(), waiting_view = json::array();
+        for (uint16_t index : shown_nodes) {
+            const SceneNode& n = all.at(index);
+            if (n.camera != kNone) {
+                if (s.cameras().count(n.camera)) with_camera.push_back({{"node", index}, {"camera", n.camera}});
+                else waiting_view.push_back({{"node", index}, {"camera", n.camera}});
+            }
+            if (n.light != kNone) {
+                if (s.lights().count(n.light)) with_light.push_back({{"node", index}, {"light", n.light}});
+                else waiting_view.push_back({{"node", index}, {"light", n.light}});
+            }
+        }
+        out["node_cameras"] = with_camera;
+        out["node_lights"] = with_light;
+        out["waiting_cameras_lights"] = waiting_view;
+    }
+    return out;
 }
 
-inline nlohmann::json scene_json(const ReceivedStream& s) {
+inline nlohmann::json scene_json(const ReceivedStream& s, bool viewed = false) {
     using nlohmann::json;
     json nodes = json::array(), meshes = json::array(), materials = json::array(), textures = json::array(),
          extensions = json::array();
-    for (const auto& [index, n] : s.scene_nodes()) nodes.push_back(node_json(n));
+    for (const auto& [index, n] : s.scene_nodes()) nodes.push_back(node_json(n, viewed));
     for (const auto& [index, m] : s.scene_meshes()) {
         json prims = json::array();
         for (const auto& p : m.primitives) prims.push_back({{"object", p.object}, {"material", none_or(p.material)}});
@@ -677,7 +727,7 @@ inline nlohmann::json scene_json(const ReceivedStream& s) {
     json morph_animations = json::array();
     for (const auto& [index, a] : s.morph_animations()) morph_animations.push_back(animation_json(index, a, true));
     const bool scene = s.has_scene() || !s.scene_nodes().empty() || !s.scene_meshes().empty();
-    return {{"node_count", scene ? json(s.scene_node_count()) : json(nullptr)},
+    json out = {{"node_count", scene ? json(s.scene_node_count()) : json(nullptr)},
             {"mesh_count", scene ? json(s.scene_mesh_count()) : json(nullptr)},
             {"nodes", nodes},
             {"meshes", meshes},
@@ -700,7 +750,19 @@ inline nlohmann::json scene_json(const ReceivedStream& s) {
             // Format 1.6: that of the MORPH_ANIMATION packets accepted (all agree, spec 22.2), null when none was.
             {"morph_animation_count", s.morph_animation_count() ? json(*s.morph_animation_count()) : json(nullptr)},
             {"morph_animations", morph_animations},
-            {"shown", shown_json(s)}};
+            {"shown", shown_json(s, viewed)}};
+    if (viewed) {
+        // Format 1.10: the table sizes of the CAMERA and LIGHT packets accepted (null when none was), and
+        // every camera and light held, in index order.
+        json cameras = json::array(), lights = json::array();
+        for (const auto& [index, c] : s.cameras()) cameras.push_back(camera_json(c));
+        for (const auto& [index, l] : s.lights()) lights.push_back(light_json(l));
+        out["camera_count"] = s.camera_count() ? json(*s.camera_count()) : json(nullptr);
+        out["cameras"] = cameras;
+        out["light_count"] = s.light_count() ? json(*s.light_count()) : json(nullptr);
+        out["lights"] = lights;
+    }
+    return out;
 }
 
 // The key every signed vector is checked with (spec/vectors/README.md): the Ed25519 key pair whose
@@ -796,6 +858,7 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     // A format 1.0 decoder's view: the types of 1.1 and later are unknown to it (spec section 9).
     ReceivedStream as_1_0;
     bool any_scene_packet = false;
+    bool viewed = false;  // format 1.10: a CAMERA or LIGHT packet, or a SCENE packet saying 1.10 or later
     json packets = json::array();
     for (const ContainerPacket& p : contents.packets) {
         const ReceiveCounters before = stream.counters();
@@ -811,6 +874,9 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
         const PacketHeader& h = p.view.header;
         PacketView old = p.view;
         if (is_scene_type(h.type)) any_scene_packet = true;
+        if (h.type == uint8_t(PacketType::Camera) || h.type == uint8_t(PacketType::Light) ||
+            (h.type == uint8_t(PacketType::Scene) && h.version_minor >= kCameraLightMinor))
+            viewed = true;
         if (h.type > uint8_t(PacketType::Points)) old.header.type = 0xFF;  // a type a 1.0 decoder does not know
         as_1_0.add_parsed(old, p.offset);
         char version[8];
@@ -845,7 +911,7 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     out["objects"] = objects_json(stream);
     // Format 1.1: present when the file holds any SCENE, MATERIAL, TEXTURE_FRAGMENT, (format 1.3)
     // MATERIAL_EXTENSIONS, (format 1.4) ANIMATION, (format 1.5) SKIN or (format 1.6) MORPH_ANIMATION packet.
-    out["scene"] = any_scene_packet ? scene_json(stream) : json(nullptr);
+    out["scene"] = any_scene_packet ? scene_json(stream, viewed) : json(nullptr);
     if (any_scene_packet) {
         json info_1_0 = as_1_0.info() ? stream_info_json(*as_1_0.info(), as_1_0.objects().size()) : json(nullptr);
         // The same objects but for their format 1.5 influence records and format 1.6 displacement

@@ -7463,6 +7463,252 @@ void normals_vectors(Writer& w) {
 
 }  // namespace
 
+// ---- Format 1.10: cameras and punctual lights (spec 26) ----
+
+// The viewed room: one object (6 ellipsoids, 40 points with normals, packet size 200) shown by node
+// 0 'Room'; node 1 'Eye' (child of 0) with camera 0; node 2 'Top' with camera 1 and light 0; node 3
+// 'Bulb' (child of 0) with light 1; node 4 'Lamp' (child of 3) with light 2. Camera 2 is named by no
+// node.
+SceneDescription viewed_room() {
+    SceneDescription s;
+    auto node = [&](const char* name, uint16_t parent, uint16_t mesh, uint16_t camera, uint16_t light, float y) {
+        SceneNode n;
+        n.index = uint16_t(s.nodes.size());
+        n.name = name;
+        n.parent = parent;
+        n.mesh = mesh;
+        n.camera = camera;
+        n.light = light;
+        n.translation = {0, y, 0};
+        s.nodes.push_back(n);
+    };
+    node("Room", kNone, 0, kNone, kNone, 0);
+    node("Eye", 0, kNone, 0, kNone, 1.5f);
+    node("Top", kNone, kNone, 1, 0, 10);
+    node("Bulb", 0, kNone, kNone, 1, 2.5f);
+    node("Lamp", 3, kNone, kNone, 2, -0.5f);
+    SceneMesh mesh;
+    mesh.index = 0;
+    mesh.name = "Room";
+    mesh.primitives.push_back({0, kNone});
+    s.meshes = {mesh};
+    SceneCamera eye;
+    eye.name = "Eye camera";
+    eye.projection = CameraProjection::Perspective;
+    eye.a = 1.5f, eye.b = 0.8f, eye.znear = 0.1f, eye.zfar = 100;
+    SceneCamera top;
+    top.name = "Plan";
+    top.projection = CameraProjection::Orthographic;
+    top.a = 2, top.b = 1.5f, top.znear = 0, top.zfar = 50;
+    SceneCamera spare;  // infinite, without aspect ratio, named by no node
+    spare.projection = CameraProjection::Perspective;
+    spare.a = 0, spare.b = 1.2f, spare.znear = 0.05f, spare.zfar = 0;
+    s.cameras = {eye, top, spare};
+    SceneLight sun;
+    sun.name = "Sun";
+    sun.type = LightType::Directional;
+    sun.color = {1, 0.9f, 0.75f};
+    sun.intensity = 3;
+    SceneLight bulb;
+    bulb.name = "Bulb";
+    bulb.type = LightType::Point;
+    bulb.color = {1, 1, 1};
+    bulb.intensity = 40;
+    bulb.range = 10;
+    SceneLight lamp;
+    lamp.name = "Lamp";
+    lamp.type = LightType::Spot;
+    lamp.color = {0.5f, 0.5f, 1};
+    lamp.intensity = 25;
+    lamp.inner_cone = 0.2f, lamp.outer_cone = 0.6f;
+    s.lights = {sun, bulb, lamp};
+    return s;
+}
+
+struct ViewedStream {
+    Stream geometry;
+    ScenePackets scene;  // SCENE, CAMERA and LIGHT packets
+    Packets all() const {
+        Packets out = geometry.all();
+        out.insert(out.end(), scene.scene.begin(), scene.scene.end());
+        out.insert(out.end(), scene.cameras_lights.begin(), scene.cameras_lights.end());
+        return out;
+    }
+};
+
+ViewedStream make_viewed_stream(const SceneDescription& scene) {
+    ViewedStream s;
+    StreamInfo info = default_info({make_object({-1, -1, -1}, 2, 6, 40, kAttrNormal)}, 200);
+    Rng rng(101);
+    s.geometry.contents.push_back(make_content(info, info.objects[0], rng));
+    s.geometry.info = info;
+    if (packetize_stream(info, s.geometry.contents, kStreamId, s.geometry.packets) != Error::Ok ||
+        packetize_scene(scene, 200, kStreamId, uint32_t(s.geometry.all().size()), s.scene) != Error::Ok) {
+        std::cerr << "make_vectors: packetize failed (cameras and lights)\n";
+        std::exit(1);
+    }
+    return s;
+}
+
+// A CAMERA or LIGHT packet (format 1.10, stream-level, skippable) around a payload as given.
+Packet viewed_packet(PacketType type, const std::vector<uint8_t>& payload, uint32_t sequence) {
+    PacketHeader h;
+    h.version_minor = kCameraLightMinor;
+    h.type = uint8_t(type);
+    h.flags = kFlagSkippable;
+    h.stream_id = kStreamId;
+    h.sequence = sequence;
+    h.object_id = kStreamObjectId;
+    return write_packet(h, payload);
+}
+
+void camera_light_vectors(Writer& w) {
+    const SceneDescription scene = viewed_room();
+    const ViewedStream base = make_viewed_stream(scene);
+    const Packets stream = base.all();
+    const Packets geometry = base.geometry.all();
+    const size_t scene_at = geometry.size(), viewed_at = scene_at + base.scene.scene.size();
+    if (base.scene.cameras_lights.size() != 6) {
+        std::cerr << "make_vectors: the room takes " << base.scene.cameras_lights.size() << " CAMERA and LIGHT packets, not 6\n";
+        std::exit(1);
+    }
+    const std::string room =
+        "the viewed room of valid/camera_light (format 1.10: 5 nodes, node 0 'Room' showing mesh 0 of object 0; "
+        "3 cameras, 3 lights in 6 CAMERA and LIGHT packets), packets in stream order";
+    w.write("valid", "camera_light",
+            "format 1.10 (spec 26): a room: object 0 (6 ellipsoids, 40 points with normals, packet size 200) shown by "
+            "node 0 'Room'; node 1 'Eye' (under 0) with camera 0, node 2 'Top' with camera 1 and light 0, node 3 "
+            "'Bulb' (under 0) with light 1, node 4 'Lamp' (under 3) with light 2 (their SCENE packets say 1.10); "
+            "camera 0 'Eye camera' perspective (aspect ratio 1.5, yfov 0.8, znear 0.1, zfar 100), camera 1 'Plan' "
+            "orthographic (xmag 2, ymag 1.5, znear 0, zfar 50), camera 2 (no name) perspective without aspect ratio "
+            "and infinite (zfar 0), named by no node; light 0 'Sun' directional (colour 1, 0.9, 0.75, intensity 3), "
+            "light 1 'Bulb' point (intensity 40, range 10), light 2 'Lamp' spot (colour 0.5, 0.5, 1, intensity 25, "
+            "cone angles 0.2 and 0.6); every camera and light shown, on its nodes",
+            stream);
+
+    // ---- unusual ----
+    {
+        Packets sent(stream.begin() + long(viewed_at), stream.end());
+        sent.insert(sent.end(), stream.begin(), stream.begin() + long(viewed_at));
+        w.write("unusual", "camera_light_before_scene",
+                "the packets of the viewed room with the 6 CAMERA and LIGHT packets first, before the STREAM_INFO and "
+                "the SCENE packets: stream-level, accepted at once (spec 26.2, 26.3); decodes as valid/camera_light",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        for (size_t i = scene_at; i < viewed_at; ++i) {
+            sent[i][5] = kMorphMinor;  // 1.6: the records' camera and light fields are bytes of a later version
+            reseal(sent[i]);
+        }
+        w.write("unusual", "camera_light_scene_1_6",
+                room + ", with its SCENE packets saying 1.6 instead of 1.10: the bytes after each node record's skin "
+                       "field (0xFFFF) are fields of a later version, ignored (spec 26.1), so no node has a camera or "
+                       "a light; the 6 CAMERA and LIGHT packets are accepted and shown on no node",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        SceneCamera wide = scene.cameras[0];
+        wide.index = 0, wide.camera_count = 3;
+        wide.b = std::bit_cast<float>(0x40490FDAu);  // the largest f32 below pi
+        SceneLight open = scene.lights[2];
+        open.index = 2, open.light_count = 3;
+        open.inner_cone = 0;
+        open.outer_cone = std::bit_cast<float>(0x3FC90FDAu);  // the largest f32 not above pi / 2
+        sent[viewed_at] = viewed_packet(PacketType::Camera, encode_camera_payload(wide), get32(sent[viewed_at], 12));
+        sent[viewed_at + 5] = viewed_packet(PacketType::Light, encode_light_payload(open), get32(sent[viewed_at + 5], 12));
+        Packet again = sent[viewed_at + 3];  // light 0 again, its range -0: the same number as 0
+        put32(again, kHeaderSize + 24, 0x80000000u);
+        reseal(again);
+        restamp_packet(again, 900);
+        sent.push_back(again);
+        w.write("unusual", "camera_light_limits",
+                room + ", with camera 0's yfov the largest f32 below pi (40490FDA, 3.1415925) and light 2's cone "
+                       "angles 0 and the largest f32 not above pi / 2 (3FC90FDA): accepted (spec 26.2 rule 5, 26.3 "
+                       "rule 7); and light 0 again (sequence 900) with range -0 (80000000): 0 as a number, so the "
+                       "same light, a duplicate",
+                sent);
+    }
+
+    // ---- faulty ----
+    auto camera_edit = [&](size_t k, const std::function<void(Packet&)>& edit) {
+        Packets sent = stream;
+        Packet p = stream[viewed_at + k];
+        restamp_packet(p, 900);
+        edit(p);
+        reseal(p);
+        sent.push_back(p);
+        return sent;
+    };
+    const size_t C = kHeaderSize;  // payload offsets below
+    struct Case {
+        const char* name;
+        size_t packet;  // 0..2 cameras, 3..5 lights
+        const char* what;
+        std::function<void(Packet&)> edit;
+        const char* reason;
+    };
+    const std::vector<Case> cases = {
+        {"camera_yfov_nan", 0, "camera 0 again with yfov a quiet NaN (7FC00000)", [&](Packet& p) { put32(p, C + 12, 0x7FC00000u); }, "malformed payload (spec 26.2 rule 4)"},
+        {"camera_yfov_pi", 0, "camera 0 again with yfov the f32 nearest pi (40490FDB, above pi)", [&](Packet& p) { put32(p, C + 12, 0x40490FDBu); }, "malformed payload (spec 26.2 rule 5: yfov >= pi)"},
+        {"camera_znear_zero", 0, "camera 0 (perspective) again with znear 0", [&](Packet& p) { put32(p, C + 16, 0); }, "malformed payload (spec 26.2 rule 5: znear <= 0)"},
+        {"camera_zfar_at_znear", 1, "camera 1 (orthographic) again with zfar 0, equal to its znear", [&](Packet& p) { put32(p, C + 20, 0); }, "malformed payload (spec 26.2 rule 6: zfar <= znear)"},
+        {"camera_xmag_negative", 1, "camera 1 (orthographic) again with xmag -2", [&](Packet& p) { put32(p, C + 8, std::bit_cast<uint32_t>(-2.0f)); }, "malformed payload (spec 26.2 rule 6: xmag <= 0)"},
+        {"camera_projection_2", 2, "camera 2 again with projection 2", [&](Packet& p) { p[C + 4] = 2; }, "malformed payload (spec 26.2 rule 3)"},
+        {"camera_index_past_count", 2, "camera 2 again with index 3, its camera_count", [&](Packet& p) { p[C] = 3; }, "malformed payload (spec 26.2 rule 2)"},
+        {"camera_length", 0, "camera 0 again with name_length 9 for its 10-byte name", [&](Packet& p) { p[C + 5] = 9; }, "malformed payload (spec 26.2 rule 1)"},
+        {"camera_count_differs", 2, "camera 2 again with camera_count 65535", [&](Packet& p) { p[C + 2] = 0xFF, p[C + 3] = 0xFF; }, "stream mismatch (spec 26.2: the same camera_count in every CAMERA packet)"},
+        {"camera_differs", 0, "camera 0 again with yfov 0.9 instead of 0.8", [&](Packet& p) { put32(p, C + 12, std::bit_cast<uint32_t>(0.9f)); }, "stream mismatch (spec 26.2: a camera received twice is identical)"},
+        {"light_type_3", 3, "light 0 again with light_type 3", [&](Packet& p) { p[C + 4] = 3; }, "malformed payload (spec 26.3 rule 3)"},
+        {"light_color_above_1", 3, "light 0 again with a red of 1.5", [&](Packet& p) { put32(p, C + 8, std::bit_cast<uint32_t>(1.5f)); }, "malformed payload (spec 26.3 rule 5)"},
+        {"light_intensity_infinite", 4, "light 1 again with intensity +infinity (7F800000)", [&](Packet& p) { put32(p, C + 20, 0x7F800000u); }, "malformed payload (spec 26.3 rule 4)"},
+        {"light_directional_range", 3, "light 0 (directional) again with range 5", [&](Packet& p) { put32(p, C + 24, std::bit_cast<uint32_t>(5.0f)); }, "malformed payload (spec 26.3 rule 6)"},
+        {"light_point_cone", 4, "light 1 (point) again with outer_cone_angle 0.5", [&](Packet& p) { put32(p, C + 32, std::bit_cast<uint32_t>(0.5f)); }, "malformed payload (spec 26.3 rule 6)"},
+        {"light_cones_out_of_order", 5, "light 2 (spot) again with inner_cone_angle 0.6, equal to its outer one", [&](Packet& p) { put32(p, C + 28, std::bit_cast<uint32_t>(0.6f)); }, "malformed payload (spec 26.3 rule 7)"},
+        {"light_outer_above_half_pi", 5, "light 2 (spot) again with outer_cone_angle the f32 nearest pi / 2 (3FC90FDB, above pi / 2)", [&](Packet& p) { put32(p, C + 32, 0x3FC90FDBu); }, "malformed payload (spec 26.3 rule 7)"},
+    };
+    for (const Case& c : cases)
+        w.write("faulty", c.name,
+                room + ", then " + c.what + " (sequence 900): rejected as " + c.reason + "; the rest decodes as valid/camera_light",
+                camera_edit(c.packet, c.edit));
+    {
+        Packets sent = stream;
+        sent.erase(sent.begin() + long(viewed_at + 4));
+        w.write("faulty", "light_missing",
+                room + ", without the LIGHT packet of light 1: node 3 'Bulb' is shown without its light (spec 26.4); "
+                       "the stream is not complete (light 1 of 3 missing), so the recording does not conform",
+                sent);
+    }
+    {
+        Packets sent(stream.begin(), stream.begin() + long(viewed_at));
+        for (size_t k = 0; k < 6; ++k) {
+            Packet p = stream[viewed_at + k];
+            p[C + 2] = 0xFF, p[C + 3] = 0xFF;  // camera_count or light_count 65535
+            reseal(p);
+            sent.push_back(p);
+        }
+        w.write("faulty", "camera_light_count_huge",
+                room + ", with camera_count and light_count 65535 in every CAMERA and LIGHT packet: accepted (a decoder "
+                       "allocates nothing for the records that did not arrive, spec 26.2), every camera and light "
+                       "shown, but cameras 3..65534 and lights 3..65534 are missing: the stream is not complete and "
+                       "does not conform",
+                sent);
+    }
+    {
+        Packets sent = edit_node(stream, 1, [](SceneNode& n) { n.camera = 7; });
+        for (size_t i = scene_at; i < viewed_at; ++i) {
+            sent[i][5] = kCameraLightMinor;
+            reseal(sent[i]);
+        }
+        w.write("faulty", "node_camera_past_table",
+                room + ", with node 1's record naming camera 7, past the 3 cameras of the CAMERA packets: the SCENE "
+                       "packet is accepted (spec 26.1: the field is not checked there) and node 1 is shown without a "
+                       "camera (spec 26.4), but the recording does not conform",
+                sent);
+    }
+}
+
 int main(int argc, char** argv) {
     if (argc != 2) {
         std::cerr << "usage: ellicast_make_vectors OUTPUT_DIR   (spec/vectors)\n";
@@ -7485,6 +7731,7 @@ int main(int argc, char** argv) {
     morph_vectors(w);
     map_vectors(w);
     normals_vectors(w);
+    camera_light_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
