@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -98,12 +99,85 @@ public:
         std::sort(order.begin(), order.end());
         for (size_t i = 0; i < order.size(); ++i) new_node_[order[i]] = uint16_t(i);
         read_materials();
+        read_cameras_lights();
         for (int old : order) add_node(old);
         if (asset_.objects.empty()) throw InputError(path_ + ": the scene holds no triangle or point primitive to send");
         read_animations();
     }
 
 private:
+    // A glTF double as the f32 a CAMERA or LIGHT packet carries: the nearest, or the nearest on the
+    // allowed side when rounding crosses `limit` (spec 26.5: a yfov just below pi, a cone angle of pi / 2).
+    static float wire_float(double v, double limit = std::numeric_limits<double>::infinity()) {
+        float f = float(v);
+        if (v <= limit && double(f) > limit) f = std::nextafter(f, 0.0f);
+        return f;
+    }
+
+    // Cameras and KHR_lights_punctual lights (format 1.10, spec 26): every one, in the asset's order;
+    // one that breaks spec 26.2 / 26.3 as f32 values is not sent, with a warning.
+    void read_cameras_lights() {
+        constexpr double kPi = 3.14159265358979323846;
+        for (size_t i = 0; i < model_.cameras.size(); ++i) {
+            const tinygltf::Camera& g = model_.cameras[i];
+            const std::string where = path_ + ": camera " + std::to_string(i) + (g.name.empty() ? "" : " (" + g.name + ")");
+            SceneCamera c;
+            c.name = wire_name(g.name, where, warnings_);
+            bool known = true;
+            if (g.type == "perspective") {
+                c.projection = CameraProjection::Perspective;
+                c.a = wire_float(g.perspective.aspectRatio);
+                c.b = wire_float(g.perspective.yfov, kPi);
+                c.znear = wire_float(g.perspective.znear);
+                c.zfar = wire_float(g.perspective.zfar);
+            } else if (g.type == "orthographic") {
+                c.projection = CameraProjection::Orthographic;
+                c.a = wire_float(g.orthographic.xmag);
+                c.b = wire_float(g.orthographic.ymag);
+                c.znear = wire_float(g.orthographic.znear);
+                c.zfar = wire_float(g.orthographic.zfar);
+            } else {
+                known = false;
+            }
+            if (!known || !valid_camera(c) || asset_.scene.cameras.size() >= kMaxTable) {
+                warnings_.push_back(where + ": " + (known ? "values glTF does not allow (or too many cameras)" : "unknown type \"" + g.type + "\"") +
+                                    "; not sent, and the nodes naming it are sent without a camera");
+                camera_map_.push_back(kNone);
+                continue;
+            }
+            camera_map_.push_back(uint16_t(asset_.scene.cameras.size()));
+            asset_.scene.cameras.push_back(std::move(c));
+        }
+        for (size_t i = 0; i < model_.lights.size(); ++i) {
+            const tinygltf::Light& g = model_.lights[i];
+            const std::string where = path_ + ": light " + std::to_string(i) + (g.name.empty() ? "" : " (" + g.name + ")");
+            SceneLight l;
+            l.name = wire_name(g.name, where, warnings_);
+            bool known = true;
+            if (g.type == "directional") l.type = LightType::Directional;
+            else if (g.type == "point") l.type = LightType::Point;
+            else if (g.type == "spot") l.type = LightType::Spot;
+            else known = false;
+            if (g.color.size() == 3)
+                for (size_t k = 0; k < 3; ++k) l.color[k] = wire_float(g.color[k], 1.0);
+            else if (!g.color.empty()) known = false;
+            l.intensity = wire_float(g.intensity);
+            if (l.type != LightType::Directional) l.range = wire_float(g.range);
+            if (l.type == LightType::Spot) {
+                l.inner_cone = wire_float(g.spot.innerConeAngle, kPi / 2);
+                l.outer_cone = wire_float(g.spot.outerConeAngle, kPi / 2);
+            }
+            if (!known || !valid_light(l) || asset_.scene.lights.size() >= kMaxTable) {
+                warnings_.push_back(where + ": " + (known ? "values KHR_lights_punctual does not allow (or too many lights)" : "unknown type \"" + g.type + "\" or colour") +
+                                    "; not sent, and the nodes naming it are sent without a light");
+                light_map_.push_back(kNone);
+                continue;
+            }
+            light_map_.push_back(uint16_t(asset_.scene.lights.size()));
+            asset_.scene.lights.push_back(std::move(l));
+        }
+    }
+
     // Roots of the default scene (or, with no scene at all, one made-up node per mesh).
     std::vector<int> scene_roots() {
         if (model_.scenes.empty()) {
@@ -178,8 +252,21 @@ private:
             warnings_.push_back(where + ": its own morph target weights (overriding its mesh's) are not sent; its mesh's "
                                 "default weights are");
         for (const auto& [name, value] : node.extensions) {
-            (void)value;
+            if (name == "KHR_lights_punctual") {  // format 1.10 (spec 26.1): the node's light
+                const tinygltf::Value& light = value.Get("light");
+                const int l = light.IsInt() ? light.Get<int>() : -1;
+                if (l < 0 || size_t(l) >= light_map_.size())
+                    warnings_.push_back(where + ": names light " + (light.IsInt() ? std::to_string(l) : std::string("(not a number)")) +
+                                        ", which does not exist; sent without a light");
+                else out.light = light_map_[size_t(l)];
+                continue;
+            }
             warnings_.push_back(where + ": extension " + name + " of the node is not sent");
+        }
+        if (node.camera >= 0) {  // format 1.10 (spec 26.1)
+            if (size_t(node.camera) >= camera_map_.size())
+                warnings_.push_back(where + ": names camera " + std::to_string(node.camera) + ", which does not exist; sent without a camera");
+            else out.camera = camera_map_[size_t(node.camera)];
         }
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model_.meshes.size())
@@ -778,15 +865,11 @@ private:
         return &bytes;
     }
 
-    // Whole-file things ellicast does not carry.
+    // Whole-file things ellicast does not carry (cameras and lights travel from format 1.10 on).
     void warn_not_carried() {
-        if (!model_.cameras.empty())
-            warnings_.push_back(path_ + ": " + std::to_string(model_.cameras.size()) + " camera(s) not sent");
-        if (!model_.lights.empty())
-            warnings_.push_back(path_ + ": " + std::to_string(model_.lights.size()) + " light(s) not sent");
         std::vector<std::string> unknown;
         for (const auto& ext : model_.extensionsUsed)  // material extensions: carried, or named per material
-            if (!kGeometryExtensions.count(ext) && ext != "KHR_texture_transform" &&
+            if (!kGeometryExtensions.count(ext) && ext != "KHR_texture_transform" && ext != "KHR_lights_punctual" &&
                 (ext.rfind("KHR_materials_", 0) != 0 || ext == "KHR_materials_variants"))
                 unknown.push_back(ext);
         if (!unknown.empty())
@@ -822,6 +905,7 @@ private:
     std::vector<int> node_order_;
     std::map<int, uint16_t> new_node_;
     std::map<int, uint16_t> mesh_map_;
+    std::vector<uint16_t> camera_map_, light_map_;  // glTF camera / light -> sent one, or kNone (format 1.10)
     std::map<int, uint16_t> skin_map_;
     std::map<std::tuple<std::map<std::string, int>, int, int, bool, std::vector<std::map<std::string, int>>>, int> object_map_;
     std::map<std::tuple<int, uint16_t, uint16_t, uint16_t, uint16_t>, uint16_t> texture_map_;
@@ -877,7 +961,8 @@ Asset load_asset(const std::string& path, const InputOptions& options) {
     // Material extensions and texture transforms travel (MATERIAL_EXTENSIONS, spec 18): a required one
     // is not "ignored" here (KHR_materials_variants is not carried: named in warn_not_carried).
     load_model(path, model, capture_image, &images, asset.warnings, options, [](const std::string& ext) {
-        return (ext.rfind("KHR_materials_", 0) == 0 && ext != "KHR_materials_variants") || ext == "KHR_texture_transform";
+        return (ext.rfind("KHR_materials_", 0) == 0 && ext != "KHR_materials_variants") || ext == "KHR_texture_transform" ||
+               ext == "KHR_lights_punctual";
     });
     GltfAssetReader reader(path, model, images, asset);
     reader.read();

@@ -87,6 +87,7 @@ public:
         model_.asset.generator = "ellicast";
         write_textures();
         write_materials();
+        write_cameras_lights();
         if (asset_.scene.nodes.empty()) write_flat();
         else write_scene_graph();
         if (used_draco_) {
@@ -625,6 +626,54 @@ private:
         }
     }
 
+    // ---- cameras and lights (format 1.10, spec 26.4): every one of the asset, in order. Records that
+    // break spec 26.2 / 26.3 cannot come from a stream; an Asset made otherwise has them left out.
+    void write_cameras_lights() {
+        for (const SceneCamera& c : asset_.scene.cameras) {
+            tinygltf::Camera g;
+            g.name = c.name;
+            if (!valid_camera(c)) {
+                warnings_.push_back(path_ + ": camera " + std::to_string(model_.cameras.size()) +
+                                    " has values glTF does not allow; written as a default perspective camera");
+                g.type = "perspective";
+                g.perspective.yfov = 0.8;
+                g.perspective.znear = 0.01;
+            } else if (c.projection == CameraProjection::Perspective) {
+                g.type = "perspective";
+                g.perspective.aspectRatio = c.a;  // 0: left out (tinygltf writes it only when above 0)
+                g.perspective.yfov = c.b;
+                g.perspective.znear = c.znear;
+                g.perspective.zfar = c.zfar;      // 0: infinite, left out when saving (gltf_write)
+            } else {
+                g.type = "orthographic";
+                g.orthographic.xmag = c.a;
+                g.orthographic.ymag = c.b;
+                g.orthographic.znear = c.znear;
+                g.orthographic.zfar = c.zfar;
+            }
+            model_.cameras.push_back(std::move(g));
+        }
+        for (const SceneLight& l : asset_.scene.lights) {
+            static const char* kTypes[] = {"directional", "point", "spot"};
+            tinygltf::Light g;
+            g.name = l.name;
+            if (!valid_light(l)) {
+                warnings_.push_back(path_ + ": light " + std::to_string(model_.lights.size()) +
+                                    " has values KHR_lights_punctual does not allow; written as a white point light");
+                g.type = "point";
+                g.color = {1, 1, 1};
+            } else {
+                g.type = kTypes[size_t(l.type)];
+                g.color = {l.color[0], l.color[1], l.color[2]};
+                g.intensity = l.intensity;
+                g.range = l.range;  // 0: left out (tinygltf writes it only when above 0)
+                g.spot.innerConeAngle = l.inner_cone;
+                g.spot.outerConeAngle = l.outer_cone;
+            }
+            model_.lights.push_back(std::move(g));
+        }
+    }
+
     // ---- nodes
 
     void set_transform(tinygltf::Node& g, const SceneNode& n, const std::string& what) {
@@ -732,6 +781,20 @@ private:
                 } else if (int mesh = gltf_mesh(n.mesh); mesh >= 0) {
                     attach_mesh(g, mesh);
                     if (n.skin != kNone && skinned_meshes_.count(n.mesh)) g.skin = skin_out_.at(n.skin);
+                }
+            }
+            // Format 1.10 (spec 26.4): the node's camera, and its light as KHR_lights_punctual says.
+            if (n.camera != kNone) {
+                if (n.camera < model_.cameras.size()) g.camera = int(n.camera);
+                else warnings_.push_back(what + " names camera " + std::to_string(n.camera) + ", which is not in the scene; written without it");
+            }
+            if (n.light != kNone) {
+                if (n.light < model_.lights.size()) {
+                    tinygltf::Value::Object light;
+                    light["light"] = tinygltf::Value(int(n.light));
+                    g.extensions["KHR_lights_punctual"] = tinygltf::Value(std::move(light));
+                } else {
+                    warnings_.push_back(what + " names light " + std::to_string(n.light) + ", which is not in the scene; written without it");
                 }
             }
             model_.nodes[size_t(out[i])] = std::move(g);

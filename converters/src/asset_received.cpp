@@ -55,6 +55,27 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
     Asset asset;
     asset.objects = std::move(objects);
     auto& warnings = asset.warnings;
+    // Cameras and lights (format 1.10, spec 26.4): every one that arrived, renumbered in index order,
+    // whether or not a node names it (also with no SCENE packet at all).
+    std::map<uint16_t, uint16_t> camera_map, light_map;
+    for (const auto& [index, c] : stream.cameras()) {
+        camera_map[index] = uint16_t(asset.scene.cameras.size());
+        SceneCamera out = c;
+        out.name = shown_name(c.name, "camera " + std::to_string(index), warnings);
+        asset.scene.cameras.push_back(std::move(out));
+    }
+    for (const auto& [index, l] : stream.lights()) {
+        light_map[index] = uint16_t(asset.scene.lights.size());
+        SceneLight out = l;
+        out.name = shown_name(l.name, "light " + std::to_string(index), warnings);
+        asset.scene.lights.push_back(std::move(out));
+    }
+    if (const auto count = stream.camera_count(); count && stream.cameras().size() < *count)
+        warnings.push_back(std::to_string(*count - stream.cameras().size()) + " of " + std::to_string(*count) +
+                           " cameras did not arrive");
+    if (const auto count = stream.light_count(); count && stream.lights().size() < *count)
+        warnings.push_back(std::to_string(*count - stream.lights().size()) + " of " + std::to_string(*count) +
+                           " lights did not arrive");
     if (!stream.has_scene()) {
         if (!stream.materials().empty() || !stream.textures().empty())
             warnings.push_back("no SCENE packet arrived: materials and textures cannot be placed; each object is "
@@ -212,6 +233,19 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
                 out.mesh = kNone;
             }
         }
+        // Format 1.10 (spec 26.4): its camera and light once they have arrived.
+        const auto attach = [&](uint16_t& field, const std::map<uint16_t, uint16_t>& map, const char* what) {
+            if (field == kNone) return;
+            if (auto it = map.find(field); it != map.end()) {
+                field = it->second;
+                return;
+            }
+            warnings.push_back("node " + std::to_string(index) + (n.name.empty() ? "" : " (" + out.name + ")") +
+                               " is shown without its " + what + " " + std::to_string(field) + ", which has not arrived");
+            field = kNone;
+        };
+        attach(out.camera, camera_map, "camera");
+        attach(out.light, light_map, "light");
         asset.scene.nodes.push_back(std::move(out));
     }
     const std::set<uint16_t> morphed = received_morphs(stream, mesh_map, asset, warnings);

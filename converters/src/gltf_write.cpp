@@ -148,6 +148,55 @@ bool valid_indices(const Mesh& mesh) {
     return true;
 }
 
+namespace {
+
+// tinygltf writes a perspective camera's zfar even when it is 0 (infinite), which glTF forbids
+// (zfar > 0 when present): such a camera is written without it (spec 26.4). Only a model with such a
+// camera has its JSON rewritten, so every other file is written exactly as tinygltf makes it.
+bool has_infinite_camera(const tinygltf::Model& model) {
+    return std::any_of(model.cameras.begin(), model.cameras.end(),
+                       [](const tinygltf::Camera& c) { return c.type == "perspective" && c.perspective.zfar == 0; });
+}
+void drop_infinite_zfar(nlohmann::json& doc) {
+    if (!doc.contains("cameras") || !doc["cameras"].is_array()) return;
+    for (auto& camera : doc["cameras"])
+        if (camera.contains("perspective") && camera["perspective"].contains("zfar") &&
+            camera["perspective"]["zfar"] == 0)
+            camera["perspective"].erase("zfar");
+}
+
+uint32_t read_u32le(const std::string& s, size_t at) {
+    return uint32_t(uint8_t(s[at])) | uint32_t(uint8_t(s[at + 1])) << 8 | uint32_t(uint8_t(s[at + 2])) << 16 |
+           uint32_t(uint8_t(s[at + 3])) << 24;
+}
+void put_u32le(std::vector<uint8_t>& out, uint32_t v) {
+    for (int k = 0; k < 4; ++k) out.push_back(uint8_t(v >> (8 * k)));
+}
+
+// The GLB `bytes` with its JSON chunk passed through drop_infinite_zfar; false when it is not the GLB
+// tinygltf writes (a 12-byte header, then a JSON chunk).
+bool fix_glb(const std::string& bytes, std::vector<uint8_t>& out) {
+    if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0 || bytes.compare(16, 4, "JSON") != 0) return false;
+    const size_t json_length = read_u32le(bytes, 12);
+    if (20 + json_length > bytes.size()) return false;
+    nlohmann::json doc = nlohmann::json::parse(bytes.substr(20, json_length), nullptr, false);
+    if (doc.is_discarded()) return false;
+    drop_infinite_zfar(doc);
+    std::string json = doc.dump();
+    while (json.size() % 4) json += ' ';
+    const std::string rest = bytes.substr(20 + json_length);
+    out.clear();
+    out.insert(out.end(), bytes.begin(), bytes.begin() + 8);  // magic, version
+    put_u32le(out, uint32_t(12 + 8 + json.size() + rest.size()));
+    put_u32le(out, uint32_t(json.size()));
+    out.insert(out.end(), bytes.begin() + 16, bytes.begin() + 20);  // "JSON"
+    out.insert(out.end(), json.begin(), json.end());
+    out.insert(out.end(), rest.begin(), rest.end());
+    return true;
+}
+
+}  // namespace
+
 bool glb_bytes(tinygltf::Model& model, std::vector<uint8_t>& out, std::string& error) {
     if (!model.buffers.empty()) model.buffers[0].uri.clear();  // buffer 0 with no uri goes to the GLB BIN chunk
     tinygltf::TinyGLTF writer;
@@ -157,6 +206,13 @@ bool glb_bytes(tinygltf::Model& model, std::vector<uint8_t>& out, std::string& e
         return false;
     }
     const std::string bytes = stream.str();
+    if (has_infinite_camera(model)) {
+        if (!fix_glb(bytes, out)) {
+            error = "tinygltf wrote a GLB whose JSON chunk does not parse";
+            return false;
+        }
+        return true;
+    }
     out.assign(bytes.begin(), bytes.end());
     return true;
 }
@@ -198,6 +254,7 @@ bool save_model(const std::string& path, tinygltf::Model& model, bool binary, st
         error = path + ": tinygltf wrote JSON that does not parse";
         return false;
     }
+    drop_infinite_zfar(doc);
     std::string message;
     if (!model.buffers.empty()) {
         const std::string bin_name = std::filesystem::path(path).stem().string() + ".bin";

@@ -121,6 +121,14 @@ nlohmann::json to_json(const StreamReport& r, bool with_packets) {
         size_t morph_meshes = 0;
         for (const auto& [i, m] : r.stream.scene_meshes()) morph_meshes += !m.weights.empty();
         if (morph_meshes) j["scene"]["meshes_with_targets"] = morph_meshes;
+        if (const auto count = r.stream.camera_count()) {  // format 1.10
+            j["scene"]["cameras"] = r.stream.cameras().size();
+            j["scene"]["camera_count"] = *count;
+        }
+        if (const auto count = r.stream.light_count()) {
+            j["scene"]["lights"] = r.stream.lights().size();
+            j["scene"]["light_count"] = *count;
+        }
     }
     json damaged = json::array();
     for (const auto& d : r.damaged)
@@ -237,6 +245,10 @@ void print_text(const StreamReport& r, bool with_packets) {
             for (const auto& [i, a] : r.stream.morph_animations()) whole += a.complete();
             out << ", morph animations (format 1.6) " << whole << " complete of " << *count;
         }
+        if (const auto count = r.stream.camera_count())
+            out << ", cameras (format 1.10) " << r.stream.cameras().size() << "/" << *count;
+        if (const auto count = r.stream.light_count())
+            out << ", lights (format 1.10) " << r.stream.lights().size() << "/" << *count;
         out << "\n";
     }
     out << "damaged regions: " << r.damaged.size() << "\n";

@@ -357,6 +357,27 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             }
         }
     }
+    // Spec 26.4: cameras and lights complete, their names valid UTF-8, every node naming one inside its table.
+    {
+        const auto check = [&](const auto& table, std::optional<uint16_t> count, const char* what, auto field) {
+            if (count) {
+                std::string missing = missing_ranges(table, *count);
+                if (!missing.empty()) r.violations.push_back({std::nullopt, std::string(what) + "s missing: " + missing, true});
+            }
+            for (const auto& [index, record] : table)
+                if (!is_valid_utf8(record.name))
+                    r.violations.push_back({std::nullopt, std::string(what) + " " + std::to_string(index) +
+                                                              ": its name is not valid UTF-8"});
+            for (const auto& [index, node] : r.stream.scene_nodes()) {
+                const uint16_t named = node.*field;
+                if (named != kNone && (!count || named >= *count))
+                    r.violations.push_back({std::nullopt, "node " + std::to_string(index) + ": it names " + what + " " +
+                                                              std::to_string(named) + ", past the " + what + " table"});
+            }
+        };
+        check(r.stream.cameras(), r.stream.camera_count(), "camera", &SceneNode::camera);
+        check(r.stream.lights(), r.stream.light_count(), "light", &SceneNode::light);
+    }
     // Spec 22.4: morph animations complete, their tracks usable over recorded nodes whose meshes carry
     // as many targets, one track per node in each written animation, joined animations in the table;
     // every point of the objects of meshes with targets with displacements of that count, and every
