@@ -74,7 +74,7 @@ inline std::vector<uint8_t> referenced_image(const Asset& a, const TextureRef& r
 
 // Checks that `out` has the scene of `in`: node count, names, parents, which nodes show a mesh and
 // how many primitives it has, transforms (to float precision), materials with their factors, modes
-// and texture images byte for byte.
+// and texture images byte for byte, and (format 1.10) the same cameras and lights on the same nodes.
 inline void check_same_scene(const Asset& in, const Asset& out) {
     REQUIRE(out.scene.nodes.size() == in.scene.nodes.size());
     for (size_t i = 0; i < in.scene.nodes.size(); ++i) {
@@ -86,6 +86,8 @@ inline void check_same_scene(const Asset& in, const Asset& out) {
         REQUIRE((a.mesh == kNone) == (b.mesh == kNone));
         if (a.mesh != kNone)
             CHECK(in.scene.meshes[a.mesh].primitives.size() == out.scene.meshes[b.mesh].primitives.size());
+        CHECK(a.camera == b.camera);
+        CHECK(a.light == b.light);
         Eigen::Matrix4d ma = node_matrix(a), mb = node_matrix(b);
         CHECK_MESSAGE((ma - mb).cwiseAbs().maxCoeff() <= 1e-5 * std::max(1.0, ma.cwiseAbs().maxCoeff()),
                       "transform of node " << i << " differs");
@@ -112,6 +114,21 @@ inline void check_same_scene(const Asset& in, const Asset& out) {
             CHECK(referenced_image(in, *ra[s]) == referenced_image(out, *rb[s]));
             if (ra[s]->texture != kNone) CHECK(ra[s]->scale == doctest::Approx(rb[s]->scale));
         }
+    }
+    // Cameras and lights (format 1.10): the same records (f32 values, names), in the same order.
+    REQUIRE(out.scene.cameras.size() == in.scene.cameras.size());
+    for (size_t i = 0; i < in.scene.cameras.size(); ++i) {
+        SceneCamera a = in.scene.cameras[i], b = out.scene.cameras[i];
+        a.index = b.index = 0, a.camera_count = b.camera_count = 0;  // table bookkeeping, not the camera
+        CAPTURE(i);
+        CHECK(a == b);
+    }
+    REQUIRE(out.scene.lights.size() == in.scene.lights.size());
+    for (size_t i = 0; i < in.scene.lights.size(); ++i) {
+        SceneLight a = in.scene.lights[i], b = out.scene.lights[i];
+        a.index = b.index = 0, a.light_count = b.light_count = 0;
+        CAPTURE(i);
+        CHECK(a == b);
     }
     // Animations (format 1.4): the same tracks over the same nodes, key for key.
     REQUIRE(out.scene.animations.size() == in.scene.animations.size());
