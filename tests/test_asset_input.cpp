@@ -85,7 +85,10 @@ TEST_CASE("the Duck keeps its three nodes, its material and its texture file byt
         CHECK(a.scene.textures[0].info.mag_filter == 9729);
         CHECK(a.scene.textures[0].info.min_filter == 9986);
         CHECK(a.scene.textures[0].image == test::read_bytes(shared_samples() / "gltf/Duck/DuckCM.png"));
-        CHECK(any_warning(a, "camera"));
+        // Format 1.10: its camera travels, on its node, with no warning.
+        CHECK_FALSE(any_warning(a, "camera"));
+        REQUIRE(a.scene.cameras.size() == 1);
+        CHECK(std::count_if(a.scene.nodes.begin(), a.scene.nodes.end(), [](const SceneNode& n) { return n.camera == 0; }) == 1);
     }
 }
 
