@@ -350,7 +350,7 @@ int run_receive(const ReceiveArgs& a) {
             region_applied = view->region_version();
             live.set_region(view->region() ? region_filter(*view->region(), stream()) : LiveReconstruction::InsertIf{});
         }
-        if (live_wanted && live.started() && !live.caught_up(stream())) live.work(stream(), std::chrono::milliseconds(20));
+        if (live_wanted && live.started() && !live.caught_up(stream())) live.work(stream(), std::chrono::milliseconds(view && view->serving() ? 5 : 20));
         now = std::chrono::steady_clock::now();
         if (view) {
             view->update(reception, live, seconds_since(now), {});

@@ -137,7 +137,7 @@ int run_view(const ViewArgs& a) {
             live.set_region(view.region() ? region_filter(*view.region(), reception.stream())
                                           : LiveReconstruction::InsertIf{});
         }
-        if (live.started() && !live.caught_up(reception.stream())) live.work(reception.stream(), std::chrono::milliseconds(30));
+        if (live.started() && !live.caught_up(reception.stream())) live.work(reception.stream(), std::chrono::milliseconds(view.serving() ? 5 : 30));
         const bool caught_up = live.started() && live.caught_up(reception.stream());
         const bool ended = (reception.complete() || next >= arrivals.size()) && (caught_up || !live.started());
         if (ended && complete_at < 0) {

@@ -16,6 +16,7 @@
 #include <ellicast/viewer/http_server.h>
 
 #include <chrono>
+#include <future>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -56,6 +57,8 @@ public:
     // Serves the page for at most `timeout`.
     void poll(std::chrono::milliseconds timeout) { server_.poll(timeout); }
     size_t viewers() const { return server_.event_clients(); }
+    // A page is fetching something (a model): keep the slices of other work short.
+    bool serving() const { return server_.writing(); }
     // The page's camera when it asks to refine where it looks (GET /camera?eye=X,Y,Z&target=X,Y,Z&fov=DEG&aspect=A;
     // /camera?off ends it), and a number that changes with it.
     const std::optional<Region>& region() const { return region_; }
@@ -90,7 +93,9 @@ private:
     double last_build_seconds_ = 0;
     std::optional<Region> region_;
     uint64_t region_version_ = 0;
-    double last_error_seconds_ = 0;
+    // The surface error being measured on its own thread (declared last: it reads reference_,
+    // and a future from std::async waits for its thread when destroyed).
+    std::future<std::optional<double>> error_job_;
     double publish_seconds_ = 0;
 };
 

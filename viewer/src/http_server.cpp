@@ -204,6 +204,11 @@ size_t HttpServer::event_clients() const {
     return static_cast<size_t>(std::count_if(clients_.begin(), clients_.end(), [](const auto& c) { return c->events; }));
 }
 
+bool HttpServer::writing() const {
+    return std::any_of(clients_.begin(), clients_.end(),
+                       [](const auto& c) { return c->fd >= 0 && !c->events && c->sent < c->out.size(); });
+}
+
 void HttpServer::send_event(const std::string& name, const std::string& data) {
     const std::string bytes = event_bytes(name, data);
     for (auto& c : clients_) {

@@ -11,7 +11,7 @@ const view = window.ellicastView = {
   loads: 0, loadErrors: 0, frames: 0, fps: 0, problem: null,
   // Per model shown: milliseconds from its "model" event to its first frame drawn, and the
   // seconds after tune-in at which the receiver published it.
-  latencies: [], published: [],
+  latencies: [], published: [], stages: [],
 };
 const announced = new Map();  // model version -> (performance.now() of its event, seconds after tune-in)
 
@@ -119,9 +119,13 @@ async function loadLatest() {
   try {
     while (view.shownVersion < view.modelVersion) {
       const version = view.modelVersion;
+      const t0 = performance.now();
       const response = await fetch(`/model.glb?v=${version}`, { cache: 'no-store' });
       if (!response.ok) throw new Error(`model ${version}: HTTP ${response.status}`);
-      const gltf = await loader.parseAsync(await response.arrayBuffer(), '');
+      const buffer = await response.arrayBuffer();
+      const t1 = performance.now();
+      const gltf = await loader.parseAsync(buffer, '');
+      const t2 = performance.now();
       if (lambert) simplifyMaterials(gltf.scene);
       if (shown) { scene.remove(shown); dispose(shown); }
       shown = gltf.scene;
@@ -140,8 +144,10 @@ async function loadLatest() {
       const event = announced.get(version);
       if (event) {
         requestAnimationFrame(() => {
-          view.latencies.push(performance.now() - event.at);
+          const t3 = performance.now();
+          view.latencies.push(t3 - event.at);
           view.published.push(event.seconds);
+          view.stages.push({ wait: t0 - event.at, fetch: t1 - t0, parse: t2 - t1, draw: t3 - t2, bytes: buffer.byteLength });
         });
       }
       for (const v of announced.keys()) if (v <= version) announced.delete(v);
@@ -269,6 +275,7 @@ refine.addEventListener('change', () => {
   if (refine.checked) sendCamera();
   else fetch('/camera?off', { cache: 'no-store' }).catch(() => {});
 });
+view.setPixelRatio = (r) => { renderer.setPixelRatio(r); resize(); };
 view.refineWhereILook = (on) => { refine.checked = on; refine.dispatchEvent(new Event('change')); };
 
 controls.addEventListener('change', () => { needsRender = true; });

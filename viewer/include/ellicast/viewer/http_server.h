@@ -71,6 +71,8 @@ public:
     // up (its backlog past the limit) is dropped; the page reconnects and is greeted again.
     void send_event(const std::string& name, const std::string& data);
     size_t event_clients() const;
+    // A response is being written (a caller doing other work should come back to poll() soon).
+    bool writing() const;
     uint64_t requests_served() const { return requests_; }
 
     // Accepts, reads and answers for at most `timeout` (returns sooner when nothing is pending
