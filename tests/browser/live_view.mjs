@@ -237,7 +237,7 @@ const serverStatus = await (await fetch(new URL('/status.json', url))).json();
 const orbitFps = await send('Runtime.evaluate', { expression: 'window.ellicastView.measureOrbit(3000)', awaitPromise: true,
                                                    returnByValue: true }).then((r) => r.result.value).catch(() => null);
 const timing = await evaluate(`(() => { const v = window.ellicastView;
-  return { latencies: v.latencies, published: v.published, fps: v.fps,
+  return { latencies: v.latencies, published: v.published, fps: v.fps, stages: v.stages,
            heap: performance.memory ? performance.memory.usedJSHeapSize : null, software: v.software }; })()`);
 
 for (const [name, m] of moments) {
@@ -256,6 +256,17 @@ if (timing && timing.latencies.length) {
               `orbiting the exact model: ${orbitFps === null ? '?' : orbitFps.toFixed(0)} frames/s` +
               `${timing.software ? ' (software renderer)' : ''}; JS heap ` +
               `${timing.heap ? (timing.heap / 1048576).toFixed(1) + ' MB' : 'unknown'}`);
+}
+if (timing && timing.stages.length) {
+  const med = (k) => { const a = timing.stages.map((x) => x[k]).sort((x, y) => x - y); return a[Math.floor(a.length / 2)]; };
+  console.log(`figures: a model's event to its first frame, median of each step: waiting ${med('wait').toFixed(0)} ms, ` +
+              `fetching ${med('fetch').toFixed(0)} ms (${(med('bytes') / 1048576).toFixed(1)} MB), parsing ` +
+              `${med('parse').toFixed(0)} ms, drawing ${med('draw').toFixed(0)} ms`);
+}
+if (process.env.LIVE_VIEW_FIGURES_ONLY) {  // bench/run.sh live: the figures, not the test's checks
+  clearTimeout(deadline);
+  cleanup();
+  process.exit(0);
 }
 check(consoleErrors.length === 0, `no script error in the page${consoleErrors.length ? ': ' + consoleErrors.slice(0, 3).join(' | ') : ''}`);
 check(first && half && last, 'the page showed a first picture, then a refined one (more points), then the exact model');
