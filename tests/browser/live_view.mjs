@@ -112,16 +112,19 @@ function decodePng(buffer) {
   return { width, height, pixels };
 }
 
-// The model's silhouette: pixels unlike the page's background, outside the panel.
+// The model's silhouette: pixels unlike the page's background (the colour of the bottom-right
+// corner), outside the panel.
 function silhouette(image, panel) {
   const { width, height, pixels } = image;
+  const corner = ((height - 1) * width + width - 1) * 3;
+  const bg = [pixels[corner], pixels[corner + 1], pixels[corner + 2]];
   const mask = new Uint8Array(width * height);
   let count = 0, x0 = width, y0 = height, x1 = -1, y1 = -1;
   for (let y = 0; y < height; ++y)
     for (let x = 0; x < width; ++x) {
       if (x >= panel.left - 2 && x <= panel.right + 2 && y >= panel.top - 2 && y <= panel.bottom + 2) continue;
       const i = (y * width + x) * 3;
-      const d = Math.max(Math.abs(pixels[i] - 244), Math.abs(pixels[i + 1] - 244), Math.abs(pixels[i + 2] - 242));
+      const d = Math.max(Math.abs(pixels[i] - bg[0]), Math.abs(pixels[i + 1] - bg[1]), Math.abs(pixels[i + 2] - bg[2]));
       if (d > 12) {
         mask[y * width + x] = 1;
         ++count;

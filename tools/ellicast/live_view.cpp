@@ -241,6 +241,7 @@ void LiveView::publish_preview(const broadcast::Reception& reception, double sec
             objects[i] = Mesh{};
     }
     publish_asset(received_asset(stream, std::move(objects)), seconds);
+    preview_published_ = true;
     const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(200);
     while (model_fetches_ < server_.event_clients() && std::chrono::steady_clock::now() < until)
         server_.poll(std::chrono::milliseconds(10));
@@ -353,9 +354,12 @@ std::string LiveView::status_json(const broadcast::Reception& reception, const L
     for (size_t i = 0; i < objects; ++i) {
         const auto state = live.state(i);
         exact += state == LiveReconstruction::State::Exact;
+        // Before the live reconstruction has its base, an object the coarse first picture shows.
+        const bool coarse = !live.started() && preview_published_ && i < stream.objects().size() &&
+                            stream.objects()[i].info && stream.objects()[i].info->kind == ObjectKind::Surface;
         const ReceivedObject* r = i < stream.objects().size() ? &stream.objects()[i] : nullptr;
         j += (i ? "," : "") + std::string("{\"id\":") + std::to_string(i) + ",\"state\":" +
-             view_json_string(state_name(state)) + ",\"points\":" + std::to_string(r ? r->points.size() : 0) +
+             view_json_string(coarse ? "coarse base" : state_name(state)) + ",\"points\":" + std::to_string(r ? r->points.size() : 0) +
              ",\"declared\":" + std::to_string(r && r->info ? r->info->point_count : 0) +
              ",\"inserted\":" + std::to_string(live.inserted(i)) + "}";
     }

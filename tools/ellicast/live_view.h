@@ -81,6 +81,7 @@ private:
     std::string glb_;              // the current model
     uint64_t model_version_ = 0;
     uint64_t model_fetches_ = 0;  // /model.glb answered for the current version
+    bool preview_published_ = false;
     uint64_t published_changes_ = UINT64_MAX;
     size_t published_exact_ = 0;
     uint64_t triangles_ = 0;

@@ -31,7 +31,7 @@ const canvas = document.getElementById('scene');
 const renderer = new THREE.WebGLRenderer({ canvas, antialias: !software && window.devicePixelRatio < 2 });
 renderer.setPixelRatio(software ? 1 : Math.min(window.devicePixelRatio, 2));
 const scene = new THREE.Scene();
-scene.background = new THREE.Color(0xf4f4f2);
+scene.background = new THREE.Color(0xdde2e8);  // light models stand out from it
 const camera = new THREE.PerspectiveCamera(40, 1, 0.001, 1000);
 camera.position.set(0, 0, 3);
 const controls = new OrbitControls(camera, canvas);
