@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reruns the benchmarks whose figures the README quotes and writes their output to bench/results/.
-#   bash bench/run.sh [encode|decode|quality|gallery|first-picture|full-quality|broadcast|compare|corpus ...]   (default: encode decode quality)
+#   bash bench/run.sh [encode|decode|quality|gallery|first-picture|full-quality|broadcast|compare|corpus|live|region ...]   (default: encode decode quality)
 # Speed figures are only meaningful on an otherwise idle machine: check `uptime` first.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -137,6 +137,35 @@ for what in "$@"; do
       python3 "$root/bench/corpus_bytes.py" "$build/ellicast" "$node_bin" "$results/corpus" "$samples/meshes" "${folders[@]}" > /dev/null
       rm -rf "$results/corpus/work"
       cat "$results/corpus/bytes.md" ;;
-    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, first-picture, full-quality, broadcast, compare, corpus)" >&2; exit 2 ;;
+    live)
+      # The live view in headless Chromium (issue 33): the bunny at 1 Mbit/s with no loss and at 30%
+      # loss: when the first picture is drawn after tune-in, the time from a model's event to its
+      # first frame, frames a second while orbiting the exact model, the page's JS heap.
+      echo "== live view: the bunny at 1 Mbit/s in headless Chromium (tests/browser/live_view.mjs)" >&2
+      tmp=$(mktemp -d)
+      "$build/ellicast" encode -q "$samples/meshes/bunny.ply" -o "$tmp/bunny.ellc" > /dev/null
+      mkdir -p "$results/live_view"
+      : > "$results/live_view.txt"
+      for loss in 0 0.3; do
+        echo "-- the bunny at 1 Mbit/s, loss $loss, tuned in at slot 0 ($(uptime | sed 's/.*load/load/'))" | tee -a "$results/live_view.txt"
+        LIVE_VIEW_FIGURES_ONLY=1 LIVE_VIEW_RATE=1000000 LIVE_VIEW_LOSS=$loss node "$root/tests/browser/live_view.mjs" "$build/ellicast" \
+          "$tmp/bunny.ellc" "$samples/meshes/bunny.ply" "$tmp/shots-$loss" "$root/.cache/node/node_modules" 2>&1 |
+          grep -v '^ok' | sed "s|$tmp/shots-$loss/|bench/results/live_view/|" | tee -a "$results/live_view.txt" || true
+      done
+      cp "$tmp/shots-0.3/"*.png "$results/live_view/" 2>/dev/null || true
+      rm -rf "$tmp" ;;
+    region)
+      # Refinement where the viewer looks (issue 33): insertion time and error inside a region when
+      # only the points there are inserted, against inserting every point; the bunny, and the bunny
+      # Loop-subdivided twice (575k vertices).
+      echo "== region of interest: bench_region on the bunny and the bunny subdivided twice" >&2
+      tmp=$(mktemp -d)
+      "$build/bench/bench_region" subdivide "$samples/meshes/bunny.ply" "$tmp/bunny_x16.ply" 2 | tee "$results/region.txt"
+      for m in "$samples/meshes/bunny.ply" "$tmp/bunny_x16.ply"; do
+        timed "$build/ellicast" encode -q "$m" -o "$tmp/region.ellc" --repair 0 2>&1 | sed 's/^/encode: /' | tee -a "$results/region.txt"
+        "$build/bench/bench_region" "$tmp/region.ellc" "$m" | tee -a "$results/region.txt"
+      done
+      rm -rf "$tmp" ;;
+    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, first-picture, full-quality, broadcast, compare, corpus, live, region)" >&2; exit 2 ;;
   esac
 done
