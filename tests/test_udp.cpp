@@ -16,6 +16,10 @@
 #include <chrono>
 #include <thread>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 using namespace ellicast;
@@ -423,4 +427,72 @@ TEST_CASE("ellicast receive gives up at its deadline with a clear error when not
                              dir / "log2.txt") == 2);
     CHECK(test::run_ellicast({"serve", (dir / "log.txt").string(), "--to", "nowhere", "--rate", "1e6"},
                              dir / "log3.txt") != 0);
+}
+
+namespace {
+
+// GET `path` from 127.0.0.1:`port`; the body ("" when nothing answered within two seconds).
+std::string http_get_body(uint16_t port, const std::string& path) {
+    int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(port);
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    timeval timeout{2, 0};
+    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    std::string out;
+    if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0) {
+        const std::string request = "GET " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
+        if (::send(fd, request.data(), request.size(), MSG_NOSIGNAL) == ssize_t(request.size())) {
+            char buffer[65536];
+            for (ssize_t n; (n = ::recv(fd, buffer, sizeof buffer, 0)) > 0;) out.append(buffer, size_t(n));
+        }
+    }
+    ::close(fd);
+    const auto body = out.find("\r\n\r\n");
+    return out.rfind("HTTP/1.1 200", 0) == 0 && body != std::string::npos ? out.substr(body + 4) : std::string();
+}
+
+}  // namespace
+
+TEST_CASE("ellicast receive --view serves the reception as it arrives: the status, then the model, as a page would get them") {
+    if (!std::filesystem::exists(test::source_dir() / ".cache/node/node_modules/three/build/three.module.js")) {
+        MESSAGE("skipped: three.js is not installed (scripts/setup.sh installs it into .cache/node)");
+        return;
+    }
+    auto dir = test::scratch_dir("receive-view");
+    auto packets = test::synthetic_stream(200, 4000, 0x5151);
+    test::write_stream_file(dir / "in.ellc", packets);
+    const std::string to = "127.0.0.1:" + std::to_string(test_port(3));
+    test::Child receive({"receive", "--from", to, "-o", (dir / "out.glb").string(), "--view", "--view-port", "0",
+                         "--view-linger", "4", "--until", "30"},
+                        dir / "receive.log");
+    // The page's address, printed as soon as it listens.
+    uint16_t port = 0;
+    for (int i = 0; i < 100 && port == 0; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        const std::string log = test::read_text(dir / "receive.log");
+        if (auto at = log.find("view: http://127.0.0.1:"); at != std::string::npos)
+            port = uint16_t(std::stoi(log.substr(at + 23)));
+    }
+    REQUIRE(port != 0);
+    CHECK(http_get_body(port, "/").find("<canvas id=\"scene\"") != std::string::npos);
+    CHECK(http_get_body(port, "/three/build/three.module.js").size() > 100000);
+    test::Child serve({"serve", (dir / "in.ellc").string(), "--to", to, "--rate", "2000000", "--cycles", "30", "-q"},
+                      dir / "serve.log");
+    // While it arrives, then when it is whole: the status says so, and the model is a GLB.
+    std::string status;
+    for (int i = 0; i < 200 && status.find("\"final\":true") == std::string::npos; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        status = http_get_body(port, "/status.json");
+    }
+    INFO(status);
+    CHECK(status.find("\"final\":true") != std::string::npos);
+    CHECK(status.find("\"complete\":true") != std::string::npos);
+    CHECK(status.find("\"points\":{\"received\":4000,\"declared\":4000,\"inserted\":4000}") != std::string::npos);
+    const std::string glb = http_get_body(port, "/model.glb");
+    REQUIRE(glb.size() > 1000);
+    CHECK(glb.substr(0, 4) == "glTF");
+    CHECK(receive.wait(std::chrono::seconds(20)) == 0);
+    CHECK(std::filesystem::exists(dir / "out.glb"));
 }
