@@ -57,6 +57,14 @@ void start_reconstruction(Reconstruction& r, DecoderTriMesh&& base, const Frame&
     r.options = options;
     r.vertex_points.assign(r.mesh.n_vertices(), {});
     r.by_position.clear();
+    // Room for the points the stream declares: each adds a vertex, three edges and two faces (a
+    // 1-to-3 or a 2-to-4 split), so that the mesh's arrays seldom move while points arrive. Not more
+    // than a few times the base: a declared count is only a claim (a hostile stream's may be 2^32).
+    // An eighth more for what the end of a stream inserts again (agreement with the normals, sheets).
+    const size_t room = std::min(expected_points, 2 * r.mesh.n_vertices() + 65536) * 9 / 8;
+    r.by_position.reserve(room);
+    r.vertex_points.reserve(r.mesh.n_vertices() + room);
+    r.mesh.reserve(r.mesh.n_vertices() + room, r.mesh.n_edges() + 3 * room, r.mesh.n_faces() + 2 * room);
     r.mc_vertices = r.mesh.n_vertices();
     r.original_vertices = 0;
     Vec3 lo(frame.origin[0], frame.origin[1], frame.origin[2]);
@@ -101,10 +109,10 @@ Insertion insert_point(Reconstruction& r, uint32_t point_index, const std::array
     DecoderTriMesh& mesh = r.mesh;
     const Vec3 p(position[0], position[1], position[2]);
     const uint64_t key = position_key(position);
-    auto& same = r.by_position[key];
     bool merged = false;
-    for (auto v : same) {
+    for (int32_t node = r.by_position.first(key); node != PositionIndex::kEnd; node = r.by_position.next(node)) {
         // Every vertex at this position takes the point: a seam's vertex, or both sides of a sheet.
+        const auto v = r.by_position.vertex(node);
         if (!mesh.status(v).deleted() && mesh.point(v) == p) {
             r.vertex_points[v.idx()].push_back(point_index);
             if (!merged) ++r.seam_merges, vertex = v;
@@ -126,7 +134,7 @@ Insertion insert_into_face(Reconstruction& r, uint32_t point_index, const std::a
                            OpenMesh::VertexHandle& vertex) {
     DecoderTriMesh& mesh = r.mesh;
     const Vec3 p(position[0], position[1], position[2]);
-    auto& same = r.by_position[position_key(position)];
+    const uint64_t key = position_key(position);
     OpenMesh::VertexHandle fv[3];
     OpenMesh::HalfedgeHandle opposite[3];  // halfedge of f opposite corner i
     {
@@ -156,7 +164,7 @@ Insertion insert_into_face(Reconstruction& r, uint32_t point_index, const std::a
         --r.mc_vertices;
         ++r.original_vertices;
         ++r.vertex_moves;
-        same.push_back(vertex);
+        r.by_position.add(key, vertex);
         reindex_faces_around(r, vertex);
         return Insertion::VertexMoved;
     }
@@ -177,7 +185,7 @@ Insertion insert_into_face(Reconstruction& r, uint32_t point_index, const std::a
         if (at.is_valid()) {
             if (!r.is_original(at)) --r.mc_vertices, ++r.original_vertices;
             r.vertex_points[at.idx()].push_back(point_index);
-            same.push_back(at);
+            r.by_position.add(key, at);
             ++r.seam_merges;
             vertex = at;
             return Insertion::SeamDuplicate;
@@ -187,7 +195,7 @@ Insertion insert_into_face(Reconstruction& r, uint32_t point_index, const std::a
     r.vertex_points.resize(mesh.n_vertices());
     r.vertex_points[vertex.idx()].push_back(point_index);
     ++r.original_vertices;
-    same.push_back(vertex);
+    r.by_position.add(key, vertex);
     Insertion kind;
     if (small >= 1) {
         OpenMesh::EdgeHandle e = mesh.edge_handle(opposite[smallest]);

@@ -23,6 +23,7 @@
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -142,6 +143,80 @@ private:
 };
 
 // ---------------------------------------------------------------------------------------------
+// The vertices put at each exact position, in the order they were put there (seam detection): an
+// open-addressing table of 64-bit position keys, each the head of a list in one shared pool (no
+// allocation per point, unlike a map of vectors).
+class PositionIndex {
+public:
+    static constexpr int32_t kEnd = -1;
+    void clear() {
+        slots_.clear();
+        pool_.clear();
+        used_ = 0;
+    }
+    void reserve(size_t positions) {
+        pool_.reserve(positions);
+        size_t want = 16;
+        while (want < 2 * positions) want *= 2;
+        if (want > slots_.size()) rehash(want);
+    }
+    // The first node of the list at `key` (kEnd when none); walk it with vertex() and next().
+    int32_t first(uint64_t key) const {
+        if (slots_.empty()) return kEnd;
+        for (size_t i = slot_of(key);; i = (i + 1) & (slots_.size() - 1)) {
+            const Slot& s = slots_[i];
+            if (s.head == kEnd) return kEnd;
+            if (s.key == key) return s.head;
+        }
+    }
+    OpenMesh::VertexHandle vertex(int32_t node) const { return OpenMesh::VertexHandle(pool_[size_t(node)].vertex); }
+    int32_t next(int32_t node) const { return pool_[size_t(node)].next; }
+    // Appends v to the list at `key`.
+    void add(uint64_t key, OpenMesh::VertexHandle v) {
+        if (2 * (used_ + 1) > slots_.size()) rehash(std::max<size_t>(16, 2 * slots_.size()));
+        const int32_t node = int32_t(pool_.size());
+        pool_.push_back({v.idx(), kEnd});
+        for (size_t i = slot_of(key);; i = (i + 1) & (slots_.size() - 1)) {
+            Slot& s = slots_[i];
+            if (s.head == kEnd) {
+                s = {key, node, node};
+                ++used_;
+                return;
+            }
+            if (s.key == key) {
+                pool_[size_t(s.tail)].next = node;
+                s.tail = node;
+                return;
+            }
+        }
+    }
+
+private:
+    struct Slot {
+        uint64_t key = 0;
+        int32_t head = kEnd, tail = kEnd;
+    };
+    struct Node {
+        int vertex;
+        int32_t next;
+    };
+    size_t slot_of(uint64_t key) const { return size_t((key * 0x9E3779B97F4A7C15ull) >> 17) & (slots_.size() - 1); }
+    void rehash(size_t size) {
+        std::vector<Slot> old = std::move(slots_);
+        slots_.assign(size, Slot{});
+        for (const Slot& s : old) {
+            if (s.head == kEnd) continue;
+            size_t i = slot_of(s.key);
+            while (slots_[i].head != kEnd) i = (i + 1) & (slots_.size() - 1);
+            slots_[i] = s;
+        }
+    }
+    std::vector<Slot> slots_;
+    std::vector<Node> pool_;
+    size_t used_ = 0;
+};
+
+// ---------------------------------------------------------------------------------------------
 // The progressive reconstruction shared by insertion, flips and collapses
 
 struct ReconstructionOptions {
@@ -160,7 +235,7 @@ struct Reconstruction {
     DecoderTriMesh mesh;                          // with vertex/edge/face status
     FaceGrid faces;                               // nearest-face index over `mesh`
     std::vector<std::vector<uint32_t>> vertex_points;  // per vertex: indices of the points at it ({} = MC vertex)
-    std::unordered_map<uint64_t, std::vector<OpenMesh::VertexHandle>> by_position;  // seam detection
+    PositionIndex by_position;                    // seam detection: the vertices put at each position
     size_t mc_vertices = 0;                       // marching-cubes vertices still in the mesh
     double point_spacing = 0;                     // expected edge length once every point arrived (0: unknown)
     double spacing_scale = 1;                     // > 1 at the end of an incomplete stream: its real spacing
