@@ -78,9 +78,14 @@ static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat,
     if (m1.norm() < 1e-6 * scale || m2.norm() < 1e-6 * scale) return false;
     if (!unit(m1) || !unit(m2)) return false;
     bool old_ok = unit(n1) && unit(n2);
-    const double old_worst = std::max(worst_cos(a, b, c), worst_cos(b, a, d));
-    const double new_worst = std::max(worst_cos(a, d, c), worst_cos(d, b, c));
+    // The smallest angles, old and new: only where a rule below reads them (a folded pair does not).
+    double old_worst = 0, new_worst = 0;
+    auto measure = [&] {
+        old_worst = std::max(worst_cos(a, b, c), worst_cos(b, a, d));
+        new_worst = std::max(worst_cos(a, d, c), worst_cos(d, b, c));
+    };
     if (!old_ok) {  // a degenerate old face: any legal flip that helps
+        measure();
         if (!(new_worst < old_worst) || !mesh.is_flip_ok(e)) return false;
         mesh.flip(e);
         r.face_changed(mesh.face_handle(h0));
@@ -99,6 +104,7 @@ static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat,
     if (folded) {
         flip = new_dot > old_dot + 1e-9;
     } else if (old_dot > cos_flat && new_dot > cos_flat) {
+        measure();
         flip = new_worst < old_worst - 1e-12;
     } else {
         // Curved: the data-dependent triangulation rule (Dyn, Levin & Rippa, "Data dependent
@@ -115,6 +121,7 @@ static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat,
         if (across_normal(mesh, had, o)) cost_old += angle(n2, o), cost_new += angle(m1, o);
         if (across_normal(mesh, hdb, o)) cost_old += angle(n2, o), cost_new += angle(m2, o);
         flip = cost_new < 0.95 * cost_old - 1e-9;  // by a margin: no flip-flopping on smooth parts
+        if (flip) measure();
         // On smooth parts the rule alone lays long thin triangles along the curvature: a flip that
         // makes the smallest angle smaller must cut the total angle by 30% (a crease, not noise).
         flip = flip && (new_worst < old_worst || cost_new < 0.7 * cost_old);
