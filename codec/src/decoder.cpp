@@ -160,7 +160,15 @@ Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::ve
         if (r.is_original(v)) {
             source[v.idx()] = v.idx();
             dist[v.idx()] = 0;
-            queue.push({0.0, v.idx()});
+            // Only an original next to a marching-cubes vertex can pass its sets on (its other
+            // neighbours are at distance 0 already): the others need not enter the queue.
+            bool passes_on = false;
+            for (auto w : mesh.vv_range(v))
+                if (!r.is_original(w)) {
+                    passes_on = true;
+                    break;
+                }
+            if (passes_on) queue.push({0.0, v.idx()});
         }
     }
     while (!queue.empty()) {
@@ -204,8 +212,13 @@ Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::ve
     // it costs at most that squared per corner rather than the square of the points there (all
     // points of a small model at one position took 33 s).
     constexpr size_t kMaxSetsCompared = 16;
-    std::unordered_map<uint64_t, uint32_t> output_index;  // (vertex, point) -> output vertex
-    output_index.reserve(nv * 2);
+    // (vertex, point) -> output vertex: a vertex's first pair in flat arrays, the further ones (a
+    // seam's vertex with several sets) in a map.
+    constexpr uint32_t kNone = 0xFFFFFFFFu;
+    std::vector<uint32_t> first_set(nv, kNone), first_out(nv, kNone);
+    std::unordered_map<uint64_t, uint32_t> more_outputs;
+    out.positions.reserve(nv);
+    out.triangles.reserve(mesh.n_faces());
     for (auto f : mesh.faces()) {
         OpenMesh::VertexHandle corner[3];
         int k = 0;
@@ -236,8 +249,21 @@ Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::ve
                     }
                 }
             }
-            uint64_t key = (uint64_t(uint32_t(corner[c].idx())) << 32) | uint32_t(chosen < 0 ? 0xFFFFFFFFu : chosen);
-            auto [it, fresh] = output_index.emplace(key, uint32_t(out.positions.size()));
+            const uint32_t set = chosen < 0 ? kNone : uint32_t(chosen);
+            const size_t vi = size_t(corner[c].idx());
+            const uint32_t next_index = uint32_t(out.positions.size());
+            bool fresh = false;
+            uint32_t index;
+            if (first_out[vi] == kNone) {
+                first_set[vi] = set, first_out[vi] = index = next_index;
+                fresh = true;
+            } else if (first_set[vi] == set) {
+                index = first_out[vi];
+            } else {
+                auto [it, added] = more_outputs.emplace((uint64_t(uint32_t(vi)) << 32) | set, next_index);
+                index = it->second;
+                fresh = added;
+            }
             if (fresh) {
                 const Vec3& p = mesh.point(corner[c]);
                 out.positions.push_back({float(p[0]), float(p[1]), float(p[2])});
@@ -249,7 +275,7 @@ Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::ve
                     out.normals.push_back(geometric_normal(corner[c]));
                 }
             }
-            tri[c] = it->second;
+            tri[c] = index;
         }
         out.triangles.push_back(tri);
     }
