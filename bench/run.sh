@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reruns the benchmarks whose figures the README quotes and writes their output to bench/results/.
-#   bash bench/run.sh [encode|decode|quality|gallery|first-picture|full-quality|broadcast|compare|corpus|live|region ...]   (default: encode decode quality)
+#   bash bench/run.sh [encode|decode|quality|gallery|first-picture|full-quality|broadcast|compare|corpus|speed|live|region ...]   (default: encode decode quality)
 # Speed figures are only meaningful on an otherwise idle machine: check `uptime` first.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -137,6 +137,15 @@ for what in "$@"; do
       python3 "$root/bench/corpus_bytes.py" "$build/ellicast" "$node_bin" "$results/corpus" "$samples/meshes" "${folders[@]}" > /dev/null
       rm -rf "$results/corpus/work"
       cat "$results/corpus/bytes.md" ;;
+    speed)
+      # Issue 30: encode, exact decode and reconstruction side by side with Draco in one run, on the
+      # bunny, a 50k-vertex closed torus and (ELLICAST_SPEED_LARGE=0 leaves it out) the same torus at
+      # 500k vertices; best of ELLICAST_SPEED_RUNS (default 3) wall times each.
+      echo "== speed: ellicast against draco_encoder/draco_decoder (bench/speed.py)" >&2
+      large=--large
+      [ "${ELLICAST_SPEED_LARGE:-1}" = 0 ] && large=
+      python3 "$root/bench/speed.py" "$build/ellicast" "$samples/meshes" "$results/speed.txt" $large \
+        --runs "${ELLICAST_SPEED_RUNS:-3}" ;;
     live)
       # The live view in headless Chromium (issue 33): the bunny at 1 Mbit/s with no loss and at 30%
       # loss: when the first picture is drawn after tune-in, the time from a model's event to its
@@ -166,6 +175,6 @@ for what in "$@"; do
         "$build/bench/bench_region" "$tmp/region.ellc" "$m" | tee -a "$results/region.txt"
       done
       rm -rf "$tmp" ;;
-    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, first-picture, full-quality, broadcast, compare, corpus, live, region)" >&2; exit 2 ;;
+    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, first-picture, full-quality, broadcast, compare, corpus, speed, live, region)" >&2; exit 2 ;;
   esac
 done

@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""Speed side by side with Draco (issue 30), in one run on this machine.
+
+Usage: bench/speed.py ELLICAST SAMPLES_MESHES OUT_TXT [--large] [--runs N]
+
+Models: the bunny (shared samples), the bumpy torus of bench_encode (400 x 125 = 50,000 vertices,
+closed, written here as a binary PLY) and, with --large, the same torus sampled ten times finer
+(1000 x 500 = 500,000 vertices: the parametric surface evaluated at the midpoints, which is what a
+subdivision onto the surface gives). For each, the best wall time of N runs (default 3) of:
+- encode: `ellicast encode` with its defaults (--threads 2) against `draco_encoder -cl 7 -qp 14`
+  (14-bit positions, as ellicast's default);
+- exact decode: `ellicast decode` of every packet (the exact layer: the original triangles) against
+  `draco_decoder`, both to a PLY;
+- reconstruction: `ellicast decode --no-exact` of every packet (ellipsoids, marching cubes, every point
+  inserted with flips and collapses): its wall time, and the insertion stage alone as the decoder
+  reports it, in points per second.
+Ratios are ellicast / Draco (a reconstruction against Draco's decode of the same model). Speed figures
+mean something only on an otherwise idle machine: the table records the load average.
+"""
+import math
+import os
+import re
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+
+
+def bumpy_torus(u, v, path):
+    """bench_encode.cpp's bumpy_torus(u, v) as a binary little-endian PLY."""
+    positions = []
+    for i in range(u):
+        for j in range(v):
+            a, b = 2 * math.pi * i / u, 2 * math.pi * j / v
+            r = 0.35 + 0.06 * math.sin(5 * a) * math.cos(3 * b) + 0.03 * math.sin(11 * b)
+            R = 1.0 + 0.15 * math.cos(3 * a)
+            positions.append(((R + r * math.cos(b)) * math.cos(a), (R + r * math.cos(b)) * math.sin(a),
+                              r * math.sin(b) + 0.2 * math.sin(2 * a)))
+    faces = []
+    for i in range(u):
+        for j in range(v):
+            p, q = i * v + j, ((i + 1) % u) * v + j
+            r, s = ((i + 1) % u) * v + (j + 1) % v, i * v + (j + 1) % v
+            faces.append((p, q, r))
+            faces.append((p, r, s))
+    with open(path, 'wb') as f:
+        f.write(('ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\nproperty float y\n'
+                 'property float z\nelement face %d\nproperty list uchar int vertex_indices\nend_header\n'
+                 % (len(positions), len(faces))).encode())
+        f.write(b''.join(struct.pack('<fff', *p) for p in positions))
+        f.write(b''.join(struct.pack('<Biii', 3, *t) for t in faces))
+
+
+def timed(cmd):
+    t0 = time.perf_counter()
+    out = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    elapsed = time.perf_counter() - t0
+    if out.returncode != 0:
+        sys.exit('speed: %s failed:\n%s' % (' '.join(cmd), out.stdout))
+    return elapsed, out.stdout
+
+
+def best(runs, cmd):
+    results = [timed(cmd) for _ in range(runs)]
+    return min(r[0] for r in results), min(results)[1]
+
+
+def main():
+    args = sys.argv[1:]
+    large = '--large' in args
+    runs = 3
+    if '--runs' in args:
+        runs = int(args[args.index('--runs') + 1])
+        del args[args.index('--runs'):args.index('--runs') + 2]
+    args = [a for a in args if a != '--large']
+    ellicast, meshes, out_txt = args[:3]
+    tmp = tempfile.mkdtemp(prefix='ellicast-speed-')
+    models = [('bunny', os.path.join(meshes, 'bunny.ply'))]
+    torus = os.path.join(tmp, 'torus50k.ply')
+    bumpy_torus(400, 125, torus)
+    models.append(('torus 50k (closed)', torus))
+    if large:
+        big = os.path.join(tmp, 'torus500k.ply')
+        bumpy_torus(1000, 500, big)
+        models.append(('torus 500k (closed)', big))
+    lines = []
+
+    def say(line=''):
+        print(line, flush=True)
+        lines.append(line)
+
+    say('Speed: ellicast against Draco (draco_encoder -cl 7 -qp 14 / draco_decoder), best wall time of %d runs,'
+        % runs)
+    say('load average at the start: %s' % ' '.join('%.2f' % x for x in os.getloadavg()))
+    say()
+    say('| model | vertices | points | encode ellicast | encode Draco | ratio | exact decode ellicast | decode Draco '
+        '| ratio | reconstruction (wall) | ratio | insertion | points/s |')
+    say('|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|')
+    for name, path in models:
+        stem = os.path.join(tmp, re.sub(r'\W+', '_', name))
+        enc, _ = best(runs, [ellicast, 'encode', '-q', path, '-o', stem + '.ellc'])
+        denc, _ = best(runs, ['draco_encoder', '-i', path, '-o', stem + '.drc', '-cl', '7', '-qp', '14'])
+        dec, _ = best(runs, [ellicast, 'decode', '-q', stem + '.ellc', '-o', stem + '.exact.ply'])
+        ddec, _ = best(runs, ['draco_decoder', '-i', stem + '.drc', '-o', stem + '.draco.ply'])
+        rec, insertion, log = float('inf'), float('inf'), ''
+        for _ in range(runs):
+            elapsed, log = timed([ellicast, 'decode', '-q', '--no-exact', stem + '.ellc', '-o', stem + '.rec.ply'])
+            rec = min(rec, elapsed)
+            insertion = min([insertion] + [float(x) for x in re.findall(r'insertion ([\d.]+) s', log)])
+        points = sum(int(a) for a, _ in re.findall(r'(\d+)/(\d+) points', log))
+        with open(path, 'rb') as f:
+            head = f.read(4096).decode('latin-1')
+        vertices = re.search(r'element vertex (\d+)', head)
+        say('| %s | %s | %d | %.2f s | %.3f s | %.0fx | %.3f s | %.3f s | %.1fx | %.2f s | %.0fx | %.2f s | %.0f |' % (
+            name, vertices.group(1) if vertices else '?', points, enc, denc, enc / denc, dec, ddec, dec / ddec, rec,
+            rec / ddec, insertion, points / insertion if insertion > 0 else float('nan')))
+    say()
+    say('reconstruction = `ellicast decode --no-exact` of every packet, whole process; insertion = its insertion '
+        'stage (points with their flips and collapses) as the decoder reports it.')
+    with open(out_txt, 'w') as f:
+        f.write('\n'.join(lines) + '\n')
+
+
+if __name__ == '__main__':
+    main()
