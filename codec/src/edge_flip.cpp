@@ -62,6 +62,18 @@ static bool across_normal(const DecoderTriMesh& mesh, OpenMesh::HalfedgeHandle h
     return unit(n);
 }
 
+// OpenMesh's TriConnectivity::is_flip_ok, inline (it is called for every flip about to be made): the
+// edge is inner and its two opposite vertices are distinct and not yet joined. h0, h1: the edge's
+// halfedges.
+static bool flip_keeps_manifold(const DecoderTriMesh& mesh, OpenMesh::HalfedgeHandle h0, OpenMesh::HalfedgeHandle h1) {
+    const auto c = mesh.to_vertex_handle(mesh.next_halfedge_handle(h0));
+    const auto d = mesh.to_vertex_handle(mesh.next_halfedge_handle(h1));
+    if (c == d) return false;
+    for (auto w : mesh.vv_range(c))
+        if (w == d) return false;
+    return true;
+}
+
 // Returns true when edge e was flipped.
 static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat, double cos_fold) {
     DecoderTriMesh& mesh = r.mesh;
@@ -75,8 +87,10 @@ static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat,
     Vec3 m1 = OpenMesh::cross(d - a, c - a), m2 = OpenMesh::cross(b - d, c - d);
     // New faces must not be (nearly) degenerate: compare their area with their squared edge length.
     const double scale = std::max({(a - b).sqrnorm(), (c - d).sqrnorm(), (a - c).sqrnorm(), (b - d).sqrnorm()});
-    if (m1.norm() < 1e-6 * scale || m2.norm() < 1e-6 * scale) return false;
-    if (!unit(m1) || !unit(m2)) return false;
+    const double l1 = m1.norm(), l2 = m2.norm();  // each norm once (unit() would take it again)
+    if (l1 < 1e-6 * scale || l2 < 1e-6 * scale) return false;
+    if (!(l1 > 1e-300) || !(l2 > 1e-300)) return false;
+    m1 /= l1, m2 /= l2;
     bool old_ok = unit(n1) && unit(n2);
     // The smallest angles, old and new: only where a rule below reads them (a folded pair does not).
     double old_worst = 0, new_worst = 0;
@@ -86,7 +100,7 @@ static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat,
     };
     if (!old_ok) {  // a degenerate old face: any legal flip that helps
         measure();
-        if (!(new_worst < old_worst) || !mesh.is_flip_ok(e)) return false;
+        if (!(new_worst < old_worst) || !flip_keeps_manifold(mesh, h0, h1)) return false;
         mesh.flip(e);
         r.face_changed(mesh.face_handle(h0));
         r.face_changed(mesh.face_handle(h1));
@@ -129,7 +143,7 @@ static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat,
         // zero-area triangles in the single-precision output.
         flip = flip && (new_worst < kSliverCos || new_worst < old_worst);
     }
-    if (!flip || !mesh.is_flip_ok(e)) return false;  // topology last: it walks a one-ring
+    if (!flip || !flip_keeps_manifold(mesh, h0, h1)) return false;  // topology last: it walks a one-ring
     mesh.flip(e);
     r.face_changed(mesh.face_handle(h0));
     r.face_changed(mesh.face_handle(h1));
@@ -141,7 +155,9 @@ size_t flip_edges_around(Reconstruction& r, OpenMesh::VertexHandle v) {
     DecoderTriMesh& mesh = r.mesh;
     const double cos_flat = std::cos(r.options.flat_angle_degrees * M_PI / 180.0);
     const double cos_fold = std::cos(r.options.foldover_degrees * M_PI / 180.0);
-    std::vector<OpenMesh::EdgeHandle> stack;
+    // One stack for every call (no allocation per insertion); the function does not call itself.
+    static thread_local std::vector<OpenMesh::EdgeHandle> stack;
+    stack.clear();
     for (auto h : mesh.voh_range(v)) {
         if (mesh.is_boundary(h)) continue;
         stack.push_back(mesh.edge_handle(mesh.next_halfedge_handle(h)));
