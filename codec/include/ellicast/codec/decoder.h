@@ -97,11 +97,9 @@ DecoderTriMesh marching_cubes(const EllipsoidGrid& grid);
 // ---------------------------------------------------------------------------------------------
 // Nearest triangle while the mesh changes (face_grid.cpp)
 
-// A uniform grid of cells, each listing the faces whose bounding box overlaps it. A changed face is
-// only marked; the next query (re)registers the marked faces, each once, after taking its old entries
-// out, so cells hold live faces only. Each entry carries its triangle's bounding sphere: a query
-// computes exact distances only for faces whose sphere could still beat the best. Ties go to the
-// smaller face index, so the answer depends on the mesh alone.
+// A uniform grid of cells, each listing the faces whose bounding box overlaps it. Faces are
+// (re)registered after every change; stale entries are skipped by a per-face version and dropped
+// from a cell whenever it would grow, so cells stay small and queries fast as the mesh is refined.
 class FaceGrid {
 public:
     // Covers [lo, hi] (points outside are clamped to the border cells) with cells of edge `cell`,
@@ -109,45 +107,38 @@ public:
     void reset(const OpenMesh::Vec3d& lo, const OpenMesh::Vec3d& hi, double cell, size_t max_cells = size_t(4) << 20);
     // Registers every live face of `mesh`.
     void build(const DecoderTriMesh& mesh);
-    // Marks face `f` as changed (or new); the next query registers it at its position then.
+    // (Re)registers face `f` at its current position; call after any change to its vertices.
     void update(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f);
     // Forgets face `f` (call when it is deleted).
     void remove(OpenMesh::FaceHandle f);
     // The live face nearest to p (invalid handle when the mesh has no face), its closest point and
-    // the barycentric coordinates of that point (corners in the order of mesh.fv_range). With
-    // `accept`, only faces it accepts count; with `max_distance`, only faces closer than that (else
-    // an invalid handle, without a wider search). Of faces at the same distance, the smallest index.
+    // the barycentric coordinates of that point. With `accept`, only faces it accepts count; with
+    // `max_distance`, only faces closer than that (else an invalid handle, without a wider search).
     OpenMesh::FaceHandle nearest(const DecoderTriMesh& mesh, const OpenMesh::Vec3d& p, OpenMesh::Vec3d& closest,
                                  std::array<double, 3>& bary,
                                  const std::function<bool(OpenMesh::FaceHandle)>& accept = {},
-                                 double max_distance = std::numeric_limits<double>::max());
+                                 double max_distance = std::numeric_limits<double>::max()) const;
+    size_t live_faces() const { return live_; }
     size_t cell_count() const { return cells_.size(); }
     double cell_size() const { return cell_; }
 
 private:
     struct Entry {
         uint32_t face;
-        uint32_t version;  // the face's version when registered: stale once it differs
-        float centre[3];   // bounding sphere of the triangle
-        float radius;
-    };
-    struct Range {
-        int16_t lo[3], hi[3];
+        uint32_t version;
     };
     size_t cell_of(int i, int j, int k) const { return (size_t(k) * dims_[1] + j) * dims_[0] + i; }
-    void cell_range(const OpenMesh::Vec3d& mn, const OpenMesh::Vec3d& mx, Range& range) const;
+    void cell_range(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f, std::array<int, 3>& lo,
+                    std::array<int, 3>& hi) const;
     void add_entries(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f);
-    void grow_to(size_t faces);
-    // Registers the faces marked since the last query.
-    void flush(const DecoderTriMesh& mesh);
 
     OpenMesh::Vec3d lo_{0, 0, 0};
     double cell_ = 1;
     std::array<int, 3> dims_{1, 1, 1};
     std::vector<std::vector<Entry>> cells_;
-    std::vector<uint32_t> version_;  // per face; even = not registered, odd = registered
-    std::vector<uint8_t> dirty_flag_;  // per face: marked since the last query
-    std::vector<uint32_t> dirty_;      // faces marked since the last query
+    std::vector<uint32_t> version_;    // per face; even = not registered, odd = registered
+    mutable std::vector<uint32_t> seen_;  // per face: query stamp
+    mutable uint32_t stamp_ = 0;
     size_t live_ = 0;
 };
 
