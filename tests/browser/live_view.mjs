@@ -157,7 +157,7 @@ viewer.stderr.on('data', (d) => { viewerLog += d.toString(); });
 const url = (await waitForLine(viewer, /view: (http:\/\/\S+)/, 'ellicast view'))[1];
 console.log(`page: ${url}`);
 
-const browser = spawn(chromiumPath, ['--headless', '--no-sandbox', '--no-first-run', '--disable-gpu-sandbox',
+const browser = spawn(chromiumPath, ['--headless', '--no-sandbox', '--no-first-run', '--disable-gpu-sandbox', '--disable-dev-shm-usage',
   '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--remote-debugging-port=0', `--user-data-dir=${scratch}`,
   '--window-size=900,700', 'about:blank'], { stdio: ['ignore', 'ignore', 'pipe'], detached: true });
 children.push(browser);
