@@ -233,14 +233,17 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
                 out.mesh = kNone;
             }
         }
-        // Format 1.10 (spec 26.4): its camera and light once they have arrived.
+        // Format 1.10 (spec 26.4): its camera and light once they have arrived. (The lambda names
+        // copies: clang before 16 cannot capture structured bindings.)
+        const uint16_t node_index = index;
+        const bool unnamed = n.name.empty();
         const auto attach = [&](uint16_t& field, const std::map<uint16_t, uint16_t>& map, const char* what) {
             if (field == kNone) return;
             if (auto it = map.find(field); it != map.end()) {
                 field = it->second;
                 return;
             }
-            warnings.push_back("node " + std::to_string(index) + (n.name.empty() ? "" : " (" + out.name + ")") +
+            warnings.push_back("node " + std::to_string(node_index) + (unnamed ? "" : " (" + out.name + ")") +
                                " is shown without its " + what + " " + std::to_string(field) + ", which has not arrived");
             field = kNone;
         };
