@@ -3,8 +3,11 @@
 
 #include "ellicast/codec/surface_distance.h"
 #include "ellicast/converters/asset.h"
+#include "region_option.h"
 
 #include <ellicast/viewer/web_assets.h>
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -18,31 +21,6 @@
 
 namespace ellicast::cli {
 namespace {
-
-// A JSON string literal.
-std::string view_json_string(const std::string& text) {
-    std::string out = "\"";
-    for (unsigned char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += static_cast<char>(c);
-        } else if (c < 0x20) {
-            char escaped[8];
-            std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
-            out += escaped;
-        } else {
-            out += static_cast<char>(c);
-        }
-    }
-    return out + "\"";
-}
-
-std::string view_json_number(double value) {
-    if (!std::isfinite(value)) return "null";
-    char text[32];
-    std::snprintf(text, sizeof text, "%.6g", value);
-    return text;
-}
 
 const char* state_name(LiveReconstruction::State s) {
     switch (s) {
@@ -65,45 +43,25 @@ viewer::HttpResponse web_asset_response(const std::string& name) {
     return r;
 }
 
-// "eye=1,2,3&target=0,0,0&fov=40&aspect=1.5" -> a view region; false with `error`.
+// "eye=1,2,3&target=0,0,0&fov=40&aspect=1.5" -> a view region (parse_region's "view:..." form);
+// false with `error`.
 bool parse_camera_query(const std::string& query, Region& out, std::string& error) {
-    std::array<double, 3> eye{}, target{};
-    double fov = 0, aspect = 1;
-    int have = 0;
+    std::string eye, target, fov, aspect = "1";
     std::stringstream items(query);
     std::string item;
-    auto numbers = [](const std::string& text, double* values, int count) {
-        std::stringstream parts(text);
-        std::string part;
-        int n = 0;
-        while (std::getline(parts, part, ',')) {
-            if (n == count || part.empty()) return false;
-            char* end = nullptr;
-            values[n++] = std::strtod(part.c_str(), &end);
-            if (*end != 0) return false;
-        }
-        return n == count;
-    };
     while (std::getline(items, item, '&')) {
         const auto eq = item.find('=');
         const std::string key = item.substr(0, eq), value = eq == std::string::npos ? "" : item.substr(eq + 1);
-        bool ok = true;
-        if (key == "eye") ok = numbers(value, eye.data(), 3), have |= 1;
-        else if (key == "target") ok = numbers(value, target.data(), 3), have |= 2;
-        else if (key == "fov") ok = numbers(value, &fov, 1), have |= 4;
-        else if (key == "aspect") ok = numbers(value, &aspect, 1);
-        if (!ok) {
-            error = "camera: \"" + item + "\" is not a list of numbers of the right length";
-            return false;
-        }
+        if (key == "eye") eye = value;
+        else if (key == "target") target = value;
+        else if (key == "fov") fov = value;
+        else if (key == "aspect") aspect = value;
     }
-    if (have != 7) {
+    if (eye.empty() || target.empty() || fov.empty()) {
         error = "camera: eye, target and fov are required";
         return false;
     }
-    out = Region::view(eye, target, fov, aspect);
-    error = out.problem();
-    return error.empty();
+    return parse_region("view:" + eye + "," + target + "," + fov + "," + aspect, out, error);
 }
 
 std::filesystem::path executable_dir() {
@@ -257,7 +215,7 @@ void LiveView::publish_asset(const Asset& asset, double seconds) {
     AssetWriteOptions write;
     write.quantize = true;
     if (!write_asset_glb(asset, write, bytes, warnings, error)) {
-        server_.send_event("problem", view_json_string("the model cannot be written as GLB: " + error));
+        server_.send_event("problem", nlohmann::json("the model cannot be written as GLB: " + error).dump());
         return;
     }
     glb_.assign(bytes.begin(), bytes.end());
@@ -269,9 +227,11 @@ void LiveView::publish_asset(const Asset& asset, double seconds) {
     ++model_version_;
     last_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     publish_seconds_ += last_build_seconds_;
-    server_.send_event("model", "{\"version\":" + std::to_string(model_version_) + ",\"bytes\":" +
-                                    std::to_string(glb_.size()) + ",\"triangles\":" + std::to_string(triangles_) +
-                                    ",\"seconds\":" + view_json_number(seconds) + "}");
+    server_.send_event("model", nlohmann::ordered_json{{"version", model_version_},
+                                                       {"bytes", glb_.size()},
+                                                       {"triangles", triangles_},
+                                                       {"seconds", seconds}}
+                                    .dump());
 }
 
 void LiveView::update(const broadcast::Reception& reception, const LiveReconstruction& live, double seconds,
@@ -327,59 +287,52 @@ void LiveView::update(const broadcast::Reception& reception, const LiveReconstru
         for (size_t i = 0; i < history_.size(); i += 2) kept.push_back(history_[i]);
         history_ = std::move(kept);
     }
-    status_ = status_json(reception, live, seconds, channel);
-    if (final) status_.insert(status_.size() - 1, ",\"final\":true");
+    status_ = status_json(reception, live, seconds, channel, final);
     server_.send_event("status", status_);
 }
 
 std::string LiveView::status_json(const broadcast::Reception& reception, const LiveReconstruction& live,
-                                  double seconds, const ChannelFacts& channel) const {
+                                  double seconds, const ChannelFacts& channel, bool final) const {
+    using Json = nlohmann::ordered_json;
     const auto c = reception.counters();
     const ReceivedStream& stream = reception.stream();
-    std::string j = "{";
-    j += "\"title\":" + view_json_string(options_.title);
-    j += ",\"seconds\":" + view_json_number(seconds);
-    j += ",\"packets\":{\"datagrams\":" + std::to_string(c.datagrams) + ",\"accepted\":" + std::to_string(c.accepted) +
-         ",\"duplicates\":" + std::to_string(c.duplicates) + ",\"rejected\":" + std::to_string(c.rejected()) +
-         ",\"damaged\":" + std::to_string(c.damaged) + ",\"loss_estimate\":" + view_json_number(reception.loss().loss());
-    if (channel.slots_sent) j += ",\"sent\":" + std::to_string(*channel.slots_sent);
-    if (channel.slots_lost) j += ",\"lost\":" + std::to_string(*channel.slots_lost);
-    j += "}";
-    j += ",\"ellipsoids\":{\"received\":" + std::to_string(reception.ellipsoids_received()) +
-         ",\"declared\":" + std::to_string(reception.ellipsoids_declared()) + "}";
-    j += ",\"points\":{\"received\":" + std::to_string(reception.points_received()) +
-         ",\"declared\":" + std::to_string(reception.points_declared()) + ",\"inserted\":" + std::to_string(live.inserted()) +
-         "}";
-    j += std::string(",\"base\":") + (reception.base_complete() ? "true" : "false");
-    j += std::string(",\"complete\":") + (reception.complete() ? "true" : "false");
-    j += ",\"objects\":[";
-    const size_t objects = std::max(live.object_count(), stream.objects().size());
+    Json packets = {{"datagrams", c.datagrams}, {"accepted", c.accepted},   {"duplicates", c.duplicates},
+                    {"rejected", c.rejected()}, {"damaged", c.damaged},     {"loss_estimate", reception.loss().loss()}};
+    if (channel.slots_sent) packets["sent"] = *channel.slots_sent;
+    if (channel.slots_lost) packets["lost"] = *channel.slots_lost;
+    Json objects = Json::array();
     size_t exact = 0;
-    for (size_t i = 0; i < objects; ++i) {
+    for (size_t i = 0; i < std::max(live.object_count(), stream.objects().size()); ++i) {
         const auto state = live.state(i);
         exact += state == LiveReconstruction::State::Exact;
-        // Before the live reconstruction has its base, an object the coarse first picture shows.
-        const bool coarse = !live.started() && preview_published_ && i < stream.objects().size() &&
-                            stream.objects()[i].info && stream.objects()[i].info->kind == ObjectKind::Surface;
         const ReceivedObject* r = i < stream.objects().size() ? &stream.objects()[i] : nullptr;
-        j += (i ? "," : "") + std::string("{\"id\":") + std::to_string(i) + ",\"state\":" +
-             view_json_string(coarse ? "coarse base" : state_name(state)) + ",\"points\":" + std::to_string(r ? r->points.size() : 0) +
-             ",\"declared\":" + std::to_string(r && r->info ? r->info->point_count : 0) +
-             ",\"inserted\":" + std::to_string(live.inserted(i)) + "}";
+        // Before the live reconstruction has its base, an object the coarse first picture shows.
+        const bool coarse = !live.started() && preview_published_ && r && r->info && r->info->kind == ObjectKind::Surface;
+        objects.push_back({{"id", i},
+                           {"state", coarse ? "coarse base" : state_name(state)},
+                           {"points", r ? r->points.size() : 0},
+                           {"declared", r && r->info ? r->info->point_count : 0},
+                           {"inserted", live.inserted(i)}});
     }
-    j += "],\"exact_objects\":" + std::to_string(exact);
-    j += ",\"held\":" + std::to_string(live.held()) +
-         ",\"region\":" + (region_ ? view_json_string(region_->describe()) : std::string("null"));
-    j += ",\"model\":{\"version\":" + std::to_string(model_version_) + ",\"triangles\":" + std::to_string(triangles_) +
-         ",\"bytes\":" + std::to_string(glb_.size()) + "}";
-    j += ",\"error\":{\"reference\":" + view_json_string(options_.reference) + ",\"rms_percent\":" +
-         (error_percent_ ? view_json_number(*error_percent_) : std::string("null")) + "}";
-    j += ",\"history\":{\"kind\":" + view_json_string(reference_.empty() ? "points" : "error") + ",\"samples\":[";
-    for (size_t i = 0; i < history_.size(); ++i)
-        j += (i ? "," : "") + std::string("[") + view_json_number(history_[i].first) + "," +
-             view_json_number(history_[i].second) + "]";
-    j += "]}}";
-    return j;
+    Json j = {{"title", options_.title},
+              {"seconds", seconds},
+              {"packets", std::move(packets)},
+              {"ellipsoids", {{"received", reception.ellipsoids_received()}, {"declared", reception.ellipsoids_declared()}}},
+              {"points", {{"received", reception.points_received()},
+                          {"declared", reception.points_declared()},
+                          {"inserted", live.inserted()}}},
+              {"base", reception.base_complete()},
+              {"complete", reception.complete()},
+              {"objects", std::move(objects)},
+              {"exact_objects", exact},
+              {"held", live.held()},
+              {"region", region_ ? Json(region_->describe()) : Json(nullptr)},
+              {"model", {{"version", model_version_}, {"triangles", triangles_}, {"bytes", glb_.size()}}},
+              {"error", {{"reference", options_.reference},
+                         {"rms_percent", error_percent_ ? Json(*error_percent_) : Json(nullptr)}}},
+              {"history", {{"kind", reference_.empty() ? "points" : "error"}, {"samples", history_}}}};
+    if (final) j["final"] = true;
+    return j.dump();
 }
 
 }  // namespace ellicast::cli

@@ -71,7 +71,7 @@ private:
     void publish_model(const broadcast::Reception& reception, const LiveReconstruction& live, double seconds);
     void publish_asset(const Asset& asset, double seconds);
     std::string status_json(const broadcast::Reception& reception, const LiveReconstruction& live, double seconds,
-                            const ChannelFacts& channel) const;
+                            const ChannelFacts& channel, bool final) const;
 
     LiveViewOptions options_;
     viewer::HttpServer server_;
