@@ -238,8 +238,7 @@ int quality(const std::string& stream_path, const std::string& original_path, in
         const uint8_t type = p.view.header.type;
         if (is_points_type(type)) points.push_back(&p);
         else if (type == uint8_t(PacketType::Ellipsoids)) ellipsoids.push_back(&p);
-        else if (type == uint8_t(PacketType::PointsRepair) || type == uint8_t(PacketType::Connectivity) ||
-                 type == uint8_t(PacketType::ConnectivityRepair))
+        else if (type == uint8_t(PacketType::PointsRepair) || is_exact_layer_type(type) || is_exact_layer_repair_type(type))
             extra.push_back(&p);
         else info.push_back(&p);
     }

@@ -499,13 +499,17 @@ size_t shared_base_grid_nodes(const ReceivedStream& stream, const DecodeOptions&
 bool exact_mesh(const ReceivedStream& stream, size_t object, Mesh& out, std::string& why, bool& unusable) {
     unusable = false;
     std::vector<Triangle> triangles;
-    const Error e = exact_triangles(stream, object, triangles, why);
+    std::vector<QuantizedPoint> carried;
+    const Error e = exact_layer(stream, object, triangles, carried, why);
     if (e != Error::Ok) {
         unusable = e == Error::MalformedPayload;
         return false;
     }
     const ObjectInfo& info = *stream.objects()[object].info;
-    const std::vector<SurfacePoint> points = stream.points(object);  // every point: index = position
+    // Every point (index = position), then the vertices the exact layer carries (format 1.11, spec 27).
+    std::vector<SurfacePoint> points = stream.points(object);
+    points.reserve(points.size() + carried.size());
+    for (const QuantizedPoint& q : carried) points.push_back(dequantize_point(q, *stream.info(), info));
     std::vector<uint32_t> vertex(points.size(), UINT32_MAX);
     Mesh m;
     m.colors_have_alpha = info.has(kAttrColorAlpha);

@@ -24,10 +24,23 @@ constexpr uint32_t kTop = 1u << 24;
 
 // ---- LZMA's binary range coder (spec 19.3)
 
+constexpr int kListMax = 16;
+constexpr int kLengths = 18;   // a displacement's bit length, 0 .. 17
+
 struct Contexts {
     uint16_t none = 1024;
     std::array<uint16_t, kRanks> rank;
-    Contexts() { rank.fill(1024); }
+    // Format 1.11 (spec 27.2).
+    uint16_t sign = 1024;
+    std::array<uint16_t, 3> fresh;  // by the gate's local candidates: none, one, more (seeds: none)
+    // A displacement's bit length, by axis and the bit length of the axis before (x: set 0; y, z:
+    // 1 + min(c, 8)).
+    std::array<std::array<uint16_t, kLengths>, 10> length;
+    Contexts() {
+        rank.fill(1024);
+        fresh.fill(1024);
+        for (auto& set : length) set.fill(1024);
+    }
 };
 
 class RangeEncoder {
@@ -255,7 +268,8 @@ void put32(std::vector<uint8_t>& out, uint32_t v) {
 }
 // The header of an exact-layer packet (skippable, per object, version 1.3).
 PacketHeader layer_header(PacketType type, uint32_t stream_id, uint32_t sequence, uint16_t object_id) {
-    return skippable_header(type, kConnectivityMinor, stream_id, sequence, object_id);
+    const bool mesh = type == PacketType::ExactMesh || type == PacketType::ExactMeshRepair;
+    return skippable_header(type, mesh ? kExactMeshMinor : kConnectivityMinor, stream_id, sequence, object_id);
 }
 
 uint32_t get32(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
@@ -264,18 +278,19 @@ uint32_t get32(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 |
 // as each other (the last shorter by at most one byte a piece). A repair symbol is then no longer than
 // the coded connectivity (a box's 60 bytes had a 1,160-byte symbol), and a lost piece is one source
 // symbol lost, never parts of two.
-size_t connectivity_piece_size(size_t coded_size, size_t packet_size) {
-    const size_t capacity = packet_size - kPacketOverhead - kConnectivityHeaderSize;
+size_t connectivity_piece_size(size_t coded_size, size_t packet_size, bool mesh) {
+    const size_t capacity = packet_size - kPacketOverhead - (mesh ? kExactMeshHeaderSize : kConnectivityHeaderSize);
     const size_t k = (coded_size + capacity - 1) / capacity;
     return k == 0 ? capacity : (coded_size + k - 1) / k;
 }
 
 }  // namespace
 
-std::vector<uint8_t> encode_connectivity_payload(const ConnectivityPiece& piece) {
+std::vector<uint8_t> encode_connectivity_payload(const ConnectivityPiece& piece, bool mesh) {
     std::vector<uint8_t> out;
-    out.reserve(kConnectivityHeaderSize + piece.data.size());
+    out.reserve(kExactMeshHeaderSize + piece.data.size());
     put32(out, piece.triangle_count);
+    if (mesh) put32(out, piece.carried_count);
     put32(out, piece.coded_size);
     put32(out, piece.coded_crc);
     put32(out, piece.offset);
@@ -283,46 +298,71 @@ std::vector<uint8_t> encode_connectivity_payload(const ConnectivityPiece& piece)
     return out;
 }
 
-Error decode_connectivity_payload(std::span<const uint8_t> payload, ConnectivityPiece& out) {
-    if (payload.size() <= kConnectivityHeaderSize) return Error::MalformedPayload;
+Error decode_connectivity_payload(std::span<const uint8_t> payload, ConnectivityPiece& out, bool mesh) {
+    const size_t header = mesh ? kExactMeshHeaderSize : kConnectivityHeaderSize;
+    if (payload.size() <= header) return Error::MalformedPayload;
     ConnectivityPiece c;
-    c.triangle_count = get32(payload.data());
-    c.coded_size = get32(payload.data() + 4);
-    c.coded_crc = get32(payload.data() + 8);
-    c.offset = get32(payload.data() + 12);
-    const uint64_t length = payload.size() - kConnectivityHeaderSize;
-    if (c.triangle_count == 0 || uint64_t(c.offset) + length > c.coded_size ||
-        uint64_t(c.coded_size) > 16 * uint64_t(c.triangle_count) + 64)
+    const uint8_t* p = payload.data();
+    c.triangle_count = get32(p);
+    if (mesh) c.carried_count = get32(p += 4);
+    c.coded_size = get32(p + 4);
+    c.coded_crc = get32(p + 8);
+    c.offset = get32(p + 12);
+    const uint64_t length = payload.size() - header;
+    if (c.triangle_count == 0 || uint64_t(c.offset) + length > c.coded_size) return Error::MalformedPayload;
+    if (mesh ? c.carried_count == 0 || c.carried_count > kMaxCarriedVertices
+             : uint64_t(c.coded_size) > 16 * uint64_t(c.triangle_count) + 64)
         return Error::MalformedPayload;
-    c.data.assign(payload.begin() + kConnectivityHeaderSize, payload.end());
+    c.data.assign(payload.begin() + header, payload.end());
     out = std::move(c);
     return Error::Ok;
 }
 
+bool exact_layer_fits(const StreamInfo& info, const ObjectInfo& object, uint32_t triangle_count, uint32_t carried_count,
+                      uint32_t coded_size, bool mesh) {
+    if (object.kind == ObjectKind::PointSet) return false;
+    if (!mesh) return uint64_t(triangle_count) <= 8 * uint64_t(object.point_count);
+    if (object.surface_normals) return false;
+    const uint64_t vertices = uint64_t(object.point_count) + carried_count;
+    // B of spec 7.1, a POINTS record's bits, also for a mapped object.
+    uint64_t bits = 3 * uint64_t(info.position_bits);
+    if (object.has(kAttrNormal)) bits += 2 * uint64_t(info.normal_bits);
+    if (object.has(kAttrTexcoord)) bits += 2 * uint64_t(info.texcoord_bits);
+    if (object.has(kAttrColor)) bits += (object.has(kAttrColorAlpha) ? 4 : 3) * uint64_t(info.color_bits);
+    const uint64_t record_bytes = (bits + 7) / 8;
+    return uint64_t(triangle_count) <= 8 * vertices &&
+           uint64_t(coded_size) <= 16 * uint64_t(triangle_count) + (16 + record_bytes) * carried_count + 64;
+}
+
 Error packetize_connectivity(const StreamInfo& info, uint16_t object_id, uint32_t triangle_count,
                              const std::vector<uint8_t>& coded, uint32_t stream_id, uint32_t first_sequence,
-                             std::vector<std::vector<uint8_t>>& out) {
-    if (coded.empty() || coded.size() > 16 * uint64_t(triangle_count) + 64 || info.packet_size <= kPacketOverhead + kConnectivityHeaderSize)
+                             std::vector<std::vector<uint8_t>>& out, uint32_t carried_count) {
+    const bool mesh = carried_count > 0;
+    if (coded.empty() || (!mesh && coded.size() > 16 * uint64_t(triangle_count) + 64) ||
+        info.packet_size <= kPacketOverhead + kExactMeshHeaderSize)
         return Error::MalformedPayload;
-    const size_t per_packet = connectivity_piece_size(coded.size(), info.packet_size);
+    const size_t per_packet = connectivity_piece_size(coded.size(), info.packet_size, mesh);
     ConnectivityPiece piece;
     piece.triangle_count = triangle_count;
+    piece.carried_count = carried_count;
     piece.coded_size = uint32_t(coded.size());
     piece.coded_crc = crc32c(coded.data(), coded.size());
     uint32_t sequence = first_sequence;
     for (size_t offset = 0; offset < coded.size(); offset += per_packet) {
         piece.offset = uint32_t(offset);
         piece.data.assign(coded.begin() + offset, coded.begin() + std::min(coded.size(), offset + per_packet));
-        out.push_back(write_packet(layer_header(PacketType::Connectivity, stream_id, sequence++, object_id),
-                                   encode_connectivity_payload(piece)));
+        out.push_back(write_packet(layer_header(mesh ? PacketType::ExactMesh : PacketType::Connectivity, stream_id,
+                                                sequence++, object_id),
+                                   encode_connectivity_payload(piece, mesh)));
     }
     return Error::Ok;
 }
 
-std::vector<uint8_t> encode_connectivity_repair_payload(const ConnectivityRepair& r) {
+std::vector<uint8_t> encode_connectivity_repair_payload(const ConnectivityRepair& r, bool mesh) {
     std::vector<uint8_t> out;
-    out.reserve(16 + r.symbol.size());
+    out.reserve(20 + r.symbol.size());
     put32(out, r.triangle_count);
+    if (mesh) put32(out, r.carried_count);
     put32(out, r.coded_size);
     put32(out, r.coded_crc);
     out.push_back(uint8_t(r.symbol_size));
@@ -333,20 +373,25 @@ std::vector<uint8_t> encode_connectivity_repair_payload(const ConnectivityRepair
     return out;
 }
 
-Error decode_connectivity_repair_payload(std::span<const uint8_t> payload, ConnectivityRepair& out) {
-    if (payload.size() < 16) return Error::MalformedPayload;
+Error decode_connectivity_repair_payload(std::span<const uint8_t> payload, ConnectivityRepair& out, bool mesh) {
+    const size_t header = mesh ? kExactMeshHeaderSize : kConnectivityHeaderSize;
+    if (payload.size() < header) return Error::MalformedPayload;
     ConnectivityRepair r;
-    r.triangle_count = get32(payload.data());
-    r.coded_size = get32(payload.data() + 4);
-    r.coded_crc = get32(payload.data() + 8);
-    r.symbol_size = uint16_t(payload[12] | (payload[13] << 8));
-    r.row = payload[14];
-    if (r.triangle_count == 0 || r.coded_size == 0 || uint64_t(r.coded_size) > 16 * uint64_t(r.triangle_count) + 64 ||
-        r.symbol_size == 0 || payload.size() != 16 + size_t(r.symbol_size))
+    const uint8_t* p = payload.data();
+    r.triangle_count = get32(p);
+    if (mesh) r.carried_count = get32(p += 4);
+    r.coded_size = get32(p + 4);
+    r.coded_crc = get32(p + 8);
+    r.symbol_size = uint16_t(p[12] | (p[13] << 8));
+    r.row = p[14];
+    if (r.triangle_count == 0 || r.coded_size == 0 || r.symbol_size == 0 || payload.size() != header + size_t(r.symbol_size))
+        return Error::MalformedPayload;
+    if (mesh ? r.carried_count == 0 || r.carried_count > kMaxCarriedVertices
+             : uint64_t(r.coded_size) > 16 * uint64_t(r.triangle_count) + 64)
         return Error::MalformedPayload;
     const uint64_t k = (uint64_t(r.coded_size) + r.symbol_size - 1) / r.symbol_size;
     if (k > 254 || r.row < k) return Error::MalformedPayload;
-    r.symbol.assign(payload.begin() + 16, payload.end());
+    r.symbol.assign(payload.begin() + header, payload.end());
     out = std::move(r);
     return Error::Ok;
 }
@@ -364,14 +409,17 @@ std::vector<std::vector<uint8_t>> connectivity_symbols(const std::vector<uint8_t
 
 Error packetize_connectivity_repairs(const StreamInfo& info, uint16_t object_id, uint32_t triangle_count,
                                      const std::vector<uint8_t>& coded, size_t count, uint32_t stream_id,
-                                     uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out) {
-    if (coded.empty() || info.packet_size <= kPacketOverhead + kConnectivityHeaderSize) return Error::MalformedPayload;
-    const size_t size = connectivity_piece_size(coded.size(), info.packet_size);
+                                     uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out,
+                                     uint32_t carried_count) {
+    const bool mesh = carried_count > 0;
+    if (coded.empty() || info.packet_size <= kPacketOverhead + kExactMeshHeaderSize) return Error::MalformedPayload;
+    const size_t size = connectivity_piece_size(coded.size(), info.packet_size, mesh);
     const auto sources = connectivity_symbols(coded, size);
     const size_t k = sources.size();
     if (k > 127 || k + count > 255) return Error::MalformedPayload;
     ConnectivityRepair r;
     r.triangle_count = triangle_count;
+    r.carried_count = carried_count;
     r.coded_size = uint32_t(coded.size());
     r.coded_crc = crc32c(coded.data(), coded.size());
     r.symbol_size = uint16_t(size);
@@ -379,8 +427,9 @@ Error packetize_connectivity_repairs(const StreamInfo& info, uint16_t object_id,
     for (size_t row = k; row < k + count; ++row) {
         r.row = uint8_t(row);
         r.symbol = repair_symbol(sources, unsigned(row));
-        out.push_back(write_packet(layer_header(PacketType::ConnectivityRepair, stream_id, sequence++, object_id),
-                                   encode_connectivity_repair_payload(r)));
+        out.push_back(write_packet(layer_header(mesh ? PacketType::ExactMeshRepair : PacketType::ConnectivityRepair,
+                                                stream_id, sequence++, object_id),
+                                   encode_connectivity_repair_payload(r, mesh)));
     }
     return Error::Ok;
 }
@@ -391,7 +440,8 @@ Error check_connectivity_repair_packet(const ReceivedStream& stream, const Packe
 
 Error ConnectivityRepairChecker::check(const PacketView& packet, std::string& why) {
     ConnectivityRepair r;
-    if (decode_connectivity_repair_payload(packet.payload, r) != Error::Ok) return Error::MalformedPayload;
+    const bool mesh = packet.header.type == static_cast<uint8_t>(PacketType::ExactMeshRepair);
+    if (decode_connectivity_repair_payload(packet.payload, r, mesh) != Error::Ok) return Error::MalformedPayload;
     const uint16_t id = packet.header.object_id;
     if (id >= stream_.objects().size()) return Error::MalformedPayload;
     const auto& c = stream_.objects()[id].connectivity;
@@ -415,14 +465,15 @@ Error ConnectivityRepairChecker::check(const PacketView& packet, std::string& wh
     return Error::StreamMismatch;
 }
 
-Error exact_triangles(const ReceivedStream& stream, size_t object, std::vector<Triangle>& out, std::string& why) {
+Error exact_layer(const ReceivedStream& stream, size_t object, std::vector<Triangle>& out,
+                  std::vector<QuantizedPoint>& carried, std::string& why) {
     if (object >= stream.objects().size()) {
         why = "no such object";
         return Error::UnknownObject;
     }
     const ReceivedObject& o = stream.objects()[object];
     if (!o.info || !o.connectivity || !o.connectivity->complete) {
-        why = "its connectivity has not all arrived";
+        why = "its exact layer has not all arrived";
         return Error::Truncated;
     }
     if (o.points.size() != o.info->point_count) {
@@ -432,16 +483,166 @@ Error exact_triangles(const ReceivedStream& stream, size_t object, std::vector<T
     std::vector<std::array<uint32_t, 3>> positions;
     positions.reserve(o.points.size());
     for (const auto& [index, p] : o.points) positions.push_back(p.position);
-    return decode_connectivity(o.connectivity->coded, o.connectivity->triangle_count, positions, out, why);
+    carried.clear();
+    if (!o.connectivity->mesh)
+        return decode_connectivity(o.connectivity->coded, o.connectivity->triangle_count, positions, out, why);
+    return decode_exact_mesh(o.connectivity->coded, o.connectivity->triangle_count, o.connectivity->carried_count,
+                             positions, *stream.info(), *o.info, out, carried, why);
 }
 
-Error encode_connectivity(const std::vector<std::array<uint32_t, 3>>& positions, const std::vector<Triangle>& input,
-                          std::vector<uint8_t>& coded, std::vector<Triangle>& sent) {
-    const size_t n = positions.size();
+Error exact_triangles(const ReceivedStream& stream, size_t object, std::vector<Triangle>& out, std::string& why) {
+    std::vector<QuantizedPoint> carried;
+    return exact_layer(stream, object, out, carried, why);
+}
+
+namespace {
+
+// The fields of a carried vertex after its position (spec 27.2: a POINTS record's, in its order).
+std::vector<int> attribute_widths(const StreamInfo& info, const ObjectInfo& object) {
+    std::vector<int> w;
+    if (object.has(kAttrNormal)) w.insert(w.end(), 2, info.normal_bits);
+    if (object.has(kAttrTexcoord)) w.insert(w.end(), 2, info.texcoord_bits);
+    if (object.has(kAttrColor)) w.insert(w.end(), object.has(kAttrColorAlpha) ? 4 : 3, info.color_bits);
+    return w;
+}
+std::vector<uint32_t*> attribute_fields(QuantizedPoint& q, const ObjectInfo& object) {
+    std::vector<uint32_t*> f;
+    f.reserve(8);
+    auto add = [&](uint32_t* values, int count) {
+        for (int k = 0; k < count; ++k) f.push_back(values + k);
+    };
+    if (object.has(kAttrNormal)) add(q.normal.data(), 2);
+    if (object.has(kAttrTexcoord)) add(q.texcoord.data(), 2);
+    if (object.has(kAttrColor)) add(q.color.data(), object.has(kAttrColorAlpha) ? 4 : 3);
+    return f;
+}
+
+// The neighbour lists C(v) of spec 27.2: per vertex, at most 16 carried vertices joined to it.
+class CarriedNeighbours {
+public:
+    CarriedNeighbours(size_t vertices, size_t n) : lists_(n == vertices ? 0 : vertices), n_(n) {}
+    void join(uint32_t u, uint32_t v) {
+        if (lists_.empty()) return;  // no carried vertex: every list stays empty
+        add(u, v);
+        add(v, u);
+    }
+    // Spec 27.2, step 4: C(a) then C(b), each once, without a and b, by (squared distance to r, index).
+    void local(uint32_t a, uint32_t b, const std::array<int64_t, 3>& r, const std::vector<std::array<uint32_t, 3>>& p,
+               std::vector<std::pair<uint64_t, uint32_t>>& out) const {
+        out.clear();
+        if (lists_.empty()) return;
+        for (uint32_t from : {a, b})
+            for (uint32_t v : lists_[from]) {
+                if (v == a || v == b) continue;
+                bool seen = false;
+                for (const auto& e : out) seen |= e.second == v;
+                if (seen) continue;
+                uint64_t d = 0;
+                for (int k = 0; k < 3; ++k) {
+                    const int64_t e = int64_t(p[v][k]) - r[k];
+                    d += uint64_t(e * e);
+                }
+                out.emplace_back(d, v);
+            }
+        std::sort(out.begin(), out.end());
+    }
+
+private:
+    void add(uint32_t u, uint32_t v) {
+        if (v < n_) return;
+        auto& list = lists_[u];
+        if (list.size() >= size_t(kListMax) || std::find(list.begin(), list.end(), v) != list.end()) return;
+        list.push_back(v);
+    }
+    std::vector<std::vector<uint32_t>> lists_;
+    size_t n_;
+};
+
+// Taking a triangle (spec 19.2, and 27.2's neighbour lists).
+void take_triangle(Traversal& tr, CarriedNeighbours& lists, uint32_t a, uint32_t b, uint32_t c) {
+    tr.take(a, b, c);
+    lists.join(a, b);
+    lists.join(b, c);
+    lists.join(c, a);
+}
+
+// Spec 27.2: the context of a gate's bit fresh, by the number k of its local candidates.
+size_t fresh_context(size_t k) { return std::min<size_t>(k, 2); }
+
+// Spec 27.2 (19.2 when nothing is carried): the first `k` candidates of a gate, the points nearest
+// to the prediction and its local candidates (carried vertices) together, by (squared distance,
+// index).
+void candidates(const KdTree& tree, const std::array<int64_t, 3>& r, const Gate& g, size_t k,
+                const std::vector<std::pair<uint64_t, uint32_t>>& local, std::vector<std::pair<uint64_t, uint32_t>>& out) {
+    tree.nearest(r, g.a, g.b, k, out);
+    if (local.empty()) return;
+    out.insert(out.end(), local.begin(), local.end());
+    std::sort(out.begin(), out.end());
+    if (out.size() > k) out.resize(k);
+}
+
+int bit_length(uint64_t u) {
+    int c = 0;
+    while (u >> c) ++c;
+    return c;
+}
+
+void encode_displacement(RangeEncoder& rc, Contexts& ctx, const std::array<uint32_t, 3>& q, const std::array<int64_t, 3>& r) {
+    size_t set = 0;
+    for (int k = 0; k < 3; ++k) {
+        const int64_t d = int64_t(q[k]) - r[k];
+        const uint64_t u = uint64_t(d < 0 ? -d : d);
+        const int c = bit_length(u);  // < 18: |d| < 2^17 (spec 27.2)
+        auto& length = ctx.length[set];
+        for (int i = 0; i < c; ++i) rc.bit(length[i], 0);
+        rc.bit(length[c], 1);
+        set = 1 + std::min(c, 8);
+        if (c == 0) continue;
+        rc.bit(ctx.sign, d < 0 ? 1 : 0);
+        if (c > 1) rc.direct(uint32_t(u - (uint64_t(1) << (c - 1))), c - 1);
+    }
+}
+
+// Spec 27.2: a fresh vertex's position (false when unusable) and attributes.
+bool decode_fresh(RangeDecoder& rc, Contexts& ctx, const std::array<int64_t, 3>& r, int position_bits,
+                  const std::vector<int>& widths, const ObjectInfo& object, QuantizedPoint& q) {
+    q = QuantizedPoint{};
+    size_t set = 0;
+    for (int k = 0; k < 3; ++k) {
+        int c = -1;
+        for (int i = 0; i < kLengths && c < 0; ++i)
+            if (rc.bit(ctx.length[set][i])) c = i;
+        if (c < 0) return false;
+        set = 1 + size_t(std::min(c, 8));
+        int64_t d = 0;
+        if (c > 0) {
+            const bool negative = rc.bit(ctx.sign) != 0;
+            const int64_t u = (int64_t(1) << (c - 1)) + int64_t(c > 1 ? rc.direct(c - 1) : 0);
+            d = negative ? -u : u;
+        }
+        const int64_t v = r[k] + d;
+        if (v < 0 || v >= (int64_t(1) << position_bits)) return false;
+        q.position[k] = uint32_t(v);
+    }
+    const std::vector<uint32_t*> fields = attribute_fields(q, object);
+    for (size_t f = 0; f < fields.size(); ++f) *fields[f] = rc.direct(widths[f]);
+    return true;
+}
+
+std::array<int64_t, 3> as_prediction(const std::array<uint32_t, 3>& p) { return {p[0], p[1], p[2]}; }
+
+}  // namespace
+
+Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, const std::vector<Triangle>& input,
+                        const StreamInfo& info, const ObjectInfo& object, std::vector<uint8_t>& coded,
+                        std::vector<Triangle>& sent, std::vector<uint32_t>& carried_order) {
+    const size_t total = vertices.size();
+    if (n > total || total > n + kMaxCarriedVertices) return Error::MalformedPayload;
     for (const Triangle& t : input)
-        if (t[0] >= n || t[1] >= n || t[2] >= n || t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+        if (t[0] >= total || t[1] >= total || t[2] >= total || t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
             return Error::MalformedPayload;
-    if (input.empty() || n < 3) return Error::MalformedPayload;
+    if (input.empty() || total < 3) return Error::MalformedPayload;
+    const uint32_t carried = uint32_t(total - n);
     // The input's triangles not yet coded, by their directed edges (a triangle is found by any of its
     // three, rotated so that edge comes first).
     std::unordered_map<uint64_t, std::vector<uint32_t>> by_edge;
@@ -450,53 +651,213 @@ Error encode_connectivity(const std::vector<std::array<uint32_t, 3>>& positions,
         for (int k = 0; k < 3; ++k) by_edge[edge_key(input[t][k], input[t][(k + 1) % 3])].push_back(t);
     std::vector<bool> done(input.size(), false);
     size_t next_seed = 0;
-    const int w = index_bits(n);
-    const KdTree tree(positions);
+    const int w = index_bits(total);
+    const std::vector<int> widths = attribute_widths(info, object);
+    // Decoder numbering: points keep theirs, carried vertices n, n + 1, ... as introduced.
+    std::vector<uint32_t> id(total, UINT32_MAX);
+    for (uint32_t i = 0; i < n; ++i) id[i] = i;
+    std::vector<std::array<uint32_t, 3>> positions(total);
+    for (size_t i = 0; i < n; ++i) positions[i] = vertices[i].position;
+    const std::vector<std::array<uint32_t, 3>> point_positions(positions.begin(), positions.begin() + long(n));
+    const KdTree tree(point_positions);
+    CarriedNeighbours lists(total, n);
     RangeEncoder rc;
     Contexts ctx;
     Traversal tr;
-    std::vector<std::pair<uint64_t, uint32_t>> best;
-    auto mark = [&](uint32_t t) { done[t] = true; };
+    std::vector<std::pair<uint64_t, uint32_t>> best, near;
+    carried_order.clear();
+    uint32_t m = 0;
+    // A carried vertex not yet introduced: the bit fresh 1, its displacement and attributes.
+    auto introduce = [&](uint32_t v, const std::array<int64_t, 3>& r, size_t fresh_context) {
+        rc.bit(ctx.fresh[fresh_context], 1);
+        encode_displacement(rc, ctx, vertices[v].position, r);
+        QuantizedPoint q = vertices[v];
+        const std::vector<uint32_t*> fields = attribute_fields(q, object);
+        for (size_t f = 0; f < fields.size(); ++f) rc.direct(*fields[f], widths[f]);
+        id[v] = uint32_t(n) + m++;
+        positions[id[v]] = vertices[v].position;
+        carried_order.push_back(v);
+    };
     while (tr.triangles.size() < input.size()) {
         if (tr.gates.empty()) {
             while (done[next_seed]) ++next_seed;
             const Triangle& t = input[next_seed];
-            for (uint32_t v : t) rc.direct(v, w);
-            mark(uint32_t(next_seed));
-            tr.take(t[0], t[1], t[2]);
+            std::array<uint32_t, 3> corner{};
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t v = t[k];
+                if (id[v] == UINT32_MAX) {
+                    const std::array<int64_t, 3> r =
+                        k == 0 ? std::array<int64_t, 3>{int64_t(1) << (info.position_bits - 1),
+                                                        int64_t(1) << (info.position_bits - 1),
+                                                        int64_t(1) << (info.position_bits - 1)}
+                               : as_prediction(positions[corner[k - 1]]);
+                    introduce(v, r, 0);
+                } else {
+                    if (m < carried) rc.bit(ctx.fresh[0], 0);
+                    rc.direct(id[v], w);
+                }
+                corner[k] = id[v];
+            }
+            done[next_seed] = true;
+            take_triangle(tr, lists, corner[0], corner[1], corner[2]);
             continue;
         }
         const Gate g = tr.gates.front();
         tr.gates.pop_front();
         if (tr.edges.count(edge_key(g.b, g.a))) continue;
-        // The first input triangle not yet coded with the directed edge b->a.
+        // The first input triangle not yet coded with the directed edge b->a (in decoder numbering;
+        // a and b are known, so their input indices are found through carried_order).
+        const uint32_t in_a = g.a < n ? g.a : carried_order[g.a - n], in_b = g.b < n ? g.b : carried_order[g.b - n];
         int64_t found = -1;
         uint32_t x = 0;
-        if (auto it = by_edge.find(edge_key(g.b, g.a)); it != by_edge.end())
+        if (auto it = by_edge.find(edge_key(in_b, in_a)); it != by_edge.end())
             for (uint32_t t : it->second)
                 if (!done[t]) {
                     found = t;
                     for (int k = 0; k < 3; ++k)
-                        if (input[t][k] == g.b && input[t][(k + 1) % 3] == g.a) x = input[t][(k + 2) % 3];
+                        if (input[t][k] == in_b && input[t][(k + 1) % 3] == in_a) x = input[t][(k + 2) % 3];
                     break;
                 }
         rc.bit(ctx.none, found < 0 ? 1 : 0);
         if (found < 0) continue;
-        tree.nearest(prediction(positions, g), g.a, g.b, kRanks, best);
-        int rank = 0;
-        for (size_t r = 0; r < best.size(); ++r)
-            if (best[r].second == x) rank = int(r) + 1;
-        for (int r = 1; r <= kRanks; ++r) {
-            rc.bit(ctx.rank[r - 1], r == rank ? 1 : 0);
-            if (r == rank) break;
+        done[size_t(found)] = true;
+        const std::array<int64_t, 3> r = prediction(positions, g);
+        lists.local(g.a, g.b, r, positions, near);
+        const size_t context = fresh_context(near.size());
+        if (id[x] == UINT32_MAX) {
+            introduce(x, r, context);
+            take_triangle(tr, lists, g.b, g.a, id[x]);
+            continue;
         }
-        if (rank == 0) rc.direct(x, w);
-        mark(uint32_t(found));
-        tr.take(g.b, g.a, x);
+        if (m < carried) rc.bit(ctx.fresh[context], 0);
+        const uint32_t xv = id[x];
+        candidates(tree, r, g, kRanks, near, best);
+        int rank = 0;
+        for (size_t k = 0; k < best.size(); ++k)
+            if (best[k].second == xv) rank = int(k) + 1;
+        for (int k = 1; k <= kRanks; ++k) {
+            rc.bit(ctx.rank[k - 1], k == rank ? 1 : 0);
+            if (k == rank) break;
+        }
+        if (rank == 0) rc.direct(xv, w);
+        take_triangle(tr, lists, g.b, g.a, xv);
     }
+    if (m != carried) return Error::MalformedPayload;  // a carried vertex no triangle uses
     coded = rc.finish();
     sent = std::move(tr.triangles);
     return Error::Ok;
+}
+
+Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count, uint32_t carried_count,
+                        const std::vector<std::array<uint32_t, 3>>& point_positions, const StreamInfo& info,
+                        const ObjectInfo& object, std::vector<Triangle>& out, std::vector<QuantizedPoint>& carried,
+                        std::string& why) {
+    const size_t n = point_positions.size();
+    const size_t total = n + carried_count;
+    if (total < 3 || triangle_count == 0 || triangle_count > 8 * uint64_t(total) || carried_count > kMaxCarriedVertices) {
+        why = "the triangle count does not fit the object's vertices";
+        return Error::MalformedPayload;
+    }
+    const int w = index_bits(total);
+    const std::vector<int> widths = attribute_widths(info, object);
+    const KdTree tree(point_positions);
+    std::vector<std::array<uint32_t, 3>> positions(point_positions);
+    positions.reserve(total);
+    CarriedNeighbours lists(total, n);
+    RangeDecoder rc(coded);
+    Contexts ctx;
+    Traversal tr;
+    tr.triangles.reserve(triangle_count);
+    std::vector<QuantizedPoint> fresh_vertices;
+    std::vector<std::pair<uint64_t, uint32_t>> best, near;
+    auto fresh = [&](const std::array<int64_t, 3>& r, uint32_t& v) {
+        QuantizedPoint q;
+        if (!decode_fresh(rc, ctx, r, info.position_bits, widths, object, q)) {
+            why = "carried vertex " + std::to_string(n + fresh_vertices.size()) + " lies outside the frame";
+            return false;
+        }
+        v = uint32_t(n + fresh_vertices.size());
+        positions.push_back(q.position);
+        fresh_vertices.push_back(q);
+        return true;
+    };
+    while (tr.triangles.size() < triangle_count) {
+        const size_t known = n + fresh_vertices.size();
+        const bool may_be_fresh = fresh_vertices.size() < carried_count;
+        if (tr.gates.empty()) {
+            std::array<uint32_t, 3> corner{};
+            for (int k = 0; k < 3; ++k) {
+                if (fresh_vertices.size() < carried_count && rc.bit(ctx.fresh[0])) {
+                    const std::array<int64_t, 3> r =
+                        k == 0 ? std::array<int64_t, 3>{int64_t(1) << (info.position_bits - 1),
+                                                        int64_t(1) << (info.position_bits - 1),
+                                                        int64_t(1) << (info.position_bits - 1)}
+                               : as_prediction(positions[corner[k - 1]]);
+                    if (!fresh(r, corner[k])) return Error::MalformedPayload;
+                    continue;
+                }
+                corner[k] = rc.direct(w);
+                const size_t now_known = n + fresh_vertices.size();
+                if (corner[k] >= now_known || (k > 0 && corner[k] == corner[0]) || (k > 1 && corner[k] == corner[1])) {
+                    why = "seed triangle " + std::to_string(tr.triangles.size()) + " names vertex " +
+                          std::to_string(corner[k]) + " of " + std::to_string(now_known) + " known, or one twice";
+                    return Error::MalformedPayload;
+                }
+            }
+            take_triangle(tr, lists, corner[0], corner[1], corner[2]);
+            continue;
+        }
+        const Gate g = tr.gates.front();
+        tr.gates.pop_front();
+        if (tr.edges.count(edge_key(g.b, g.a))) continue;
+        if (rc.bit(ctx.none)) continue;
+        const std::array<int64_t, 3> r = prediction(positions, g);
+        uint32_t x = 0;
+        lists.local(g.a, g.b, r, positions, near);
+        if (may_be_fresh && rc.bit(ctx.fresh[fresh_context(near.size())])) {
+            if (!fresh(r, x)) return Error::MalformedPayload;
+            take_triangle(tr, lists, g.b, g.a, x);
+            continue;
+        }
+        int rank = 0;
+        for (int k = 1; k <= kRanks && rank == 0; ++k)
+            if (rc.bit(ctx.rank[k - 1])) rank = k;
+        if (rank > 0) {
+            candidates(tree, r, g, size_t(rank), near, best);
+            if (best.size() < size_t(rank)) {
+                why = "a rank past the gate's candidates";
+                return Error::MalformedPayload;
+            }
+            x = best[size_t(rank) - 1].second;
+        } else {
+            x = rc.direct(w);
+            if (x >= known || x == g.a || x == g.b) {
+                why = "triangle " + std::to_string(tr.triangles.size()) + " names vertex " + std::to_string(x) +
+                      " of " + std::to_string(known) + " known beside " + std::to_string(g.b) + " and " +
+                      std::to_string(g.a);
+                return Error::MalformedPayload;
+            }
+        }
+        take_triangle(tr, lists, g.b, g.a, x);
+    }
+    if (fresh_vertices.size() != carried_count) {
+        why = std::to_string(carried_count - fresh_vertices.size()) + " of its " + std::to_string(carried_count) +
+              " carried vertices are used by no triangle";
+        return Error::MalformedPayload;
+    }
+    out = std::move(tr.triangles);
+    carried = std::move(fresh_vertices);
+    return Error::Ok;
+}
+
+Error encode_connectivity(const std::vector<std::array<uint32_t, 3>>& positions, const std::vector<Triangle>& input,
+                          std::vector<uint8_t>& coded, std::vector<Triangle>& sent) {
+    std::vector<QuantizedPoint> points(positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) points[i].position = positions[i];
+    StreamInfo info;
+    ObjectInfo object;
+    std::vector<uint32_t> carried_order;
+    return encode_exact_mesh(points, points.size(), input, info, object, coded, sent, carried_order);
 }
 
 Error decode_connectivity(std::span<const uint8_t> coded, uint32_t triangle_count,
@@ -507,51 +868,8 @@ Error decode_connectivity(std::span<const uint8_t> coded, uint32_t triangle_coun
         why = "the triangle count does not fit the object's points";
         return Error::MalformedPayload;
     }
-    const int w = index_bits(n);
-    const KdTree tree(positions);
-    RangeDecoder rc(coded);
-    Contexts ctx;
-    Traversal tr;
-    tr.triangles.reserve(triangle_count);
-    std::vector<std::pair<uint64_t, uint32_t>> best;
-    while (tr.triangles.size() < triangle_count) {
-        if (tr.gates.empty()) {
-            const uint32_t a = rc.direct(w), b = rc.direct(w), c = rc.direct(w);
-            if (a >= n || b >= n || c >= n || a == b || b == c || a == c) {
-                why = "seed triangle " + std::to_string(tr.triangles.size()) + " names points " + std::to_string(a) +
-                      ", " + std::to_string(b) + ", " + std::to_string(c) + " of " + std::to_string(n);
-                return Error::MalformedPayload;
-            }
-            tr.take(a, b, c);
-            continue;
-        }
-        const Gate g = tr.gates.front();
-        tr.gates.pop_front();
-        if (tr.edges.count(edge_key(g.b, g.a))) continue;
-        if (rc.bit(ctx.none)) continue;
-        int rank = 0;
-        for (int r = 1; r <= kRanks && rank == 0; ++r)
-            if (rc.bit(ctx.rank[r - 1])) rank = r;
-        uint32_t x;
-        if (rank > 0) {
-            tree.nearest(prediction(positions, g), g.a, g.b, size_t(rank), best);
-            if (best.size() < size_t(rank)) {
-                why = "a rank past the object's points";
-                return Error::MalformedPayload;
-            }
-            x = best[size_t(rank) - 1].second;
-        } else {
-            x = rc.direct(w);
-            if (x >= n || x == g.a || x == g.b) {
-                why = "triangle " + std::to_string(tr.triangles.size()) + " names point " + std::to_string(x) +
-                      " of " + std::to_string(n) + " beside " + std::to_string(g.b) + " and " + std::to_string(g.a);
-                return Error::MalformedPayload;
-            }
-        }
-        tr.take(g.b, g.a, x);
-    }
-    out = std::move(tr.triangles);
-    return Error::Ok;
+    std::vector<QuantizedPoint> carried;
+    return decode_exact_mesh(coded, triangle_count, 0, positions, StreamInfo{}, ObjectInfo{}, out, carried, why);
 }
 
 }  // namespace ellicast

@@ -32,6 +32,8 @@ std::string packet_type_name(uint8_t type) {
     case 0x09: return "MAPPED_POINTS";
     case 0x0A: return "POINT_MAP";
     case 0x0B: return "NORMALS";
+    case 0x0C: return "EXACT_MESH";
+    case 0x0D: return "EXACT_MESH_REPAIR";
     case 0x16: return "MORPH_ANIMATION";
     case 0x17: return "CAMERA";
     case 0x18: return "LIGHT";
@@ -44,7 +46,7 @@ std::string packet_type_name(uint8_t type) {
 }
 
 bool is_known_packet_type(uint8_t type) {
-    return (type >= 0x01 && type <= 0x0B) || (type >= 0x10 && type <= 0x18) || type == 0x20;
+    return (type >= 0x01 && type <= 0x0D) || (type >= 0x10 && type <= 0x18) || type == 0x20;
 }
 
 const char* error_name(Error e) {

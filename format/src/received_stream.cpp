@@ -166,7 +166,7 @@ Error ReceivedStream::take_stream_info(const PacketView& packet, uint64_t where)
         pending_ = std::move(keep);
     }
     bool news = false;
-    uint64_t declared = 0;
+    uint64_t declared = carried_elements_;  // format 1.11: carried vertices count too (spec 27.1)
     for (const auto& object : objects_)
         if (object.info) declared += uint64_t(object.info->ellipsoid_count) + object.info->point_count;
     for (size_t i = 0; i < part.info.objects.size(); ++i) {
@@ -211,10 +211,8 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
     ReceivedObject& object = objects_[id];
     const ObjectInfo& oi = *object.info;
     if (packet.header.type == static_cast<uint8_t>(PacketType::PointsRepair)) return take_repair(object, packet, name, where);
-    if (packet.header.type == static_cast<uint8_t>(PacketType::Connectivity))
-        return take_connectivity(object, packet, name, where);
-    if (packet.header.type == static_cast<uint8_t>(PacketType::ConnectivityRepair))
-        return take_connectivity_repair(object, packet, name, where);
+    if (is_exact_layer_type(packet.header.type)) return take_connectivity(object, packet, name, where);
+    if (is_exact_layer_repair_type(packet.header.type)) return take_connectivity_repair(object, packet, name, where);
     if (packet.header.type == static_cast<uint8_t>(PacketType::JointWeights))
         return take_joint_weights(object, packet, name, where);
     if (packet.header.type == static_cast<uint8_t>(PacketType::MorphDeltas))
@@ -262,13 +260,25 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
     return Error::Ok;
 }
 
+// Format 1.11 (spec 27.1): an exact layer's carried vertices count toward the element limit.
+bool ReceivedStream::take_carried_elements(uint32_t count) {
+    uint64_t declared = carried_elements_ + count;
+    for (const auto& object : objects_)
+        if (object.info) declared += uint64_t(object.info->ellipsoid_count) + object.info->point_count;
+    if (declared > limits_.max_elements) return false;
+    carried_elements_ += count;
+    return true;
+}
+
 namespace {
 
-// The object's connectivity, described by the first packet of it taken (spec 19.1, 19.5).
-ReceivedConnectivity& connectivity_of(ReceivedObject& object, uint32_t triangle_count, uint32_t coded_size,
-                                      uint32_t coded_crc) {
+// The object's connectivity, described by the first packet of it taken (spec 19.1, 19.5, 27.1).
+ReceivedConnectivity& connectivity_of(ReceivedObject& object, bool mesh, uint32_t triangle_count,
+                                      uint32_t carried_count, uint32_t coded_size, uint32_t coded_crc) {
     if (!object.connectivity) {
         object.connectivity.emplace();
+        object.connectivity->mesh = mesh;
+        object.connectivity->carried_count = carried_count;
         object.connectivity->triangle_count = triangle_count;
         object.connectivity->coded_size = coded_size;
         object.connectivity->coded_crc = coded_crc;
@@ -282,14 +292,30 @@ ReceivedConnectivity& connectivity_of(ReceivedObject& object, uint32_t triangle_
 Error ReceivedStream::take_connectivity(ReceivedObject& object, const PacketView& packet, const std::string& name,
                                         uint64_t where) {
     const ObjectInfo& oi = *object.info;
+    const bool mesh = packet.header.type == static_cast<uint8_t>(PacketType::ExactMesh);
     ConnectivityPiece piece;
-    if (decode_connectivity_payload(packet.payload, piece) != Error::Ok || oi.kind == ObjectKind::PointSet ||
-        uint64_t(piece.triangle_count) > 8 * uint64_t(oi.point_count))
+    if (decode_connectivity_payload(packet.payload, piece, mesh) != Error::Ok ||
+        !exact_layer_fits(*info_, oi, piece.triangle_count, piece.carried_count, piece.coded_size, mesh))
         return reject(where, Error::MalformedPayload,
-                      name + ": its triangle count, coded size or piece does not fit the object (spec 19.1)");
-    ReceivedConnectivity& c = connectivity_of(object, piece.triangle_count, piece.coded_size, piece.coded_crc);
-    if (c.triangle_count != piece.triangle_count || c.coded_size != piece.coded_size || c.coded_crc != piece.coded_crc)
-        return reject(where, Error::StreamMismatch, name + ": its triangle count, coded size or CRC contradicts earlier pieces");
+                      name + (mesh ? ": its triangle count, carried count, coded size or piece does not fit the object "
+                                     "(spec 27.1)"
+                                   : ": its triangle count, coded size or piece does not fit the object (spec 19.1)"));
+    if (mesh && !object.connectivity && !take_carried_elements(piece.carried_count))
+        return reject(where, Error::MalformedPayload,
+                      name + ": its " + std::to_string(piece.carried_count) +
+                          " carried vertices would take the stream past this receiver's limit of " +
+                          std::to_string(limits_.max_elements) + " elements (spec 27.1)");
+    ReceivedConnectivity& c =
+        connectivity_of(object, mesh, piece.triangle_count, piece.carried_count, piece.coded_size, piece.coded_crc);
+    if (c.mesh != mesh)
+        return reject(where, Error::StreamMismatch,
+                      name + ": the object's exact layer travels in " +
+                          (c.mesh ? "EXACT_MESH packets" : "CONNECTIVITY packets") + " (spec 27.1: one kind per object)");
+    if (c.triangle_count != piece.triangle_count || c.carried_count != piece.carried_count ||
+        c.coded_size != piece.coded_size || c.coded_crc != piece.coded_crc)
+        return reject(where, Error::StreamMismatch,
+                      name + (mesh ? ": its triangle count, carried count, coded size or CRC contradicts earlier pieces"
+                                   : ": its triangle count, coded size or CRC contradicts earlier pieces"));
     if (c.complete) {
         ++counters_.duplicates;
         return Error::Ok;
@@ -402,14 +428,27 @@ Error ReceivedStream::complete_connectivity(ReceivedConnectivity& c, const std::
 Error ReceivedStream::take_connectivity_repair(ReceivedObject& object, const PacketView& packet, const std::string& name,
                                                uint64_t where) {
     const ObjectInfo& oi = *object.info;
+    const bool mesh = packet.header.type == static_cast<uint8_t>(PacketType::ExactMeshRepair);
     ConnectivityRepair r;
-    if (decode_connectivity_repair_payload(packet.payload, r) != Error::Ok || oi.kind == ObjectKind::PointSet ||
-        uint64_t(r.triangle_count) > 8 * uint64_t(oi.point_count))
+    if (decode_connectivity_repair_payload(packet.payload, r, mesh) != Error::Ok ||
+        !exact_layer_fits(*info_, oi, r.triangle_count, r.carried_count, r.coded_size, mesh))
         return reject(where, Error::MalformedPayload,
-                      name + ": its triangle count, coded size, symbol size or row does not fit (spec 19.5)");
-    ReceivedConnectivity& c = connectivity_of(object, r.triangle_count, r.coded_size, r.coded_crc);
-    if (c.triangle_count != r.triangle_count || c.coded_size != r.coded_size || c.coded_crc != r.coded_crc ||
-        (c.symbol_size != 0 && c.symbol_size != r.symbol_size))
+                      name + (mesh ? ": its triangle count, carried count, coded size, symbol size or row does not fit "
+                                     "(spec 27.1)"
+                                   : ": its triangle count, coded size, symbol size or row does not fit (spec 19.5)"));
+    if (mesh && !object.connectivity && !take_carried_elements(r.carried_count))
+        return reject(where, Error::MalformedPayload,
+                      name + ": its " + std::to_string(r.carried_count) +
+                          " carried vertices would take the stream past this receiver's limit of " +
+                          std::to_string(limits_.max_elements) + " elements (spec 27.1)");
+    ReceivedConnectivity& c =
+        connectivity_of(object, mesh, r.triangle_count, r.carried_count, r.coded_size, r.coded_crc);
+    if (c.mesh != mesh)
+        return reject(where, Error::StreamMismatch,
+                      name + ": the object's exact layer travels in " +
+                          (c.mesh ? "EXACT_MESH packets" : "CONNECTIVITY packets") + " (spec 27.1: one kind per object)");
+    if (c.triangle_count != r.triangle_count || c.carried_count != r.carried_count || c.coded_size != r.coded_size ||
+        c.coded_crc != r.coded_crc || (c.symbol_size != 0 && c.symbol_size != r.symbol_size))
         return reject(where, Error::StreamMismatch,
                       name + ": its triangle count, coded size, CRC or symbol size contradicts earlier packets");
     c.symbol_size = r.symbol_size;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent format 1.10 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.11 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
@@ -34,7 +34,9 @@ format 1.9 the MANIFEST scheme 2 of spec section 25: its layout with the content
 the authenticated digests judged against each stream id's content, spec 25.2; for format 1.10 the CAMERA and
 LIGHT packets and the node record's camera and light fields of spec section 26: their checks (the limits of
 glTF and KHR_lights_punctual on the f32 values) and comparisons, and the cameras and lights a receiver shows
-on its nodes, spec 26.4) so
+on its nodes, spec 26.4; for format 1.11 the EXACT_MESH and EXACT_MESH_REPAIR packets of spec section 27: their
+checks (those of CONNECTIVITY and CONNECTIVITY_REPAIR with carried_count, and one kind of exact layer per object),
+and the coded mesh decoded with the same range decoder, the carried vertices with their attributes, spec 27.2) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -72,6 +74,8 @@ KNOWN_18 = {0x0B: "NORMALS"}
 # Format 1.9 (spec section 25) adds no type: MANIFEST scheme 2 (decode_manifest, authenticate).
 # Format 1.10 (spec sections 4 and 26): skippable, stream-level.
 KNOWN_110 = {0x17: "CAMERA", 0x18: "LIGHT"}
+# Format 1.11 (spec sections 4 and 27): skippable, belongs to an object.
+KNOWN_111 = {0x0C: "EXACT_MESH", 0x0D: "EXACT_MESH_REPAIR"}
 SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14, 0x15, 0x16} | set(KNOWN_110)  # JOINT_WEIGHTS and MORPH_DELTAS belong to an object
 # The real numbers pi and pi / 2, exactly enough: every f32 is a double, and none lies between pi and
 # the double nearest it (spec 26.2, 26.3 compare the f32 values with the real numbers).
@@ -1447,7 +1451,7 @@ class Receiver:
         t = h["type"]
         if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12 and t not in KNOWN_13 and t not in KNOWN_14
                                    and t not in KNOWN_15 and t not in KNOWN_16 and t not in KNOWN_17 and t not in KNOWN_18
-                                   and t not in KNOWN_110)
+                                   and t not in KNOWN_110 and t not in KNOWN_111)
                                   or not self.know_11):
             if not h["flags"] & 1:
                 return self.reject(offset, "unknown critical type")
@@ -1566,10 +1570,10 @@ class Receiver:
         obj = self.objects[oid]
         if h["type"] == 0x04:
             return self.repair(obj, h, offset)
-        if h["type"] == 0x05:
-            return self.connectivity(obj, h, offset)
-        if h["type"] == 0x06:
-            return self.connectivity_repair(obj, h, offset)
+        if h["type"] in (0x05, 0x0C):
+            return self.connectivity(obj, h, offset, mesh=h["type"] == 0x0C)
+        if h["type"] in (0x06, 0x0D):
+            return self.connectivity_repair(obj, h, offset, mesh=h["type"] == 0x0D)
         if h["type"] == 0x07:
             return self.joint_weights(obj, h, offset)
         if h["type"] == 0x08:
@@ -1720,19 +1724,37 @@ class Receiver:
                 held[first + i] = records[i]
         return self.news(bool(fresh))
 
-    def connectivity(self, obj, h, offset):
-        """Spec 19.1, once the object's entry has arrived: pieces of the coded connectivity, keyed by byte
-        offset like a texture's; complete once every byte arrived and the CRC-32C matches."""
+    def layer_malformed(self, info, mesh, count, carried, size):
+        """The checks of spec 19.1 on the fields a CONNECTIVITY and a CONNECTIVITY_REPAIR packet share (with the
+        object's entry, step 13), and, for an EXACT_MESH or EXACT_MESH_REPAIR packet (`mesh`), those of spec 27.1:
+        carried_count 1 .. 2^24, triangle_count at most 8 (point_count + carried_count), coded_size at most
+        16 triangle_count + (16 + ceil(B / 8)) carried_count + 64 with B the bit size of a POINTS record of the
+        object (spec 7.1, also for a mapped object), and an object without surface normals. With carried = 0 the
+        bounds are those of 19.1. Python integers do not overflow."""
+        if mesh and (carried == 0 or carried > 1 << 24 or info["surface_normals"]):
+            return True
+        B = sum(record_widths(self.info, dict(info, map_level=0)))
+        return count == 0 or count > 8 * (info["point_count"] + carried) or info["kind"] == "point set" \
+            or size > 16 * count + (16 + -(-B // 8)) * carried + 64
+
+    def connectivity(self, obj, h, offset, mesh=False):
+        """Spec 19.1 (CONNECTIVITY), or spec 27.1 (EXACT_MESH, `mesh`: the same with carried_count at offset 4), once
+        the object's entry has arrived: pieces of the coded connectivity (coded mesh), keyed by byte offset like a
+        texture's; complete once every byte arrived and the CRC-32C matches."""
         p, info = h["payload"], obj["info"]
-        if len(p) <= 16:
+        head = 20 if mesh else 16
+        if len(p) <= head:
             return self.reject(offset, "malformed payload")
-        count, size, crc, at = struct.unpack_from("<IIII", p, 0)
-        data = p[16:]
-        if count == 0 or at + len(data) > size or count > 8 * info["point_count"] or size > 16 * count + 64 \
-                or info["kind"] == "point set":
+        if mesh:
+            count, carried, size, crc, at = struct.unpack_from("<IIIII", p, 0)
+        else:
+            (count, size, crc, at), carried = struct.unpack_from("<IIII", p, 0), 0
+        data = p[head:]
+        if at + len(data) > size or self.layer_malformed(info, mesh, count, carried, size):
             return self.reject(offset, "malformed payload")
-        c = self.new_connectivity(obj, count, size, crc)
-        if c["desc"] != (count, size, crc):
+        c = self.new_connectivity(obj, mesh, count, carried, size, crc)
+        # Spec 27.1: the first packet taken fixes the kind of the exact layer; then the description (19.1).
+        if c["mesh"] != mesh or c["desc"] != (count, carried, size, crc):
             return self.reject(offset, "stream mismatch")
         if c["complete"]:
             return self.news(False)
@@ -1748,33 +1770,40 @@ class Receiver:
         return self.news(True)
 
     @staticmethod
-    def new_connectivity(obj, count, size, crc):
-        """An object's connectivity, from the first CONNECTIVITY or CONNECTIVITY_REPAIR packet that passed the
-        well-formedness checks: its description, the bytes held, and (spec 19.5) the symbol size L of its repair
-        packets (None before one), the rows held with their symbols in the order accepted, and whether it was
-        completed by solving for source symbols."""
-        return obj.setdefault("connectivity", dict(desc=(count, size, crc), have={}, complete=False, coded=None,
-                                                   L=None, rows=[], recovered=False))
+    def new_connectivity(obj, mesh, count, carried, size, crc):
+        """An object's exact layer, from the first CONNECTIVITY, CONNECTIVITY_REPAIR, EXACT_MESH or EXACT_MESH_REPAIR
+        packet that passed the well-formedness checks: its kind (spec 27.1: `mesh` for EXACT_MESH packets), its
+        description (carried_count 0 for a CONNECTIVITY layer), the bytes held, and (spec 19.5) the symbol size L of
+        its repair packets (None before one), the rows held with their symbols in the order accepted, and whether it
+        was completed by solving for source symbols."""
+        return obj.setdefault("connectivity", dict(mesh=mesh, desc=(count, carried, size, crc), have={}, complete=False,
+                                                   coded=None, L=None, rows=[], recovered=False))
 
-    def connectivity_repair(self, obj, h, offset):
-        """Spec 19.5, once the object's entry has arrived: a repair symbol over the coded connectivity."""
+    def connectivity_repair(self, obj, h, offset, mesh=False):
+        """Spec 19.5 (CONNECTIVITY_REPAIR), or spec 27.1 (EXACT_MESH_REPAIR, `mesh`: carried_count at offset 4, the
+        other fields 4 bytes further), once the object's entry has arrived: a repair symbol over the coded
+        connectivity (coded mesh)."""
         p, info = h["payload"], obj["info"]
-        if len(p) < 16:
+        head = 20 if mesh else 16
+        if len(p) < head:
             return self.reject(offset, "malformed payload")
-        count, size, crc, L, row = struct.unpack_from("<IIIHB", p, 0)
+        if mesh:
+            count, carried, size, crc, L, row = struct.unpack_from("<IIIIHB", p, 0)
+        else:
+            (count, size, crc, L, row), carried = struct.unpack_from("<IIIHB", p, 0), 0
         k = -(-size // L) if L else 0
-        # The rules of 19.1 for the first three fields (and a coded connectivity of at least one byte, as a
+        # The rules of 19.1 (27.1) for the shared fields (and a coded connectivity of at least one byte, as a
         # CONNECTIVITY piece implies: see README), then those of 19.5.
-        if count == 0 or size == 0 or count > 8 * info["point_count"] or size > 16 * count + 64 \
-                or info["kind"] == "point set" or L == 0 or len(p) != 16 + L or k > 254 or row < k:
+        if size == 0 or self.layer_malformed(info, mesh, count, carried, size) or L == 0 or len(p) != head + L \
+                or k > 254 or row < k:
             return self.reject(offset, "malformed payload")
-        c = self.new_connectivity(obj, count, size, crc)
-        if c["desc"] != (count, size, crc) or (c["L"] is not None and c["L"] != L):
+        c = self.new_connectivity(obj, mesh, count, carried, size, crc)
+        if c["mesh"] != mesh or c["desc"] != (count, carried, size, crc) or (c["L"] is not None and c["L"] != L):
             return self.reject(offset, "stream mismatch")
         c["L"] = L
         if c["complete"] or row in [r for r, _ in c["rows"]]:
             return self.news(False)
-        c["rows"].append((row, p[16:]))
+        c["rows"].append((row, p[head:]))
         if not self.complete_connectivity(c):
             return self.reject(offset, "stream mismatch")
         return self.news(True)
@@ -1785,7 +1814,7 @@ class Receiver:
         symbols with the first rows accepted; a solved symbol's bytes inside coded_size replace any held
         before; when every byte is held, check the CRC-32C. False on a mismatch (the bytes,
         rows and symbols are then discarded)."""
-        count, size, crc = c["desc"]
+        count, carried, size, crc = c["desc"]
         have = c["have"]
         if len(have) < size and c["rows"]:
             L = c["L"]
@@ -2429,14 +2458,35 @@ class RangeDecoder:
         return v
 
 
-def decode_connectivity(coded, triangle_count, positions, stats=None):
-    """Spec 19.2: the exact triangle list, or None when the connectivity is unusable. The candidates of a
-    gate are found by sorting every point (fine for small objects). `stats`, when given, counts what
-    the decode met: seeds, skipped gates, none bits, each rank, explicit indices."""
-    n = len(positions)
-    w = max(1, (n - 1).bit_length())
+# The contexts of spec 19.3 and 27.2, one list per object, each probability starting at 1024: `none`, `rank 1` ..
+# `rank 16` (19.3), then (27.2) `fresh 0` .. `fresh 2` (by the gate's local candidates: none, one, more; a seed's
+# corners `fresh 0`), ten sets of `length 0` .. `length 17` (set 0 for a displacement's x, 1 + min(c', 8) for y and
+# z, c' the bit length read for the axis before), `sign`.
+CTX_NONE, CTX_RANK, CTX_FRESH, CTX_LENGTH, CTX_SIGN = 0, 1, 17, 20, 200
+CTX_COUNT = 201
+
+
+class Unusable(Exception):
+    """The coded connectivity or coded mesh is unusable (spec 19.2, 27.2)."""
+
+
+def decode_connectivity(coded, triangle_count, positions, carried_count=0, position_bits=16, attribute_widths=(),
+                        stats=None):
+    """Spec 27.2 (EXACT_MESH), of which spec 19.2 (CONNECTIVITY) is the case carried_count M = 0: no `fresh` bit is
+    read, every neighbour list stays empty, no vertex is carried, and w is the bit count of n - 1. `positions`: the quantized positions
+    of the points 0 .. n - 1; `position_bits`: the stream's P; `attribute_widths`: the bit widths of the fields of a
+    POINTS record after the position (spec 7.1). Returns (T, carried), the exact triangle list over vertices (points
+    0 .. n - 1, then carried vertices n .. n + M - 1) and each carried vertex's integers (position, then attributes,
+    as a point's), or None when the connectivity is unusable. The candidates of a gate (the points and its local
+    candidates) are found by sorting them all (fine for small objects). `stats`, when given, counts what the decode
+    met: seeds, skipped gates, none bits, each rank, explicit indices, fresh vertices."""
+    n, M = len(positions), carried_count
+    w = max(1, (n + M - 1).bit_length())
     rc = RangeDecoder(coded)
-    probs = [1024] * 17  # none, then rank 1 .. rank 16
+    probs = [1024] * CTX_COUNT
+    P = [list(p) for p in positions]  # the quantized position of every known vertex
+    carried = []
+    C = {}  # vertex -> its neighbour list C(v) (27.2), absent while empty
     T, D, Q = [], set(), []
     head = 0
     count = lambda key: stats is not None and stats.__setitem__(key, stats.get(key, 0) + 1)
@@ -2445,53 +2495,111 @@ def decode_connectivity(coded, triangle_count, positions, stats=None):
         T.append([a, b, c])
         D.update(((a, b), (b, c), (c, a)))
         Q.extend(((a, b, c), (b, c, a), (c, a, b)))
+        if M:
+            for u, v in ((a, b), (b, c), (c, a)):
+                for s, t in ((u, v), (v, u)):
+                    lst = C.setdefault(s, [])
+                    if t >= n and t not in lst and len(lst) < 16:
+                        lst.append(t)
 
-    while len(T) < triangle_count:
-        if head == len(Q):
-            a, b, c = rc.direct(w), rc.direct(w), rc.direct(w)
-            if max(a, b, c) >= n or a == b or b == c or a == c:
-                return None
-            count("seeds")
-            take(a, b, c)
-            continue
-        a, b, o = Q[head]
-        head += 1
-        if (b, a) in D:
-            count("gates decoded before")
-            continue
-        if rc.bit(probs, 0):
-            count("none")
-            continue
-        rank = next((r for r in range(1, 17) if rc.bit(probs, r)), 0)
-        if rank:
-            R = [positions[a][k] + positions[b][k] - positions[o][k] for k in range(3)]
-            order = sorted((sum((positions[i][k] - R[k]) ** 2 for k in range(3)), i) for i in range(n) if i not in (a, b))
-            if len(order) < rank:
-                return None
-            x = order[rank - 1][1]
-            count("rank %d" % rank)
-        else:
-            x = rc.direct(w)
-            if x >= n or x in (a, b):
-                return None
-            count("explicit index")
-        take(b, a, x)
-    return T
+    def displacement():
+        d = []
+        lengths = CTX_LENGTH
+        for _ in range(3):
+            c = next((c for c in range(18) if rc.bit(probs, lengths + c)), None)
+            if c is None:
+                raise Unusable
+            lengths = CTX_LENGTH + 18 * (1 + min(c, 8))
+            if c == 0:
+                d.append(0)
+                continue
+            negative = rc.bit(probs, CTX_SIGN)
+            v = (1 << (c - 1)) + rc.direct(c - 1)
+            d.append(-v if negative else v)
+        return d
+
+    def fresh(R):
+        d = displacement()
+        p = [R[k] + d[k] for k in range(3)]
+        if any(not 0 <= v < 1 << position_bits for v in p):
+            raise Unusable
+        carried.append(p + [rc.direct(b) for b in attribute_widths])
+        P.append(p)
+        count("fresh")
+        return n + len(carried) - 1
+
+    dist = lambda v, R: sum((P[v][k] - R[k]) ** 2 for k in range(3))
+    try:
+        while len(T) < triangle_count:
+            if head == len(Q):
+                corners = []
+                for k in range(3):
+                    if len(carried) < M and rc.bit(probs, CTX_FRESH):  # `fresh 0`
+                        R = P[corners[-1]] if corners else [1 << (position_bits - 1)] * 3
+                        corners.append(fresh(R))
+                    else:
+                        x = rc.direct(w)
+                        if x >= n + len(carried) or x in corners:
+                            raise Unusable
+                        corners.append(x)
+                count("seeds")
+                take(*corners)
+                continue
+            a, b, o = Q[head]
+            head += 1
+            if (b, a) in D:
+                count("gates decoded before")
+                continue
+            if rc.bit(probs, CTX_NONE):
+                count("none")
+                continue
+            R = [P[a][k] + P[b][k] - P[o][k] for k in range(3)]
+            local = []
+            for v in C.get(a, []) + C.get(b, []):
+                if v not in (a, b) and v not in local:
+                    local.append(v)
+            local.sort(key=lambda v: (dist(v, R), v))
+            if len(carried) < M and rc.bit(probs, CTX_FRESH + min(len(local), 2)):
+                take(b, a, fresh(R))
+                continue
+            rank = next((r for r in range(1, 17) if rc.bit(probs, CTX_RANK + r - 1)), 0)
+            if rank:
+                # 27.2 step 4: the points other than a and b, and the local candidates, together.
+                order = sorted([(dist(i, R), i) for i in range(n) if i not in (a, b)] + [(dist(v, R), v) for v in local])
+                if len(order) < rank:
+                    raise Unusable
+                x = order[rank - 1][1]
+                count("rank %d" % rank)
+            else:
+                x = rc.direct(w)
+                if x >= n + len(carried) or x in (a, b):
+                    raise Unusable
+                count("explicit index")
+            take(b, a, x)
+    except Unusable:
+        return None
+    if len(carried) < M:  # a carried vertex that no triangle uses
+        return None
+    return T, carried
 
 
-def exact_triangles(obj):
-    """Spec 19.4: the exact triangle list of an object that is exact (every point held, its connectivity complete
-    and decoded without being unusable), else None."""
+def exact_layer(obj, info):
+    """Spec 19.4, 27.3: (the exact triangle list over vertices, the carried vertices' integers) of an object that is
+    exact (every point held, its exact layer complete and decoded without being unusable), else None. `info`: the
+    stream-level fields."""
     c = obj.get("connectivity")
     if c is None or not c["complete"] or len(obj["points"]) != obj["info"]["point_count"]:
         return None
+    count, carried, _, _ = c["desc"]
     positions = [obj["points"][i][:3] for i in range(obj["info"]["point_count"])]
-    return decode_connectivity(c["coded"], c["desc"][0], positions)
+    widths = record_widths(info, dict(obj["info"], map_level=0))[3:]  # a POINTS record's fields after the position
+    return decode_connectivity(c["coded"], count, positions, carried, info["position_bits"], widths)
 
 
 def normals_json(obj, info):
     """Spec 24.2..24.4: the entries held (by index), whether they are complete, and, for an exact object, every
-    point's surface normal over its exact triangle list (null where undefined)."""
+    point's surface normal over its exact triangle list (null where undefined). (An object with surface normals has
+    no carried vertex, spec 27.1; were there any, they would take part in the sums and not be listed.)"""
     bits = info["normal_bits"]
     entries = []
     for i, e in sorted(obj["normals"].items()):
@@ -2500,28 +2608,38 @@ def normals_json(obj, info):
         else:
             entries.append(dict(index=i, sent=True, q=list(e), normal=decode_octahedral(e[0], e[1], bits)))
     surface = None
-    triangles = exact_triangles(obj)
-    if triangles is not None:
-        positions = [obj["points"][i][:3] for i in range(obj["info"]["point_count"])]
-        surface = [dict(index=i, normal=n) for i, n in enumerate(surface_normals(positions, triangles))]
+    layer = exact_layer(obj, info)
+    if layer is not None:
+        triangles, carried = layer
+        n = obj["info"]["point_count"]
+        positions = [obj["points"][i][:3] for i in range(n)] + [q[:3] for q in carried]
+        surface = [dict(index=i, normal=v) for i, v in enumerate(surface_normals(positions, triangles)[:n])]
     return dict(entries=entries, complete=len(obj["normals"]) == obj["info"]["point_count"], surface=surface)
 
 
-def connectivity_json(obj):
-    """Spec 19.1, 19.2: the connectivity held, and its decode once complete with every point held."""
+def connectivity_json(obj, info):
+    """Spec 19.1, 19.2 (27.1, 27.2): the exact layer held, and its decode once complete with every point held. A
+    layer of EXACT_MESH packets also lists `mesh` and `carried_count`, and once decoded its carried vertices."""
     c = obj["connectivity"]
-    count, size, crc = c["desc"]
-    j = dict(triangle_count=count, coded_size=size, coded_crc=crc,
-             received_bytes=size if c["complete"] else len(c["have"]), complete=c["complete"])
-    if c["L"] is not None:  # spec 19.5: once a CONNECTIVITY_REPAIR packet passed the checks
+    count, carried, size, crc = c["desc"]
+    j = dict(triangle_count=count)
+    if c["mesh"]:
+        j.update(mesh=True, carried_count=carried)
+    j.update(coded_size=size, coded_crc=crc, received_bytes=size if c["complete"] else len(c["have"]),
+             complete=c["complete"])
+    if c["L"] is not None:  # spec 19.5: once a CONNECTIVITY_REPAIR (EXACT_MESH_REPAIR) packet passed the checks
         j.update(symbol_size=c["L"], rows=[r for r, _ in c["rows"]], recovered=c["recovered"])
     if c["complete"] and len(obj["points"]) == obj["info"]["point_count"]:
-        positions = [obj["points"][i][:3] for i in range(obj["info"]["point_count"])]
-        triangles = decode_connectivity(c["coded"], count, positions)
-        if triangles is None:
+        layer = exact_layer(obj, info)
+        if layer is None:
             j["unusable"] = True
         else:
-            j["triangles"] = triangles
+            j["triangles"] = layer[0]
+            if c["mesh"]:
+                # Each carried vertex as an entry of `points` (spec 27.3: dequantized as if it were a point).
+                n = obj["info"]["point_count"]
+                j["carried"] = [dict(index=n + k, q=q, **dequantize_point(q, info, obj["info"]))
+                                for k, q in enumerate(layer[1])]
     return j
 
 
@@ -2554,7 +2672,7 @@ def objects_json(r):
             if obj["info"]["exact_layer"] or "connectivity" in obj:
                 o["exact_layer"] = obj["info"]["exact_layer"]
             if "connectivity" in obj:
-                o["connectivity"] = connectivity_json(obj)
+                o["connectivity"] = connectivity_json(obj, r.info)
             # Format 1.8 (spec 24): listed for an object whose entry has the surface-normals flag (README).
             if obj["info"]["surface_normals"]:
                 o["surface_normals"] = True
@@ -2593,7 +2711,7 @@ def decode(buf):
         old.add(h, offset)
         name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or KNOWN_12.get(h["type"]) or \
             KNOWN_13.get(h["type"]) or KNOWN_14.get(h["type"]) or KNOWN_15.get(h["type"]) or KNOWN_16.get(h["type"]) or \
-            KNOWN_17.get(h["type"]) or KNOWN_18.get(h["type"]) or KNOWN_110.get(h["type"]) or \
+            KNOWN_17.get(h["type"]) or KNOWN_18.get(h["type"]) or KNOWN_110.get(h["type"]) or KNOWN_111.get(h["type"]) or \
             "UNKNOWN(0x%02X)" % h["type"]
         plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
                           flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],

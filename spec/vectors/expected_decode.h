@@ -129,6 +129,17 @@ inline nlohmann::json object_info_json(const ObjectInfo& o) {
     return j;
 }
 
+// A point (or, format 1.11, a carried vertex): its index, integers and dequantized values.
+inline nlohmann::json point_entry_json(const ReceivedStream& stream, const ObjectInfo& oi, uint32_t index,
+                                       const QuantizedPoint& q) {
+    SurfacePoint s = dequantize_point(q, *stream.info(), oi);
+    nlohmann::json p = {{"index", index}, {"q", point_integers(q, oi)}, {"position", floats(s.position.data(), 3)}};
+    if (oi.has(kAttrNormal)) p["normal"] = floats(s.normal.data(), 3);
+    if (oi.has(kAttrTexcoord)) p["texcoord"] = floats(s.texcoord.data(), 2);
+    if (oi.color_channels() > 0) p["color"] = floats(s.color.data(), oi.color_channels());
+    return p;
+}
+
 // Format 1.3 (spec 19.1, 19.2, 19.5): an object's connectivity, held from the first CONNECTIVITY or
 // CONNECTIVITY_REPAIR packet of it that passed the checks of spec 19.1 or 19.5 (also after its bytes
 // were discarded for a wrong CRC-32C), and, once it is complete and every point of the object is
@@ -136,11 +147,16 @@ inline nlohmann::json object_info_json(const ObjectInfo& o) {
 inline nlohmann::json connectivity_json(const ReceivedStream& stream, size_t object) {
     const ReceivedObject& o = stream.objects()[object];
     const ReceivedConnectivity& c = *o.connectivity;
-    nlohmann::json j = {{"triangle_count", c.triangle_count},
-                        {"coded_size", c.coded_size},
+    nlohmann::json j = {{"triangle_count", c.triangle_count}};
+    // Format 1.11 (spec 27): an exact layer in EXACT_MESH packets says so, with its carried count.
+    if (c.mesh) {
+        j["mesh"] = true;
+        j["carried_count"] = c.carried_count;
+    }
+    j.update({{"coded_size", c.coded_size},
                         {"coded_crc", c.coded_crc},
                         {"received_bytes", c.complete ? uint64_t(c.coded_size) : c.received_bytes},
-                        {"complete", c.complete}};
+                        {"complete", c.complete}});
     // Format 1.3 repair packets (spec 19.5), listed once a CONNECTIVITY_REPAIR packet of the object
     // passed the checks (so that the decodes of the vectors without one stay as they were): the symbol
     // size they say, the rows held (in the order accepted; none once complete, or after the bytes were
@@ -155,11 +171,18 @@ inline nlohmann::json connectivity_json(const ReceivedStream& stream, size_t obj
     }
     if (c.complete && o.info && o.points.size() == o.info->point_count) {
         std::vector<Triangle> triangles;
+        std::vector<QuantizedPoint> carried;
         std::string why;
-        if (exact_triangles(stream, object, triangles, why) == Error::Ok) {
+        if (exact_layer(stream, object, triangles, carried, why) == Error::Ok) {
             nlohmann::json list = nlohmann::json::array();
             for (const Triangle& t : triangles) list.push_back({t[0], t[1], t[2]});
             j["triangles"] = list;
+            if (c.mesh) {
+                nlohmann::json vertices = nlohmann::json::array();
+                for (size_t k = 0; k < carried.size(); ++k)
+                    vertices.push_back(point_entry_json(stream, *o.info, uint32_t(o.info->point_count + k), carried[k]));
+                j["carried"] = vertices;
+            }
         } else {
             j["unusable"] = true;
         }
@@ -236,12 +259,7 @@ inline nlohmann::json objects_json(const ReceivedStream& stream) {
                 pd.add(index);
                 for (uint32_t v : ints) pd.add(v);
                 if (object.points.size() > kMaxListedElements) continue;
-                SurfacePoint s = dequantize_point(q, *stream.info(), oi);
-                json p = {{"index", index}, {"q", ints}, {"position", floats(s.position.data(), 3)}};
-                if (oi.has(kAttrNormal)) p["normal"] = floats(s.normal.data(), 3);
-                if (oi.has(kAttrTexcoord)) p["texcoord"] = floats(s.texcoord.data(), 2);
-                if (oi.color_channels() > 0) p["color"] = floats(s.color.data(), oi.color_channels());
-                points.push_back(p);
+                points.push_back(point_entry_json(stream, oi, index, q));
             }
             o["ellipsoid_digest"] = ed.hex();
             o["point_digest"] = pd.hex();

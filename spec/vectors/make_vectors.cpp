@@ -7709,6 +7709,348 @@ void camera_light_vectors(Writer& w) {
     }
 }
 
+// Format 1.11: vertices carried by the exact layer (EXACT_MESH, EXACT_MESH_REPAIR, spec 27). The
+// exact-layer stream's sphere and panel (section 19's vectors) at packet size 256, each sending only
+// part of its vertices as points: the sphere (normals) its first 33 points in the shuffled order, the
+// panel (normals and texture coordinates) its first 28 and its unused middle vertex; the exact layer
+// carries the others. STREAM_INFO says 1.3 as in the exact vectors, EXACT_MESH and EXACT_MESH_REPAIR
+// packets 1.11, the others 1.0.
+struct MeshLayerStream {
+    StreamInfo info;
+    std::vector<ObjectContent> contents;
+    std::vector<std::vector<uint8_t>> coded;
+    std::vector<uint32_t> triangle_count, carried_count;
+    Packets info_packets, ellipsoids, points;
+    std::vector<Packets> layer;  // per object
+    Packets all() const {
+        Packets out = info_packets;
+        out.insert(out.end(), ellipsoids.begin(), ellipsoids.end());
+        out.insert(out.end(), points.begin(), points.end());
+        for (const Packets& c : layer) out.insert(out.end(), c.begin(), c.end());
+        return out;
+    }
+};
+
+MeshLayerStream mesh_layer_stream() {
+    MeshLayerStream s;
+    Rng rng(70);
+    std::vector<ExactMesh> meshes = {exact_sphere(rng), exact_panel()};
+    const std::array<size_t, 2> kept = {33, 28};
+    std::vector<ObjectInfo> objects = {make_object({-1, -1, -1}, 2, 8, 0, kAttrNormal),
+                                       make_object({1, -1, -1}, 2, 8, 0, kAttrNormal | kAttrTexcoord),
+                                       make_object({-1, 2, -1}, 1, 0, 20, kAttrColor, ObjectKind::PointSet)};
+    // The points each mesh keeps and the vertices it carries (the unused middle vertex stays a point).
+    std::vector<std::vector<SurfacePoint>> sent(2), carried(2);
+    std::vector<std::vector<Triangle>> triangles(2);
+    for (size_t i = 0; i < 2; ++i) {
+        ExactMesh& m = meshes[i];
+        shuffle_points(m, rng);
+        std::vector<char> used(m.points.size(), 0);
+        for (const Triangle& t : m.triangles)
+            for (uint32_t v : t) used[v] = 1;
+        std::vector<uint32_t> index(m.points.size());
+        for (uint32_t v = 0; v < m.points.size(); ++v)
+            if (v < kept[i] || !used[v]) {
+                index[v] = uint32_t(sent[i].size());
+                sent[i].push_back(m.points[v]);
+            } else {
+                index[v] = 0x80000000u | uint32_t(carried[i].size());
+                carried[i].push_back(m.points[v]);
+            }
+        for (Triangle t : m.triangles) {
+            for (uint32_t& v : t) v = (index[v] & 0x80000000u) ? uint32_t(sent[i].size()) + (index[v] & 0xFFFFFFFu) : index[v];
+            triangles[i].push_back(t);
+        }
+        objects[i].point_count = uint32_t(sent[i].size());
+    }
+    s.info = default_info(objects, 256);
+    s.info.objects[0].exact_layer = true;
+    s.info.objects[1].exact_layer = true;
+    for (size_t i = 0; i < s.info.objects.size(); ++i) {
+        const ObjectInfo& o = s.info.objects[i];
+        ObjectContent c = make_content(s.info, o, rng);
+        s.coded.emplace_back();
+        s.triangle_count.push_back(0);
+        s.carried_count.push_back(0);
+        if (i < 2) {
+            c.points.clear();
+            std::vector<QuantizedPoint> vertices;
+            for (const SurfacePoint& p : sent[i]) c.points.push_back(quantize_point(p, s.info, o));
+            vertices = c.points;
+            for (const SurfacePoint& p : carried[i]) vertices.push_back(quantize_point(p, s.info, o));
+            std::vector<Triangle> decoded;
+            std::vector<uint32_t> order;
+            if (encode_exact_mesh(vertices, c.points.size(), triangles[i], s.info, o, s.coded[i], decoded, order) !=
+                Error::Ok) {
+                std::cerr << "make_vectors: encode_exact_mesh failed\n";
+                std::exit(1);
+            }
+            s.triangle_count[i] = uint32_t(triangles[i].size());
+            s.carried_count[i] = uint32_t(carried[i].size());
+        }
+        s.contents.push_back(std::move(c));
+    }
+    StreamPackets packets;
+    if (packetize_stream(s.info, s.contents, kStreamId, packets) != Error::Ok) {
+        std::cerr << "make_vectors: packetize_stream failed\n";
+        std::exit(1);
+    }
+    mark_version_1_0(packets);
+    for (Packet& p : packets.stream_info) {
+        p[5] = 3;  // its entries use flags bit 8 (format 1.3)
+        reseal(p);
+    }
+    s.info_packets = packets.stream_info;
+    s.ellipsoids = packets.ellipsoids;
+    s.points = packets.points;
+    uint32_t sequence = uint32_t(s.info_packets.size() + s.ellipsoids.size() + s.points.size());
+    for (size_t i = 0; i < s.info.objects.size(); ++i) {
+        Packets out;
+        if (!s.coded[i].empty() && packetize_connectivity(s.info, uint16_t(i), s.triangle_count[i], s.coded[i], kStreamId,
+                                                          sequence, out, s.carried_count[i]) != Error::Ok) {
+            std::cerr << "make_vectors: packetize_connectivity (EXACT_MESH) failed\n";
+            std::exit(1);
+        }
+        sequence += uint32_t(out.size());
+        s.layer.push_back(out);
+    }
+    return s;
+}
+
+// Offsets in an EXACT_MESH packet (header included), spec 27.1.
+constexpr size_t kMeshTriangles = kHeaderSize, kMeshCarried = kHeaderSize + 4, kMeshSize = kHeaderSize + 8,
+                 kMeshCrc = kHeaderSize + 12, kMeshOffset = kHeaderSize + 16, kMeshData = kHeaderSize + 20;
+
+void exact_mesh_vectors(Writer& w) {
+    const MeshLayerStream s = mesh_layer_stream();
+    const Packets good = s.all();
+    const std::string what =
+        "the carried-vertices stream of valid/exact_mesh (the lumpy sphere of valid/exact with " +
+        std::to_string(s.info.objects[0].point_count) + " of its 66 vertices sent as points and " +
+        std::to_string(s.carried_count[0]) + " carried by its exact layer, the panel with " +
+        std::to_string(s.info.objects[1].point_count) + " points and " + std::to_string(s.carried_count[1]) +
+        " carried vertices, and the point set)";
+    w.write("valid", "exact_mesh",
+            "format 1.11, vertices carried by the exact layer (spec 27): " + what +
+                "; objects 0 and 1 announce an exact layer (flags bit 8) sent in EXACT_MESH packets after the points, "
+                "whose coded mesh introduces each carried vertex (position as a displacement from the parallelogram "
+                "prediction, normal and texture coordinates as direct bits) where a triangle first uses it; every "
+                "object exact, `connectivity` listing `mesh`, `carried_count`, the triangles over points and carried "
+                "vertices, and the carried vertices",
+            good);
+    const size_t layer0 = s.info_packets.size() + s.ellipsoids.size() + s.points.size();
+    const size_t pieces0 = s.layer[0].size();
+    {
+        // Object 0's coded mesh with its first piece lost and brought back by a repair row (spec 27.1, 19.5).
+        Packets repairs;
+        if (packetize_connectivity_repairs(s.info, 0, s.triangle_count[0], s.coded[0], 2, kStreamId, 500, repairs,
+                                           s.carried_count[0]) != Error::Ok) {
+            std::cerr << "make_vectors: packetize_connectivity_repairs (EXACT_MESH_REPAIR) failed\n";
+            std::exit(1);
+        }
+        Packets file(good.begin(), good.begin() + long(layer0));
+        file.insert(file.end(), s.layer[0].begin() + 1, s.layer[0].end());
+        file.push_back(repairs[1]);
+        file.insert(file.end(), s.layer[1].begin(), s.layer[1].end());
+        w.write("unusual", "exact_mesh_repair",
+                what + ", with object 0's first EXACT_MESH piece lost (of " + std::to_string(pieces0) +
+                    ") and its second EXACT_MESH_REPAIR row (row " + std::to_string(pieces0 + 1) +
+                    ") sent instead: the missing source symbol is solved for (spec 27.1, 19.5); every object exact, "
+                    "object 0's coded mesh `recovered`",
+                file);
+    }
+    {
+        Packets file = s.layer[1];
+        const Packets rest = {good.begin(), good.begin() + long(layer0 + pieces0)};
+        file.insert(file.end(), rest.begin(), rest.end());
+        w.write("unusual", "exact_mesh_before_stream_info",
+                what + ", with object 1's EXACT_MESH packet first, before the STREAM_INFO: held (spec 27, 11.2), "
+                       "released when the STREAM_INFO arrives and accepted; every object exact",
+                file);
+    }
+    // Faulty: one defect each.
+    auto defective = [&](const std::function<void(Packet&)>& edit) {
+        Packet p = good[layer0];
+        put32(p, 12, 1000);
+        edit(p);
+        reseal(p);
+        return p;
+    };
+    struct MeshEdit {
+        const char* name;
+        std::string description;
+        std::function<void(Packet&)> edit;
+    };
+    const std::vector<MeshEdit> edits = {
+        {"exact_mesh_carried_zero",
+         "a copy of object 0's first EXACT_MESH packet (sequence 1000, after the stream) with carried_count 0: "
+         "malformed payload (spec 27.1: an EXACT_MESH layer carries at least one vertex)",
+         [](Packet& p) { put32(p, kMeshCarried, 0); }},
+        {"exact_mesh_short",
+         "a copy of object 0's first EXACT_MESH packet (sequence 1000, after the stream) cut to its first 18 payload "
+         "bytes: malformed payload (spec 27.1: shorter than 20 bytes)",
+         [](Packet& p) { p = with_payload(p, std::vector<uint8_t>(p.begin() + kHeaderSize, p.begin() + kHeaderSize + 18)); }},
+        {"exact_mesh_carried_contradicts",
+         "a copy of object 0's first EXACT_MESH packet (sequence 1000, after the stream) with carried_count one more "
+         "than its other packets say: stream mismatch (spec 27.1: the description holds carried_count)",
+         [&](Packet& p) { put32(p, kMeshCarried, s.carried_count[0] + 1); }},
+        {"exact_mesh_too_many_triangles",
+         "a copy of object 0's first EXACT_MESH packet (sequence 1000, after the stream) with triangle_count 8 * "
+         "(point_count + carried_count) + 1: malformed payload (spec 27.1)",
+         [&](Packet& p) {
+             put32(p, kMeshTriangles, 8 * (s.info.objects[0].point_count + s.carried_count[0]) + 1);
+         }},
+    };
+    for (const MeshEdit& e : edits) {
+        Packets file = good;
+        file.push_back(defective(e.edit));
+        w.write("faulty", e.name, what + ", with " + e.description, file);
+    }
+    {
+        // The other kind of exact layer for the same object: a CONNECTIVITY packet of object 0 after its
+        // EXACT_MESH packets (its bytes those of the coded mesh).
+        Packets file = good;
+        ConnectivityPiece piece;
+        piece.triangle_count = s.triangle_count[0];
+        piece.coded_size = uint32_t(s.coded[0].size());
+        piece.coded_crc = crc32c(s.coded[0].data(), s.coded[0].size());
+        piece.offset = 0;
+        piece.data.assign(s.coded[0].begin(), s.coded[0].begin() + std::min<size_t>(s.coded[0].size(), 100));
+        PacketHeader h;
+        h.version_minor = kConnectivityMinor;
+        h.type = uint8_t(PacketType::Connectivity);
+        h.flags = kFlagSkippable;
+        h.stream_id = kStreamId;
+        h.sequence = 1000;
+        h.object_id = 0;
+        file.push_back(write_packet(h, encode_connectivity_payload(piece)));
+        w.write("faulty", "exact_mesh_mixed_kinds",
+                what + ", with a CONNECTIVITY packet of object 0 (sequence 1000, after the stream; the first 100 bytes "
+                       "of its coded mesh): stream mismatch (spec 27.1: one kind of exact layer per object, fixed by "
+                       "the first packet taken); object 0 stays exact",
+                file);
+    }
+    {
+        // The paths valid/exact_mesh does not take (spec 27.2): one object with RGBA colour, 4 points and
+        // 20 carried vertices: a fan of 20 triangles around point 0 whose ring is carried (the first
+        // triangle a seed of a known corner and two fresh ones; point 0's list C fills at 16), and a
+        // second part, triangles (1, 2, 3) and (2, 1, ring vertex 5), whose gate 1 -> 2 names a carried
+        // vertex that is no candidate there (no list holds it): a direct index.
+        StreamInfo info = default_info({make_object({-1, -1, -1}, 2, 4, 4, kAttrColor | kAttrColorAlpha)}, 256);
+        info.objects[0].exact_layer = true;
+        Rng prng(71);
+        ObjectContent content = make_content(info, info.objects[0], prng);
+        auto point = [&](double x, double y, double z, double t) {
+            SurfacePoint p;
+            p.position = {float(x), float(y), float(z)};
+            p.color = {float(t), float(1 - t), float(0.5 * t), float(0.25 + 0.5 * t)};
+            return quantize_point(p, info, info.objects[0]);
+        };
+        std::vector<QuantizedPoint> vertices = {point(0, 0, 0.05, 0), point(0.6, 0.6, 0, 0.2), point(0.8, 0.6, 0, 0.4),
+                                                point(0.7, 0.8, 0.05, 0.6)};
+        content.points = vertices;
+        std::vector<Triangle> triangles;
+        for (uint32_t i = 0; i < 20; ++i) {
+            const double angle = 2 * M_PI * i / 20;
+            vertices.push_back(point(0.5 * std::cos(angle), 0.5 * std::sin(angle), 0.1 * std::sin(3 * angle), i / 20.0));
+            triangles.push_back({0, 4 + i, 4 + (i + 1) % 20});
+        }
+        triangles.push_back({1, 2, 3});
+        triangles.push_back({2, 1, 4 + 5});
+        std::vector<uint8_t> coded;
+        std::vector<Triangle> decoded;
+        std::vector<uint32_t> order;
+        if (encode_exact_mesh(vertices, 4, triangles, info, info.objects[0], coded, decoded, order) != Error::Ok) {
+            std::cerr << "make_vectors: encode_exact_mesh (paths) failed\n";
+            std::exit(1);
+        }
+        StreamPackets packets;
+        if (packetize_stream(info, {content}, kStreamId, packets) != Error::Ok) {
+            std::cerr << "make_vectors: packetize_stream (paths) failed\n";
+            std::exit(1);
+        }
+        mark_version_1_0(packets);
+        for (Packet& p : packets.stream_info) {
+            p[5] = 3;
+            reseal(p);
+        }
+        Packets file = packets.stream_info;
+        file.insert(file.end(), packets.ellipsoids.begin(), packets.ellipsoids.end());
+        file.insert(file.end(), packets.points.begin(), packets.points.end());
+        Packets layer;
+        if (packetize_connectivity(info, 0, uint32_t(triangles.size()), coded, kStreamId, uint32_t(file.size()), layer,
+                                   20) != Error::Ok) {
+            std::cerr << "make_vectors: packetize_connectivity (paths) failed\n";
+            std::exit(1);
+        }
+        file.insert(file.end(), layer.begin(), layer.end());
+        w.write("unusual", "exact_mesh_paths",
+                "format 1.11 (spec 27.2), the paths valid/exact_mesh does not take: one surface object with RGBA colour "
+                "(its carried vertices' four channels as direct bits), 4 points and 20 carried vertices, 22 triangles "
+                "in one EXACT_MESH packet of " + std::to_string(coded.size()) + " coded bytes: a fan around point 0 "
+                "whose ring is carried (its first triangle a seed of a known corner, point 0, and two fresh corners; "
+                "point 0's neighbour list fills at 16 carried vertices, the last 4 of the ring not in it), and a second "
+                "part seeded by the points 1, 2, 3 whose gate 1 -> 2 brings ring vertex 5, a carried vertex that is no "
+                "candidate there (no neighbour list of points 1 or 2 holds it): a direct index; exact",
+                file);
+        // Faulty: a coded mesh whose first fresh vertex lies outside the frame (spec 27.2: unusable).
+        VectorRangeEncoder rc;
+        uint16_t fresh0 = 1024, sign = 1024;
+        std::array<uint16_t, 18> length;
+        length.fill(1024);
+        rc.bit(fresh0, 1);
+        for (int i = 0; i < 17; ++i) rc.bit(length[i], 0);
+        rc.bit(length[17], 1);  // x: 17 significant bits, 2^16 or more from the frame's middle
+        rc.bit(sign, 0);
+        rc.direct(0xFFFF, 16);
+        const std::vector<uint8_t> bad = rc.finish();
+        ConnectivityPiece piece;
+        piece.triangle_count = uint32_t(triangles.size());
+        piece.carried_count = 20;
+        piece.coded_size = uint32_t(bad.size());
+        piece.coded_crc = crc32c(bad.data(), bad.size());
+        piece.offset = 0;
+        piece.data = bad;
+        PacketHeader h;
+        h.version_minor = kExactMeshMinor;
+        h.type = uint8_t(PacketType::ExactMesh);
+        h.flags = kFlagSkippable;
+        h.stream_id = kStreamId;
+        h.sequence = uint32_t(file.size() - layer.size());
+        h.object_id = 0;
+        Packets faulty(file.begin(), file.end() - long(layer.size()));
+        faulty.push_back(write_packet(h, encode_connectivity_payload(piece, true)));
+        w.write("faulty", "exact_mesh_out_of_frame",
+                "the stream of unusual/exact_mesh_paths with its EXACT_MESH packet replaced by one whose coded mesh (" +
+                    std::to_string(bad.size()) + " bytes, made by hand) starts a seed with a fresh corner whose x "
+                    "displacement has 17 significant bits (131071 from the frame's middle): the packet is accepted and "
+                    "the coded mesh complete, but its decode is unusable (spec 27.2: a fresh vertex outside 0 .. 2^P - 1); "
+                    "not exact, the stream does not conform",
+                faulty);
+    }
+    {
+        // The coded mesh of object 0 with a carried_count one more than it introduces, in every EXACT_MESH
+        // packet: each is well formed and agrees with the others, but the decode is unusable. (One less is
+        // no faulty vector: the decoder then reads the last fresh vertex's bits as other symbols, which
+        // may decode to some mesh; no check can tell it from the sender's.)
+        Packets file(good.begin(), good.begin() + long(layer0));
+        for (Packet p : s.layer[0]) {
+            put32(p, kMeshCarried, s.carried_count[0] + 1);
+            reseal(p);
+            file.push_back(p);
+        }
+        file.insert(file.end(), s.layer[1].begin(), s.layer[1].end());
+        w.write("faulty", "exact_mesh_unusable",
+                what + ", with carried_count one more than object 0's coded mesh introduces in each of its EXACT_MESH "
+                       "packets: every packet accepted, the coded mesh complete, but its decode unusable (spec 27.2: "
+                       "fresh bits are read where the encoder wrote none; here the decoder, out of step with the "
+                       "coded mesh, meets an unusable value before the end; another such edit could decode to some "
+                       "other mesh, which no check could tell from the sender's); object 0 not exact, the stream does "
+                       "not conform",
+                file);
+    }
+}
+
 int main(int argc, char** argv) {
     if (argc != 2) {
         std::cerr << "usage: ellicast_make_vectors OUTPUT_DIR   (spec/vectors)\n";
@@ -7732,6 +8074,7 @@ int main(int argc, char** argv) {
     map_vectors(w);
     normals_vectors(w);
     camera_light_vectors(w);
+    exact_mesh_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }

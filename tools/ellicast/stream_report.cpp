@@ -54,7 +54,7 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
         if (e != Error::Ok) rp.result = error_name(e);
         else if (after.accepted > before.accepted) rp.result = "accepted";
         else if (after.duplicates > before.duplicates && (h.type == uint8_t(PacketType::PointsRepair) ||
-                                                          h.type == uint8_t(PacketType::ConnectivityRepair))) {
+                                                          is_exact_layer_repair_type(h.type))) {
             rp.result = "repair, not needed";  // its block was already whole
             ++r.repair_not_needed;
         } else if (after.duplicates > before.duplicates) rp.result = "duplicate";
@@ -163,8 +163,8 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
                                                       " points held but not placed)", true});
         // Format 1.3, the exact layer (spec 19.4): announced, complete, and decodable with every point.
         if (o.connectivity && !o.info->exact_layer)
-            r.violations.push_back({std::nullopt, name + ": CONNECTIVITY packets arrived but its entry does not "
-                                                         "announce an exact layer"});
+            r.violations.push_back({std::nullopt, name + (o.connectivity->mesh ? ": EXACT_MESH" : ": CONNECTIVITY") +
+                                                      " packets arrived but its entry does not announce an exact layer"});
         if (o.info->exact_layer && !(o.connectivity && o.connectivity->complete)) {
             r.violations.push_back({std::nullopt, name + ": its exact layer did not all arrive (" +
                                                       std::to_string(o.connectivity ? o.connectivity->received_bytes : 0) +
@@ -214,10 +214,10 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
     // Format 1.3: each CONNECTIVITY_REPAIR symbol must be its row of the code over the connectivity (spec 19.5).
     ConnectivityRepairChecker connectivity_repair_checker(r.stream);
     for (const ContainerPacket& p : contents.packets) {
-        if (p.view.header.type != uint8_t(PacketType::ConnectivityRepair)) continue;
+        if (!is_exact_layer_repair_type(p.view.header.type)) continue;
         std::string why;
         if (connectivity_repair_checker.check(p.view, why) == Error::StreamMismatch)
-            r.violations.push_back({p.offset, "CONNECTIVITY_REPAIR packet: " + why});
+            r.violations.push_back({p.offset, packet_type_name(p.view.header.type) + " packet: " + why});
     }
     // Format 1.1 scene tables: complete when present.
     if (r.stream.has_scene()) {

@@ -46,8 +46,10 @@ inline constexpr uint8_t kBoundManifestMinor = 9;
 // 1.10 added CAMERA, LIGHT and the SCENE node record's camera and light (spec 26); SCENE packets say
 // 1.10 only when a node record of theirs carries them.
 inline constexpr uint8_t kCameraLightMinor = 10;
+// 1.11 added EXACT_MESH and EXACT_MESH_REPAIR, an exact layer that carries vertices (spec 27).
+inline constexpr uint8_t kExactMeshMinor = 11;
 // The newest format version this library reads and writes (spec/format.md's version).
-inline constexpr uint8_t kSpecMinor = 10;
+inline constexpr uint8_t kSpecMinor = 11;
 
 inline constexpr std::array<uint8_t, 4> kPacketMagic = {0xE1, 'L', 'C', 'S'};
 inline constexpr size_t kHeaderSize = 20;                       // bytes before the payload
@@ -74,6 +76,8 @@ enum class PacketType : uint8_t {
     MappedPoints = 0x09,  // 1.7, critical: a batch of an object's points, positions inside the cells of its map
     PointMap = 0x0A,      // 1.7, critical: a fragment of an object's map of occupied cells
     Normals = 0x0B,       // 1.8, skippable: which normals of a run of points are sent, and those normals
+    ExactMesh = 0x0C,     // 1.11, skippable: a piece of an object's coded mesh (the exact layer with carried vertices)
+    ExactMeshRepair = 0x0D,  // 1.11, skippable: a repair symbol over an object's coded mesh
     Scene = 0x10,       // 1.1, skippable: nodes (hierarchy, names, transforms) and meshes (object + material)
     Material = 0x11,    // 1.1, skippable: one PBR material
     TextureFragment = 0x12,  // 1.1, skippable: a piece of one texture image, at its byte offset
@@ -84,13 +88,22 @@ enum class PacketType : uint8_t {
     Camera = 0x17,      // 1.10, skippable: one glTF camera
     Light = 0x18,       // 1.10, skippable: one punctual light (KHR_lights_punctual)
     Manifest = 0x20,    // 1.2, skippable: signed digests of the stream's other packets
-    // 0x00 is invalid; 0x0C..0x0F reserved for geometry; 0x19..0x1F reserved for the scene;
+    // 0x00 is invalid; 0x0E..0x0F reserved for geometry; 0x19..0x1F reserved for the scene;
     // 0x21..0x7F future; 0x80..0xFF experimental.
 };
 
 // POINTS or (format 1.7) MAPPED_POINTS: a packet of an object's point records.
 inline bool is_points_type(uint8_t type) {
     return type == static_cast<uint8_t>(PacketType::Points) || type == static_cast<uint8_t>(PacketType::MappedPoints);
+}
+
+// CONNECTIVITY or (format 1.11) EXACT_MESH: a piece of an object's exact layer; and their repair types.
+inline bool is_exact_layer_type(uint8_t type) {
+    return type == static_cast<uint8_t>(PacketType::Connectivity) || type == static_cast<uint8_t>(PacketType::ExactMesh);
+}
+inline bool is_exact_layer_repair_type(uint8_t type) {
+    return type == static_cast<uint8_t>(PacketType::ConnectivityRepair) ||
+           type == static_cast<uint8_t>(PacketType::ExactMeshRepair);
 }
 
 // Name of a packet type ("STREAM_INFO", ...), or "UNKNOWN(0xNN)".

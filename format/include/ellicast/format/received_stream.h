@@ -35,7 +35,8 @@ namespace ellicast {
 
 // An object's connectivity as it arrives (spec 19.1).
 struct ReceivedConnectivity {
-    uint32_t triangle_count = 0, coded_size = 0, coded_crc = 0;
+    bool mesh = false;             // format 1.11: EXACT_MESH packets (spec 27), not CONNECTIVITY
+    uint32_t triangle_count = 0, carried_count = 0, coded_size = 0, coded_crc = 0;
     std::map<uint32_t, std::vector<uint8_t>> pieces;  // disjoint runs of bytes, emptied once complete
     uint64_t received_bytes = 0;
     bool complete = false;        // every byte arrived and the CRC matches
@@ -253,6 +254,7 @@ private:
     // object whose fragment has not arrived. False when the index was held already.
     bool take_point_record(ReceivedObject& object, uint32_t index, const QuantizedPoint& record);
     Error take_connectivity(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
+    bool take_carried_elements(uint32_t count);
     Error take_connectivity_repair(ReceivedObject& object, const PacketView& packet, const std::string& name,
                                    uint64_t where);
     // Completes an object's connectivity from its pieces and repair symbols when it can (spec 19.1, 19.5).
@@ -285,6 +287,7 @@ private:
     std::map<uint16_t, MaterialExtensions> material_extensions_;
     std::map<uint16_t, ReceivedTexture> textures_;
     size_t texture_bytes_ = 0;  // textures, patches and animation keys (the texture cap)
+    uint64_t carried_elements_ = 0;  // format 1.11: carried vertices of the exact layers taken (spec 27.1)
     std::optional<uint16_t> animation_count_;
     std::map<uint16_t, ReceivedAnimation> animations_;
     std::optional<uint16_t> skin_count_;
@@ -329,9 +332,14 @@ bool morphed(const ReceivedObject& object);
 bool mesh_shows_targets(const ReceivedStream& stream, const SceneMesh& mesh,
                         const std::function<bool(uint16_t object)>& object_shown);
 
-// The exact triangle list of object `object` (spec 19.2, 19.4): Ok when every point of it and its
-// whole connectivity are held and it decodes; Truncated (with `why`) while something is missing;
-// MalformedPayload (with `why`) when the connectivity is unusable.
+// The exact triangle list of object `object` (spec 19.2, 19.4; 27.2): Ok when every point of it and
+// its whole exact layer are held and it decodes; Truncated (with `why`) while something is missing;
+// MalformedPayload (with `why`) when the layer is unusable. The triangles name vertices: the points
+// 0 .. point_count - 1, then (format 1.11) the `carried` vertices.
+Error exact_layer(const ReceivedStream& stream, size_t object, std::vector<Triangle>& out,
+                  std::vector<QuantizedPoint>& carried, std::string& why);
+// The same without the carried vertices (for an object whose exact layer carries none, the triangles
+// name points only).
 Error exact_triangles(const ReceivedStream& stream, size_t object, std::vector<Triangle>& out, std::string& why);
 
 // For a validator (spec 19.5): whether a CONNECTIVITY_REPAIR packet's symbol is its row of the code
