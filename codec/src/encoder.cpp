@@ -51,6 +51,9 @@ std::string check_encode_options(const EncodeOptions& o) {
     if (o.threads < 1 || o.threads > 256) return "threads must be 1..256 (got " + std::to_string(o.threads) + ")";
     if (!(o.repair_ratio >= 0) || o.repair_ratio > 4)
         return "the repair ratio must be in [0, 4] (repair symbols per source packet; got " + std::to_string(o.repair_ratio) + ")";
+    if (!(o.point_share >= 0) || o.point_share > 1)
+        return "the point share must be in [0, 1] (the share of an object's vertices sent as points; got " +
+               std::to_string(o.point_share) + ")";
     if (!(o.normal_tolerance >= 0) || o.normal_tolerance > 90)
         return "the normal tolerance must be in [0, 90] degrees (got " + std::to_string(o.normal_tolerance) + ")";
     return "";
@@ -562,20 +565,57 @@ std::vector<Triangle> exact_triangles_of(const Mesh& input, const std::vector<ui
     return triangles;
 }
 
-void encode_exact_layer(const Mesh& input, const std::vector<uint32_t>& vertex_points, ObjectContent& content,
-                        uint32_t& dropped) {
+// `carried`: the vertices the layer carries (format 1.11), named by vertex_points as
+// content.points.size() + their index; in content.carried as the coded mesh introduces them.
+void encode_exact_layer(const Mesh& input, const std::vector<uint32_t>& vertex_points,
+                        const std::vector<QuantizedPoint>& carried, const StreamInfo& info, const ObjectInfo& object,
+                        ObjectContent& content, uint32_t& dropped) {
     const std::vector<Triangle> triangles = exact_triangles_of(input, vertex_points);
     dropped = uint32_t(input.triangles.size() - triangles.size());
     if (triangles.empty()) return;
-    std::vector<std::array<uint32_t, 3>> positions;
-    positions.reserve(content.points.size());
-    for (const auto& q : content.points) positions.push_back(q.position);
+    std::vector<QuantizedPoint> vertices = content.points;
+    vertices.insert(vertices.end(), carried.begin(), carried.end());
     std::vector<Triangle> sent;
-    if (encode_connectivity(positions, triangles, content.connectivity, sent) != Error::Ok) {
+    std::vector<uint32_t> order;
+    if (encode_exact_mesh(vertices, content.points.size(), triangles, info, object, content.connectivity, sent, order) !=
+        Error::Ok) {
         content.connectivity.clear();
         return;
     }
+    content.carried.clear();
+    for (uint32_t v : order) content.carried.push_back(vertices[v]);
     content.triangle_count = uint32_t(sent.size());
+}
+
+// Format 1.11 (spec 27.4): of the points a triangle uses, in the spread order, the first
+// ceil(share * V) stay points; the exact layer carries the others (returned, in that order; the
+// vertices that became them are renumbered content.points.size() + their index). Surface samples,
+// which no triangle uses, stay points.
+std::vector<QuantizedPoint> carry_vertices(const Mesh& input, std::vector<uint32_t>& vertex_points,
+                                           std::vector<QuantizedPoint>& points, double share) {
+    std::vector<char> used(points.size(), 0);
+    for (const Triangle& t : exact_triangles_of(input, vertex_points))
+        for (uint32_t v : t) used[v] = 1;
+    size_t vertices = 0;
+    for (char u : used) vertices += u;
+    const size_t keep = size_t(std::ceil(share * double(vertices) - 1e-9));
+    if (keep >= vertices) return {};
+    std::vector<QuantizedPoint> kept, carried;
+    std::vector<uint32_t> index(points.size());
+    size_t used_seen = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        if (used[i] && used_seen++ >= keep) {
+            index[i] = uint32_t(carried.size()) | 0x80000000u;
+            carried.push_back(points[i]);
+        } else {
+            index[i] = uint32_t(kept.size());
+            kept.push_back(points[i]);
+        }
+    }
+    for (uint32_t& v : vertex_points)
+        v = (index[v] & 0x80000000u) ? uint32_t(kept.size()) + (index[v] & 0x7FFFFFFFu) : index[v];
+    points = std::move(kept);
+    return carried;
 }
 
 // Surface normals (format 1.8, spec 24.5): per point, whether its normal can be left to the surface
@@ -812,6 +852,12 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
                 content.normals.clear();
             }
         }
+        // Format 1.11 (spec 27): vertices carried by the exact layer, in an object without normals or
+        // per-point data (those would have to travel with each carried vertex).
+        std::vector<QuantizedPoint> carried;
+        if (options.point_share < 1 && options.exact_layer && !mesh.is_point_set && !mesh.per_point_data &&
+            !input.triangles.empty() && !object.has(kAttrNormal) && !object.surface_normals)
+            carried = carry_vertices(input, vertex_points, content.points, options.point_share);
         // Format 1.7 (spec 23): points sent over a map of occupied cells, where that takes fewer bytes.
         // The map deals them to packets along a space-filling curve: the order changes, and every
         // per-vertex index with it.
@@ -834,7 +880,8 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
                     for (uint32_t i = 0; i < order.size(); ++i) normals[i] = content.normals[order[i]];
                     content.normals = std::move(normals);
                 }
-                for (uint32_t& v : vertex_points) v = new_index[v];
+                for (uint32_t& v : vertex_points)
+                    if (v < new_index.size()) v = new_index[v];  // a carried vertex keeps its number
                 object.map_level = choice.level;
                 object.map_batch = choice.batch;
                 report.map_level = choice.level;
@@ -846,8 +893,13 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         if (options.exact_layer && !mesh.is_point_set && !input.triangles.empty()) {
             progress("exact layer", 0.99);
             uint32_t dropped = 0;
-            encode_exact_layer(input, vertex_points, content, dropped);
+            object.point_count = uint32_t(content.points.size());
+            encode_exact_layer(input, vertex_points, carried, info, object, content, dropped);
             report.exact_triangles = content.triangle_count;
+            report.carried = uint32_t(content.carried.size());
+            if (content.connectivity.empty() && !carried.empty())
+                throw std::logic_error("the exact layer that was to carry " + std::to_string(carried.size()) +
+                                       " vertices could not be coded");
             object.exact_layer = !content.connectivity.empty();
             report.connectivity_bytes = uint32_t(content.connectivity.size());
             if (dropped > 0)
@@ -882,7 +934,10 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
             pack_ellipsoid(q, bytes);
             crc = crc32c(bytes, kEllipsoidBytes, crc);
         }
-        for (const auto& q : result.contents[m].points) {
+        // Format 1.11: the carried vertices are content too.
+        std::vector<QuantizedPoint> all = result.contents[m].points;
+        all.insert(all.end(), result.contents[m].carried.begin(), result.contents[m].carried.end());
+        for (const auto& q : all) {
             uint32_t v[11] = {q.position[0], q.position[1], q.position[2], q.normal[0], q.normal[1], q.texcoord[0],
                               q.texcoord[1], q.color[0], q.color[1], q.color[2], q.color[3]};
             crc = crc32c(reinterpret_cast<const uint8_t*>(v), sizeof v, crc);

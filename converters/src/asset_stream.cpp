@@ -20,7 +20,11 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
         return false;
     }
     try {
-        out.encoded = encode_meshes(asset.objects, options);
+        std::vector<Mesh> objects = asset.objects;  // skinned and morphing objects keep every vertex a point
+        for (size_t i = 0; i < objects.size(); ++i)
+            objects[i].per_point_data = (i < asset.weights.size() && !asset.weights[i].empty()) ||
+                                        (i < asset.morphs.size() && !asset.morphs[i].empty());
+        out.encoded = encode_meshes(objects, options);
     } catch (const std::exception& e) {
         error = e.what();
         return false;
@@ -101,7 +105,7 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
         const ObjectContent& c = out.encoded.contents[i];
         if (c.connectivity.empty()) continue;
         if (Error e = packetize_connectivity(out.encoded.info, uint16_t(i), c.triangle_count, c.connectivity, stream_id,
-                                             0, connectivity);
+                                             0, connectivity, uint32_t(c.carried.size()));
             e != Error::Ok) {
             error = std::string("could not cut the exact layer into packets: ") + error_name(e);
             return false;
@@ -109,14 +113,16 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
     }
     // Its repair symbols (spec 19.5): ceil(ratio * k) rows where the repair ratio is above 0 and k <= 127.
     if (options.repair_ratio > 0) {
-        const size_t symbol = out.encoded.info.packet_size - kPacketOverhead - kConnectivityHeaderSize;
         for (size_t i = 0; i < out.encoded.contents.size(); ++i) {
             const ObjectContent& c = out.encoded.contents[i];
+            const size_t symbol = out.encoded.info.packet_size - kPacketOverhead -
+                                  (c.carried.empty() ? kConnectivityHeaderSize : kExactMeshHeaderSize);
             const size_t k = (c.connectivity.size() + symbol - 1) / symbol;
             if (c.connectivity.empty() || k > 127) continue;
             const size_t count = size_t(std::ceil(options.repair_ratio * double(k) - 1e-9));
             if (Error e = packetize_connectivity_repairs(out.encoded.info, uint16_t(i), c.triangle_count, c.connectivity,
-                                                         std::min(count, 255 - k), stream_id, 0, connectivity);
+                                                         std::min(count, 255 - k), stream_id, 0, connectivity,
+                                                         uint32_t(c.carried.size()));
                 e != Error::Ok) {
                 error = std::string("could not make the exact layer's repair packets: ") + error_name(e);
                 return false;

@@ -41,6 +41,7 @@ struct EncodeArgs {
     double repair = EncodeOptions{}.repair_ratio;
     bool no_point_map = false;
     double normal_tolerance = EncodeOptions{}.normal_tolerance;
+    double point_share = EncodeOptions{}.point_share;
 };
 
 // The content id the stream's STREAM_INFO carries (spec 5.4).
@@ -81,6 +82,7 @@ int run_encode(const EncodeArgs& a) {
     options.repair_ratio = a.repair;
     options.point_map = !a.no_point_map;
     options.normal_tolerance = a.normal_tolerance;
+    options.point_share = a.point_share;
     if (std::string why = check_encode_options(options); !why.empty()) return fail(kExitUsage, why);
 
     // A glTF keeps its scene: each distinct primitive once in its mesh's frame, plus the SCENE,
@@ -176,6 +178,10 @@ int run_encode(const EncodeArgs& a) {
                         "%.2f as POINTS\n",
                         i, unsigned(r.map_level), double(r.map_bytes + r.mapped_point_bytes) / double(r.points),
                         double(r.map_bytes) / double(r.points), double(r.plain_point_bytes) / double(r.points));
+        if (r.carried > 0)
+            std::printf("object %zu: %u of its vertices carried by the exact layer (format 1.11), %u sent as points; "
+                        "exact layer %u bytes\n",
+                        i, r.carried, r.points, r.connectivity_bytes);
         if (r.surface_normals)
             std::printf("object %zu: surface normals (format 1.8): %u of %u normals sent, the others within %g degrees "
                         "of the surface's\n",
@@ -240,6 +246,13 @@ const RegisterCommand kRegisterEncode({10, [](CLI::App& app, int& exit_code) {
                     "degrees (0..90): an object with normals and an exact layer sends only the normals further than "
                     "this from its surface's, in NORMALS packets (format 1.8); 0 sends every normal in the point "
                     "records, readable with normals by decoders before format 1.8")
+        ->capture_default_str();
+    cmd->add_option("--point-share", args->point_share,
+                    "share of an object's vertices sent as points (0..1); the exact layer carries the others, coded "
+                    "against its triangles (format 1.11): a smaller stream and the exact model sooner, fewer points "
+                    "for the picture before it. Objects with normals, skins or morph targets keep every vertex a "
+                    "point; 1: every vertex a point, readable exact by decoders before format 1.11")
+        ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
     cmd->add_option("--sign", args->sign, "sign the stream with this secret key (NAME.key from `ellicast keygen`)");
     cmd->add_flag("--allow-external-paths", args->allow_external_paths,

@@ -20,6 +20,9 @@ struct Mesh {
     std::vector<std::array<float, 4>> colors;        // COLOR_0, linear RGBA in [0,1]
     bool colors_have_alpha = false;                  // COLOR_0 was RGBA rather than RGB
     bool is_point_set = false;                       // a point primitive: no surface to rebuild
+    // Data will be attached to its points by index (skin weights, morph targets): the encoder then
+    // sends every vertex as a point and carries none in the exact layer (format 1.11, spec 27.3).
+    bool per_point_data = false;
 
     bool has_normals() const { return !normals.empty(); }
     bool has_texcoords() const { return !texcoords.empty(); }

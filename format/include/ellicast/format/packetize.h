@@ -23,6 +23,9 @@ struct ObjectContent {
     // packetize_connectivity, not by packetize_stream.
     std::vector<uint8_t> connectivity;
     uint32_t triangle_count = 0;
+    // Format 1.11 (spec 27): the vertices the exact layer carries, in the order it introduces them
+    // (then `connectivity` is the coded mesh, sent in EXACT_MESH packets); empty otherwise.
+    std::vector<QuantizedPoint> carried;
     // Format 1.8 (spec 24): for an object with surface normals, one entry per point (sent by
     // packetize_stream in NORMALS packets); empty otherwise.
     std::vector<NormalEntry> normals;
