@@ -171,8 +171,11 @@ TEST_CASE("carried vertices under 50% loss: repair brings the coded mesh and the
 
 TEST_CASE("hostile coded meshes: random bytes with any carried count end in bounded time, as a valid mesh or "
           "unusable") {
-    std::vector<std::array<uint32_t, 3>> positions;
-    for (uint32_t i = 0; i < 120; ++i) positions.push_back({(i * 7919) % 16000, (i * 104729) % 16001, (i * 31) % 16007});
+    std::vector<QuantizedPoint> positions(120);
+    for (uint32_t i = 0; i < 120; ++i) {
+        positions[i].position = {(i * 7919) % 16000, (i * 104729) % 16001, (i * 31) % 16007};
+        positions[i].texcoord = {i * 30, 4095 - i * 30};
+    }
     StreamInfo info;
     info.position_bits = 14;
     ObjectInfo object;
@@ -200,8 +203,10 @@ TEST_CASE("hostile coded meshes: random bytes with any carried count end in boun
             CHECK((t[0] < total && t[1] < total && t[2] < total));
             CHECK((t[0] != t[1] && t[1] != t[2] && t[0] != t[2]));
         }
-        for (const QuantizedPoint& q : carried)
+        for (const QuantizedPoint& q : carried) {
             for (uint32_t c : q.position) CHECK(c < (1u << 14));
+            for (uint32_t c : q.texcoord) CHECK(c < (1u << info.texcoord_bits));
+        }
     }
     MESSAGE(unusable << " of 400 random coded meshes unusable, in "
                      << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s");
@@ -229,8 +234,7 @@ TEST_CASE("hostile coded meshes: random bytes with any carried count end in boun
         std::vector<Triangle> sent;
         std::vector<uint32_t> order;
         REQUIRE(encode_exact_mesh(vertices, n, grid, info, object, coded, sent, order) == Error::Ok);
-        std::vector<std::array<uint32_t, 3>> points;
-        for (size_t i = 0; i < n; ++i) points.push_back(vertices[i].position);
+        const std::vector<QuantizedPoint> points(vertices.begin(), vertices.begin() + long(n));
         std::vector<Triangle> back;
         std::vector<QuantizedPoint> carried;
         std::string why;

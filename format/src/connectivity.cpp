@@ -36,10 +36,14 @@ struct Contexts {
     // A displacement's bit length, by axis and the bit length of the axis before (x: set 0; y, z:
     // 1 + min(c, 8)).
     std::array<std::array<uint16_t, kLengths>, 10> length;
+    // A carried vertex's texture coordinates, coded as its position is (their own sets and sign).
+    uint16_t uv_sign = 1024;
+    std::array<std::array<uint16_t, kLengths>, 10> uv_length;
     Contexts() {
         rank.fill(1024);
         fresh.fill(1024);
         for (auto& set : length) set.fill(1024);
+        for (auto& set : uv_length) set.fill(1024);
     }
 };
 
@@ -480,14 +484,18 @@ Error exact_layer(const ReceivedStream& stream, size_t object, std::vector<Trian
         why = std::to_string(o.points.size()) + " of its " + std::to_string(o.info->point_count) + " points arrived";
         return Error::Truncated;
     }
-    std::vector<std::array<uint32_t, 3>> positions;
-    positions.reserve(o.points.size());
-    for (const auto& [index, p] : o.points) positions.push_back(p.position);
     carried.clear();
-    if (!o.connectivity->mesh)
+    if (!o.connectivity->mesh) {
+        std::vector<std::array<uint32_t, 3>> positions;
+        positions.reserve(o.points.size());
+        for (const auto& [index, p] : o.points) positions.push_back(p.position);
         return decode_connectivity(o.connectivity->coded, o.connectivity->triangle_count, positions, out, why);
+    }
+    std::vector<QuantizedPoint> points;
+    points.reserve(o.points.size());
+    for (const auto& [index, p] : o.points) points.push_back(p);
     return decode_exact_mesh(o.connectivity->coded, o.connectivity->triangle_count, o.connectivity->carried_count,
-                             positions, *stream.info(), *o.info, out, carried, why);
+                             points, *stream.info(), *o.info, out, carried, why);
 }
 
 Error exact_triangles(const ReceivedStream& stream, size_t object, std::vector<Triangle>& out, std::string& why) {
@@ -497,25 +505,15 @@ Error exact_triangles(const ReceivedStream& stream, size_t object, std::vector<T
 
 namespace {
 
-// The fields of a carried vertex after its position (spec 27.2: a POINTS record's, in its order).
-std::vector<int> attribute_widths(const StreamInfo& info, const ObjectInfo& object) {
+// The direct fields of a carried vertex (spec 27.2): its normal, then its colour; its texture
+// coordinates, between them in a POINTS record, travel as a displacement.
+std::vector<int> direct_widths(const StreamInfo& info, const ObjectInfo& object, bool normal) {
     std::vector<int> w;
-    if (object.has(kAttrNormal)) w.insert(w.end(), 2, info.normal_bits);
-    if (object.has(kAttrTexcoord)) w.insert(w.end(), 2, info.texcoord_bits);
-    if (object.has(kAttrColor)) w.insert(w.end(), object.has(kAttrColorAlpha) ? 4 : 3, info.color_bits);
+    if (normal && object.has(kAttrNormal)) w.insert(w.end(), 2, info.normal_bits);
+    if (!normal && object.has(kAttrColor)) w.insert(w.end(), object.has(kAttrColorAlpha) ? 4 : 3, info.color_bits);
     return w;
 }
-std::vector<uint32_t*> attribute_fields(QuantizedPoint& q, const ObjectInfo& object) {
-    std::vector<uint32_t*> f;
-    f.reserve(8);
-    auto add = [&](uint32_t* values, int count) {
-        for (int k = 0; k < count; ++k) f.push_back(values + k);
-    };
-    if (object.has(kAttrNormal)) add(q.normal.data(), 2);
-    if (object.has(kAttrTexcoord)) add(q.texcoord.data(), 2);
-    if (object.has(kAttrColor)) add(q.color.data(), object.has(kAttrColorAlpha) ? 4 : 3);
-    return f;
-}
+uint32_t* direct_fields(QuantizedPoint& q, bool normal) { return normal ? q.normal.data() : q.color.data(); }
 
 // The neighbour lists C(v) of spec 27.2: per vertex, at most 16 carried vertices joined to it.
 class CarriedNeighbours {
@@ -587,49 +585,88 @@ int bit_length(uint64_t u) {
     return c;
 }
 
-void encode_displacement(RangeEncoder& rc, Contexts& ctx, const std::array<uint32_t, 3>& q, const std::array<int64_t, 3>& r) {
+using LengthSets = std::array<std::array<uint16_t, kLengths>, 10>;
+
+// Spec 27.2: `dims` values as displacements from `r`, with the length sets and sign given.
+void encode_displacement(RangeEncoder& rc, LengthSets& lengths, uint16_t& sign, const uint32_t* q, const int64_t* r,
+                         int dims) {
     size_t set = 0;
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < dims; ++k) {
         const int64_t d = int64_t(q[k]) - r[k];
         const uint64_t u = uint64_t(d < 0 ? -d : d);
         const int c = bit_length(u);  // < 18: |d| < 2^17 (spec 27.2)
-        auto& length = ctx.length[set];
+        auto& length = lengths[set];
         for (int i = 0; i < c; ++i) rc.bit(length[i], 0);
         rc.bit(length[c], 1);
         set = 1 + std::min(c, 8);
         if (c == 0) continue;
-        rc.bit(ctx.sign, d < 0 ? 1 : 0);
+        rc.bit(sign, d < 0 ? 1 : 0);
         if (c > 1) rc.direct(uint32_t(u - (uint64_t(1) << (c - 1))), c - 1);
     }
 }
-
-// Spec 27.2: a fresh vertex's position (false when unusable) and attributes.
-bool decode_fresh(RangeDecoder& rc, Contexts& ctx, const std::array<int64_t, 3>& r, int position_bits,
-                  const std::vector<int>& widths, const ObjectInfo& object, QuantizedPoint& q) {
-    q = QuantizedPoint{};
+bool decode_displacement(RangeDecoder& rc, LengthSets& lengths, uint16_t& sign, uint32_t* q, const int64_t* r, int dims,
+                         int bits) {
     size_t set = 0;
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < dims; ++k) {
         int c = -1;
         for (int i = 0; i < kLengths && c < 0; ++i)
-            if (rc.bit(ctx.length[set][i])) c = i;
+            if (rc.bit(lengths[set][i])) c = i;
         if (c < 0) return false;
         set = 1 + size_t(std::min(c, 8));
         int64_t d = 0;
         if (c > 0) {
-            const bool negative = rc.bit(ctx.sign) != 0;
+            const bool negative = rc.bit(sign) != 0;
             const int64_t u = (int64_t(1) << (c - 1)) + int64_t(c > 1 ? rc.direct(c - 1) : 0);
             d = negative ? -u : u;
         }
         const int64_t v = r[k] + d;
-        if (v < 0 || v >= (int64_t(1) << position_bits)) return false;
-        q.position[k] = uint32_t(v);
+        if (v < 0 || v >= (int64_t(1) << bits)) return false;
+        q[k] = uint32_t(v);
     }
-    const std::vector<uint32_t*> fields = attribute_fields(q, object);
-    for (size_t f = 0; f < fields.size(); ++f) *fields[f] = rc.direct(widths[f]);
     return true;
 }
 
-std::array<int64_t, 3> as_prediction(const std::array<uint32_t, 3>& p) { return {p[0], p[1], p[2]}; }
+// A fresh vertex's predictions (spec 27.2): position and texture coordinates.
+struct Prediction {
+    std::array<int64_t, 3> position{};
+    std::array<int64_t, 2> texcoord{};
+};
+
+// Spec 27.2: a fresh vertex's position and attributes; false when unusable (outside the frame or the
+// texture-coordinate range).
+bool decode_fresh(RangeDecoder& rc, Contexts& ctx, const Prediction& r, const StreamInfo& info, const ObjectInfo& object,
+                  QuantizedPoint& q) {
+    q = QuantizedPoint{};
+    if (!decode_displacement(rc, ctx.length, ctx.sign, q.position.data(), r.position.data(), 3, info.position_bits))
+        return false;
+    for (const bool normal : {true, false}) {
+        const std::vector<int> widths = direct_widths(info, object, normal);
+        for (size_t f = 0; f < widths.size(); ++f) direct_fields(q, normal)[f] = rc.direct(widths[f]);
+        if (normal && object.has(kAttrTexcoord) &&
+            !decode_displacement(rc, ctx.uv_length, ctx.uv_sign, q.texcoord.data(), r.texcoord.data(), 2,
+                                 info.texcoord_bits))
+            return false;
+    }
+    return true;
+}
+
+// The prediction at a gate (a, b, o) and at a seed's corner (spec 27.2).
+Prediction gate_prediction(const std::vector<std::array<uint32_t, 3>>& p, const std::vector<std::array<uint32_t, 2>>& uv,
+                           const Gate& g) {
+    Prediction r;
+    for (int k = 0; k < 3; ++k) r.position[k] = int64_t(p[g.a][k]) + int64_t(p[g.b][k]) - int64_t(p[g.o][k]);
+    for (int k = 0; k < 2; ++k) r.texcoord[k] = int64_t(uv[g.a][k]) + int64_t(uv[g.b][k]) - int64_t(uv[g.o][k]);
+    return r;
+}
+Prediction seed_prediction(const StreamInfo& info, const std::vector<std::array<uint32_t, 3>>& p,
+                           const std::vector<std::array<uint32_t, 2>>& uv, int corner, uint32_t previous) {
+    Prediction r;
+    for (int k = 0; k < 3; ++k)
+        r.position[k] = corner == 0 ? int64_t(1) << (info.position_bits - 1) : int64_t(p[previous][k]);
+    for (int k = 0; k < 2; ++k)
+        r.texcoord[k] = corner == 0 ? int64_t(1) << (info.texcoord_bits - 1) : int64_t(uv[previous][k]);
+    return r;
+}
 
 }  // namespace
 
@@ -652,12 +689,15 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
     std::vector<bool> done(input.size(), false);
     size_t next_seed = 0;
     const int w = index_bits(total);
-    const std::vector<int> widths = attribute_widths(info, object);
     // Decoder numbering: points keep theirs, carried vertices n, n + 1, ... as introduced.
     std::vector<uint32_t> id(total, UINT32_MAX);
     for (uint32_t i = 0; i < n; ++i) id[i] = i;
     std::vector<std::array<uint32_t, 3>> positions(total);
-    for (size_t i = 0; i < n; ++i) positions[i] = vertices[i].position;
+    std::vector<std::array<uint32_t, 2>> texcoords(total);
+    for (size_t i = 0; i < n; ++i) {
+        positions[i] = vertices[i].position;
+        texcoords[i] = vertices[i].texcoord;
+    }
     const std::vector<std::array<uint32_t, 3>> point_positions(positions.begin(), positions.begin() + long(n));
     const KdTree tree(point_positions);
     CarriedNeighbours lists(total, n);
@@ -668,14 +708,19 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
     carried_order.clear();
     uint32_t m = 0;
     // A carried vertex not yet introduced: the bit fresh 1, its displacement and attributes.
-    auto introduce = [&](uint32_t v, const std::array<int64_t, 3>& r, size_t fresh_context) {
+    auto introduce = [&](uint32_t v, const Prediction& r, size_t fresh_context) {
         rc.bit(ctx.fresh[fresh_context], 1);
-        encode_displacement(rc, ctx, vertices[v].position, r);
         QuantizedPoint q = vertices[v];
-        const std::vector<uint32_t*> fields = attribute_fields(q, object);
-        for (size_t f = 0; f < fields.size(); ++f) rc.direct(*fields[f], widths[f]);
+        encode_displacement(rc, ctx.length, ctx.sign, q.position.data(), r.position.data(), 3);
+        for (const bool normal : {true, false}) {
+            const std::vector<int> widths = direct_widths(info, object, normal);
+            for (size_t f = 0; f < widths.size(); ++f) rc.direct(direct_fields(q, normal)[f], widths[f]);
+            if (normal && object.has(kAttrTexcoord))
+                encode_displacement(rc, ctx.uv_length, ctx.uv_sign, q.texcoord.data(), r.texcoord.data(), 2);
+        }
         id[v] = uint32_t(n) + m++;
-        positions[id[v]] = vertices[v].position;
+        positions[id[v]] = q.position;
+        texcoords[id[v]] = q.texcoord;
         carried_order.push_back(v);
     };
     while (tr.triangles.size() < input.size()) {
@@ -686,12 +731,7 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
             for (int k = 0; k < 3; ++k) {
                 const uint32_t v = t[k];
                 if (id[v] == UINT32_MAX) {
-                    const std::array<int64_t, 3> r =
-                        k == 0 ? std::array<int64_t, 3>{int64_t(1) << (info.position_bits - 1),
-                                                        int64_t(1) << (info.position_bits - 1),
-                                                        int64_t(1) << (info.position_bits - 1)}
-                               : as_prediction(positions[corner[k - 1]]);
-                    introduce(v, r, 0);
+                    introduce(v, seed_prediction(info, positions, texcoords, k, k > 0 ? corner[k - 1] : 0), 0);
                 } else {
                     if (m < carried) rc.bit(ctx.fresh[0], 0);
                     rc.direct(id[v], w);
@@ -725,7 +765,7 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
         lists.local(g.a, g.b, r, positions, near);
         const size_t context = fresh_context(near.size());
         if (id[x] == UINT32_MAX) {
-            introduce(x, r, context);
+            introduce(x, gate_prediction(positions, texcoords, g), context);
             take_triangle(tr, lists, g.b, g.a, id[x]);
             continue;
         }
@@ -749,20 +789,25 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
 }
 
 Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count, uint32_t carried_count,
-                        const std::vector<std::array<uint32_t, 3>>& point_positions, const StreamInfo& info,
-                        const ObjectInfo& object, std::vector<Triangle>& out, std::vector<QuantizedPoint>& carried,
-                        std::string& why) {
-    const size_t n = point_positions.size();
+                        const std::vector<QuantizedPoint>& points, const StreamInfo& info, const ObjectInfo& object,
+                        std::vector<Triangle>& out, std::vector<QuantizedPoint>& carried, std::string& why) {
+    const size_t n = points.size();
     const size_t total = n + carried_count;
     if (total < 3 || triangle_count == 0 || triangle_count > 8 * uint64_t(total) || carried_count > kMaxCarriedVertices) {
         why = "the triangle count does not fit the object's vertices";
         return Error::MalformedPayload;
     }
     const int w = index_bits(total);
-    const std::vector<int> widths = attribute_widths(info, object);
-    const KdTree tree(point_positions);
-    std::vector<std::array<uint32_t, 3>> positions(point_positions);
+    std::vector<std::array<uint32_t, 3>> positions;
+    std::vector<std::array<uint32_t, 2>> texcoords;
     positions.reserve(total);
+    texcoords.reserve(total);
+    for (const QuantizedPoint& q : points) {
+        positions.push_back(q.position);
+        texcoords.push_back(q.texcoord);
+    }
+    const std::vector<std::array<uint32_t, 3>> point_positions(positions);
+    const KdTree tree(point_positions);
     CarriedNeighbours lists(total, n);
     RangeDecoder rc(coded);
     Contexts ctx;
@@ -770,14 +815,16 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
     tr.triangles.reserve(triangle_count);
     std::vector<QuantizedPoint> fresh_vertices;
     std::vector<std::pair<uint64_t, uint32_t>> best, near;
-    auto fresh = [&](const std::array<int64_t, 3>& r, uint32_t& v) {
+    auto fresh = [&](const Prediction& r, uint32_t& v) {
         QuantizedPoint q;
-        if (!decode_fresh(rc, ctx, r, info.position_bits, widths, object, q)) {
-            why = "carried vertex " + std::to_string(n + fresh_vertices.size()) + " lies outside the frame";
+        if (!decode_fresh(rc, ctx, r, info, object, q)) {
+            why = "carried vertex " + std::to_string(n + fresh_vertices.size()) +
+                  " lies outside the frame or the texture-coordinate range, or its displacement has no length";
             return false;
         }
         v = uint32_t(n + fresh_vertices.size());
         positions.push_back(q.position);
+        texcoords.push_back(q.texcoord);
         fresh_vertices.push_back(q);
         return true;
     };
@@ -788,12 +835,8 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
             std::array<uint32_t, 3> corner{};
             for (int k = 0; k < 3; ++k) {
                 if (fresh_vertices.size() < carried_count && rc.bit(ctx.fresh[0])) {
-                    const std::array<int64_t, 3> r =
-                        k == 0 ? std::array<int64_t, 3>{int64_t(1) << (info.position_bits - 1),
-                                                        int64_t(1) << (info.position_bits - 1),
-                                                        int64_t(1) << (info.position_bits - 1)}
-                               : as_prediction(positions[corner[k - 1]]);
-                    if (!fresh(r, corner[k])) return Error::MalformedPayload;
+                    if (!fresh(seed_prediction(info, positions, texcoords, k, k > 0 ? corner[k - 1] : 0), corner[k]))
+                        return Error::MalformedPayload;
                     continue;
                 }
                 corner[k] = rc.direct(w);
@@ -815,7 +858,7 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
         uint32_t x = 0;
         lists.local(g.a, g.b, r, positions, near);
         if (may_be_fresh && rc.bit(ctx.fresh[fresh_context(near.size())])) {
-            if (!fresh(r, x)) return Error::MalformedPayload;
+            if (!fresh(gate_prediction(positions, texcoords, g), x)) return Error::MalformedPayload;
             take_triangle(tr, lists, g.b, g.a, x);
             continue;
         }
@@ -868,8 +911,9 @@ Error decode_connectivity(std::span<const uint8_t> coded, uint32_t triangle_coun
         why = "the triangle count does not fit the object's points";
         return Error::MalformedPayload;
     }
-    std::vector<QuantizedPoint> carried;
-    return decode_exact_mesh(coded, triangle_count, 0, positions, StreamInfo{}, ObjectInfo{}, out, carried, why);
+    std::vector<QuantizedPoint> points(n), carried;
+    for (size_t i = 0; i < n; ++i) points[i].position = positions[i];
+    return decode_exact_mesh(coded, triangle_count, 0, points, StreamInfo{}, ObjectInfo{}, out, carried, why);
 }
 
 }  // namespace ellicast

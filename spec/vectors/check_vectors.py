@@ -2461,9 +2461,10 @@ class RangeDecoder:
 # The contexts of spec 19.3 and 27.2, one list per object, each probability starting at 1024: `none`, `rank 1` ..
 # `rank 16` (19.3), then (27.2) `fresh 0` .. `fresh 2` (by the gate's local candidates: none, one, more; a seed's
 # corners `fresh 0`), ten sets of `length 0` .. `length 17` (set 0 for a displacement's x, 1 + min(c', 8) for y and
-# z, c' the bit length read for the axis before), `sign`.
-CTX_NONE, CTX_RANK, CTX_FRESH, CTX_LENGTH, CTX_SIGN = 0, 1, 17, 20, 200
-CTX_COUNT = 201
+# z, c' the bit length read for the axis before), `sign`, and for texture coordinates ten sets of `uv length 0` ..
+# `uv length 17` and `uv sign`.
+CTX_NONE, CTX_RANK, CTX_FRESH, CTX_LENGTH, CTX_SIGN, CTX_UV_LENGTH, CTX_UV_SIGN = 0, 1, 17, 20, 200, 201, 381
+CTX_COUNT = 382
 
 
 class Unusable(Exception):
@@ -2471,11 +2472,12 @@ class Unusable(Exception):
 
 
 def decode_connectivity(coded, triangle_count, positions, carried_count=0, position_bits=16, attribute_widths=(),
-                        stats=None):
+                        stats=None, texcoords=None, attributes=0):
     """Spec 27.2 (EXACT_MESH), of which spec 19.2 (CONNECTIVITY) is the case carried_count M = 0: no `fresh` bit is
     read, every neighbour list stays empty, no vertex is carried, and w is the bit count of n - 1. `positions`: the quantized positions
     of the points 0 .. n - 1; `position_bits`: the stream's P; `attribute_widths`: the bit widths of the fields of a
-    POINTS record after the position (spec 7.1). Returns (T, carried), the exact triangle list over vertices (points
+    POINTS record after the position (spec 7.1), and `attributes` the object's attribute bits; `texcoords`: the
+    points' quantized texture coordinates (None: the object has none). Returns (T, carried), the exact triangle list over vertices (points
     0 .. n - 1, then carried vertices n .. n + M - 1) and each carried vertex's integers (position, then attributes,
     as a point's), or None when the connectivity is unusable. The candidates of a gate (the points and its local
     candidates) are found by sorting them all (fine for small objects). `stats`, when given, counts what the decode
@@ -2485,6 +2487,7 @@ def decode_connectivity(coded, triangle_count, positions, carried_count=0, posit
     rc = RangeDecoder(coded)
     probs = [1024] * CTX_COUNT
     P = [list(p) for p in positions]  # the quantized position of every known vertex
+    TC = [list(t) for t in texcoords] if texcoords is not None else [[0, 0] for _ in positions]  # and texcoords
     carried = []
     C = {}  # vertex -> its neighbour list C(v) (27.2), absent while empty
     T, D, Q = [], set(), []
@@ -2502,29 +2505,42 @@ def decode_connectivity(coded, triangle_count, positions, carried_count=0, posit
                     if t >= n and t not in lst and len(lst) < 16:
                         lst.append(t)
 
-    def displacement():
+    def displacement(length_base, sign, components):
         d = []
-        lengths = CTX_LENGTH
-        for _ in range(3):
+        lengths = length_base
+        for _ in range(components):
             c = next((c for c in range(18) if rc.bit(probs, lengths + c)), None)
             if c is None:
                 raise Unusable
-            lengths = CTX_LENGTH + 18 * (1 + min(c, 8))
+            lengths = length_base + 18 * (1 + min(c, 8))
             if c == 0:
                 d.append(0)
                 continue
-            negative = rc.bit(probs, CTX_SIGN)
+            negative = rc.bit(probs, sign)
             v = (1 << (c - 1)) + rc.direct(c - 1)
             d.append(-v if negative else v)
         return d
 
-    def fresh(R):
-        d = displacement()
+    def fresh(R, U):
+        d = displacement(CTX_LENGTH, CTX_SIGN, 3)
         p = [R[k] + d[k] for k in range(3)]
         if any(not 0 <= v < 1 << position_bits for v in p):
             raise Unusable
-        carried.append(p + [rc.direct(b) for b in attribute_widths])
+        fields, uv, widths = [], [0, 0], list(attribute_widths)
+        if attributes & 1:  # the normal: direct bits
+            fields += [rc.direct(b) for b in widths[:2]]
+            widths = widths[2:]
+        if attributes & 2:  # the texture coordinates: a displacement from U
+            e = displacement(CTX_UV_LENGTH, CTX_UV_SIGN, 2)
+            uv = [U[k] + e[k] for k in range(2)]
+            if any(not 0 <= v < 1 << widths[0] for v in uv):
+                raise Unusable
+            fields += uv
+            widths = widths[2:]
+        fields += [rc.direct(b) for b in widths]  # the colour: direct bits
+        carried.append(p + fields)
         P.append(p)
+        TC.append(uv)
         count("fresh")
         return n + len(carried) - 1
 
@@ -2535,8 +2551,12 @@ def decode_connectivity(coded, triangle_count, positions, carried_count=0, posit
                 corners = []
                 for k in range(3):
                     if len(carried) < M and rc.bit(probs, CTX_FRESH):  # `fresh 0`
-                        R = P[corners[-1]] if corners else [1 << (position_bits - 1)] * 3
-                        corners.append(fresh(R))
+                        if corners:
+                            R, U = P[corners[-1]], TC[corners[-1]]
+                        else:
+                            R = [1 << (position_bits - 1)] * 3
+                            U = [1 << (attribute_widths[2 if attributes & 1 else 0] - 1)] * 2 if attributes & 2 else [0, 0]
+                        corners.append(fresh(R, U))
                     else:
                         x = rc.direct(w)
                         if x >= n + len(carried) or x in corners:
@@ -2560,7 +2580,7 @@ def decode_connectivity(coded, triangle_count, positions, carried_count=0, posit
                     local.append(v)
             local.sort(key=lambda v: (dist(v, R), v))
             if len(carried) < M and rc.bit(probs, CTX_FRESH + min(len(local), 2)):
-                take(b, a, fresh(R))
+                take(b, a, fresh(R, [TC[a][k] + TC[b][k] - TC[o][k] for k in range(2)]))
                 continue
             rank = next((r for r in range(1, 17) if rc.bit(probs, CTX_RANK + r - 1)), 0)
             if rank:
@@ -2593,7 +2613,13 @@ def exact_layer(obj, info):
     count, carried, _, _ = c["desc"]
     positions = [obj["points"][i][:3] for i in range(obj["info"]["point_count"])]
     widths = record_widths(info, dict(obj["info"], map_level=0))[3:]  # a POINTS record's fields after the position
-    return decode_connectivity(c["coded"], count, positions, carried, info["position_bits"], widths)
+    a = obj["info"]["attributes"]
+    texcoords = None
+    if a & 2:
+        at = 3 + (2 if a & 1 else 0)
+        texcoords = [obj["points"][i][at:at + 2] for i in range(obj["info"]["point_count"])]
+    return decode_connectivity(c["coded"], count, positions, carried, info["position_bits"], widths,
+                               texcoords=texcoords, attributes=a)
 
 
 def normals_json(obj, info):

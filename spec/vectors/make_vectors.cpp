@@ -7834,7 +7834,7 @@ void exact_mesh_vectors(Writer& w) {
             "format 1.11, vertices carried by the exact layer (spec 27): " + what +
                 "; objects 0 and 1 announce an exact layer (flags bit 8) sent in EXACT_MESH packets after the points, "
                 "whose coded mesh introduces each carried vertex (position as a displacement from the parallelogram "
-                "prediction, normal and texture coordinates as direct bits) where a triangle first uses it; every "
+                "prediction, normal as direct bits, texture coordinates as a displacement from the prediction over the gate's) where a triangle first uses it; every "
                 "object exact, `connectivity` listing `mesh`, `carried_count`, the triangles over points and carried "
                 "vertices, and the carried vertices",
             good);

@@ -43,12 +43,12 @@ Error decode_connectivity(std::span<const uint8_t> coded, uint32_t triangle_coun
 Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, const std::vector<Triangle>& triangles,
                         const StreamInfo& info, const ObjectInfo& object, std::vector<uint8_t>& coded,
                         std::vector<Triangle>& sent, std::vector<uint32_t>& carried_order);
-// Decodes `triangle_count` triangles and `carried_count` carried vertices over the points at
-// `positions` (spec 27.2); MalformedPayload with `why` when the mesh is unusable.
+// Decodes `triangle_count` triangles and `carried_count` carried vertices over the object's `points`
+// (index order; their positions and texture coordinates predict, spec 27.2); MalformedPayload with
+// `why` when the mesh is unusable.
 Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count, uint32_t carried_count,
-                        const std::vector<std::array<uint32_t, 3>>& positions, const StreamInfo& info,
-                        const ObjectInfo& object, std::vector<Triangle>& out, std::vector<QuantizedPoint>& carried,
-                        std::string& why);
+                        const std::vector<QuantizedPoint>& points, const StreamInfo& info, const ObjectInfo& object,
+                        std::vector<Triangle>& out, std::vector<QuantizedPoint>& carried, std::string& why);
 
 inline constexpr size_t kConnectivityHeaderSize = 16;
 inline constexpr size_t kExactMeshHeaderSize = 20;        // spec 27.1: carried_count after triangle_count
