@@ -89,12 +89,16 @@ EllicastScheme::EllicastScheme(const Mesh& mesh, const EllicastSettings& setting
         }
     }
 
-    // Format 1.3: the exact layer (spec 19), as encode_asset sends it: its pieces, and with repair its
-    // repair symbols, any k of which give it back. Complete then means the exact model.
+    // Format 1.3: the exact layer (spec 19; 1.11's coded mesh, spec 27), as encode_asset sends it: its
+    // pieces, and with repair its repair symbols, any k of which give it back. Complete then means the
+    // exact model.
     if (const ObjectContent& content = encoded.contents[0]; !content.connectivity.empty()) {
         state_->exact_layer = true;
         std::vector<std::vector<uint8_t>> pieces, repairs;
-        if (Error e = packetize_connectivity(encoded.info, 0, content.triangle_count, content.connectivity, 1, 0, pieces);
+        // Format 1.11: with carried vertices, EXACT_MESH pieces and repair symbols (spec 27).
+        const uint32_t carried = uint32_t(content.carried.size());
+        if (Error e = packetize_connectivity(encoded.info, 0, content.triangle_count, content.connectivity, 1, 0, pieces,
+                                             carried);
             e != Error::Ok)
             throw CompareError(std::string("ellicast exact layer: ") + error_name(e));
         const size_t k = pieces.size();
@@ -102,7 +106,7 @@ EllicastScheme::EllicastScheme(const Mesh& mesh, const EllicastSettings& setting
         if (settings.repair_ratio > 0 && k <= 127) {
             const size_t count = std::min(size_t(std::ceil(settings.repair_ratio * double(k) - 1e-9)), 255 - k);
             if (Error e = packetize_connectivity_repairs(encoded.info, 0, content.triangle_count, content.connectivity,
-                                                         count, 1, 0, repairs);
+                                                         count, 1, 0, repairs, carried);
                 e != Error::Ok)
                 throw CompareError(std::string("ellicast exact layer repair: ") + error_name(e));
             id = static_cast<int32_t>(state_->block_needed.size());

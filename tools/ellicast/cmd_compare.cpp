@@ -38,6 +38,7 @@ struct CompareArgs {
     int packet_size = 1200;
     uint32_t ellipsoids = 400;
     double base_share = 0.15;
+    double point_share = 1.0;  // format 1.11: the share of the vertices sent as points
     std::string fec_redundancy = "auto";
     size_t samples = 20000;
     double hole_threshold = 0.5;
@@ -64,7 +65,8 @@ std::string reproduce_command(const CompareArgs& a) {
     s << "ellicast compare " << a.model << " --loss " << list(a.loss) << " --burst " << list(a.burst) << " --trials "
       << a.trials << " --curve-trials " << a.curve_trials << " --seed " << a.seed << " --steps-per-cycle " << a.steps
       << " --horizon " << a.horizon << " --long-horizon " << a.long_horizon << " --long-from " << a.long_from
-      << " --packet-size " << a.packet_size << " --ellipsoids " << a.ellipsoids << " --base-share " << a.base_share
+      << " --packet-size " << a.packet_size << " --ellipsoids " << a.ellipsoids << " --point-share " << a.point_share
+      << " --base-share " << a.base_share
       << " --rs-redundancy " << a.fec_redundancy << " --mds-block-data " << a.mds_block_data << " --draco-speed "
       << a.draco_speed << " --samples " << a.samples << " --hole-threshold "
       << a.hole_threshold << " -o " << a.output;
@@ -99,6 +101,7 @@ int run_compare(const CompareArgs& a) {
     for (double b : a.burst)
         if (!(b >= 0 && b <= 1e6)) return fail(kExitUsage, "--burst " + text(b) + " is outside [0, 1e6]");
     if (!(a.base_share > 0 && a.base_share < 1)) return fail(kExitUsage, "--base-share must be in (0, 1)");
+    if (!(a.point_share >= 0 && a.point_share <= 1)) return fail(kExitUsage, "--point-share must be in [0, 1]");
     if (a.samples < 1000 || a.samples > 5000000) return fail(kExitUsage, "--samples must be in [1000, 5000000]");
     if (!(a.hole_threshold > 0 && a.hole_threshold < 100)) return fail(kExitUsage, "--hole-threshold must be in (0, 100)");
     double fec_redundancy = -1;
@@ -132,6 +135,7 @@ int run_compare(const CompareArgs& a) {
     try {
         EllicastSettings es;
         es.encode.max_ellipsoids = a.ellipsoids;
+        es.encode.point_share = a.point_share;
         es.encode.packet_size = uint16_t(a.packet_size);
         es.encode.seed = 1;
         es.encode.threads = a.threads;
@@ -315,6 +319,10 @@ RegisterCommand reg{{80, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--packet-size", args->packet_size, "Packet size in bytes, the same for every scheme")->capture_default_str();
     cmd->add_option("--ellipsoids", args->ellipsoids, "ellicast: ellipsoids at most")->capture_default_str();
     cmd->add_option("--base-share", args->base_share, "ellicast carousel: share of the cycle spent on the base")
+        ->capture_default_str();
+    cmd->add_option("--point-share", args->point_share,
+                    "ellicast: share of the vertices sent as points, the exact layer carrying the others (format 1.11; "
+                    "1: every vertex a point)")
         ->capture_default_str();
     cmd->add_option("--rs-redundancy", args->fec_redundancy,
                     "draco-rs-repeat: parity packets per data packet, or 'auto' (ellicast's repetition overhead)")
