@@ -94,13 +94,13 @@ def gltfpack_size(path, out, node_bin):
     return os.path.getsize(out + '.pack.glb') if r.returncode == 0 else None
 
 
-def measure(ellicast, node_bin, path, out):
+def measure(ellicast, node_bin, path, out, encode_args=(), draco=True):
     row = {'asset': path, 'in_bytes': input_bytes(path)}
-    row['draco'] = draco_size(path, out, node_bin)
-    row['gltfpack'] = gltfpack_size(path, out, node_bin)
+    row['draco'] = draco_size(path, out, node_bin) if draco else None
+    row['gltfpack'] = gltfpack_size(path, out, node_bin) if draco else None
     stream = out + '.ellc'
     start = time.monotonic()
-    r = run([ellicast, 'encode', '-q', path, '-o', stream])
+    r = run([ellicast, 'encode', '-q', *encode_args, path, '-o', stream])
     row['encode_s'] = round(time.monotonic() - start, 2)
     if r.returncode != 0:
         row['error'] = (r.stderr.strip().splitlines() or ['?'])[-1]

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reruns the benchmarks whose figures the README quotes and writes their output to bench/results/.
-#   bash bench/run.sh [encode|decode|quality|gallery|first-picture|full-quality|broadcast|compare|corpus|speed|live|region ...]   (default: encode decode quality)
+#   bash bench/run.sh [encode|decode|quality|gallery|first-picture|full-quality|broadcast|compare|corpus|point-share|speed|live|region ...]   (default: encode decode quality)
 # Speed figures are only meaningful on an otherwise idle machine: check `uptime` first.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -137,6 +137,16 @@ for what in "$@"; do
       python3 "$root/bench/corpus_bytes.py" "$build/ellicast" "$node_bin" "$results/corpus" "$samples/meshes" "${folders[@]}" > /dev/null
       rm -rf "$results/corpus/work"
       cat "$results/corpus/bytes.md" ;;
+    point-share)
+      # Format 1.11 (spec 27, issue 27): the exact asset's bytes against Draco and the picture at 50%
+      # loss as the exact layer carries more of the vertices (--point-share 1, 0.5, 0.25, 0).
+      echo "== point share: carried vertices against Draco (bench/point_share.py)" >&2
+      mkdir -p "$results/point_share"
+      python3 "$root/bench/point_share.py" "$build/ellicast" "$root/.cache/node/node_modules/.bin" "$results/point_share" \
+        "$samples/meshes/bunny.ply" "$samples/meshes/fandisk.obj" "$samples/meshes/spot.obj" "$samples/meshes/teapot.obj" \
+        "$samples/meshes/suzanne.obj" "$root/samples/trefoil.obj" > /dev/null
+      rm -rf "$results/point_share/work"
+      cat "$results/point_share/point_share.md" ;;
     speed)
       # Issue 30: encode, exact decode and reconstruction side by side with Draco in one run, on the
       # bunny, a 50k-vertex closed torus and (ELLICAST_SPEED_LARGE=0 leaves it out) the same torus at
@@ -175,6 +185,6 @@ for what in "$@"; do
         "$build/bench/bench_region" "$tmp/region.ellc" "$m" | tee -a "$results/region.txt"
       done
       rm -rf "$tmp" ;;
-    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, first-picture, full-quality, broadcast, compare, corpus, speed, live, region)" >&2; exit 2 ;;
+    *) echo "bench: unknown benchmark '$what' (encode, decode, quality, gallery, first-picture, full-quality, broadcast, compare, corpus, point-share, speed, live, region)" >&2; exit 2 ;;
   esac
 done
