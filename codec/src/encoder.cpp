@@ -590,9 +590,11 @@ void encode_exact_layer(const Mesh& input, const std::vector<uint32_t>& vertex_p
 // Format 1.11 (spec 27.4): of the points a triangle uses, in the spread order, the first
 // ceil(share * V) stay points; the exact layer carries the others (returned, in that order; the
 // vertices that became them are renumbered content.points.size() + their index). Surface samples,
-// which no triangle uses, stay points.
+// which no triangle uses, stay points, and so do points whose normal is sent (`normals`, the
+// entries of an object with surface normals, follow the points that stay).
 std::vector<QuantizedPoint> carry_vertices(const Mesh& input, std::vector<uint32_t>& vertex_points,
-                                           std::vector<QuantizedPoint>& points, double share) {
+                                           std::vector<QuantizedPoint>& points, std::vector<NormalEntry>& normals,
+                                           double share) {
     std::vector<char> used(points.size(), 0);
     for (const Triangle& t : exact_triangles_of(input, vertex_points))
         for (uint32_t v : t) used[v] = 1;
@@ -601,17 +603,21 @@ std::vector<QuantizedPoint> carry_vertices(const Mesh& input, std::vector<uint32
     const size_t keep = size_t(std::ceil(share * double(vertices) - 1e-9));
     if (keep >= vertices) return {};
     std::vector<QuantizedPoint> kept, carried;
+    std::vector<NormalEntry> kept_normals;
     std::vector<uint32_t> index(points.size());
     size_t used_seen = 0;
     for (size_t i = 0; i < points.size(); ++i) {
-        if (used[i] && used_seen++ >= keep) {
+        const bool sent_normal = !normals.empty() && normals[i].sent;
+        if (used[i] && used_seen++ >= keep && !sent_normal) {
             index[i] = uint32_t(carried.size()) | 0x80000000u;
             carried.push_back(points[i]);
         } else {
             index[i] = uint32_t(kept.size());
             kept.push_back(points[i]);
+            if (!normals.empty()) kept_normals.push_back(normals[i]);
         }
     }
+    if (!normals.empty()) normals = std::move(kept_normals);
     for (uint32_t& v : vertex_points)
         v = (index[v] & 0x80000000u) ? uint32_t(kept.size()) + (index[v] & 0x7FFFFFFFu) : index[v];
     points = std::move(kept);
@@ -852,12 +858,13 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
                 content.normals.clear();
             }
         }
-        // Format 1.11 (spec 27): vertices carried by the exact layer, in an object without normals or
-        // per-point data (those would have to travel with each carried vertex).
+        // Format 1.11 (spec 27): vertices carried by the exact layer, in an object without per-point
+        // data and without normals in its records (those would travel with each carried vertex); with
+        // surface normals (format 1.8), the vertices whose normal the surface gives back.
         std::vector<QuantizedPoint> carried;
         if (options.point_share < 1 && options.exact_layer && !mesh.is_point_set && !mesh.per_point_data &&
-            !input.triangles.empty() && !object.has(kAttrNormal) && !object.surface_normals)
-            carried = carry_vertices(input, vertex_points, content.points, options.point_share);
+            !input.triangles.empty() && !object.has(kAttrNormal))
+            carried = carry_vertices(input, vertex_points, content.points, content.normals, options.point_share);
         // Format 1.7 (spec 23): points sent over a map of occupied cells, where that takes fewer bytes.
         // The map deals them to packets along a space-filling curve: the order changes, and every
         // per-vertex index with it.

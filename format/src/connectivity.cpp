@@ -326,7 +326,6 @@ bool exact_layer_fits(const StreamInfo& info, const ObjectInfo& object, uint32_t
                       uint32_t coded_size, bool mesh) {
     if (object.kind == ObjectKind::PointSet) return false;
     if (!mesh) return uint64_t(triangle_count) <= 8 * uint64_t(object.point_count);
-    if (object.surface_normals) return false;
     const uint64_t vertices = uint64_t(object.point_count) + carried_count;
     // B of spec 7.1, a POINTS record's bits, also for a mapped object.
     uint64_t bits = 3 * uint64_t(info.position_bits);

@@ -1729,9 +1729,9 @@ class Receiver:
         object's entry, step 13), and, for an EXACT_MESH or EXACT_MESH_REPAIR packet (`mesh`), those of spec 27.1:
         carried_count 1 .. 2^24, triangle_count at most 8 (point_count + carried_count), coded_size at most
         16 triangle_count + (16 + ceil(B / 8)) carried_count + 64 with B the bit size of a POINTS record of the
-        object (spec 7.1, also for a mapped object), and an object without surface normals. With carried = 0 the
-        bounds are those of 19.1. Python integers do not overflow."""
-        if mesh and (carried == 0 or carried > 1 << 24 or info["surface_normals"]):
+        object (spec 7.1, also for a mapped object). With carried = 0 the bounds are those of 19.1. Python integers
+        do not overflow."""
+        if mesh and (carried == 0 or carried > 1 << 24):
             return True
         B = sum(record_widths(self.info, dict(info, map_level=0)))
         return count == 0 or count > 8 * (info["point_count"] + carried) or info["kind"] == "point set" \
@@ -2639,7 +2639,8 @@ def normals_json(obj, info):
         triangles, carried = layer
         n = obj["info"]["point_count"]
         positions = [obj["points"][i][:3] for i in range(n)] + [q[:3] for q in carried]
-        surface = [dict(index=i, normal=v) for i, v in enumerate(surface_normals(positions, triangles)[:n])]
+        # Every vertex of the exact triangle list: the points, then (format 1.11) the carried vertices.
+        surface = [dict(index=i, normal=v) for i, v in enumerate(surface_normals(positions, triangles))]
     return dict(entries=entries, complete=len(obj["normals"]) == obj["info"]["point_count"], surface=surface)
 
 

@@ -211,11 +211,14 @@ inline nlohmann::json normals_json(const ReceivedStream& stream, size_t object) 
     }
     json surface = nullptr;
     std::vector<Triangle> triangles;
+    std::vector<QuantizedPoint> carried;
     std::string why;
-    if (exact_triangles(stream, object, triangles, why) == Error::Ok) {
+    if (exact_layer(stream, object, triangles, carried, why) == Error::Ok) {
+        // Every vertex of the exact triangle list: the points, then (format 1.11) the carried vertices.
         std::vector<std::array<uint32_t, 3>> positions;
-        positions.reserve(o.points.size());
+        positions.reserve(o.points.size() + carried.size());
         for (const auto& [index, p] : o.points) positions.push_back(p.position);
+        for (const QuantizedPoint& q : carried) positions.push_back(q.position);
         const SurfaceNormals normals = surface_normals(positions, triangles);
         surface = json::array();
         for (size_t i = 0; i < positions.size(); ++i) {

@@ -7931,6 +7931,96 @@ void exact_mesh_vectors(Writer& w) {
                 file);
     }
     {
+        // Carried vertices in an object with surface normals (spec 27.3): the panel of the normals vectors
+        // (texture coordinates, normals left to the surface where they agree with it, one in three of
+        // its vertices sending its own), the first 28 of its shuffled vertices and every vertex whose
+        // normal is sent as points, the others carried; each carried vertex shown with its surface normal.
+        ObjectInfo o = make_object({1, -1, -1}, 2, 8, 0, kAttrTexcoord);
+        o.exact_layer = true;
+        o.surface_normals = true;
+        StreamInfo info = default_info({o}, kNormalsPacketSize);
+        Rng prng(241);
+        ExactMesh m = exact_panel();
+        shuffle_points(m, prng);
+        const ObjectInfo& oi = info.objects[0];
+        std::vector<QuantizedPoint> all;
+        std::vector<std::array<uint32_t, 3>> positions;
+        for (const SurfacePoint& p : m.points) {
+            all.push_back(quantize_point(p, info, oi));
+            positions.push_back(all.back().position);
+        }
+        const SurfaceNormals sn = surface_normals(positions, m.triangles);
+        std::vector<std::array<float, 3>> originals;
+        for (size_t k = 0; k < positions.size(); ++k) {
+            const bool defined = sn.normal[k] != std::array<float, 3>{0, 0, 0};
+            originals.push_back(defined && k % 3 != 0 ? sn.normal[k] : m.points[k].normal);
+        }
+        const std::vector<NormalEntry> entries = reference_normal_entries(info, positions, m.triangles, originals);
+        std::vector<char> used(all.size(), 0);
+        for (const Triangle& t : m.triangles)
+            for (uint32_t v : t) used[v] = 1;
+        ObjectContent content = make_content(info, oi, prng);  // its ellipsoids
+        std::vector<QuantizedPoint> carried;
+        std::vector<uint32_t> index(all.size());
+        for (uint32_t v = 0; v < all.size(); ++v)
+            if (v < 28 || !used[v] || entries[v].sent) {
+                index[v] = uint32_t(content.points.size());
+                content.points.push_back(all[v]);
+                content.normals.push_back(entries[v]);
+            } else {
+                index[v] = 0x80000000u | uint32_t(carried.size());
+                carried.push_back(all[v]);
+            }
+        std::vector<Triangle> triangles;
+        for (Triangle t : m.triangles) {
+            for (uint32_t& v : t)
+                v = (index[v] & 0x80000000u) ? uint32_t(content.points.size()) + (index[v] & 0xFFFFFFFu) : index[v];
+            triangles.push_back(t);
+        }
+        info.objects[0].point_count = uint32_t(content.points.size());
+        std::vector<QuantizedPoint> vertices = content.points;
+        vertices.insert(vertices.end(), carried.begin(), carried.end());
+        std::vector<uint8_t> coded;
+        std::vector<Triangle> decoded;
+        std::vector<uint32_t> order;
+        if (encode_exact_mesh(vertices, content.points.size(), triangles, info, info.objects[0], coded, decoded, order) !=
+            Error::Ok) {
+            std::cerr << "make_vectors: encode_exact_mesh (surface normals) failed\n";
+            std::exit(1);
+        }
+        StreamPackets packets;
+        if (packetize_stream(info, {content}, kStreamId, packets) != Error::Ok) {
+            std::cerr << "make_vectors: packetize_stream (surface normals) failed\n";
+            std::exit(1);
+        }
+        for (Packet& p : packets.ellipsoids) set_minor(p, 0);
+        for (Packet& p : packets.points) set_minor(p, 0);
+        Packets file = packets.stream_info;
+        for (const Packets* group : {&packets.ellipsoids, &packets.points, &packets.normals})
+            file.insert(file.end(), group->begin(), group->end());
+        Packets layer;
+        if (packetize_connectivity(info, 0, uint32_t(triangles.size()), coded, kStreamId, 0, layer,
+                                   uint32_t(carried.size())) != Error::Ok) {
+            std::cerr << "make_vectors: packetize_connectivity (surface normals) failed\n";
+            std::exit(1);
+        }
+        file.insert(file.end(), layer.begin(), layer.end());
+        for (size_t k = 0; k < file.size(); ++k) restamp_packet(file[k], uint32_t(k));
+        size_t sent = 0;
+        for (const NormalEntry& e : content.normals) sent += e.sent;
+        w.write("valid", "exact_mesh_surface_normals",
+                "format 1.11 with format 1.8's surface normals (spec 27.3): one surface object, the panel of the "
+                "normals vectors (texture coordinates, surface normals: " + std::to_string(sent) + " of its " +
+                    std::to_string(content.points.size()) + " points send their normal), with " +
+                    std::to_string(carried.size()) + " of its vertices carried (those past the first 28 of its "
+                    "shuffled order whose normal the surface gives back; a vertex whose normal is sent stays a point) "
+                    "in " + std::to_string(layer.size()) + " EXACT_MESH packet(s) of " + std::to_string(coded.size()) +
+                    " coded bytes after its NORMALS packets; STREAM_INFO and NORMALS say 1.8, EXACT_MESH 1.11, the "
+                    "others 1.0; exact, `normals` `surface` listing the carried vertices after the points, each with "
+                    "its surface normal (what a receiver shows it)",
+                file);
+    }
+    {
         // The paths valid/exact_mesh does not take (spec 27.2): one object with RGBA colour, 4 points and
         // 20 carried vertices: a fan of 20 triangles around point 0 whose ring is carried (the first
         // triangle a seed of a known corner and two fresh ones; point 0's list C fills at 16), and a

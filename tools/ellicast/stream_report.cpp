@@ -174,14 +174,23 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
                                                       " bytes)", true});
         } else if (o.connectivity && o.connectivity->complete && missing.empty()) {
             std::vector<Triangle> triangles;
+            std::vector<QuantizedPoint> carried;
             std::string why;
-            if (exact_triangles(r.stream, i, triangles, why) != Error::Ok) {
+            if (exact_layer(r.stream, i, triangles, carried, why) != Error::Ok) {
                 r.violations.push_back({std::nullopt, name + ": its exact layer is unusable: " + why});
             } else if (o.info->surface_normals) {
-                // Format 1.8 (spec 24.4): no point of the exact layer left to an undefined surface normal.
+                // Format 1.8 (spec 24.4): no point of the exact layer left to an undefined surface normal;
+                // format 1.11 (spec 27.3): no carried vertex either.
                 std::vector<std::array<uint32_t, 3>> positions(o.info->point_count);
                 for (const auto& [index, q] : o.points) positions[index] = q.position;
+                for (const QuantizedPoint& q : carried) positions.push_back(q.position);
                 const std::vector<char> defined = surface_normal_defined(positions, triangles);
+                size_t undefined_carried = 0;
+                for (size_t k = o.info->point_count; k < positions.size(); ++k) undefined_carried += !defined[k];
+                if (undefined_carried > 0)
+                    r.violations.push_back({std::nullopt, name + ": " + std::to_string(undefined_carried) +
+                                                              " carried vertices have no surface normal (no triangle "
+                                                              "with an area uses them)"});
                 std::vector<char> used(positions.size(), 0);
                 for (const Triangle& t : triangles)
                     for (uint32_t v : t) used[v] = 1;

@@ -70,7 +70,7 @@ std::vector<uint8_t> encode_connectivity_payload(const ConnectivityPiece& piece,
 // object (carried_count 1 .. 2^24); the object's checks are exact_layer_fits.
 Error decode_connectivity_payload(std::span<const uint8_t> payload, ConnectivityPiece& out, bool mesh = false);
 // Spec 19.1, 19.5, 27.1: whether an exact-layer packet's counts fit its object (a surface; at most
-// 8 triangles a vertex; the coded size within its bound; for an EXACT_MESH layer, no surface normals).
+// 8 triangles a vertex; the coded size within its bound).
 bool exact_layer_fits(const StreamInfo& info, const ObjectInfo& object, uint32_t triangle_count, uint32_t carried_count,
                       uint32_t coded_size, bool mesh);
 
