@@ -3,6 +3,7 @@
 // (triangle sets compared after quantization: each corner the quantized position and attributes the
 // stream carries); the coder round-trips meshes with holes, several parts, non-manifold edges,
 // duplicates and mixed winding; hostile connectivity never crashes and is reported unusable.
+#include "corners.h"
 #include "support.h"
 
 #include "ellicast/codec/decoder.h"
@@ -21,18 +22,6 @@ using namespace ellicast::test;
 namespace fs = std::filesystem;
 
 namespace {
-
-using Corner = std::tuple<std::array<uint32_t, 3>, std::array<uint32_t, 2>, std::array<uint32_t, 2>, std::array<uint32_t, 4>>;
-using CornerTriangle = std::array<Corner, 3>;
-
-Corner corner_of(const QuantizedPoint& q) { return {q.position, q.normal, q.texcoord, q.color}; }
-
-// A triangle up to rotation (its winding kept): the rotation that starts at its smallest corner.
-CornerTriangle canonical(CornerTriangle t) {
-    const size_t k = size_t(std::min_element(t.begin(), t.end()) - t.begin());
-    std::rotate(t.begin(), t.begin() + long(k), t.end());
-    return t;
-}
 
 // The input's triangles as the stream quantizes them (degenerate ones, which the exact layer leaves
 // out, dropped), sorted.

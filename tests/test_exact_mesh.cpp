@@ -5,6 +5,7 @@
 // lost keep every vertex a point.
 #include <doctest/doctest.h>
 
+#include "corners.h"
 #include "support.h"
 
 #include "ellicast/codec/decoder.h"
@@ -23,17 +24,6 @@ using namespace ellicast::test;
 namespace fs = std::filesystem;
 
 namespace {
-
-using Corner = std::tuple<std::array<uint32_t, 3>, std::array<uint32_t, 2>, std::array<uint32_t, 2>, std::array<uint32_t, 4>>;
-using CornerTriangle = std::array<Corner, 3>;
-
-Corner corner_of(const QuantizedPoint& q) { return {q.position, q.normal, q.texcoord, q.color}; }
-
-CornerTriangle canonical(CornerTriangle t) {
-    const size_t k = size_t(std::min_element(t.begin(), t.end()) - t.begin());
-    std::rotate(t.begin(), t.begin() + long(k), t.end());
-    return t;
-}
 
 // What a receiver holding `stream` shows exact of object `i`: its triangles as quantized corners
 // (points and carried vertices alike), sorted.

@@ -260,14 +260,29 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
     return Error::Ok;
 }
 
-// Format 1.11 (spec 27.1): an exact layer's carried vertices count toward the element limit.
-bool ReceivedStream::take_carried_elements(uint32_t count) {
-    uint64_t declared = carried_elements_ + count;
-    for (const auto& object : objects_)
-        if (object.info) declared += uint64_t(object.info->ellipsoid_count) + object.info->point_count;
-    if (declared > limits_.max_elements) return false;
-    carried_elements_ += count;
-    return true;
+// Format 1.11 (spec 27.1), for a well-formed exact-layer packet: the first of an object fixes the kind
+// of its layer (EXACT_MESH or CONNECTIVITY) and, for EXACT_MESH, counts its carried vertices toward the
+// element limit (refused: nothing kept); a later one of the other kind is a mismatch.
+Error ReceivedStream::take_layer_kind(const ReceivedObject& object, bool mesh, uint32_t carried_count,
+                                      const std::string& name, uint64_t where) {
+    if (object.connectivity) {
+        if (object.connectivity->mesh == mesh) return Error::Ok;
+        return reject(where, Error::StreamMismatch,
+                      name + ": the object's exact layer travels in " +
+                          (object.connectivity->mesh ? "EXACT_MESH packets" : "CONNECTIVITY packets") +
+                          " (spec 27.1: one kind per object)");
+    }
+    if (!mesh) return Error::Ok;
+    uint64_t declared = carried_elements_ + carried_count;
+    for (const auto& o : objects_)
+        if (o.info) declared += uint64_t(o.info->ellipsoid_count) + o.info->point_count;
+    if (declared > limits_.max_elements)
+        return reject(where, Error::MalformedPayload,
+                      name + ": its " + std::to_string(carried_count) +
+                          " carried vertices would take the stream past this receiver's limit of " +
+                          std::to_string(limits_.max_elements) + " elements (spec 27.1)");
+    carried_elements_ += carried_count;
+    return Error::Ok;
 }
 
 namespace {
@@ -300,17 +315,9 @@ Error ReceivedStream::take_connectivity(ReceivedObject& object, const PacketView
                       name + (mesh ? ": its triangle count, carried count, coded size or piece does not fit the object "
                                      "(spec 27.1)"
                                    : ": its triangle count, coded size or piece does not fit the object (spec 19.1)"));
-    if (mesh && !object.connectivity && !take_carried_elements(piece.carried_count))
-        return reject(where, Error::MalformedPayload,
-                      name + ": its " + std::to_string(piece.carried_count) +
-                          " carried vertices would take the stream past this receiver's limit of " +
-                          std::to_string(limits_.max_elements) + " elements (spec 27.1)");
+    if (Error e = take_layer_kind(object, mesh, piece.carried_count, name, where); e != Error::Ok) return e;
     ReceivedConnectivity& c =
         connectivity_of(object, mesh, piece.triangle_count, piece.carried_count, piece.coded_size, piece.coded_crc);
-    if (c.mesh != mesh)
-        return reject(where, Error::StreamMismatch,
-                      name + ": the object's exact layer travels in " +
-                          (c.mesh ? "EXACT_MESH packets" : "CONNECTIVITY packets") + " (spec 27.1: one kind per object)");
     if (c.triangle_count != piece.triangle_count || c.carried_count != piece.carried_count ||
         c.coded_size != piece.coded_size || c.coded_crc != piece.coded_crc)
         return reject(where, Error::StreamMismatch,
@@ -436,17 +443,9 @@ Error ReceivedStream::take_connectivity_repair(ReceivedObject& object, const Pac
                       name + (mesh ? ": its triangle count, carried count, coded size, symbol size or row does not fit "
                                      "(spec 27.1)"
                                    : ": its triangle count, coded size, symbol size or row does not fit (spec 19.5)"));
-    if (mesh && !object.connectivity && !take_carried_elements(r.carried_count))
-        return reject(where, Error::MalformedPayload,
-                      name + ": its " + std::to_string(r.carried_count) +
-                          " carried vertices would take the stream past this receiver's limit of " +
-                          std::to_string(limits_.max_elements) + " elements (spec 27.1)");
+    if (Error e = take_layer_kind(object, mesh, r.carried_count, name, where); e != Error::Ok) return e;
     ReceivedConnectivity& c =
         connectivity_of(object, mesh, r.triangle_count, r.carried_count, r.coded_size, r.coded_crc);
-    if (c.mesh != mesh)
-        return reject(where, Error::StreamMismatch,
-                      name + ": the object's exact layer travels in " +
-                          (c.mesh ? "EXACT_MESH packets" : "CONNECTIVITY packets") + " (spec 27.1: one kind per object)");
     if (c.triangle_count != r.triangle_count || c.carried_count != r.carried_count || c.coded_size != r.coded_size ||
         c.coded_crc != r.coded_crc || (c.symbol_size != 0 && c.symbol_size != r.symbol_size))
         return reject(where, Error::StreamMismatch,

@@ -250,8 +250,9 @@ const RegisterCommand kRegisterEncode({10, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--point-share", args->point_share,
                     "share of an object's vertices sent as points (0..1); the exact layer carries the others, coded "
                     "against its triangles (format 1.11): a smaller stream and the exact model sooner, fewer points "
-                    "for the picture before it. Objects with normals, skins or morph targets keep every vertex a "
-                    "point; 1: every vertex a point, readable exact by decoders before format 1.11")
+                    "for the picture before it. Objects with skins, morph targets or normals in their records keep "
+                    "every vertex a point (with surface normals, the vertices whose normal is sent); 1: every vertex "
+                    "a point, readable exact by decoders before format 1.11")
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
     cmd->add_option("--sign", args->sign, "sign the stream with this secret key (NAME.key from `ellicast keygen`)");

@@ -88,9 +88,9 @@ struct EncodeOptions {
     // exact layer's triangles); the others a receiver computes. 0: every normal in the point
     // records, readable with normals by 1.7 decoders. [0, 90]
     double normal_tolerance = 2.0;
-    // Carried vertices (format 1.11, spec 27): of an object with an exact layer, no normals and no
-    // per-point data, only this share of its vertices (the first in the spread order) travel as
-    // points; the exact layer carries the others, coded against its triangles (about 2.3 bytes a
+    // Carried vertices (format 1.11, spec 27): of an object with an exact layer, no normals in its
+    // records (surface normals: only the vertices whose normal is not sent) and no per-point data,
+    // only this share of its vertices (the first in the spread order) travel as points; the exact layer carries the others, coded against its triangles (about 2.3 bytes a
     // vertex on a dense scan, against 3.3 as a mapped point). Lower: a smaller stream and an exact
     // object sooner, fewer points for the picture before it. 1: every vertex a point (a stream
     // 1.10 decoders show exact). [0, 1]

@@ -254,7 +254,8 @@ private:
     // object whose fragment has not arrived. False when the index was held already.
     bool take_point_record(ReceivedObject& object, uint32_t index, const QuantizedPoint& record);
     Error take_connectivity(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
-    bool take_carried_elements(uint32_t count);
+    Error take_layer_kind(const ReceivedObject& object, bool mesh, uint32_t carried_count, const std::string& name,
+                          uint64_t where);
     Error take_connectivity_repair(ReceivedObject& object, const PacketView& packet, const std::string& name,
                                    uint64_t where);
     // Completes an object's connectivity from its pieces and repair symbols when it can (spec 19.1, 19.5).
