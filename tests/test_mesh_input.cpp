@@ -440,3 +440,37 @@ TEST_CASE("a model's size counts a .gltf's external buffers and images, and conv
     CHECK(log.find(line) != std::string::npos);
     CHECK(log.find("output " + std::to_string(std::filesystem::file_size(out)) + " bytes (") != std::string::npos);
 }
+
+TEST_CASE("a PLY face that OpenMesh gives vertices of its own (a duplicate, reversed) keeps their colours: the same "
+          "file loads the same every time") {
+    // Found by a differential test of format 1.11: the copies' colours were read uninitialised, so one
+    // file gave different streams from run to run.
+    const std::filesystem::path dir = ellicast::test::binary_dir() / "test-scratch-ply-copies";
+    std::filesystem::create_directories(dir);
+    const std::filesystem::path file = dir / "copies.ply";
+    spit(file,
+         "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+         "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 5\n"
+         "property list uchar int vertex_indices\nend_header\n"
+         "0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n0 0 1 255 255 0\n"
+         "3 0 1 2\n3 0 1 3\n3 2 1 0\n3 0 2 1\n3 1 2 3\n");
+    const std::vector<Mesh> first = load_meshes(file.string()).meshes;
+    REQUIRE(first.size() == 1);
+    REQUIRE(first[0].has_colors());
+    const std::vector<std::array<float, 4>> allowed = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 0, 1}};
+    for (size_t v = 0; v < first[0].colors.size(); ++v) {
+        CAPTURE(v);
+        const auto& c = first[0].colors[v];
+        bool known = false;
+        for (const auto& a : allowed)
+            known |= std::abs(c[0] - a[0]) < 1e-6f && std::abs(c[1] - a[1]) < 1e-6f && std::abs(c[2] - a[2]) < 1e-6f;
+        CHECK(known);
+    }
+    for (int again = 0; again < 4; ++again) {
+        const std::vector<Mesh> next = load_meshes(file.string()).meshes;
+        REQUIRE(next.size() == 1);
+        CHECK(next[0].positions == first[0].positions);
+        CHECK(next[0].colors == first[0].colors);
+        CHECK(next[0].triangles == first[0].triangles);
+    }
+}

@@ -49,7 +49,17 @@ public:
     explicit PolygonImporter(InputMesh& mesh) : ImporterT(mesh), mesh_(mesh) {}
 
     OpenMesh::FaceHandle add_face(const VHandles& indices) override {
-        if (indices.size() <= 64) return ImporterT::add_face(indices);
+        if (indices.size() <= 64) {
+            // A face OpenMesh cannot add (a duplicate, non-manifold or wrongly wound one) gets vertices of
+            // its own, one per corner in order, with only their position: their colours, normals and
+            // texture coordinates were read uninitialised (the same PLY gave different streams).
+            const size_t before = mesh_.n_vertices();
+            const OpenMesh::FaceHandle fh = ImporterT::add_face(indices);
+            if (mesh_.n_vertices() == before + indices.size())
+                for (size_t j = 0; j < indices.size(); ++j)
+                    copy_properties(indices[j], OpenMesh::VertexHandle(int(before + j)));
+            return fh;
+        }
         VHandles sorted = indices;
         std::sort(sorted.begin(), sorted.end());
         for (auto vh : sorted)
@@ -68,6 +78,7 @@ public:
             for (size_t j = 0; j < indices.size(); ++j) {
                 const auto p = mesh_.point(indices[j]);
                 own[j] = mesh_.add_vertex(p);
+                copy_properties(indices[j], own[j]);
             }
             fh = mesh_.add_face(own);
         }
@@ -75,6 +86,13 @@ public:
     }
 
 private:
+    // The per-vertex attributes of `from` given to its copy `to`.
+    void copy_properties(OpenMesh::VertexHandle from, OpenMesh::VertexHandle to) {
+        if (!mesh_.is_valid_handle(from) || !mesh_.is_valid_handle(to)) return;
+        if (mesh_.has_vertex_colors()) mesh_.set_color(to, mesh_.color(from));
+        if (mesh_.has_vertex_normals()) mesh_.set_normal(to, mesh_.normal(from));
+        if (mesh_.has_vertex_texcoords2D()) mesh_.set_texcoord2D(to, mesh_.texcoord2D(from));
+    }
     InputMesh& mesh_;
 };
 
