@@ -650,10 +650,11 @@ bool decode_fresh(RangeDecoder& rc, Contexts& ctx, const Prediction& r, const St
 }
 
 // The prediction at a gate (a, b, o) and at a seed's corner (spec 27.2).
-Prediction gate_prediction(const std::vector<std::array<uint32_t, 3>>& p, const std::vector<std::array<uint32_t, 2>>& uv,
+// `position`: the gate's prediction(), computed once for its candidates too.
+Prediction gate_prediction(const std::array<int64_t, 3>& position, const std::vector<std::array<uint32_t, 2>>& uv,
                            const Gate& g) {
     Prediction r;
-    for (int k = 0; k < 3; ++k) r.position[k] = int64_t(p[g.a][k]) + int64_t(p[g.b][k]) - int64_t(p[g.o][k]);
+    r.position = position;
     for (int k = 0; k < 2; ++k) r.texcoord[k] = int64_t(uv[g.a][k]) + int64_t(uv[g.b][k]) - int64_t(uv[g.o][k]);
     return r;
 }
@@ -764,7 +765,7 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
         lists.local(g.a, g.b, r, positions, near);
         const size_t context = fresh_context(near.size());
         if (id[x] == UINT32_MAX) {
-            introduce(x, gate_prediction(positions, texcoords, g), context);
+            introduce(x, gate_prediction(r, texcoords, g), context);
             take_triangle(tr, lists, g.b, g.a, id[x]);
             continue;
         }
@@ -857,7 +858,7 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
         uint32_t x = 0;
         lists.local(g.a, g.b, r, positions, near);
         if (may_be_fresh && rc.bit(ctx.fresh[fresh_context(near.size())])) {
-            if (!fresh(gate_prediction(positions, texcoords, g), x)) return Error::MalformedPayload;
+            if (!fresh(gate_prediction(r, texcoords, g), x)) return Error::MalformedPayload;
             take_triangle(tr, lists, g.b, g.a, x);
             continue;
         }
