@@ -9,6 +9,7 @@
 #include <OpenMesh/Core/System/omstream.hh>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -398,7 +399,14 @@ void check_ply(const std::string& path) {
     }
 }
 
-// OFF: a header whose counts the file can hold.
+// OFF, read the way OpenMesh's ASCII reader reads it, with the same stream extractions, so that what
+// passes here is what OpenMesh reads: the first line is the header ([ST][C][N]OFF); the three counts
+// are the next three words wherever they stand; a vertex is 3 floats (6 with N) and the rest of its
+// line; a face is a corner count and that many indices (and, with C, the rest of its line). OpenMesh
+// pushes as many corners as a face declares even past the end of the file, so a corner count is
+// checked before anything is read for it (found by fuzz_readers: a face "-3 0 1 2" read as
+// 4,294,967,293 corners took 2 GB, and a vertical tab on the counts line hid it from a line-by-line
+// check). Once an extraction fails OpenMesh's stream stays failed and every later step is cheap.
 void check_off(const std::string& path) {
     // An ASCII OFF file is text: a control byte (a NUL, say) stops OpenMesh's number reading
     // without stopping its loops (found by fuzz_readers: a 488-byte file with NULs on its counts line
@@ -419,60 +427,79 @@ void check_off(const std::string& path) {
             }
         }
     }
+    // The line a stream position is on (for messages only).
+    auto line_at = [&path](std::streamoff position) {
+        std::ifstream raw(path, std::ios::binary);
+        size_t line = 1;
+        char c;
+        for (std::streamoff i = 0; i < position && raw.get(c); ++i)
+            if (c == '\n') ++line;
+        return line;
+    };
     std::ifstream in(path);
-    std::string line;
-    size_t number = 0;
-    bool keyword = false;
-    while (std::getline(in, line)) {
-        ++number;
-        auto hash = line.find('#');
-        if (hash != std::string::npos) line.resize(hash);
-        std::istringstream words(line);
-        std::string first;
-        if (!(words >> first)) continue;
-        if (!keyword) {
-            // OpenMesh takes the whole first line as the header and reads the counts from the next
-            // one, whatever else the first line holds (found by fuzz_readers: "OFF 1 0 0" then
-            // "0 4294967295 0" was checked as 1 vertex and read as 4,294,967,295 faces, 22 s, 16 GB).
-            keyword = true;
-            if (first.find("OFF") == std::string::npos) bad(path, number, "not an OFF file (no OFF keyword)");
-            if (line.find("BINARY") != std::string::npos)
-                bad(path, number, "binary OFF files are not supported (their counts cannot be checked before reading)");
-            continue;
-        }
-        char* end = nullptr;
-        long long vertices = std::strtoll(first.c_str(), &end, 10);
-        long long faces = -1;
-        if (!(words >> faces)) faces = -1;
-        if (end != first.c_str() + first.size() || first.empty() || vertices < 0 || faces < 0)
-            bad(path, number, "the OFF counts line must hold vertex and face counts (" + quoted_input(line) + ")");
-        const uint64_t size = file_size(path);
-        if (uint64_t(vertices) > size / 2 || uint64_t(faces) > size / 2 || uint64_t(vertices + faces) * 2 > size)
-            bad(path, number, "the OFF header declares " + std::to_string(vertices) + " vertices and " +
-                                  std::to_string(faces) + " faces, more than the file can hold");
-        // Each face line starts with its corner count, which OpenMesh reserves before reading the
-        // corners (a 45-byte file declaring a 2,000,000,000-sided face took 46 s and 4.2 GB, then
-        // bad_alloc): at most as many corners as vertices, and the line must hold them.
-        long long seen = 0;
-        while (seen < vertices + faces && std::getline(in, line)) {
-            ++number;
-            if (auto h = line.find('#'); h != std::string::npos) line.resize(h);
-            std::istringstream fields(line);
-            std::string count;
-            if (!(fields >> count)) continue;
-            if (seen++ < vertices) continue;
-            char* stop = nullptr;
-            const long long corners = std::strtoll(count.c_str(), &stop, 10);
-            size_t given = 0;
-            for (std::string index; fields >> index;) ++given;
-            if (*stop != '\0' || corners < 3 || corners > vertices || uint64_t(corners) > given)
-                bad(path, number, "face " + std::to_string(seen - vertices - 1) + " declares " + count.substr(0, 20) +
-                                      " corners; a face needs 3 to " + std::to_string(vertices) +
-                                      " (the vertex count), all on its line (" + std::to_string(given) + " given)");
-        }
-        return;
+    std::string header;
+    if (!std::getline(in, header)) throw InputError(path + ": an empty file, not an OFF file");
+    size_t p = 0;
+    bool normals = false, colours = false;
+    if (header.compare(p, 2, "ST") == 0) p += 2;
+    if (header.compare(p, 1, "C") == 0) colours = true, p += 1;
+    if (header.compare(p, 1, "N") == 0) normals = true, p += 1;
+    if (header.compare(p, 1, "4") == 0 || header.compare(p, 1, "n") == 0)
+        bad(path, 1, "OFF files with other than 3 coordinates a vertex (4OFF, nOFF) are not supported");
+    if (header.compare(p, 3, "OFF") != 0)
+        bad(path, 1, "not an OFF file: the first line must start with OFF, COFF, NOFF, STOFF or a mix (" +
+                         quoted_input(header) + ")");
+    if (header.find("BINARY", p + 3) != std::string::npos)
+        bad(path, 1, "binary OFF files are not supported (their counts cannot be checked before reading)");
+
+    const uint64_t size = file_size(path);
+    // A count: the next word, read as OpenMesh reads it (an unsigned int), refused when negative.
+    auto count = [&](const char* what) -> unsigned {
+        in >> std::ws;
+        const std::streamoff at = in.tellg();
+        if (in.peek() == '-') bad(path, line_at(at), std::string("a negative ") + what);
+        const bool digit = std::isdigit(in.peek()) != 0;
+        unsigned value = 0;
+        if (!(in >> value) && digit)
+            bad(path, line_at(at), std::string("the OFF header's ") + what +
+                                       " is beyond 4,294,967,295, more than the file can hold");
+        if (!in)
+            bad(path, line_at(at), std::string("the OFF header must give vertex and face counts after its first line (no ") +
+                                       what + ")");
+        return value;
+    };
+    const unsigned vertices = count("vertex count");
+    const std::streamoff counts_at = in.tellg();
+    const unsigned faces = count("face count");
+    unsigned edges = 0;
+    in >> edges;  // OpenMesh reads and ignores it; a failure here leaves its stream failed, as ours
+    if (uint64_t(vertices) > size / 2 || uint64_t(faces) > size / 2 || (uint64_t(vertices) + faces) * 2 > size)
+        bad(path, line_at(counts_at), "the OFF header declares " + std::to_string(vertices) + " vertices and " +
+                                          std::to_string(faces) + " faces, more than the file can hold");
+    std::string rest;
+    float value;
+    for (unsigned i = 0; i < vertices && !in.eof(); ++i) {
+        for (int k = 0; k < (normals ? 6 : 3); ++k) in >> value;
+        std::getline(in, rest);
     }
-    throw InputError(path + ": not an OFF file (no counts line)");
+    for (unsigned f = 0; f < faces && in; ++f) {
+        in >> std::ws;
+        const std::streamoff at = in.tellg();
+        if (in.peek() == '-')
+            bad(path, line_at(at), "face " + std::to_string(f) + " declares a negative corner count");
+        unsigned corners = 0;
+        if (!(in >> corners)) return;  // OpenMesh reads no more corners from here on
+        if (corners < 3 || corners > vertices)
+            bad(path, line_at(at), "face " + std::to_string(f) + " declares " + std::to_string(corners) +
+                                       " corners; a face needs 3 to " + std::to_string(vertices) +
+                                       " (the vertex count)");
+        unsigned given = 0, index;
+        while (given < corners && in >> index) ++given;
+        if (given < corners)
+            bad(path, line_at(at), "face " + std::to_string(f) + " declares " + std::to_string(corners) +
+                                       " corners but the file ends after " + std::to_string(given) + " of them");
+        if (colours) std::getline(in, rest);
+    }
 }
 
 // STL: binary (84 + 50 bytes per triangle, exactly) or ASCII ("solid ...").
