@@ -196,20 +196,31 @@ TEST_CASE("bad input files are refused with a message naming the file and the pr
     SUBCASE("an OFF face declaring two billion corners is refused at once (OpenMesh would reserve them)") {
         spit(dir / "bomb.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2000000000 0 1 2\n");
         std::string e = error_of((dir / "bomb.off").string());
-        CHECK(e.find("bomb.off: line 6: face 0 declares 2000000000 corners") != std::string::npos);
+        CHECK(e.find("bomb.off: line 6: face 0 of 1 declares 2000000000 corners") != std::string::npos);
         spit(dir / "short.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n4 0 1 2\n");
-        CHECK(error_of((dir / "short.off").string()).find("line 7: face 0 declares 4 corners but the file ends after 3") !=
+        CHECK(error_of((dir / "short.off").string()).find("line 7: face 0 of 1 declares 4 corners but the file ends after 3") !=
               std::string::npos);
         // fuzz_readers: OpenMesh reads words, not lines; a vertical tab put a vertex on the counts line,
         // so a line-by-line check took the face "-3 0 1 2" for a vertex, and OpenMesh pushed
         // 4,294,967,293 corners (2 GB).
         spit(dir / "tab.off", "OFF\n3 1 0\v0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n");
-        CHECK(error_of((dir / "tab.off").string()).find("line 5: face 0 declares a negative corner count") !=
+        CHECK(error_of((dir / "tab.off").string()).find("line 5: face 0 of 1 declares a negative corner count") !=
               std::string::npos);
         // Words across lines are read as OpenMesh reads them: the counts on two lines, a face over three.
         spit(dir / "spread.off", "OFF\n3\n1 0\n0 0 0\n1 0 0\n0 1 0\n3\n 0 1\n 2\n");
         REQUIRE(load_meshes((dir / "spread.off").string()).meshes.size() == 1);
         CHECK(load_meshes((dir / "spread.off").string()).meshes[0].triangles.size() == 1);
+        // fuzz_readers: a corner count past 2^32 - 1 fails the stream with the count at its largest, and a
+        // stream that failed early leaves every later face the last count read (faces x vertices).
+        spit(dir / "huge.off", "OFF\n2 1 0\n0 1 0\n 3 \n0 0{\n 5555555555555555555\n3");
+        CHECK(error_of((dir / "huge.off").string()).find("line 6: face 0 of 1: a corner count expected") !=
+              std::string::npos);
+        spit(dir / "cut.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n");
+        CHECK(error_of((dir / "cut.off").string()).find("line 5: vertex 2 of 3: 3 numbers (its position) expected, "
+                                                       "the file ends after 0") != std::string::npos);
+        spit(dir / "word.off", "OFF\n3 2 0\n0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n3 0 2 1\n");
+        CHECK(error_of((dir / "word.off").string()).find("line 4: vertex 1 of 3: 3 numbers (its position) expected, "
+                                                        "the file holds something else after 1") != std::string::npos);
         spit(dir / "first.off", "# a comment\nOFF\n3 1 0\n");
         CHECK(error_of((dir / "first.off").string()).find("line 1: not an OFF file") != std::string::npos);
         // Found by fuzz_readers: OpenMesh reads the counts from the line after the keyword's, whatever

@@ -406,7 +406,7 @@ void check_ply(const std::string& path) {
 // pushes as many corners as a face declares even past the end of the file, so a corner count is
 // checked before anything is read for it (found by fuzz_readers: a face "-3 0 1 2" read as
 // 4,294,967,293 corners took 2 GB, and a vertical tab on the counts line hid it from a line-by-line
-// check). Once an extraction fails OpenMesh's stream stays failed and every later step is cheap.
+// check).
 void check_off(const std::string& path) {
     // An ASCII OFF file is text: a control byte (a NUL, say) stops OpenMesh's number reading
     // without stopping its loops (found by fuzz_readers: a 488-byte file with NULs on its counts line
@@ -476,28 +476,43 @@ void check_off(const std::string& path) {
     if (uint64_t(vertices) > size / 2 || uint64_t(faces) > size / 2 || (uint64_t(vertices) + faces) * 2 > size)
         bad(path, line_at(counts_at), "the OFF header declares " + std::to_string(vertices) + " vertices and " +
                                           std::to_string(faces) + " faces, more than the file can hold");
+    // Every vertex and face must read whole: once an extraction fails, OpenMesh's stream stays failed
+    // and each later face keeps the corner count it last read (the vertex count, if no face was
+    // read), pushing that many corners a face: faces x vertices (found by fuzz_readers: a corner count
+    // past 2^32 - 1 is read as 4,294,967,295 with the stream failed).
     std::string rest;
     float value;
-    for (unsigned i = 0; i < vertices && !in.eof(); ++i) {
-        for (int k = 0; k < (normals ? 6 : 3); ++k) in >> value;
-        std::getline(in, rest);
-    }
-    for (unsigned f = 0; f < faces && in; ++f) {
+    const int numbers = normals ? 6 : 3;
+    for (unsigned i = 0; i < vertices; ++i) {
         in >> std::ws;
         const std::streamoff at = in.tellg();
-        if (in.peek() == '-')
-            bad(path, line_at(at), "face " + std::to_string(f) + " declares a negative corner count");
+        for (int k = 0; k < numbers; ++k)
+            if (!(in >> value))
+                bad(path, line_at(at < 0 ? std::streamoff(size) : at),
+                    "vertex " + std::to_string(i) + " of " + std::to_string(vertices) + ": " +
+                        (normals ? "6 numbers (position and normal)" : "3 numbers (its position)") +
+                        " expected, the file " + (in.eof() ? "ends" : "holds something else") + " after " +
+                        std::to_string(k));
+        std::getline(in, rest);
+    }
+    for (unsigned f = 0; f < faces; ++f) {
+        in >> std::ws;
+        const std::streamoff at = in.eof() ? std::streamoff(size) : std::streamoff(in.tellg());
+        const std::string face = "face " + std::to_string(f) + " of " + std::to_string(faces);
+        if (in.peek() == '-') bad(path, line_at(at), face + " declares a negative corner count");
         unsigned corners = 0;
-        if (!(in >> corners)) return;  // OpenMesh reads no more corners from here on
+        if (!(in >> corners))
+            bad(path, line_at(at), face + ": a corner count expected, the file " +
+                                       (in.eof() ? "ends" : "holds something else or a number past 4,294,967,295"));
         if (corners < 3 || corners > vertices)
-            bad(path, line_at(at), "face " + std::to_string(f) + " declares " + std::to_string(corners) +
-                                       " corners; a face needs 3 to " + std::to_string(vertices) +
-                                       " (the vertex count)");
+            bad(path, line_at(at), face + " declares " + std::to_string(corners) + " corners; a face needs 3 to " +
+                                       std::to_string(vertices) + " (the vertex count)");
         unsigned given = 0, index;
         while (given < corners && in >> index) ++given;
         if (given < corners)
-            bad(path, line_at(at), "face " + std::to_string(f) + " declares " + std::to_string(corners) +
-                                       " corners but the file ends after " + std::to_string(given) + " of them");
+            bad(path, line_at(at), face + " declares " + std::to_string(corners) + " corners but the file " +
+                                       (in.eof() ? "ends" : "holds something other than a vertex number") +
+                                       " after " + std::to_string(given) + " of them");
         if (colours) std::getline(in, rest);
     }
 }
