@@ -91,3 +91,52 @@ TEST_CASE("every packet held before the stream info counts toward the hold, empt
     REQUIRE(flood.objects().size() == 1);
     CHECK(flood.objects()[0].points.size() == 10);  // the real packets among the held ones
 }
+
+TEST_CASE("a receiver holds NORMALS entries in memory near their bytes: a bit for an entry left to the surface") {
+    // Issue 29, row 3: 1 MB of NORMALS entries at one bit a point held a map node (64 bytes) a point,
+    // 509 MB. Two million points, every entry left to the surface, then every other one sent.
+    const uint32_t n = 2'000'000;
+    for (const bool some_sent : {false, true}) {
+        CAPTURE(some_sent);
+        StreamInfo info;
+        ObjectInfo o;
+        o.frame = {{0, 0, 0}, 1};
+        o.point_count = n;
+        o.exact_layer = true;
+        o.surface_normals = true;
+        info.objects.push_back(o);
+        std::vector<ObjectContent> contents(1);
+        contents[0].points.resize(n);
+        contents[0].normals.resize(n);
+        if (some_sent)
+            for (uint32_t i = 0; i < n; i += 2) contents[0].normals[i] = {true, {i % 1024, (i / 1024) % 1024}};
+        StreamPackets packets;
+        REQUIRE(packetize_stream(info, contents, 3, packets) == Error::Ok);
+        ReceivedStream rx;
+        uint64_t taken = 0;
+        for (const auto& p : packets.stream_info) REQUIRE(rx.add_packet(p, 0) == Error::Ok);
+        for (const auto& p : packets.normals) {
+            REQUIRE(rx.add_packet(p, 1) == Error::Ok);
+            taken += p.size();
+        }
+        const ReceivedObject& got = rx.objects()[0];
+        REQUIRE(got.normals_complete());
+        const uint64_t held = got.normal_entries.memory();
+        MESSAGE(packets.normals.size() << " NORMALS packets, " << taken << " bytes taken, entries held in " << held
+                                       << " bytes (" << double(held) / double(taken) << "x)");
+        CHECK(held <= 4 * taken);
+        // What is held reads back: every entry, in index order.
+        uint32_t expected = 0;
+        bool same = true;
+        for (const auto& [index, entry] : got.normal_entries) {
+            same = same && index == expected && entry == contents[0].normals[index];
+            ++expected;
+        }
+        CHECK(same);
+        CHECK(expected == n);
+        // The same packets again change nothing; an entry that contradicts one held is refused.
+        REQUIRE(rx.add_packet(packets.normals[3], 2) == Error::Ok);
+        CHECK(rx.counters().duplicates == 1);
+        CHECK(got.normal_entries.memory() == held);
+    }
+}

@@ -13,6 +13,84 @@ namespace ellicast {
 using namespace detail;
 
 // ------------------------------------------------------------------------------------------
+// The entries a receiver holds
+
+namespace {
+constexpr uint64_t kPageCost = sizeof(NormalPage) + 64;  // the page and its map node
+constexpr uint64_t kSentCost = sizeof(std::pair<uint16_t, std::array<uint16_t, 2>>);
+bool bit(const std::array<uint64_t, NormalEntries::kPagePoints / 64>& bits, uint32_t i) {
+    return (bits[i / 64] >> (i % 64)) & 1u;
+}
+}  // namespace
+
+bool NormalEntries::contains(uint32_t index) const {
+    auto page = pages_.find(index / kPagePoints);
+    return page != pages_.end() && bit(page->second.held, index % kPagePoints);
+}
+
+std::optional<NormalEntry> NormalEntries::find(uint32_t index) const {
+    auto page = pages_.find(index / kPagePoints);
+    const uint32_t i = index % kPagePoints;
+    if (page == pages_.end() || !bit(page->second.held, i)) return std::nullopt;
+    NormalEntry e;
+    if (bit(page->second.sent, i)) {
+        const auto& normals = page->second.normals;
+        auto it = std::lower_bound(normals.begin(), normals.end(), i,
+                                   [](const auto& n, uint32_t offset) { return n.first < offset; });
+        e.sent = true;
+        e.normal = {it->second[0], it->second[1]};
+    }
+    return e;
+}
+
+bool NormalEntries::insert(uint32_t index, const NormalEntry& entry) {
+    auto [page_it, made] = pages_.try_emplace(index / kPagePoints);
+    if (made) memory_ += kPageCost;
+    NormalPage& page = page_it->second;
+    const uint32_t i = index % kPagePoints;
+    if (bit(page.held, i)) return false;
+    page.held[i / 64] |= uint64_t(1) << (i % 64);
+    ++size_;
+    if (entry.sent) {
+        page.sent[i / 64] |= uint64_t(1) << (i % 64);
+        auto at = std::lower_bound(page.normals.begin(), page.normals.end(), i,
+                                   [](const auto& n, uint32_t offset) { return n.first < offset; });
+        page.normals.insert(at, {uint16_t(i), {uint16_t(entry.normal[0]), uint16_t(entry.normal[1])}});
+        memory_ += kSentCost;
+    }
+    return true;
+}
+
+NormalEntries::const_iterator::value_type NormalEntries::const_iterator::operator*() const {
+    const uint32_t index = page_->first * kPagePoints + bit_;
+    return {index, *owner_->find(index)};
+}
+
+void NormalEntries::const_iterator::settle() {
+    while (page_ != owner_->pages_.end()) {
+        for (; bit_ < kPagePoints; ++bit_)
+            if (bit(page_->second.held, bit_)) return;
+        ++page_;
+        bit_ = 0;
+    }
+    bit_ = 0;
+}
+
+NormalEntries::const_iterator& NormalEntries::const_iterator::operator++() {
+    ++bit_;
+    settle();
+    return *this;
+}
+
+NormalEntries::const_iterator NormalEntries::begin() const {
+    const_iterator it(this, pages_.begin(), 0);
+    it.settle();
+    return it;
+}
+
+NormalEntries::const_iterator NormalEntries::end() const { return const_iterator(this, pages_.end(), 0); }
+
+// ------------------------------------------------------------------------------------------
 // NORMALS payload (spec 24.2)
 
 size_t normals_payload_size(size_t count, size_t sent, unsigned normal_bits) {
@@ -193,15 +271,21 @@ Error ReceivedStream::take_normals(ReceivedObject& object, const PacketView& pac
                       name + ": points " + std::to_string(run.first_index) + "+" + std::to_string(run.entries.size()) +
                           " of " + std::to_string(oi.point_count));
     bool news = false;
-    if (auto differs = detail::compare_run(object.normal_entries, run.first_index, run.entries, news))
-        return reject(where, Error::StreamMismatch,
-                      name + ": the normal entry of point " + std::to_string(*differs) +
-                          " differs from the one received before");
+    for (size_t k = 0; k < run.entries.size(); ++k) {
+        const uint32_t index = uint32_t(run.first_index + k);
+        const std::optional<NormalEntry> held = object.normal_entries.find(index);
+        if (!held) news = true;
+        else if (!(*held == run.entries[k]))
+            return reject(where, Error::StreamMismatch,
+                          name + ": the normal entry of point " + std::to_string(index) +
+                              " differs from the one received before");
+    }
     if (!news) {
         ++counters_.duplicates;
         return Error::Ok;
     }
-    detail::keep_run(object.normal_entries, run.first_index, run.entries);
+    for (size_t k = 0; k < run.entries.size(); ++k)
+        object.normal_entries.insert(uint32_t(run.first_index + k), run.entries[k]);
     ++counters_.accepted;
     return Error::Ok;
 }

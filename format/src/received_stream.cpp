@@ -870,8 +870,8 @@ std::vector<SurfacePoint> ReceivedStream::points(size_t index) const {
         // Surface normals (spec 24.4): a sent normal; (0, 0, 0), for "left to the surface", otherwise.
         if (!object.info->surface_normals) continue;
         auto entry = object.normal_entries.find(i);
-        if (entry != object.normal_entries.end() && entry->second.sent)
-            out.back().normal = decode_octahedral(entry->second.normal, info_->normal_bits);
+        if (entry && entry->sent)
+            out.back().normal = decode_octahedral(entry->normal, info_->normal_bits);
     }
     return out;
 }

@@ -8,9 +8,14 @@
 #include "ellicast/format/stream_info.h"
 
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
+#include <map>
+#include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace ellicast {
@@ -21,6 +26,59 @@ struct NormalEntry {
     bool sent = false;
     std::array<uint32_t, 2> normal{};  // when sent
     bool operator==(const NormalEntry&) const = default;
+};
+
+// The normal entries a receiver holds, by point index, in memory near what they cost on the wire: a
+// "surface" entry is one bit in a NORMALS packet, so it is a bit here too (a map node per entry made
+// 1 MB of such entries cost 509 MB). Pages of 512 points, made when an entry of theirs arrives: a
+// bit per point held, a bit per point whose normal is sent, and the sent normals in index order
+// (16 bits a component: normal_bits is at most 16). Iterates as (index, entry) pairs in index order.
+inline constexpr uint32_t kNormalPagePoints = 512;
+struct NormalPage {
+    std::array<uint64_t, kNormalPagePoints / 64> held{}, sent{};
+    // The sent normals of the page's points in index order: offset in the page, then u and v.
+    std::vector<std::pair<uint16_t, std::array<uint16_t, 2>>> normals;
+};
+class NormalEntries {
+public:
+    static constexpr uint32_t kPagePoints = kNormalPagePoints;
+    size_t size() const { return size_; }
+    bool empty() const { return size_ == 0; }
+    bool contains(uint32_t index) const;
+    std::optional<NormalEntry> find(uint32_t index) const;
+    // Keeps the entry of a point not held yet; returns false (and changes nothing) when one is held.
+    bool insert(uint32_t index, const NormalEntry& entry);
+    // What the held entries cost: the pages, their sent normals and their bookkeeping.
+    uint64_t memory() const { return memory_; }
+
+    class const_iterator {
+    public:
+        using iterator_category = std::forward_iterator_tag;
+        using value_type = std::pair<uint32_t, NormalEntry>;
+        using difference_type = std::ptrdiff_t;
+        using pointer = void;
+        using reference = value_type;
+        value_type operator*() const;
+        const_iterator& operator++();
+        bool operator==(const const_iterator& o) const { return page_ == o.page_ && bit_ == o.bit_; }
+
+    private:
+        friend class NormalEntries;
+        const_iterator(const NormalEntries* owner, std::map<uint32_t, NormalPage>::const_iterator page,
+                       uint32_t bit)
+            : owner_(owner), page_(page), bit_(bit) {}
+        void settle();  // forward to the next held bit (or the end)
+        const NormalEntries* owner_;
+        std::map<uint32_t, NormalPage>::const_iterator page_;
+        uint32_t bit_;
+    };
+    const_iterator begin() const;
+    const_iterator end() const;
+
+private:
+    std::map<uint32_t, NormalPage> pages_;  // by page number (index / kPagePoints)
+    size_t size_ = 0;
+    uint64_t memory_ = 0;
 };
 
 // Surface normals (format 1.8, spec 24): NORMALS packets.

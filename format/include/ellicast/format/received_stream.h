@@ -88,7 +88,7 @@ struct ReceivedObject {
     std::vector<float> morph_scales;
     std::map<uint32_t, std::vector<float>> morph;
     // Format 1.8 (spec 24.2): the normal entries of an object with surface normals, by point index.
-    std::map<uint32_t, NormalEntry> normal_entries;
+    NormalEntries normal_entries;
     bool normals_complete() const { return info && normal_entries.size() == info->point_count; }
 };
 
