@@ -135,6 +135,21 @@ TEST_CASE("inspect summarizes stream info, packet types, objects and damage") {
     CHECK(contains(r.out, "conforms: yes"));
 }
 
+TEST_CASE("inspect says of each object its exact layer's kind, triangles and carried vertices, and its normal entries") {
+    Result r = run_ellicast("inspect " + vector_path("valid/exact_mesh"));
+    REQUIRE(r.code == 0);
+    CHECK_MESSAGE(contains(r.out, "exact layer: EXACT_MESH (format 1.11), 128 triangles, 33 vertices carried beside the "
+                                  "points; 325/325 bytes, complete"),
+                  r.out);
+    r = run_ellicast("inspect " + vector_path("valid/exact_mesh_surface_normals"));
+    REQUIRE(r.code == 0);
+    CHECK_MESSAGE(contains(r.out, "surface normals (format 1.8): entries 36/36, complete"), r.out);
+    r = run_ellicast("inspect --json " + vector_path("valid/exact_mesh_surface_normals"));
+    REQUIRE(r.code == 0);
+    CHECK(contains(r.out, "\"carried_vertices\": 20"));
+    CHECK(contains(r.out, "\"packets\": \"EXACT_MESH\""));
+}
+
 TEST_CASE("inspect names a freshly encoded stream's repair packets as repair not needed, not as duplicates") {
     const auto dir = ellicast::test::scratch_dir("inspect_repair");
     const std::string stream = (dir / "trefoil.ellc").string();

@@ -84,6 +84,21 @@ nlohmann::json to_json(const StreamReport& r, bool with_packets) {
                 oj["point_map"] = {{"level", o.info->map_level},     {"batch", o.info->map_batch},
                                    {"fragments", o.map_fragments.size()}, {"ranks", o.map_ranks},
                                    {"complete", o.map_complete()},    {"unplaced_points", o.unplaced.size()}};
+            if (o.info->exact_layer) {  // format 1.3 (spec 19), carried vertices format 1.11 (spec 27)
+                json layer = {{"packets", nullptr}, {"complete", false}};
+                if (const auto& c = o.connectivity) {
+                    layer = {{"packets", c->mesh ? "EXACT_MESH" : "CONNECTIVITY"},
+                             {"triangle_count", c->triangle_count},
+                             {"carried_vertices", c->carried_count},
+                             {"bytes_received", c->received_bytes},
+                             {"coded_size", c->coded_size},
+                             {"complete", c->complete},
+                             {"recovered", c->recovered}};
+                }
+                oj["exact_layer"] = layer;
+            }
+            if (o.info->surface_normals)  // format 1.8 (spec 24)
+                oj["normal_entries"] = {{"received", o.normal_entries.size()}, {"complete", o.normals_complete()}};
         } else {
             oj["info"] = nullptr;
         }
@@ -214,6 +229,19 @@ void print_text(const StreamReport& r, bool with_packets) {
                 << o.map_fragments.size() << " fragments holding " << o.map_ranks << "/" << oi.point_count << " ranks"
                 << (o.unplaced.empty() ? "" : "; " + std::to_string(o.unplaced.size()) + " points held but not placed")
                 << "\n";
+        if (oi.exact_layer) {
+            out << "     exact layer: ";
+            if (const auto& c = o.connectivity)
+                out << (c->mesh ? "EXACT_MESH (format 1.11), " : "CONNECTIVITY (format 1.3), ") << c->triangle_count
+                    << " triangles, " << c->carried_count << " vertices carried beside the points; "
+                    << c->received_bytes << "/" << c->coded_size << " bytes"
+                    << (c->complete ? (c->recovered ? ", complete (through repair)" : ", complete") : "") << "\n";
+            else
+                out << "announced, nothing received\n";
+        }
+        if (oi.surface_normals)
+            out << "     surface normals (format 1.8): entries " << o.normal_entries.size() << "/" << oi.point_count
+                << (o.normals_complete() ? ", complete" : "") << "\n";
         if (!complete) {
             std::string me = missing_ranges(o.ellipsoids, oi.ellipsoid_count), mp = missing_ranges(o.points, oi.point_count);
             if (!me.empty()) out << "     missing ellipsoids " << me << "\n";
