@@ -437,6 +437,12 @@ void check_off(const std::string& path) {
         return line;
     };
     std::ifstream in(path);
+    const uint64_t size = file_size(path);
+    // Skips to the next word and says where it starts (the file's end when there is none).
+    auto next_word = [&in, size]() -> std::streamoff {
+        in >> std::ws;
+        return in.eof() ? std::streamoff(size) : std::streamoff(in.tellg());
+    };
     std::string header;
     if (!std::getline(in, header)) throw InputError(path + ": an empty file, not an OFF file");
     size_t p = 0;
@@ -452,11 +458,9 @@ void check_off(const std::string& path) {
     if (header.find("BINARY", p + 3) != std::string::npos)
         bad(path, 1, "binary OFF files are not supported (their counts cannot be checked before reading)");
 
-    const uint64_t size = file_size(path);
     // A count: the next word, read as OpenMesh reads it (an unsigned int), refused when negative.
     auto count = [&](const char* what) -> unsigned {
-        in >> std::ws;
-        const std::streamoff at = in.tellg();
+        const std::streamoff at = next_word();
         if (in.peek() == '-') bad(path, line_at(at), std::string("a negative ") + what);
         const bool digit = std::isdigit(in.peek()) != 0;
         unsigned value = 0;
@@ -484,11 +488,10 @@ void check_off(const std::string& path) {
     float value;
     const int numbers = normals ? 6 : 3;
     for (unsigned i = 0; i < vertices; ++i) {
-        in >> std::ws;
-        const std::streamoff at = in.tellg();
+        const std::streamoff at = next_word();
         for (int k = 0; k < numbers; ++k)
             if (!(in >> value))
-                bad(path, line_at(at < 0 ? std::streamoff(size) : at),
+                bad(path, line_at(at),
                     "vertex " + std::to_string(i) + " of " + std::to_string(vertices) + ": " +
                         (normals ? "6 numbers (position and normal)" : "3 numbers (its position)") +
                         " expected, the file " + (in.eof() ? "ends" : "holds something else") + " after " +
@@ -496,8 +499,7 @@ void check_off(const std::string& path) {
         std::getline(in, rest);
     }
     for (unsigned f = 0; f < faces; ++f) {
-        in >> std::ws;
-        const std::streamoff at = in.eof() ? std::streamoff(size) : std::streamoff(in.tellg());
+        const std::streamoff at = next_word();
         const std::string face = "face " + std::to_string(f) + " of " + std::to_string(faces);
         if (in.peek() == '-') bad(path, line_at(at), face + " declares a negative corner count");
         unsigned corners = 0;

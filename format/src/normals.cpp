@@ -28,19 +28,25 @@ bool NormalEntries::contains(uint32_t index) const {
     return page != pages_.end() && bit(page->second.held, index % kPagePoints);
 }
 
-std::optional<NormalEntry> NormalEntries::find(uint32_t index) const {
-    auto page = pages_.find(index / kPagePoints);
-    const uint32_t i = index % kPagePoints;
-    if (page == pages_.end() || !bit(page->second.held, i)) return std::nullopt;
+namespace {
+// The entry of the point at offset `i` of a page that holds it.
+NormalEntry entry_of(const NormalPage& page, uint32_t i) {
     NormalEntry e;
-    if (bit(page->second.sent, i)) {
-        const auto& normals = page->second.normals;
-        auto it = std::lower_bound(normals.begin(), normals.end(), i,
+    if (bit(page.sent, i)) {
+        auto it = std::lower_bound(page.normals.begin(), page.normals.end(), i,
                                    [](const auto& n, uint32_t offset) { return n.first < offset; });
         e.sent = true;
         e.normal = {it->second[0], it->second[1]};
     }
     return e;
+}
+}  // namespace
+
+std::optional<NormalEntry> NormalEntries::find(uint32_t index) const {
+    auto page = pages_.find(index / kPagePoints);
+    const uint32_t i = index % kPagePoints;
+    if (page == pages_.end() || !bit(page->second.held, i)) return std::nullopt;
+    return entry_of(page->second, i);
 }
 
 bool NormalEntries::insert(uint32_t index, const NormalEntry& entry) {
@@ -62,8 +68,7 @@ bool NormalEntries::insert(uint32_t index, const NormalEntry& entry) {
 }
 
 NormalEntries::const_iterator::value_type NormalEntries::const_iterator::operator*() const {
-    const uint32_t index = page_->first * kPagePoints + bit_;
-    return {index, *owner_->find(index)};
+    return {page_->first * kPagePoints + bit_, entry_of(page_->second, bit_)};
 }
 
 void NormalEntries::const_iterator::settle() {
