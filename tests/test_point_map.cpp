@@ -170,6 +170,17 @@ TEST_CASE("the bunny's points travel mapped: fewer bytes, the same points, place
     CHECK(rx.objects()[0].unplaced.empty());
     REQUIRE(rx.objects()[0].points.size() == points.size());
     for (const auto& [index, point] : rx.objects()[0].points) CHECK(point.position == points[index].position);
+    // Held in memory near their bytes (spec 11.2): a 2-byte component and page bookkeeping a point.
+    // A map cell is 20 bytes held (a code, a count, a start) against about half a byte on the wire
+    // (its octree): the map is the larger share, 36 times its bytes.
+    const uint64_t held_points = rx.objects()[0].points.memory(), held_map = rx.objects()[0].map_memory;
+    const double point_bytes = double(total_bytes(p.points)), map_bytes = double(total_bytes(p.maps));
+    MESSAGE("bunny: points held in " << held_points << " bytes for " << point_bytes << " bytes of MAPPED_POINTS ("
+                                     << double(held_points) / point_bytes << "x), the map in " << held_map << " for "
+                                     << map_bytes << " (" << double(held_map) / map_bytes << "x)");
+    CHECK(double(held_points) <= 2.5 * point_bytes);
+    CHECK(double(held_points + held_map) <= 5 * mapped_bytes);
+    CHECK(rx.held_memory() == rx.objects()[0].memory());
     // Repeats are duplicates and change nothing.
     const auto accepted = rx.counters().accepted;
     for (const auto& packet : p.maps) REQUIRE(rx.add_packet(packet, where++) == Error::Ok);

@@ -312,7 +312,7 @@ TEST_CASE("JOINT_WEIGHTS packets carry a record for every point, with one- and t
         for (size_t i = 0; i < all.size(); ++i) REQUIRE(stream.add_packet(all[i], i) == Error::Ok);
         const ReceivedObject& object = stream.objects().at(0);
         REQUIRE(object.weights.size() == 1000);
-        for (uint32_t i = 0; i < 1000; ++i) CHECK(object.weights.at(i) == records[i]);
+        for (uint32_t i = 0; i < 1000; ++i) CHECK(*object.weights.find(i) == records[i]);
         CHECK(stream.counters().duplicates == 1);
     }
     // A record list that does not match the object, or an invalid record, is refused by the sender.
@@ -382,7 +382,7 @@ TEST_CASE("JOINT_WEIGHTS packets that are malformed, out of range or contradict 
     at(other, 8 + 5 * 9 + 3) = 201;  // the last point's weights 201 + 54
     at(other, 8 + 5 * 9 + 4) = 54;
     CHECK(stream.add_packet(test::resealed(other), 101) == Error::StreamMismatch);
-    CHECK(stream.objects().at(0).weights.at(9) == records[9]);
+    CHECK(*stream.objects().at(0).weights.find(9) == records[9]);
     // The same records with two-byte joints are the same records: a duplicate.
     const JointWeightsRun run{0, records};
     std::vector<uint8_t> payload = encode_joint_weights_payload(run);

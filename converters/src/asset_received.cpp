@@ -409,7 +409,7 @@ void received_skins(const ReceivedStream& stream, const std::map<uint16_t, uint1
         if (asset.weights[o].empty()) continue;
         uint16_t m = 0;
         for (const auto& [i, r] : stream.objects()[o].weights)
-            for (size_t k = 0; k < r.count; ++k) m = std::max(m, r.joints[k]);
+            for (size_t k = 0; k < r->count; ++k) m = std::max(m, r->joints[k]);
         max_joint[o] = m;
     }
     std::map<uint16_t, uint16_t> skin_map;  // stream skin -> written skin

@@ -33,17 +33,13 @@ VertexMorph vertex_morph(const Mesh& decoded, const ReceivedStream& stream, size
     if (index >= stream.objects().size() || !stream.info()) return out;
     const ReceivedObject& object = stream.objects()[index];
     if (!object.info || object.morph.empty() || decoded.positions.empty()) return out;
-    const std::vector<const std::vector<float>*> per_vertex =
-        point_transfer::nearest_records(decoded, stream, index, object.morph);
+    const std::vector<const float*> per_vertex = point_transfer::nearest_records(decoded, stream, index, object.morph);
     if (per_vertex.empty()) return out;
     out.targets = object.morph_targets;
     out.attributes = object.morph_attributes;
     const size_t per = morph_record_values(out.targets, out.attributes);
     out.values.reserve(per * decoded.positions.size());
-    for (size_t v = 0; v < decoded.positions.size(); ++v) {
-        const std::vector<float>& r = *per_vertex[v];
-        out.values.insert(out.values.end(), r.begin(), r.end());
-    }
+    for (size_t v = 0; v < decoded.positions.size(); ++v) out.values.insert(out.values.end(), per_vertex[v], per_vertex[v] + per);
     return out;
 }
 

@@ -10,7 +10,7 @@
 
 #include <array>
 #include <cstdint>
-#include <map>
+#include <optional>
 #include <vector>
 
 namespace ellicast::point_transfer {
@@ -35,17 +35,18 @@ std::vector<uint32_t> nearest_held(const Mesh& decoded, const std::vector<std::a
 // For each vertex of `decoded`, the record (of `records`, by point index, of object `index` of
 // `stream`, whose info has arrived) of the nearest held point that has one; empty when no held
 // point has a record.
+// A record is the first of its records.stride() elements.
 template <class Record>
 std::vector<const Record*> nearest_records(const Mesh& decoded, const ReceivedStream& stream, size_t index,
-                                           const std::map<uint32_t, Record>& records) {
+                                           const PagedRecords<Record>& records) {
     const ReceivedObject& object = stream.objects()[index];
     std::vector<std::array<float, 3>> positions;
     std::vector<const Record*> held;
     for (const auto& [i, record] : records) {
-        auto p = object.points.find(i);
-        if (p == object.points.end()) continue;
-        positions.push_back(dequantize_point(p->second, *stream.info(), *object.info).position);
-        held.push_back(&record);
+        std::optional<QuantizedPoint> p = object.points.find(i);
+        if (!p) continue;
+        positions.push_back(dequantize_point(*p, *stream.info(), *object.info).position);
+        held.push_back(record);
     }
     std::vector<const Record*> out;
     if (held.empty()) return out;

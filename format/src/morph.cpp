@@ -160,8 +160,8 @@ Error ReceivedStream::take_morph_deltas(ReceivedObject& object, const PacketView
     uint64_t fresh = 0, runs = 0;
     bool in_run = false;
     for (size_t i = 0; i < run.count; ++i) {
-        auto it = object.morph.find(static_cast<uint32_t>(run.first_index + i));
-        if (it == object.morph.end()) {
+        const float* held = object.morph_targets != 0 ? object.morph.find(static_cast<uint32_t>(run.first_index + i)) : nullptr;
+        if (!held) {
             ++fresh;
             if (!in_run) ++runs;
             in_run = true;
@@ -169,7 +169,7 @@ Error ReceivedStream::take_morph_deltas(ReceivedObject& object, const PacketView
         }
         in_run = false;
         // As numbers: +0 and -0 agree (== does so).
-        if (!std::equal(it->second.begin(), it->second.end(), values.begin() + std::ptrdiff_t(i * per_point)))
+        if (!std::equal(held, held + per_point, values.begin() + std::ptrdiff_t(i * per_point)))
             return reject(where, Error::StreamMismatch,
                           name + ": the displacements of point " + std::to_string(run.first_index + i) +
                               " differ from those received before");
@@ -178,6 +178,7 @@ Error ReceivedStream::take_morph_deltas(ReceivedObject& object, const PacketView
         ++counters_.duplicates;
         return Error::Ok;
     }
+    // What the new records will cost as held (pages included), for the limit below.
     const uint64_t memory = fresh * 4 * per_point + runs * kHeldPacketCost;
     if (texture_bytes_ + memory > limits_.max_texture_bytes)
         return reject(where, Error::MalformedPayload,
@@ -186,9 +187,9 @@ Error ReceivedStream::take_morph_deltas(ReceivedObject& object, const PacketView
     object.morph_targets = run.target_count;
     object.morph_attributes = run.attributes;
     object.morph_scales = run.scales;
+    object.morph.set_stride(per_point);
     for (size_t i = 0; i < run.count; ++i)
-        object.morph.try_emplace(static_cast<uint32_t>(run.first_index + i), values.begin() + std::ptrdiff_t(i * per_point),
-                                 values.begin() + std::ptrdiff_t((i + 1) * per_point));
+        object.morph.insert(static_cast<uint32_t>(run.first_index + i), values.data() + i * per_point);
     texture_bytes_ += memory;
     ++counters_.accepted;
     return Error::Ok;
@@ -209,7 +210,7 @@ std::map<uint16_t, uint8_t> morph_target_objects(const ReceivedStream& stream) {
 
 bool morphed(const ReceivedObject& object) {
     for (const auto& [index, record] : object.morph)
-        if (object.points.count(index)) return true;
+        if (object.points.contains(index)) return true;
     return false;
 }
 

@@ -15,22 +15,22 @@ namespace ellicast::detail {
 // 21.2, 24.2, step 15): the index of the first point whose record differs from the one held (the
 // run is then rejected whole), or none. `news` tells whether the run brings a record not held.
 template <class Record>
-std::optional<uint32_t> compare_run(const std::map<uint32_t, Record>& held, uint32_t first,
-                                    const std::vector<Record>& records, bool& news) {
+std::optional<uint32_t> compare_run(const PagedRecords<Record>& held, uint32_t first, const std::vector<Record>& records,
+                                    bool& news) {
     news = false;
     for (size_t i = 0; i < records.size(); ++i) {
         const uint32_t index = static_cast<uint32_t>(first + i);
-        auto it = held.find(index);
-        if (it == held.end()) news = true;
-        else if (!(it->second == records[i])) return index;
+        const Record* it = held.find(index);
+        if (!it) news = true;
+        else if (!(*it == records[i])) return index;
     }
     return std::nullopt;
 }
 
 // Keeps the records of points not held yet (the first copy of a record is kept).
 template <class Record>
-void keep_run(std::map<uint32_t, Record>& held, uint32_t first, const std::vector<Record>& records) {
-    for (size_t i = 0; i < records.size(); ++i) held.emplace(static_cast<uint32_t>(first + i), records[i]);
+void keep_run(PagedRecords<Record>& held, uint32_t first, const std::vector<Record>& records) {
+    for (size_t i = 0; i < records.size(); ++i) held.insert(static_cast<uint32_t>(first + i), &records[i]);
 }
 
 // The NORMALS payloads of one object's entries (one per point): runs of as many points as fit a

@@ -41,6 +41,7 @@ Error ReceivedStream::add_packet(std::span<const uint8_t> bytes, uint64_t where)
 
 Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
     const PacketHeader& h = packet.header;
+    bytes_taken_ += packet.size;  // intact: the byte budget follows it (spec 11.2)
     if (stream_id_ && *stream_id_ != h.stream_id)
         return reject(where, Error::StreamMismatch, "stream id " + std::to_string(h.stream_id) + ", expected " +
                                                         std::to_string(*stream_id_));
@@ -186,6 +187,8 @@ Error ReceivedStream::take_stream_info(const PacketView& packet, uint64_t where)
         ReceivedObject& object = objects_[part.first_object + i];
         if (object.info) continue;
         object.info = part.info.objects[i];
+        object.points.set_layout(*object.info);
+        object.unplaced.set_layout(*object.info);
         news = true;
     }
     if (news) release_pending();
@@ -209,6 +212,22 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
         return Error::Ok;
     }
     ReceivedObject& object = objects_[id];
+    // The byte budget (spec 11.2): checked before the packet, so what it adds (at most what one
+    // packet's records cost) may take the objects past it once.
+    if (held_memory_ > memory_budget())
+        return reject(where, Error::MalformedPayload,
+                      name + ": the objects hold " + std::to_string(held_memory_) + " bytes, over this receiver's budget of " +
+                          std::to_string(memory_budget()) + " (" + std::to_string(limits_.memory_base) + " plus " +
+                          std::to_string(limits_.memory_per_byte) + " times the " + std::to_string(bytes_taken_) +
+                          " bytes of packets taken)");
+    const uint64_t before = object.memory();
+    const Error e = take_object_content(object, packet, name, where);
+    held_memory_ = held_memory_ - before + object.memory();
+    return e;
+}
+
+Error ReceivedStream::take_object_content(ReceivedObject& object, const PacketView& packet, const std::string& name,
+                                          uint64_t where) {
     const ObjectInfo& oi = *object.info;
     if (packet.header.type == static_cast<uint8_t>(PacketType::PointsRepair)) return take_repair(object, packet, name, where);
     if (is_exact_layer_type(packet.header.type)) return take_connectivity(object, packet, name, where);
@@ -505,8 +524,8 @@ Error ReceivedStream::take_repair(ReceivedObject& object, const PacketView& pack
         // Records held count, placed or not (spec 23.6).
         for (const auto* records : {&object.points, &object.unplaced})
             for (auto p = records->lower_bound(block.first_index);
-                 p != records->end() && p->first < uint64_t{block.first_index} + block.point_count; ++p)
-                ++fresh.held_in_batch[(p->first - block.first_index) / block.batch];
+                 p != records->end() && (*p).first < uint64_t{block.first_index} + block.point_count; ++p)
+                ++fresh.held_in_batch[((*p).first - block.first_index) / block.batch];
         for (uint32_t i = 0; i < block.source_count(); ++i)
             if (fresh.held_in_batch[i] == block.batch_points(i)) ++fresh.batches_held;
         fresh.complete = fresh.batches_held == block.source_count();
@@ -544,14 +563,21 @@ bool place_point(const ReceivedObject& object, uint32_t index, unsigned position
 
 }  // namespace
 
+uint64_t ReceivedObject::memory() const {
+    // An ellipsoid is a std::map node: the element, its key and about 48 bytes of links.
+    constexpr uint64_t kEllipsoidCost = sizeof(QuantizedEllipsoid) + 56;
+    return ellipsoids.size() * kEllipsoidCost + points.memory() + unplaced.memory() + weights.memory() + morph.memory() +
+           normal_entries.memory() + map_memory;
+}
+
 bool ReceivedStream::take_point_record(ReceivedObject& object, uint32_t index, const QuantizedPoint& record) {
-    if (!object.info->mapped()) return object.points.emplace(index, record).second;
-    if (object.points.count(index) || object.unplaced.count(index)) return false;
+    if (!object.info->mapped()) return object.points.insert(index, record);
+    if (object.points.contains(index) || object.unplaced.contains(index)) return false;
     QuantizedPoint q = record;
     if (place_point(object, index, info_->position_bits, q))
-        object.points.emplace(index, q);
+        object.points.insert(index, q);
     else
-        object.unplaced.emplace(index, record);
+        object.unplaced.insert(index, record);
     return true;
 }
 
@@ -593,17 +619,17 @@ Error ReceivedStream::take_point_map(ReceivedObject& object, const PacketView& p
         start += c.count;
     }
     kept.cells = std::move(f.cells);
+    object.map_memory += kept.cells.capacity() * sizeof(MapCell) + kept.starts.capacity() * sizeof(uint32_t) + kHeldPacketCost;
     object.map_fragments.emplace(f.first_rank, std::move(kept));
     object.map_ranks += f.point_total;
     ++counters_.accepted;
     // Place the records it covers: over whichever is smaller, the records waiting or its ranks.
     auto place = [&](uint32_t index) {
-        auto u = object.unplaced.find(index);
-        if (u == object.unplaced.end()) return;
-        QuantizedPoint q = u->second;
-        if (place_point(object, index, info_->position_bits, q)) {
-            object.points.emplace(index, q);
-            object.unplaced.erase(u);
+        std::optional<QuantizedPoint> q = object.unplaced.find(index);
+        if (!q) return;
+        if (place_point(object, index, info_->position_bits, *q)) {
+            object.points.insert(index, *q);
+            object.unplaced.erase(index);
         }
     };
     if (object.unplaced.size() <= f.point_total) {
@@ -647,8 +673,8 @@ void ReceivedStream::try_recover(ReceivedObject& object, ReceivedRepairBlock& he
         batch_points.clear();
         const uint32_t first = block.first_index + i * block.batch;
         for (uint32_t index = first; index < first + block.batch_points(i); ++index) {
-            auto p = object.points.find(index);
-            batch_points.push_back(p != object.points.end() ? p->second : object.unplaced.at(index));
+            std::optional<QuantizedPoint> p = object.points.find(index);
+            batch_points.push_back(p ? *p : object.unplaced.find(index).value());
         }
         sources[i] = repair_source_symbol(block, batch_points, *info_, oi);
     }

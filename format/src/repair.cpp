@@ -247,12 +247,12 @@ Error RepairPacketChecker::check(const PacketView& packet, std::string& why) {
             points.clear();
             const uint32_t first = block.first_index + i * block.batch;
             for (uint32_t n = 0; n < block.batch_points(i); ++n) {
-                auto p = object.points.find(first + n);
-                if (p == object.points.end()) {
+                std::optional<QuantizedPoint> p = object.points.find(first + n);
+                if (!p) {
                     state.complete = false;  // incomplete: nothing to compare
                     break;
                 }
-                points.push_back(p->second);
+                points.push_back(*p);
             }
             if (state.complete) state.sources[i] = repair_source_symbol(block, points, *stream_.info(), oi);
         }

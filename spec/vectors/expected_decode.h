@@ -304,9 +304,9 @@ inline nlohmann::json objects_json(const ReceivedStream& stream) {
                 json weights = json::array();
                 for (const auto& [index, r] : object.weights) {
                     json joints = json::array(), w = json::array();
-                    for (size_t k = 0; k < r.count; ++k) {
-                        joints.push_back(r.joints[k]);
-                        w.push_back(r.weights[k]);
+                    for (size_t k = 0; k < r->count; ++k) {
+                        joints.push_back(r->joints[k]);
+                        w.push_back(r->weights[k]);
                     }
                     weights.push_back({{"index", index}, {"joints", joints}, {"weights", w}});
                 }
@@ -342,11 +342,11 @@ inline nlohmann::json objects_json(const ReceivedStream& stream) {
                     // is the nearest to value / scale: the products of distinct i16 values and one f32 scale
                     // round to distinct f32 values, within 2^-9 of q * scale once divided by it (README).
                     json q = json::array();
-                    for (size_t i = 0; i < values.size(); ++i) {
+                    for (size_t i = 0; i < object.morph.stride(); ++i) {
                         const double v = values[i], s = scales[i / 3];
                         q.push_back(std::isfinite(v) ? json(std::lround(v / s)) : json(nullptr));
                     }
-                    records.push_back({{"index", index}, {"q", q}, {"values", floats(values.data(), values.size())}});
+                    records.push_back({{"index", index}, {"q", q}, {"values", floats(values, object.morph.stride())}});
                 }
                 o["morph"] = {{"target_count", object.morph_targets},
                               {"attributes", object.morph_attributes},
@@ -575,7 +575,7 @@ inline bool object_arrived(const ReceivedStream& s, uint16_t object) {
 inline bool object_weighted(const ReceivedStream& s, uint16_t object) {
     const ReceivedObject& o = s.objects()[object];
     for (const auto& [index, r] : o.weights)
-        if (o.points.count(index)) return true;
+        if (o.points.contains(index)) return true;
     return false;
 }
 // Format 1.6 (spec 22.4): whether a mesh whose record arrived is shown with its targets: its record
@@ -693,8 +693,8 @@ inline nlohmann::json shown_json(const ReceivedStream& s, bool viewed = false) {
                 any = true;
                 if (!object_weighted(s, p.object)) ok = false;
                 for (const auto& [i, r] : s.objects()[p.object].weights)
-                    for (size_t k = 0; k < r.count; ++k)
-                        if (r.joints[k] >= skin->second.joint_count) ok = false;
+                    for (size_t k = 0; k < r->count; ++k)
+                        if (r->joints[k] >= skin->second.joint_count) ok = false;
             }
         }
         if (ok && any) skinned.push_back({{"node", index}, {"skin", n.skin}});

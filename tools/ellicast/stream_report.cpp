@@ -356,7 +356,7 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             }
             for (const auto& [i, record] : object.weights) {
                 bool past = false;
-                for (size_t k = 0; k < record.count; ++k) past |= record.joints[k] >= joints;
+                for (size_t k = 0; k < record->count; ++k) past |= record->joints[k] >= joints;
                 if (past) {
                     r.violations.push_back({std::nullopt, name + " point " + std::to_string(i) +
                                                               ": its weights name a joint past the " + std::to_string(joints) +

@@ -14,6 +14,7 @@
 #include "ellicast/format/material_extensions.h"
 #include "ellicast/format/normals.h"
 #include "ellicast/format/packet.h"
+#include "ellicast/format/paged_records.h"
 #include "ellicast/format/point_map.h"
 #include "ellicast/format/quantize.h"
 #include "ellicast/format/repair.h"
@@ -70,26 +71,32 @@ struct ReceivedMapFragment {
 struct ReceivedObject {
     std::optional<ObjectInfo> info;                 // once its stream info entry arrived
     std::map<uint32_t, QuantizedEllipsoid> ellipsoids;  // by index; duplicates collapse
-    std::map<uint32_t, QuantizedPoint> points;          // by index (a mapped object's: placed, spec 23.4)
+    // Per-point records are held compactly (paged_records.h): what they cost counts toward the
+    // receiver's byte budget (spec 11.6).
+    PointRecords points;          // by index (a mapped object's: placed, spec 23.4)
     // Format 1.7 (spec 23): a mapped object's fragments by first rank, and the records held but not
     // placed (positions are offsets inside their cells) by index.
     std::map<uint32_t, ReceivedMapFragment> map_fragments;
-    std::map<uint32_t, QuantizedPoint> unplaced;
+    PointRecords unplaced;
     uint64_t map_ranks = 0;                          // ranks the fragments hold
     bool map_complete() const { return info && info->mapped() && map_ranks == info->point_count; }
     std::map<uint32_t, ReceivedRepairBlock> repair_blocks;  // by first_index (format 1.2)
     uint64_t points_recovered = 0;                  // points that came through repair packets
     std::optional<ReceivedConnectivity> connectivity;  // format 1.3, once a CONNECTIVITY packet was taken
-    std::map<uint32_t, Influences> weights;         // format 1.5: influence records by point index
+    PagedRecords<Influences> weights;               // format 1.5: influence records by point index
     // Format 1.6 (spec 22.1): the target count, attributes and scales of the first MORPH_DELTAS
     // packet accepted, and the displacement records by point index, dequantized
-    // (morph_record_values floats each).
+    // (morph_record_values floats each: the stride).
     uint8_t morph_targets = 0, morph_attributes = 0;
     std::vector<float> morph_scales;
-    std::map<uint32_t, std::vector<float>> morph;
+    PagedRecords<float> morph;
     // Format 1.8 (spec 24.2): the normal entries of an object with surface normals, by point index.
     NormalEntries normal_entries;
     bool normals_complete() const { return info && normal_entries.size() == info->point_count; }
+    uint64_t map_memory = 0;  // what the map fragments held cost (cells, starts, bookkeeping)
+    // What the object's elements and per-point records cost as held (spec 11.2, the byte budget):
+    // ellipsoids, points placed and not, influences, displacements, normal entries, map fragments.
+    uint64_t memory() const;
 };
 
 struct Rejection {
@@ -124,6 +131,11 @@ public:
         // Memory for textures being received, all together: each run of bytes kept counts its
         // length plus kHeldPacketCost.
         size_t max_texture_bytes = 256u << 20;
+        // The byte budget for what objects hold (ReceivedObject::memory(), spec 11.2): a packet of an
+        // object is refused while they hold more than memory_base plus memory_per_byte times the
+        // bytes of the intact packets given to this receiver, so that memory follows what arrived.
+        uint64_t memory_base = 64u << 20;
+        uint64_t memory_per_byte = 8;
     };
 
     ReceivedStream();
@@ -147,6 +159,11 @@ public:
     // Why no stream info is known (for a message): "" when one was accepted or none arrived intact;
     // otherwise how many STREAM_INFO packets were rejected and why the first was.
     std::string stream_info_problem() const;
+    // The byte budget (spec 11.2): what the objects hold, the bytes of intact packets given, and
+    // the budget they make.
+    uint64_t held_memory() const { return held_memory_; }
+    uint64_t bytes_taken() const { return bytes_taken_; }
+    uint64_t memory_budget() const { return limits_.memory_base + limits_.memory_per_byte * bytes_taken_; }
     // Highest minor version seen among accepted packets.
     uint8_t newest_minor() const { return newest_minor_; }
 
@@ -247,6 +264,7 @@ private:
     uint64_t stream_info_rejected_ = 0;
     std::optional<Rejection> first_stream_info_rejection_;
     Error take_object_packet(const PacketView& packet, uint64_t where);
+    Error take_object_content(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_repair(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_point_map(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_normals(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
@@ -278,6 +296,7 @@ private:
     };
     std::vector<Pending> pending_;
     size_t pending_bytes_ = 0;
+    uint64_t held_memory_ = 0, bytes_taken_ = 0;  // the byte budget (spec 11.2)
     ReceiveCounters counters_;
     std::vector<Rejection> rejections_;
     uint8_t newest_minor_ = 0;
