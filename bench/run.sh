@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reruns the benchmarks whose figures the README quotes and writes their output to bench/results/.
-#   bash bench/run.sh [encode|decode|quality|gallery|first-picture|full-quality|broadcast|compare|corpus|point-share|speed|live|region ...]   (default: encode decode quality)
+#   bash bench/run.sh [amplification|encode|decode|quality|gallery|first-picture|full-quality|broadcast|compare|corpus|point-share|speed|live|region ...]   (default: encode decode quality)
 # Speed figures are only meaningful on an otherwise idle machine: check `uptime` first.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -18,6 +18,45 @@ for what in "$@"; do
     encode)
       echo "== encode (bench_encode: bunny, 50k-vertex torus with 400 ellipsoids, every sample)" >&2
       timed "$build/bench/bench_encode" --samples "$samples" 2>&1 | tee "$results/encode.txt" ;;
+    amplification)
+      # Hostile recordings (bench_hostile) and an honest one, through every command that reads a
+      # recording: seconds and peak resident memory against the input's bytes (issue 29).
+      echo "== amplification: hostile recordings through validate, inspect, decode" >&2
+      tmp=$(mktemp -d)
+      "$build/bench/bench_hostile" "$tmp"
+      "$build/ellicast" encode -q "$samples/meshes/bunny.ply" -o "$tmp/honest-bunny.ellc" > /dev/null
+      out="$results/amplification.md"
+      {
+        echo "# Amplification: input bytes against seconds and memory"
+        echo
+        echo "Made by \`bash bench/run.sh amplification\` ($(date -u +%Y-%m-%d), $(nproc) cores). Peak resident"
+        echo "memory of the whole process (\`/usr/bin/time\`), every command with a 120 s timeout. The receiver's"
+        echo "byte budget is 64 MiB plus 8 times the bytes taken (spec 11.2)."
+        echo
+        echo "| input | bytes | command | exit | seconds | peak MB | within 64 MB + 8x |"
+        echo "|---|---:|---|---:|---:|---:|---|"
+      } > "$out"
+      for f in "$tmp"/*.ellc; do
+        size=$(stat -c %s "$f")
+        for cmd in validate inspect decode; do
+          args=("$f"); [ "$cmd" = decode ] && args=("$f" -o "$tmp/out.glb" -q)
+          set +e
+          /usr/bin/time -f "%e %M" -o "$tmp/time.txt" timeout 120 "$build/ellicast" "$cmd" "${args[@]}" > /dev/null 2> "$tmp/err.txt"
+          code=$?
+          set -e
+          read -r secs kb < <(tail -1 "$tmp/time.txt")
+          python3 - "$f" "$size" "$cmd" "$code" "$secs" "$kb" >> "$out" <<'PY'
+import os, sys
+f, size, cmd, code, secs, kb = sys.argv[1:]
+mb = int(kb) / 1024
+within = mb <= 64 + 8 * int(size) / 1048576
+print(f"| {os.path.basename(f)} | {int(size):,} | {cmd} | {code} | {float(secs):.2f} | {mb:.1f} | {'yes' if within else 'no'} |")
+PY
+          echo "$(basename "$f") $cmd: exit $code, $secs s, $kb KB" >&2
+        done
+      done
+      rm -rf "$tmp"
+      cat "$out" ;;
     decode)
       echo "== decode speed (bench_decode: 400 ellipsoids, 50k and 100k points)" >&2
       timed "$build/bench/bench_decode" 2>&1 | tee "$results/decode.txt" ;;

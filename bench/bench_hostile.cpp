@@ -1,0 +1,119 @@
+// Writes hostile recordings that conform as far as a receiver can tell packet by packet, each built to
+// make a receiver hold or compute much more than it was sent (issue 29). bench/run.sh amplification
+// runs every command on them and measures seconds and peak memory against the input's bytes.
+//   bench_hostile OUTDIR
+#include "ellicast/format.h"
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+using namespace ellicast;
+
+namespace {
+
+bool write(const std::string& path, const std::vector<std::vector<uint8_t>>& packets) {
+    const std::vector<uint8_t> bytes = write_container(packets);
+    std::string message;
+    if (write_file(path, bytes, message) != Error::Ok) {
+        std::fprintf(stderr, "bench_hostile: %s\n", message.c_str());
+        return false;
+    }
+    std::fprintf(stderr, "%s: %zu packets, %zu bytes\n", path.c_str(), packets.size(), bytes.size());
+    return true;
+}
+
+ObjectInfo object(uint32_t points) {
+    ObjectInfo o;
+    o.frame = {{0, 0, 0}, 1};
+    o.point_count = points;
+    return o;
+}
+
+std::vector<std::vector<uint8_t>> cat(std::initializer_list<const std::vector<std::vector<uint8_t>>*> groups) {
+    std::vector<std::vector<uint8_t>> all;
+    for (const auto* g : groups) all.insert(all.end(), g->begin(), g->end());
+    return all;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: bench_hostile OUTDIR\n");
+        return 2;
+    }
+    const std::string dir = argv[1];
+    const uint32_t n = 2'000'000;
+    bool ok = true;
+    {   // Mapped records whose map never arrives, each with a NORMALS entry left to the surface.
+        StreamInfo info;
+        ObjectInfo o = object(n);
+        o.map_level = 7;
+        o.map_batch = 4096;
+        o.exact_layer = true;
+        o.surface_normals = true;
+        info.objects.push_back(o);
+        std::vector<ObjectContent> c(1);
+        c[0].points.resize(n);
+        c[0].normals.resize(n);
+        for (uint32_t i = 0; i < n; ++i) c[0].points[i].position = {i % 128, (i / 128) % 128, 5};
+        StreamPackets p;
+        ok = ok && packetize_stream(info, c, 3, p) == Error::Ok &&
+             write(dir + "/unplaced-records.ellc", cat({&p.stream_info, &p.points, &p.normals}));
+    }
+    {   // NORMALS entries only: a bit a point.
+        StreamInfo info;
+        ObjectInfo o = object(n);
+        o.exact_layer = true;
+        o.surface_normals = true;
+        info.objects.push_back(o);
+        std::vector<ObjectContent> c(1);
+        c[0].points.resize(n);
+        c[0].normals.resize(n);
+        StreamPackets p;
+        ok = ok && packetize_stream(info, c, 3, p) == Error::Ok && write(dir + "/normal-entries.ellc", cat({&p.stream_info, &p.normals}));
+    }
+    {   // One point every 512 indices, a packet each: one page per point held.
+        StreamInfo info;
+        info.objects.push_back(object(7'900'000));
+        std::vector<ObjectContent> c(1);
+        c[0].points.resize(info.objects[0].point_count);
+        StreamPackets p;
+        ok = ok && packetize_stream(info, c, 3, p) == Error::Ok;
+        std::vector<std::vector<uint8_t>> sparse = p.stream_info;
+        const ObjectInfo& oi = info.objects[0];
+        for (uint32_t first = 0; first < oi.point_count; first += 512) {
+            PointBatch b;
+            b.first_index = first;
+            b.points.resize(1);
+            PacketHeader h;
+            h.type = uint8_t(PacketType::Points);
+            h.stream_id = 3;
+            h.sequence = first / 512 + 1;
+            h.object_id = 0;
+            sparse.push_back(write_packet(h, encode_points_payload(b, info, oi)));
+        }
+        ok = ok && write(dir + "/sparse-points.ellc", sparse);
+    }
+    {   // A million ellipsoids over one object.
+        StreamInfo info;
+        ObjectInfo o = object(0);
+        o.kind = ObjectKind::Surface;
+        o.ellipsoid_count = 1'000'000;
+        o.point_count = 1;
+        info.objects.push_back(o);
+        std::vector<ObjectContent> c(1);
+        c[0].points.resize(1);
+        c[0].ellipsoids.resize(o.ellipsoid_count);
+        for (uint32_t i = 0; i < o.ellipsoid_count; ++i) {
+            QuantizedEllipsoid& e = c[0].ellipsoids[i];
+            e.center = {uint16_t(i % 32768), uint16_t((i * 7) % 32768), uint16_t((i * 13) % 32768)};
+            e.radii = {100, 200, 300};
+        }
+        StreamPackets p;
+        ok = ok && packetize_stream(info, c, 3, p) == Error::Ok &&
+             write(dir + "/ellipsoids.ellc", cat({&p.stream_info, &p.ellipsoids, &p.points}));
+    }
+    return ok ? 0 : 1;
+}
