@@ -29,8 +29,10 @@ inline void touch_everything(const ReceivedStream& stream) {
         const ReceivedObject& o = stream.objects()[i];
         if (!o.info) continue;
         if (o.ellipsoids.size() > o.info->ellipsoid_count || o.points.size() > o.info->point_count) std::abort();
-        if (!o.ellipsoids.empty() && o.ellipsoids.rbegin()->first >= o.info->ellipsoid_count) std::abort();
-        if (!o.points.empty() && o.points.rbegin()->first >= o.info->point_count) std::abort();
+        for (const auto& [index, e] : o.ellipsoids)
+            if (index >= o.info->ellipsoid_count) std::abort();
+        for (const auto& [index, p] : o.points)
+            if (index >= o.info->point_count) std::abort();
         for (const Ellipsoid& e : stream.ellipsoids(i))
             for (float r : e.radii)
                 if (!(r >= 0)) std::abort();  // never negative, never NaN

@@ -336,7 +336,7 @@ TEST_CASE("every payload type round-trips through its encoder and decoder") {
         const ReceivedObject& o = stream.objects()[0];
         REQUIRE(o.ellipsoids.size() == s.contents[0].ellipsoids.size());
         REQUIRE(o.points.size() == s.contents[0].points.size());
-        for (const auto& [i, q] : o.ellipsoids) CHECK(same(q, s.contents[0].ellipsoids[i]));
+        for (const auto& [i, q] : o.ellipsoids) CHECK(same(*q, s.contents[0].ellipsoids[i]));
         bool all_same = true;
         for (const auto& [i, q] : o.points) all_same &= same(q, s.contents[0].points[i], s.info.objects[0]);
         CHECK(all_same);

@@ -248,7 +248,7 @@ Error ReceivedStream::take_object_content(ReceivedObject& object, const PacketVi
                           name + ": ellipsoids " + std::to_string(batch.first_index) + "+" +
                               std::to_string(batch.ellipsoids.size()) + " of " + std::to_string(oi.ellipsoid_count));
         for (size_t i = 0; i < batch.ellipsoids.size(); ++i)
-            news |= object.ellipsoids.emplace(batch.first_index + static_cast<uint32_t>(i), batch.ellipsoids[i]).second;
+            news |= object.ellipsoids.insert(batch.first_index + static_cast<uint32_t>(i), &batch.ellipsoids[i]);
     } else {
         // POINTS for an object without a map, MAPPED_POINTS for one with a map (spec 23.4).
         const bool mapped_type = packet.header.type == static_cast<uint8_t>(PacketType::MappedPoints);
@@ -564,9 +564,7 @@ bool place_point(const ReceivedObject& object, uint32_t index, unsigned position
 }  // namespace
 
 uint64_t ReceivedObject::memory() const {
-    // An ellipsoid is a std::map node: the element, its key and about 48 bytes of links.
-    constexpr uint64_t kEllipsoidCost = sizeof(QuantizedEllipsoid) + 56;
-    return ellipsoids.size() * kEllipsoidCost + points.memory() + unplaced.memory() + weights.memory() + morph.memory() +
+    return ellipsoids.memory() + points.memory() + unplaced.memory() + weights.memory() + morph.memory() +
            normal_entries.memory() + map_memory;
 }
 
@@ -882,7 +880,7 @@ std::vector<Ellipsoid> ReceivedStream::ellipsoids(size_t index) const {
     std::vector<Ellipsoid> out;
     if (index >= objects_.size() || !objects_[index].info) return out;
     out.reserve(objects_[index].ellipsoids.size());
-    for (const auto& [i, q] : objects_[index].ellipsoids) out.push_back(dequantize_ellipsoid(q, objects_[index].info->frame));
+    for (const auto& [i, q] : objects_[index].ellipsoids) out.push_back(dequantize_ellipsoid(*q, objects_[index].info->frame));
     return out;
 }
 

@@ -245,7 +245,8 @@ inline nlohmann::json objects_json(const ReceivedStream& stream) {
             const ObjectInfo& oi = *object.info;
             Digest ed, pd;
             json ellipsoids = json::array(), points = json::array();
-            for (const auto& [index, q] : object.ellipsoids) {
+            for (const auto& [index, held] : object.ellipsoids) {
+                const QuantizedEllipsoid& q = *held;
                 auto ints = ellipsoid_integers(q);
                 ed.add(index);
                 for (uint32_t v : ints) ed.add(v);

@@ -70,7 +70,7 @@ struct ReceivedMapFragment {
 
 struct ReceivedObject {
     std::optional<ObjectInfo> info;                 // once its stream info entry arrived
-    std::map<uint32_t, QuantizedEllipsoid> ellipsoids;  // by index; duplicates collapse
+    PagedRecords<QuantizedEllipsoid> ellipsoids;    // by index; duplicates collapse
     // Per-point records are held compactly (paged_records.h): what they cost counts toward the
     // receiver's byte budget (spec 11.6).
     PointRecords points;          // by index (a mapped object's: placed, spec 23.4)
