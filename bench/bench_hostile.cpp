@@ -46,33 +46,31 @@ int main(int argc, char** argv) {
     const std::string dir = argv[1];
     const uint32_t n = 2'000'000;
     bool ok = true;
-    {   // Mapped records whose map never arrives, each with a NORMALS entry left to the surface.
+    // An object of n points with surface normals, every entry left to the surface; mapped at level 7
+    // when `mapped`, its points then spread over 128 x 128 cells.
+    auto surface_normals_stream = [&](bool mapped, StreamPackets& p) {
         StreamInfo info;
         ObjectInfo o = object(n);
-        o.map_level = 7;
-        o.map_batch = 4096;
+        o.map_level = mapped ? 7 : 0;
+        o.map_batch = mapped ? 4096 : 0;
         o.exact_layer = true;
         o.surface_normals = true;
         info.objects.push_back(o);
         std::vector<ObjectContent> c(1);
         c[0].points.resize(n);
         c[0].normals.resize(n);
-        for (uint32_t i = 0; i < n; ++i) c[0].points[i].position = {i % 128, (i / 128) % 128, 5};
+        if (mapped)
+            for (uint32_t i = 0; i < n; ++i) c[0].points[i].position = {i % 128, (i / 128) % 128, 5};
+        return packetize_stream(info, c, 3, p) == Error::Ok;
+    };
+    {   // Mapped records whose map never arrives, each with a NORMALS entry.
         StreamPackets p;
-        ok = ok && packetize_stream(info, c, 3, p) == Error::Ok &&
+        ok = ok && surface_normals_stream(true, p) &&
              write(dir + "/unplaced-records.ellc", cat({&p.stream_info, &p.points, &p.normals}));
     }
     {   // NORMALS entries only: a bit a point.
-        StreamInfo info;
-        ObjectInfo o = object(n);
-        o.exact_layer = true;
-        o.surface_normals = true;
-        info.objects.push_back(o);
-        std::vector<ObjectContent> c(1);
-        c[0].points.resize(n);
-        c[0].normals.resize(n);
         StreamPackets p;
-        ok = ok && packetize_stream(info, c, 3, p) == Error::Ok && write(dir + "/normal-entries.ellc", cat({&p.stream_info, &p.normals}));
+        ok = ok && surface_normals_stream(false, p) && write(dir + "/normal-entries.ellc", cat({&p.stream_info, &p.normals}));
     }
     {   // One point every 512 indices, a packet each: one page per point held.
         StreamInfo info;
