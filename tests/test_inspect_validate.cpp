@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -166,6 +167,12 @@ TEST_CASE("inspect names a freshly encoded stream's repair packets as repair not
     const auto j = nlohmann::json::parse(r.out);
     CHECK(j["counters"]["duplicates"] == 0);
     CHECK(j["counters"]["repair_not_needed"].get<int>() > 0);
+    // What the receiver holds, against its byte budget (spec 11.2): the whole trefoil, well inside it.
+    const auto held = j["memory"]["held"].get<uint64_t>(), taken = j["memory"]["bytes_taken"].get<uint64_t>();
+    CHECK(held > 0);
+    CHECK(taken == std::filesystem::file_size(stream) - 12);  // every packet, not the container header
+    CHECK(j["memory"]["budget"].get<uint64_t>() == (64u << 20) + 8 * taken);
+    CHECK(held < 4 * taken);
     // A repeat of a point packet is still a duplicate.
     r = run_ellicast("schedule '" + stream + "' -o '" + (dir / "cycle.ellc").string() + "'");
     REQUIRE_MESSAGE(r.code == 0, r.err);

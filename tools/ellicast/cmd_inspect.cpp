@@ -67,6 +67,8 @@ nlohmann::json to_json(const StreamReport& r, bool with_packets) {
     j["counters"] = {{"packets", r.packets.size()}, {"accepted", c.accepted},
                      {"duplicates", c.duplicates - r.repair_not_needed}, {"repair_not_needed", r.repair_not_needed},
                      {"skipped", c.skipped},        {"rejected", c.rejected}, {"held", c.pending}};
+    // The receiver's byte budget (spec 11.2): what its objects hold against it.
+    j["memory"] = {{"held", r.stream.held_memory()}, {"budget", r.stream.memory_budget()}, {"bytes_taken", r.stream.bytes_taken()}};
     json objects = json::array();
     for (size_t i = 0; i < r.stream.objects().size(); ++i) {
         const ReceivedObject& o = r.stream.objects()[i];
@@ -209,6 +211,8 @@ void print_text(const StreamReport& r, bool with_packets) {
     out << "packets: " << c.accepted << " accepted, " << c.duplicates - r.repair_not_needed << " duplicates, "
         << r.repair_not_needed << " repair not needed (what they protect arrived whole), " << c.skipped << " skipped, "
         << c.rejected << " rejected, " << c.pending << " held without stream info\n";
+    out << "receiver memory: objects hold " << r.stream.held_memory() << " bytes, budget " << r.stream.memory_budget()
+        << " (64 MiB plus 8 times the " << r.stream.bytes_taken() << " bytes of intact packets, spec 11.2)\n";
     const auto& objects = r.stream.objects();
     out << "objects: " << objects.size() << "\n";
     for (size_t i = 0; i < objects.size(); ++i) {
