@@ -160,7 +160,7 @@ Error ReceivedStream::take_morph_deltas(ReceivedObject& object, const PacketView
     uint64_t fresh = 0, runs = 0;
     bool in_run = false;
     for (size_t i = 0; i < run.count; ++i) {
-        const float* held = object.morph_targets != 0 ? object.morph.find(static_cast<uint32_t>(run.first_index + i)) : nullptr;
+        const float* held = object.morph.find(static_cast<uint32_t>(run.first_index + i));  // none before the first run
         if (!held) {
             ++fresh;
             if (!in_run) ++runs;
