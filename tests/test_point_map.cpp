@@ -171,8 +171,8 @@ TEST_CASE("the bunny's points travel mapped: fewer bytes, the same points, place
     REQUIRE(rx.objects()[0].points.size() == points.size());
     for (const auto& [index, point] : rx.objects()[0].points) CHECK(point.position == points[index].position);
     // Held in memory near their bytes (spec 11.2): a 2-byte component and page bookkeeping a point.
-    // A map cell is 20 bytes held (a code, a count, a start) against about half a byte on the wire
-    // (its octree): the map is the larger share, 36 times its bytes.
+    // A map cell is 8 bytes held (a 4-byte code and the rank it starts at) against about half a byte
+    // on the wire (its octree): the map is held in about 11 times its bytes (91 KB for 8.5 KB).
     const uint64_t held_points = rx.objects()[0].points.memory(), held_map = rx.objects()[0].map_memory;
     const double point_bytes = double(total_bytes(p.points)), map_bytes = double(total_bytes(p.maps));
     MESSAGE("bunny: points held in " << held_points << " bytes for " << point_bytes << " bytes of MAPPED_POINTS ("
@@ -180,6 +180,7 @@ TEST_CASE("the bunny's points travel mapped: fewer bytes, the same points, place
                                      << map_bytes << " (" << double(held_map) / map_bytes << "x)");
     CHECK(double(held_points) <= 2.5 * point_bytes);
     CHECK(double(held_points + held_map) <= 5 * mapped_bytes);
+    CHECK(double(held_map) <= 16 * map_bytes);
     CHECK(rx.held_memory() == rx.objects()[0].memory());
     // Repeats are duplicates and change nothing.
     const auto accepted = rx.counters().accepted;
@@ -344,4 +345,34 @@ TEST_CASE("ellicast decode of a mapped stream whose map did not arrive shows the
     out = run_command(shell_quoted(ellicast_exe().string()) + " validate '" + (dir / "nomap.ellc").string() + "'", status);
     CHECK(status != 0);
     CHECK_MESSAGE(out.find("its point map holds 0 of") != std::string::npos, out);
+}
+
+TEST_CASE("a received map fragment holds its cells compactly, with codes past 32 bits at deep levels") {
+    // Level 10: 30-bit codes, 4 bytes each; level 14: 42-bit codes, 8 bytes each.
+    for (const unsigned level : {10u, 14u}) {
+        const uint64_t top = (uint64_t(1) << (3 * level)) - 1;
+        const std::vector<MapCell> cells = {{0, 3}, {5, 1}, {top / 2 + 7, 250}, {top - 1, 2}, {top, 1}};
+        const ReceivedMapFragment f(257, cells, level);
+        CHECK(f.size() == cells.size());
+        CHECK(f.point_total() == 257);
+        CHECK(f.cells() == cells);
+        CHECK(f.same_cells(cells));
+        std::vector<MapCell> other = cells;
+        other[2].count = 249;
+        other[3].count = 3;  // same total, another split
+        CHECK(!f.same_cells(other));
+        other = cells;
+        other[4].code = top - 2 + (uint64_t(1) << 32) * (level > 10);
+        CHECK(!f.same_cells(other));
+        // Ranks 0..2 are cell 0, 3 cell 1, 4..253 cell 2, 254..255 cell 3, 256 cell 4.
+        CHECK(f.cell_of(0) == 0);
+        CHECK(f.cell_of(2) == 0);
+        CHECK(f.cell_of(3) == 1);
+        CHECK(f.cell_of(4) == 2);
+        CHECK(f.cell_of(253) == 2);
+        CHECK(f.cell_of(254) == 3);
+        CHECK(f.cell_of(256) == 4);
+        CHECK(f.code(4) == top);
+        CHECK(f.memory() <= cells.size() * (level > 10 ? 12 : 8));
+    }
 }

@@ -543,6 +543,36 @@ Error ReceivedStream::take_repair(ReceivedObject& object, const PacketView& pack
     return Error::Ok;
 }
 
+ReceivedMapFragment::ReceivedMapFragment(uint32_t point_total, const std::vector<MapCell>& cells, unsigned map_level)
+    : point_total_(point_total), wide_(3 * map_level > 32) {
+    codes_.reserve(cells.size() * (wide_ ? 2 : 1));
+    starts_.reserve(cells.size());
+    uint32_t start = 0;
+    for (const MapCell& c : cells) {
+        codes_.push_back(uint32_t(c.code));
+        if (wide_) codes_.push_back(uint32_t(c.code >> 32));
+        starts_.push_back(start);
+        start += c.count;
+    }
+}
+
+size_t ReceivedMapFragment::cell_of(uint32_t rank) const {
+    return size_t(std::upper_bound(starts_.begin(), starts_.end(), rank) - starts_.begin()) - 1;
+}
+
+std::vector<MapCell> ReceivedMapFragment::cells() const {
+    std::vector<MapCell> out(size());
+    for (size_t i = 0; i < out.size(); ++i) out[i] = {code(i), count(i)};
+    return out;
+}
+
+bool ReceivedMapFragment::same_cells(const std::vector<MapCell>& cells) const {
+    if (cells.size() != size()) return false;
+    for (size_t i = 0; i < cells.size(); ++i)
+        if (cells[i].code != code(i) || cells[i].count != count(i)) return false;
+    return true;
+}
+
 namespace {
 
 // Places a mapped record (spec 23.2, 23.4): its offset becomes a position once a fragment holds its
@@ -554,9 +584,8 @@ bool place_point(const ReceivedObject& object, uint32_t index, unsigned position
     if (it == object.map_fragments.begin()) return false;
     --it;
     const ReceivedMapFragment& f = it->second;
-    if (rank - it->first >= f.point_total) return false;
-    const size_t cell = size_t(std::upper_bound(f.starts.begin(), f.starts.end(), rank - it->first) - f.starts.begin()) - 1;
-    const std::array<uint32_t, 3> corner = cell_corner(f.cells[cell].code, position_bits, oi.map_level);
+    if (rank - it->first >= f.point_total()) return false;
+    const std::array<uint32_t, 3> corner = cell_corner(f.code(f.cell_of(rank - it->first)), position_bits, oi.map_level);
     for (int a = 0; a < 3; ++a) q.position[a] += corner[a];
     return true;
 }
@@ -593,31 +622,23 @@ Error ReceivedStream::take_point_map(ReceivedObject& object, const PacketView& p
                       name + ": ranks " + std::to_string(f.first_rank) + "+" + std::to_string(f.point_total) + " of " +
                           std::to_string(oi.point_count));
     auto same = object.map_fragments.find(f.first_rank);
-    if (same != object.map_fragments.end() && same->second.point_total == f.point_total && same->second.cells == f.cells) {
+    if (same != object.map_fragments.end() && same->second.point_total() == f.point_total && same->second.same_cells(f.cells)) {
         ++counters_.duplicates;
         return Error::Ok;
     }
     // The fragments kept lie in order of ranks and cells together, so its neighbours decide.
     auto next = object.map_fragments.lower_bound(f.first_rank);
     if (next != object.map_fragments.end() &&
-        (next->first < end || next->second.cells.front().code <= f.cells.back().code))
+        (next->first < end || next->second.code(0) <= f.cells.back().code))
         return reject(where, Error::StreamMismatch, name + ": its ranks or cells overlap or cross a fragment received before");
     if (next != object.map_fragments.begin()) {
         auto prev = std::prev(next);
-        if (uint64_t(prev->first) + prev->second.point_total > f.first_rank ||
-            prev->second.cells.back().code >= f.cells.front().code)
+        const ReceivedMapFragment& p = prev->second;
+        if (uint64_t(prev->first) + p.point_total() > f.first_rank || p.code(p.size() - 1) >= f.cells.front().code)
             return reject(where, Error::StreamMismatch, name + ": its ranks or cells overlap or cross a fragment received before");
     }
-    ReceivedMapFragment kept;
-    kept.point_total = f.point_total;
-    kept.starts.reserve(f.cells.size());
-    uint32_t start = 0;
-    for (const MapCell& c : f.cells) {
-        kept.starts.push_back(start);
-        start += c.count;
-    }
-    kept.cells = std::move(f.cells);
-    object.map_memory += kept.cells.capacity() * sizeof(MapCell) + kept.starts.capacity() * sizeof(uint32_t) + kHeldPacketCost;
+    ReceivedMapFragment kept(f.point_total, f.cells, oi.map_level);
+    object.map_memory += kept.memory() + kHeldPacketCost;
     object.map_fragments.emplace(f.first_rank, std::move(kept));
     object.map_ranks += f.point_total;
     ++counters_.accepted;

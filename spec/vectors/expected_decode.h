@@ -321,8 +321,8 @@ inline nlohmann::json objects_json(const ReceivedStream& stream) {
                 json fragments = json::array(), unplaced = json::array();
                 for (const auto& [first, f] : object.map_fragments) {
                     json cells = json::array();
-                    for (const MapCell& c : f.cells) cells.push_back({c.code, c.count});
-                    fragments.push_back({{"first_rank", first}, {"point_total", f.point_total}, {"cells", cells}});
+                    for (const MapCell& c : f.cells()) cells.push_back({c.code, c.count});
+                    fragments.push_back({{"first_rank", first}, {"point_total", f.point_total()}, {"cells", cells}});
                 }
                 for (const auto& [index, q] : object.unplaced)
                     unplaced.push_back({{"index", index}, {"q", point_integers(q, oi)}});

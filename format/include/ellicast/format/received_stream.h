@@ -61,11 +61,33 @@ struct ReceivedRepairBlock {
     uint32_t points_recovered = 0;
 };
 
-// A POINT_MAP fragment a receiver accepted (spec 23.3).
-struct ReceivedMapFragment {
-    uint32_t point_total = 0;
-    std::vector<MapCell> cells;
-    std::vector<uint32_t> starts;  // rank of each cell's first point, from the fragment's first rank
+// A POINT_MAP fragment a receiver accepted (spec 23.3), held compactly: each cell's Morton code in
+// 4 bytes where the map's level allows it (3 x level <= 32) and 8 where not, and the rank of its
+// first point from the fragment's first rank (its count is the difference to the next cell's): 8
+// bytes a cell at the levels encoders choose, 12 at deeper ones.
+class ReceivedMapFragment {
+public:
+    // `cells` in increasing code, each count >= 1, summing to point_total.
+    ReceivedMapFragment(uint32_t point_total, const std::vector<MapCell>& cells, unsigned map_level);
+    uint32_t point_total() const { return point_total_; }
+    size_t size() const { return starts_.size(); }
+    uint64_t code(size_t i) const {
+        return wide_ ? codes_[2 * i] | uint64_t(codes_[2 * i + 1]) << 32 : codes_[i];
+    }
+    uint32_t count(size_t i) const { return (i + 1 < starts_.size() ? starts_[i + 1] : point_total_) - starts_[i]; }
+    // The cell holding the point of rank `rank` counted from the fragment's first rank (< point_total).
+    size_t cell_of(uint32_t rank) const;
+    // The cells as [code, count], in code order.
+    std::vector<MapCell> cells() const;
+    bool same_cells(const std::vector<MapCell>& cells) const;
+    // Bytes held (the vectors' capacity).
+    size_t memory() const { return codes_.capacity() * sizeof(uint32_t) + starts_.capacity() * sizeof(uint32_t); }
+
+private:
+    uint32_t point_total_ = 0;
+    bool wide_ = false;
+    std::vector<uint32_t> codes_;   // one a cell, or (low, high) pairs when wide
+    std::vector<uint32_t> starts_;
 };
 
 struct ReceivedObject {
