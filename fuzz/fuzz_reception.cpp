@@ -1,7 +1,7 @@
 // Fuzzes a network receiver's candidate handling (broadcast::Reception, spec 11.4): a sequence of
 // datagrams from several senders, forged STREAM_INFO packets among them, reaching the candidate
-// streams, the eviction of the weakest candidate when every place is taken, and the choice of the
-// stream shown.
+// streams, the eviction of the weakest candidate when every place is taken, the choice of the
+// stream shown, and the byte budget the candidates share.
 //
 // Input: one mode byte, then packets back to back (the seeds are the conformance vectors without their
 // container header). Mode bits 0 and 1 as fuzz_packet (reseal checksums; one byte more). Mode bit 2:
@@ -42,6 +42,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         // this datagram was not evicted to make room.
         if (reception.candidate_count() > options.max_candidates) std::abort();
         if (reception.candidate_count() > 0 && reception.chosen() >= reception.candidate_count()) std::abort();
+        // One byte budget for every candidate (spec 11.2): what it counts is what they hold.
+        uint64_t held = 0;
+        for (size_t i = 0; i < reception.candidate_count(); ++i) held += reception.candidate(i).held_memory();
+        if (held != reception.memory().held) std::abort();
         if (had) {
             bool kept = false;
             for (size_t i = 0; i < reception.candidate_count(); ++i) kept |= reception.candidate_serial(i) == shown;

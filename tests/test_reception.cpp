@@ -131,3 +131,62 @@ TEST_CASE("a small stream that completes first does not end a receiver that hear
     CHECK(reception.stream().stream_id() == 0xAAAA);
     CHECK(reception.every_candidate_complete());
 }
+
+TEST_CASE("the candidate streams share one byte budget: a datagram that reaches two candidates is not paid for twice") {
+    const auto real = test::synthetic_stream(40, 3000, 0xAAAA);
+    // A STREAM_INFO for the same stream id that contradicts the real one (another packet size) but
+    // declares the same object: every packet of the real stream reaches both candidates.
+    const auto contradicting = test::synthetic_stream(40, 3000, 0xAAAA, 1400);
+    auto held_together = [](const Reception& r) {
+        uint64_t sum = 0;
+        for (size_t i = 0; i < r.candidate_count(); ++i) sum += r.candidate(i).held_memory();
+        return sum;
+    };
+    // With the default budget, both take everything: each holds the whole object.
+    Reception roomy;
+    roomy.take(contradicting[0]);
+    take_twice(roomy, real);
+    REQUIRE(roomy.candidate_count() == 2);
+    CHECK(roomy.complete());
+    const uint64_t one = roomy.candidate(1).held_memory();
+    CHECK(roomy.candidate(0).held_memory() == one);
+    CHECK(roomy.memory().held == 2 * one);
+    uint64_t bytes = 0;
+    for (const auto& p : real) bytes += 2 * p.size();
+    CHECK(roomy.memory().bytes == bytes + contradicting[0].size());
+
+    // A budget that one candidate's object fits but two do not: 8 KiB plus 1x the bytes taken, the
+    // stream heard once. Budgets of their own would have let each candidate hold about `one`.
+    Reception::Options options;
+    options.limits.memory_base = 8u << 10;
+    options.limits.memory_per_byte = 1;
+    Reception tight(options);
+    tight.take(contradicting[0]);
+    for (const auto& p : real) tight.take(p);
+    REQUIRE(tight.candidate_count() == 2);
+    const SharedMemoryBudget& b = tight.memory();
+    CHECK(b.held == held_together(tight));
+    MESSAGE("two candidates of one object: " << b.held << " bytes held together for a budget of " << b.budget()
+                                             << " (each alone would hold " << one << ")");
+    CHECK(b.budget() < 2 * one);
+    CHECK(b.held < 3 * one / 2);
+    CHECK(b.held <= b.budget() + 2 * 1200 * 8);  // at most one packet's records over, for each candidate
+    bool said = false;
+    for (size_t i = 0; i < 2; ++i)
+        for (const Rejection& r : tight.candidate(i).rejections())
+            said |= r.detail.find("candidate streams hold") != std::string::npos;
+    CHECK(said);
+
+    // A candidate dropped to make room gives back what it held.
+    Reception::Options two = options;
+    two.max_candidates = 2;
+    Reception evicting(two);
+    evicting.take(contradicting[0]);
+    for (const auto& p : real) evicting.take(p);
+    REQUIRE(evicting.candidate_count() == 2);
+    const uint64_t before = evicting.memory().held;
+    for (const auto& p : test::synthetic_stream(2, 20, 0xBBBB, 1200, 5)) evicting.take(p);
+    CHECK(evicting.evictions() >= 1);
+    CHECK(evicting.memory().held == held_together(evicting));
+    CHECK(evicting.memory().held < before);
+}

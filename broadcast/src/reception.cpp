@@ -61,6 +61,9 @@ Reception::Reception() : Reception(Options{}) {}
 
 Reception::Reception(Options options) : options_(options) {
     options_.max_candidates = std::clamp<size_t>(options_.max_candidates, 1, 64);
+    budget_ = std::make_shared<SharedMemoryBudget>();
+    budget_->base = options_.limits.memory_base;
+    budget_->per_byte = options_.limits.memory_per_byte;
     if (options_.key) authenticator_.emplace(*options_.key, options_.auth_limits);
 }
 
@@ -140,6 +143,7 @@ Error Reception::take(std::span<const uint8_t> datagram, bool truncated) {
 size_t Reception::place_for_new_candidate(uint32_t id) {
     if (candidates_.size() < options_.max_candidates) {
         candidates_.emplace_back(id, options_.limits, next_serial_++);
+        candidates_.back().stream.share_memory_budget(budget_);
         return candidates_.size() - 1;
     }
     size_t victim = SIZE_MAX;
@@ -151,7 +155,9 @@ size_t Reception::place_for_new_candidate(uint32_t id) {
             victim = i;
     }
     if (victim == SIZE_MAX) return SIZE_MAX;
+    candidates_[victim].stream.share_memory_budget(nullptr);  // gives back what it held
     candidates_[victim] = Candidate(id, options_.limits, next_serial_++);
+    candidates_[victim].stream.share_memory_budget(budget_);
     last_evicted_ |= uint64_t(1) << victim;
     ++evictions_;
     return victim;
@@ -159,6 +165,7 @@ size_t Reception::place_for_new_candidate(uint32_t id) {
 
 std::optional<Error> Reception::route(const PacketView& view, uint64_t where) {
     const uint32_t id = view.header.stream_id;
+    budget_->bytes += view.size;  // intact, once however many candidates take it (spec 11.2)
     bool any = false, taken = false, contradicted = true;
     uint64_t ok = 0;  // bit i: candidate i took the packet, new or not (at most 64 candidates)
     Error first_error = Error::Ok;

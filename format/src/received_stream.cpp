@@ -19,6 +19,12 @@ bool same_stream_fields(const StreamInfo& a, const StreamInfo& b) {
 ReceivedStream::ReceivedStream() : ReceivedStream(Limits{}) {}
 ReceivedStream::ReceivedStream(Limits limits) : limits_(limits) {}
 
+void ReceivedStream::share_memory_budget(std::shared_ptr<SharedMemoryBudget> budget) {
+    if (shared_budget_) shared_budget_->held -= held_memory_;
+    shared_budget_ = std::move(budget);
+    if (shared_budget_) shared_budget_->held += held_memory_;
+}
+
 Error ReceivedStream::reject(uint64_t where, Error e, std::string detail) {
     ++counters_.rejected;
     if (rejections_.size() < limits_.max_rejections_kept) rejections_.push_back({where, e, std::move(detail)});
@@ -214,7 +220,15 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
     ReceivedObject& object = objects_[id];
     // The byte budget (spec 11.2): checked before the packet, so what it adds (at most what one
     // packet's records cost) may take the objects past it once.
-    if (held_memory_ > memory_budget())
+    if (shared_budget_ && shared_budget_->held > shared_budget_->budget()) {
+        const SharedMemoryBudget& b = *shared_budget_;
+        return reject(where, Error::MalformedPayload,
+                      name + ": the candidate streams hold " + std::to_string(b.held) +
+                          " bytes together, over this receiver's budget of " + std::to_string(b.budget()) + " (" +
+                          std::to_string(b.base) + " plus " + std::to_string(b.per_byte) + " times the " +
+                          std::to_string(b.bytes) + " bytes of datagrams taken)");
+    }
+    if (!shared_budget_ && held_memory_ > memory_budget())
         return reject(where, Error::MalformedPayload,
                       name + ": the objects hold " + std::to_string(held_memory_) + " bytes, over this receiver's budget of " +
                           std::to_string(memory_budget()) + " (" + std::to_string(limits_.memory_base) + " plus " +
@@ -222,7 +236,9 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
                           " bytes of packets taken)");
     const uint64_t before = object.memory();
     const Error e = take_object_content(object, packet, name, where);
-    held_memory_ = held_memory_ - before + object.memory();
+    const uint64_t after = object.memory();
+    held_memory_ = held_memory_ - before + after;
+    if (shared_budget_) shared_budget_->held = shared_budget_->held - before + after;
     return e;
 }
 

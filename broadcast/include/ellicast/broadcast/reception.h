@@ -5,9 +5,11 @@
 // when the base (and everything) has arrived.
 //
 // Safe to expose to a network: every datagram goes through the format's checks (magic, length,
-// CRC, stream id); memory is bounded by ReceivedStream's limits for each candidate stream (at most
-// Options::max_candidates), the authenticator's limits with a key, and a fixed-size window of
-// sequence numbers.
+// CRC, stream id); what the candidate streams' objects hold is under one byte budget for all of them
+// (spec 11.2: Limits::memory_base plus memory_per_byte times the bytes of the intact datagrams
+// routed to candidates, each counted once); everything else is bounded by ReceivedStream's limits
+// for each candidate stream (at most Options::max_candidates), the authenticator's limits with a
+// key, and a fixed-size window of sequence numbers.
 #pragma once
 
 #include <ellicast/auth.h>
@@ -15,6 +17,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <utility>
@@ -73,7 +76,7 @@ private:
 class Reception {
 public:
     struct Options {
-        ReceivedStream::Limits limits;      // for each candidate
+        ReceivedStream::Limits limits;      // for each candidate; memory_base and memory_per_byte for all together
         std::optional<uint32_t> stream_id;  // keep only this stream id; default: every one, as candidates
         size_t max_candidates = 4;          // memory is at most this many times the limits
         std::optional<auth::PublicKey> key;  // accept only the stream this key signs
@@ -110,6 +113,9 @@ public:
     std::vector<std::pair<uint64_t, std::vector<uint8_t>>> take_released_accepted() {
         return std::exchange(released_accepted_, {});
     }
+    // The byte budget every candidate shares (spec 11.2): what their objects hold together, the bytes
+    // of intact datagrams routed to them, and the budget those make.
+    const SharedMemoryBudget& memory() const { return *budget_; }
     // The signature filter, when Options::key was given.
     const auth::Authenticator* authenticator() const { return authenticator_ ? &*authenticator_ : nullptr; }
 
@@ -149,6 +155,7 @@ private:
     std::optional<auth::Authenticator> authenticator_;
     std::vector<std::pair<uint64_t, std::vector<uint8_t>>> released_accepted_;
     std::vector<Candidate> candidates_;
+    std::shared_ptr<SharedMemoryBudget> budget_;
     size_t chosen_ = SIZE_MAX;
     uint64_t last_accepted_by_ = 0;
     ReceptionCounters counters_;  // datagrams dropped before reaching any candidate

@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -138,6 +139,16 @@ struct ReceiveCounters {
 // What one held packet costs a receiver besides its payload (header, position, container slot).
 inline constexpr size_t kHeldPacketCost = 64;
 
+// The byte budget of spec 11.2 shared by several receivers (a network receiver's candidate streams,
+// spec 11.4): what their objects hold together, against the bytes of the intact datagrams that
+// reached any of them, which their owner counts (each datagram once, however many took it).
+struct SharedMemoryBudget {
+    uint64_t held = 0;   // kept up to date by every ReceivedStream sharing it
+    uint64_t bytes = 0;  // counted by the owner
+    uint64_t base = 64u << 20, per_byte = 8;
+    uint64_t budget() const { return base + per_byte * bytes; }
+};
+
 class ReceivedStream {
 public:
     // Limits that keep memory bounded whatever arrives.
@@ -185,7 +196,13 @@ public:
     // the budget they make.
     uint64_t held_memory() const { return held_memory_; }
     uint64_t bytes_taken() const { return bytes_taken_; }
-    uint64_t memory_budget() const { return limits_.memory_base + limits_.memory_per_byte * bytes_taken_; }
+    uint64_t memory_budget() const {
+        return shared_budget_ ? shared_budget_->budget() : limits_.memory_base + limits_.memory_per_byte * bytes_taken_;
+    }
+    // Joins a budget shared with other receivers (their owner counts the bytes): from now on a packet
+    // of an object is refused while all of them together hold more than it allows. What this one
+    // holds already is added to it; the owner takes it back (held_memory()) when it drops this one.
+    void share_memory_budget(std::shared_ptr<SharedMemoryBudget> budget);
     // Highest minor version seen among accepted packets.
     uint8_t newest_minor() const { return newest_minor_; }
 
@@ -319,6 +336,7 @@ private:
     std::vector<Pending> pending_;
     size_t pending_bytes_ = 0;
     uint64_t held_memory_ = 0, bytes_taken_ = 0;  // the byte budget (spec 11.2)
+    std::shared_ptr<SharedMemoryBudget> shared_budget_;
     ReceiveCounters counters_;
     std::vector<Rejection> rejections_;
     uint8_t newest_minor_ = 0;
