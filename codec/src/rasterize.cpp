@@ -43,19 +43,39 @@ bool prepare(const Ellipsoid& e, PreparedEllipsoid& p) {
     return true;
 }
 
+// The box the usable ellipsoids cover, and how many are not usable. Each is prepared again where
+// it is drawn: holding every prepared ellipsoid (128 bytes each) would cost a stream of a million
+// ellipsoids 128 MB for nothing.
+struct Cover {
+    double mn[3], mx[3];
+    size_t usable = 0, bad = 0;
+};
+
+Cover cover_of(const std::vector<Ellipsoid>& ellipsoids) {
+    Cover c;
+    for (int k = 0; k < 3; ++k) c.mn[k] = std::numeric_limits<double>::max(), c.mx[k] = -c.mn[k];
+    for (const auto& e : ellipsoids) {
+        PreparedEllipsoid p;
+        if (!prepare(e, p)) {
+            ++c.bad;
+            continue;
+        }
+        ++c.usable;
+        for (int k = 0; k < 3; ++k) {
+            c.mn[k] = std::min(c.mn[k], p.c[k] - p.half[k]);
+            c.mx[k] = std::max(c.mx[k], p.c[k] + p.half[k]);
+        }
+    }
+    return c;
+}
+
 // Node index range of the grid: the union of the ellipsoids' boxes, one cell of margin, on the
 // frame's lattice.
-void node_range(const std::vector<PreparedEllipsoid>& prepared, const Frame& frame, int resolution, long lo[3],
-                long hi[3]) {
+void node_range(const Cover& cover, const Frame& frame, int resolution, long lo[3], long hi[3]) {
     const double h = double(frame.scale) / resolution;
     for (int k = 0; k < 3; ++k) {
-        double mn = std::numeric_limits<double>::max(), mx = -mn;
-        for (const auto& p : prepared) {
-            mn = std::min(mn, p.c[k] - p.half[k]);
-            mx = std::max(mx, p.c[k] + p.half[k]);
-        }
-        lo[k] = long(std::floor((mn - double(frame.origin[k])) / h)) - 1;
-        hi[k] = long(std::ceil((mx - double(frame.origin[k])) / h)) + 1;
+        lo[k] = long(std::floor((cover.mn[k] - double(frame.origin[k])) / h)) - 1;
+        hi[k] = long(std::ceil((cover.mx[k] - double(frame.origin[k])) / h)) + 1;
     }
 }
 
@@ -65,15 +85,10 @@ size_t ellipsoid_grid_nodes(const std::vector<Ellipsoid>& ellipsoids, const Fram
     if (resolution < kMinGridResolution || resolution > kMaxGridResolution || !std::isfinite(frame.scale) ||
         !(frame.scale > 0))
         return 0;
-    std::vector<PreparedEllipsoid> prepared;
-    prepared.reserve(ellipsoids.size());
-    for (const auto& e : ellipsoids) {
-        PreparedEllipsoid p;
-        if (prepare(e, p)) prepared.push_back(p);
-    }
-    if (prepared.empty()) return 0;
+    const Cover cover = cover_of(ellipsoids);
+    if (cover.usable == 0) return 0;
     long lo[3], hi[3];
-    node_range(prepared, frame, resolution, lo, hi);
+    node_range(cover, frame, resolution, lo, hi);
     size_t total = 1;
     for (int k = 0; k < 3; ++k) {
         const size_t n = size_t(hi[k] - lo[k] + 1);
@@ -95,21 +110,14 @@ bool rasterize_ellipsoids(const std::vector<Ellipsoid>& ellipsoids, const Frame&
         error = "the object's frame has no positive finite scale";
         return false;
     }
-    std::vector<PreparedEllipsoid> prepared;
-    prepared.reserve(ellipsoids.size());
-    size_t bad = 0;
-    for (const auto& e : ellipsoids) {
-        PreparedEllipsoid p;
-        if (prepare(e, p)) prepared.push_back(p);
-        else ++bad;
-    }
-    if (skipped) *skipped = bad;
-    if (prepared.empty()) return true;
+    const Cover cover = cover_of(ellipsoids);
+    if (skipped) *skipped = cover.bad;
+    if (cover.usable == 0) return true;
 
     const double h = double(frame.scale) / resolution;
     const double o[3] = {frame.origin[0], frame.origin[1], frame.origin[2]};
     long lo[3], hi[3];
-    node_range(prepared, frame, resolution, lo, hi);
+    node_range(cover, frame, resolution, lo, hi);
     size_t total = 1;
     for (int k = 0; k < 3; ++k) {
         size_t n = size_t(hi[k] - lo[k] + 1);
@@ -127,7 +135,9 @@ bool rasterize_ellipsoids(const std::vector<Ellipsoid>& ellipsoids, const Frame&
     out.value.assign(total, float(-h));
 
     const int nx = out.nodes[0], ny = out.nodes[1], nz = out.nodes[2];
-    for (const auto& p : prepared) {
+    for (const auto& e : ellipsoids) {
+        PreparedEllipsoid p;
+        if (!prepare(e, p)) continue;
         int b0[3], b1[3];
         for (int k = 0; k < 3; ++k) {
             b0[k] = std::max(0, int(std::floor((p.c[k] - p.half[k] - out.origin[k]) / h)) - 1);
