@@ -186,3 +186,70 @@ TEST_CASE("woody, a flat figure: every packet within 0.04% RMS (0.07% back), hal
     Decoded half = encode_decode(original, true);
     CHECK(rms_percent(original, half.mesh, false) <= 0.06);
 }
+
+TEST_CASE("points on sheets are found through an index of the flat ellipsoids: the same answers, and a pile of discs is not quadratic") {
+    // An oracle: every flat ellipsoid tried for every point (the test spec 13's decoder states).
+    auto brute = [](const std::vector<Ellipsoid>& es, double cell, const std::vector<SurfacePoint>& ps) {
+        std::vector<char> out(ps.size(), 0);
+        for (size_t i = 0; i < ps.size(); ++i)
+            for (const Ellipsoid& e : es) {
+                const double lo = std::min({e.radii[0], e.radii[1], e.radii[2]});
+                const double hi = std::max({e.radii[0], e.radii[1], e.radii[2]});
+                const double mid = double(e.radii[0]) + e.radii[1] + e.radii[2] - lo - hi;
+                if (!(lo <= 2 * cell) || !(mid >= 2 * lo)) continue;
+                const double w = e.rotation[0], x = e.rotation[1], y = e.rotation[2], z = e.rotation[3];
+                const double n = std::sqrt(w * w + x * x + y * y + z * z);
+                const double a = w / n, b = x / n, c = y / n, d = z / n;
+                const double axis[3][3] = {{1 - 2 * (c * c + d * d), 2 * (b * c + a * d), 2 * (b * d - a * c)},
+                                           {2 * (b * c - a * d), 1 - 2 * (b * b + d * d), 2 * (c * d + a * b)},
+                                           {2 * (b * d + a * c), 2 * (c * d - a * b), 1 - 2 * (b * b + c * c)}};
+                double across = 0, along = 0, dist2 = 0, dd[3];
+                for (int k = 0; k < 3; ++k) dd[k] = double(ps[i].position[k]) - e.center[k], dist2 += dd[k] * dd[k];
+                if (dist2 > hi * hi) continue;
+                for (int k = 0; k < 3; ++k) {
+                    const double t = (dd[0] * axis[k][0] + dd[1] * axis[k][1] + dd[2] * axis[k][2]) / e.radii[k];
+                    (e.radii[k] == lo ? across : along) += t * t;
+                }
+                if (across <= 0.25 && along <= 1) {
+                    out[i] = 1;
+                    break;
+                }
+            }
+        return out;
+    };
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-1, 1);
+    const double cell = 0.01;
+    std::vector<Ellipsoid> es;
+    for (int i = 0; i < 3000; ++i) {
+        Ellipsoid e;
+        e.center = {u(rng), u(rng), u(rng)};
+        const float wide = 0.05f + 0.1f * std::abs(u(rng));
+        e.radii = {wide, wide * (0.6f + 0.4f * std::abs(u(rng))), float(cell) * (0.5f + std::abs(u(rng)))};
+        if (i % 5 == 0) e.radii[2] = 0.1f;  // not flat
+        std::array<float, 4> q = {u(rng), u(rng), u(rng), u(rng)};
+        e.rotation = q;
+        es.push_back(e);
+    }
+    std::vector<SurfacePoint> ps(20000);
+    for (auto& p : ps) p.position = {u(rng), u(rng), u(rng)};
+    // Points on the discs' mid-planes too, so that some are on sheets.
+    for (size_t i = 0; i < 5000; ++i) ps[i].position = es[i % es.size()].center;
+    const auto expected = brute(es, cell, ps);
+    const auto got = points_on_sheets(es, cell, ps);
+    CHECK(got == expected);
+    size_t on = 0;
+    for (char c : got) on += c;
+    MESSAGE(on << " of " << ps.size() << " points on sheets among " << es.size() << " ellipsoids");
+    CHECK(on >= 4000);
+
+    // A hostile pile: 200,000 copies of one disc and 50,000 points just off its plane (within its
+    // reach, never on the sheet): every point would try every disc (10^10 tests); the index tries at
+    // most a bounded number for each.
+    std::vector<Ellipsoid> pile(200000);
+    for (auto& e : pile) e.radii = {0.5f, 0.5f, float(cell)};
+    std::vector<SurfacePoint> off(50000);
+    for (size_t i = 0; i < off.size(); ++i) off[i].position = {0.3f * u(rng), 0.3f * u(rng), float(0.8 * cell)};
+    const auto piled = points_on_sheets(pile, cell, off);
+    CHECK(std::count(piled.begin(), piled.end(), 1) == 0);
+}

@@ -22,32 +22,145 @@ struct FlatEllipsoid {
     double bound;     // largest radius
 };
 
-// The flat ellipsoids among `ellipsoids`: thinner than two grid cells, twice as wide as thick both
-// ways (a disc, not a needle: a needle's side holds surface points at the middle of its thickness).
-std::vector<FlatEllipsoid> flat_ellipsoids(const std::vector<Ellipsoid>& ellipsoids, double cell) {
-    std::vector<FlatEllipsoid> flat;
-    for (const Ellipsoid& e : ellipsoids) {
-        const double lo = std::min({e.radii[0], e.radii[1], e.radii[2]});
-        const double hi = std::max({e.radii[0], e.radii[1], e.radii[2]});
-        const double mid = double(e.radii[0]) + e.radii[1] + e.radii[2] - lo - hi;
-        if (!(lo > 0) || !(lo <= 2 * cell) || !(mid >= 2 * lo) || !std::isfinite(hi)) continue;
-        const double w = e.rotation[0], x = e.rotation[1], y = e.rotation[2], z = e.rotation[3];
-        const double n = std::sqrt(w * w + x * x + y * y + z * z);
-        if (!(n > 0)) continue;
-        const double a = w / n, b = x / n, c = y / n, d = z / n;
-        FlatEllipsoid f;
-        f.center = Vec3(e.center[0], e.center[1], e.center[2]);
-        // Columns of the rotation matrix of the unit quaternion (a, b, c, d).
-        f.axis[0] = Vec3(1 - 2 * (c * c + d * d), 2 * (b * c + a * d), 2 * (b * d - a * c));
-        f.axis[1] = Vec3(2 * (b * c - a * d), 1 - 2 * (b * b + d * d), 2 * (c * d + a * b));
-        f.axis[2] = Vec3(2 * (b * d + a * c), 2 * (c * d - a * b), 1 - 2 * (b * b + c * c));
-        for (int k = 0; k < 3; ++k) f.inv_r[k] = 1.0 / e.radii[k];
-        f.thin = e.radii[0] == lo ? 0 : (e.radii[1] == lo ? 1 : 2);
-        f.bound = hi;
-        flat.push_back(f);
-    }
-    return flat;
+// Whether e is flat: thinner than two grid cells, twice as wide as thick both ways (a disc, not a
+// needle: a needle's side holds surface points at the middle of its thickness). Fills f when it is.
+bool make_flat(const Ellipsoid& e, double cell, FlatEllipsoid& f) {
+    const double lo = std::min({e.radii[0], e.radii[1], e.radii[2]});
+    const double hi = std::max({e.radii[0], e.radii[1], e.radii[2]});
+    const double mid = double(e.radii[0]) + e.radii[1] + e.radii[2] - lo - hi;
+    if (!(lo > 0) || !(lo <= 2 * cell) || !(mid >= 2 * lo) || !std::isfinite(hi)) return false;
+    const double w = e.rotation[0], x = e.rotation[1], y = e.rotation[2], z = e.rotation[3];
+    const double n = std::sqrt(w * w + x * x + y * y + z * z);
+    if (!(n > 0) || !std::isfinite(n)) return false;
+    for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(e.center[k])) return false;
+    const double a = w / n, b = x / n, c = y / n, d = z / n;
+    f.center = Vec3(e.center[0], e.center[1], e.center[2]);
+    // Columns of the rotation matrix of the unit quaternion (a, b, c, d).
+    f.axis[0] = Vec3(1 - 2 * (c * c + d * d), 2 * (b * c + a * d), 2 * (b * d - a * c));
+    f.axis[1] = Vec3(2 * (b * c - a * d), 1 - 2 * (b * b + d * d), 2 * (c * d + a * b));
+    f.axis[2] = Vec3(2 * (b * d + a * c), 2 * (c * d - a * b), 1 - 2 * (b * b + c * c));
+    for (int k = 0; k < 3; ++k) f.inv_r[k] = 1.0 / e.radii[k];
+    f.thin = e.radii[0] == lo ? 0 : (e.radii[1] == lo ? 1 : 2);
+    f.bound = hi;
+    return true;
 }
+
+// The flat ellipsoids of an object, found by the points they may hold: their reach (a ball of their
+// largest radius plus `grow` around the centre) in a bounding-box tree over leaves of 8, the
+// ellipsoids in Morton order of their centres. It holds indices, not prepared ellipsoids (a stream of
+// a million ellipsoids would otherwise cost 136 MB here), about 16 bytes an ellipsoid. A query
+// checks at most kMaxChecks ellipsoids whose boxes hold the point: honest streams overlap a few,
+// a hostile one piling discs on one spot would make every query visit all of them.
+class FlatIndex {
+public:
+    static constexpr size_t kMaxChecks = 512;
+
+    FlatIndex(const std::vector<Ellipsoid>& ellipsoids, double cell, double grow)
+        : ellipsoids_(ellipsoids), cell_(cell) {
+        double lo[3], hi[3];
+        for (int k = 0; k < 3; ++k) lo[k] = std::numeric_limits<double>::max(), hi[k] = -lo[k];
+        std::vector<uint32_t> flat;
+        for (size_t i = 0; i < ellipsoids.size(); ++i) {
+            FlatEllipsoid f;
+            if (!make_flat(ellipsoids[i], cell, f)) continue;
+            flat.push_back(uint32_t(i));
+            for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], f.center[k]), hi[k] = std::max(hi[k], f.center[k]);
+        }
+        if (flat.empty()) return;
+        std::vector<uint64_t> keyed(flat.size());
+        for (size_t j = 0; j < flat.size(); ++j) {
+            const Ellipsoid& e = ellipsoids[flat[j]];
+            uint64_t code = 0;
+            for (int k = 0; k < 3; ++k) {
+                const double span = hi[k] - lo[k];
+                const uint64_t q = span > 0 ? std::min<uint64_t>(1023, uint64_t((e.center[k] - lo[k]) / span * 1024)) : 0;
+                for (int b = 0; b < 10; ++b) code |= ((q >> b) & 1) << (3 * b + k);
+            }
+            keyed[j] = code << 32 | flat[j];
+        }
+        flat.clear();
+        flat.shrink_to_fit();
+        std::sort(keyed.begin(), keyed.end());
+        order_.resize(keyed.size());
+        for (size_t j = 0; j < keyed.size(); ++j) order_[j] = uint32_t(keyed[j]);
+        keyed.clear();
+        keyed.shrink_to_fit();
+        leaves_ = 1;
+        while (leaves_ * kLeaf < order_.size()) leaves_ *= 2;
+        boxes_.assign(2 * leaves_, Box{});
+        for (size_t j = 0; j < order_.size(); ++j) {
+            FlatEllipsoid f;
+            make_flat(ellipsoids[order_[j]], cell, f);
+            Box& b = boxes_[leaves_ + j / kLeaf];
+            const double r = f.bound + grow;
+            for (int k = 0; k < 3; ++k) {
+                b.lo[k] = std::min(b.lo[k], down(f.center[k] - r));
+                b.hi[k] = std::max(b.hi[k], up(f.center[k] + r));
+            }
+        }
+        for (size_t i = leaves_ - 1; i >= 1; --i)
+            for (int k = 0; k < 3; ++k) {
+                boxes_[i].lo[k] = std::min(boxes_[2 * i].lo[k], boxes_[2 * i + 1].lo[k]);
+                boxes_[i].hi[k] = std::max(boxes_[2 * i].hi[k], boxes_[2 * i + 1].hi[k]);
+            }
+    }
+
+    bool empty() const { return order_.empty(); }
+
+    // True when `holds` is true of a flat ellipsoid whose box holds p (checking at most kMaxChecks).
+    template <class Holds>
+    bool any(const Vec3& p, Holds holds) const {
+        if (order_.empty()) return false;
+        size_t checks = 0;
+        size_t stack[64];
+        int top = 0;
+        stack[top++] = 1;
+        while (top > 0) {
+            const size_t i = stack[--top];
+            const Box& b = boxes_[i];
+            if (!(p[0] >= b.lo[0] && p[0] <= b.hi[0] && p[1] >= b.lo[1] && p[1] <= b.hi[1] && p[2] >= b.lo[2] &&
+                  p[2] <= b.hi[2]))
+                continue;
+            if (i >= leaves_) {
+                const size_t first = (i - leaves_) * kLeaf, last = std::min(order_.size(), first + kLeaf);
+                for (size_t j = first; j < last; ++j) {
+                    if (++checks > kMaxChecks) return false;
+                    FlatEllipsoid f;
+                    make_flat(ellipsoids_[order_[j]], cell_, f);
+                    if (holds(f)) return true;
+                }
+                continue;
+            }
+            stack[top++] = 2 * i + 1;
+            stack[top++] = 2 * i;
+        }
+        return false;
+    }
+
+private:
+    static constexpr size_t kLeaf = 8;
+    struct Box {
+        float lo[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
+                       std::numeric_limits<float>::infinity()};
+        float hi[3] = {-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                       -std::numeric_limits<float>::infinity()};
+    };
+    // Floats rounded outward, so that a box holds every point the exact test may accept.
+    static float down(double x) {
+        float f = float(x);
+        return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+    }
+    static float up(double x) {
+        float f = float(x);
+        return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+    }
+    const std::vector<Ellipsoid>& ellipsoids_;
+    double cell_;
+    std::vector<uint32_t> order_;  // flat ellipsoids' indices in Morton order of their centres
+    size_t leaves_ = 0;
+    std::vector<Box> boxes_;  // node i's children 2i and 2i + 1; leaves from leaves_
+};
 
 // p's squared ellipsoidal coordinates in f: across its thickness and along its plane.
 void flat_coordinates(const FlatEllipsoid& f, const Vec3& p, double& across, double& along) {
@@ -64,21 +177,18 @@ void flat_coordinates(const FlatEllipsoid& f, const Vec3& p, double& across, dou
 std::vector<char> points_on_sheets(const std::vector<Ellipsoid>& ellipsoids, double cell,
                                    const std::vector<SurfacePoint>& points) {
     std::vector<char> on_sheet(points.size(), 0);
-    const std::vector<FlatEllipsoid> flat = flat_ellipsoids(ellipsoids, cell);
+    const FlatIndex flat(ellipsoids, cell, 0);
     if (flat.empty()) return on_sheet;
     for (size_t i = 0; i < points.size(); ++i) {
         const Vec3 p(points[i].position[0], points[i].position[1], points[i].position[2]);
-        for (const FlatEllipsoid& f : flat) {
-            if ((p - f.center).sqrnorm() > f.bound * f.bound) continue;
+        on_sheet[i] = flat.any(p, [&](const FlatEllipsoid& f) {
+            if ((p - f.center).sqrnorm() > f.bound * f.bound) return false;
             // Well inside the ellipsoid across its thickness: an ellipsoid kept inside a surface
             // never holds a point of it there, so this one straddles a sheet.
             double across, along;
             flat_coordinates(f, p, across, along);
-            if (across <= 0.25 && along <= 1) {
-                on_sheet[i] = 1;
-                break;
-            }
-        }
+            return across <= 0.25 && along <= 1;
+        });
     }
     return on_sheet;
 }
@@ -150,25 +260,24 @@ bool insert_on_other_side(Reconstruction& r, uint32_t point_index, const std::ar
 
 
 size_t remove_sheet_leftovers(Reconstruction& r, const std::vector<Ellipsoid>& ellipsoids, double cell) {
-    const std::vector<FlatEllipsoid> flat = flat_ellipsoids(ellipsoids, cell);
-    if (flat.empty() || r.mc_vertices == 0) return 0;
+    if (r.mc_vertices == 0) return 0;
+    const FlatIndex flat(ellipsoids, cell, cell);
+    if (flat.empty()) return 0;
     DecoderTriMesh& mesh = r.mesh;
     std::vector<OpenMesh::VertexHandle> leftovers;
     for (auto v : mesh.vertices()) {
         if (r.is_original(v)) continue;
         const Vec3 p = mesh.point(v);
-        for (FlatEllipsoid f : flat) {
+        const bool leftover = flat.any(p, [&](FlatEllipsoid f) {
             // On the shell of a flat ellipsoid: inside it grown by a cell (marching cubes places
             // its vertices on grid edges, up to a cell off the ellipsoid's surface).
-            if ((p - f.center).norm() > f.bound + cell) continue;
+            if ((p - f.center).norm() > f.bound + cell) return false;
             for (double& inv : f.inv_r) inv = 1 / (1 / inv + cell);
             double across, along;
             flat_coordinates(f, p, across, along);
-            if (across + along <= 1) {
-                leftovers.push_back(v);
-                break;
-            }
-        }
+            return across + along <= 1;
+        });
+        if (leftover) leftovers.push_back(v);
     }
     size_t removed = 0;
     for (auto v : leftovers) {
