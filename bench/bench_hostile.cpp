@@ -48,8 +48,9 @@ int main(int argc, char** argv) {
     bool ok = true;
     // An object of n points with surface normals, every entry left to the surface; mapped at level 7
     // when `mapped`, its points then spread over 128 x 128 cells.
-    auto surface_normals_stream = [&](bool mapped, StreamPackets& p) {
+    auto surface_normals_stream = [&](bool mapped, StreamPackets& p, uint16_t packet_size = kDefaultPacketSize) {
         StreamInfo info;
+        info.packet_size = packet_size;
         ObjectInfo o = object(n);
         o.map_level = mapped ? 7 : 0;
         o.map_batch = mapped ? 4096 : 0;
@@ -67,6 +68,21 @@ int main(int argc, char** argv) {
         StreamPackets p;
         ok = ok && surface_normals_stream(true, p) &&
              write(dir + "/unplaced-records.ellc", cat({&p.stream_info, &p.points, &p.normals}));
+    }
+    {   // The same, with three STREAM_INFOs first that contradict the real one (another packet size)
+        // but declare the same object: a network receiver keeps four candidates of one stream id,
+        // and every packet reaches all four (spec 11.4). Sent as datagrams to `receive`.
+        StreamPackets p;
+        std::vector<std::vector<uint8_t>> all;
+        for (const uint16_t size : {uint16_t(kDefaultPacketSize + 100), uint16_t(kDefaultPacketSize + 200),
+                                    uint16_t(kDefaultPacketSize + 300)}) {
+            StreamPackets q;
+            ok = ok && surface_normals_stream(true, q, size);
+            all.insert(all.end(), q.stream_info.begin(), q.stream_info.end());
+        }
+        ok = ok && surface_normals_stream(true, p);
+        for (const auto* g : {&p.stream_info, &p.points, &p.normals}) all.insert(all.end(), g->begin(), g->end());
+        ok = ok && write(dir + "/candidates.ellc", all);
     }
     {   // NORMALS entries only: a bit a point.
         StreamPackets p;

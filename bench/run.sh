@@ -21,7 +21,7 @@ for what in "$@"; do
     amplification)
       # Hostile recordings (bench_hostile) and an honest one, through every command that reads a
       # recording: seconds and peak resident memory against the input's bytes (issue 29).
-      echo "== amplification: hostile recordings through validate, inspect, decode" >&2
+      echo "== amplification: hostile recordings through validate, inspect, decode, and as datagrams through receive" >&2
       tmp=$(mktemp -d)
       "$build/bench/bench_hostile" "$tmp"
       "$build/ellicast" encode -q "$samples/meshes/bunny.ply" -o "$tmp/honest-bunny.ellc" > /dev/null
@@ -31,18 +31,32 @@ for what in "$@"; do
         echo
         echo "Made by \`bash bench/run.sh amplification\` ($(date -u +%Y-%m-%d), $(nproc) cores). Peak resident"
         echo "memory of the whole process (\`/usr/bin/time\`), every command with a 120 s timeout. The receiver's"
-        echo "byte budget is 64 MiB plus 8 times the bytes taken (spec 11.2)."
+        echo "byte budget is 64 MiB plus 8 times the bytes taken (spec 11.2). \`receive\` gets the recording's packets as"
+        echo "UDP datagrams on 127.0.0.1 (about 19 MB/s) and writes what it took as a stream file (no reconstruction);"
+        echo "its seconds are the time it listened (until complete, or a deadline after the last datagram)."
         echo
         echo "| input | bytes | command | exit | seconds | peak MB | within 64 MB + 8x |"
         echo "|---|---:|---|---:|---:|---:|---|"
       } > "$out"
       for f in "$tmp"/*.ellc; do
         size=$(stat -c %s "$f")
-        for cmd in validate inspect decode; do
+        for cmd in validate inspect decode receive; do
           args=("$f"); [ "$cmd" = decode ] && args=("$f" -o "$tmp/out.glb" -q)
           set +e
-          /usr/bin/time -f "%e %M" -o "$tmp/time.txt" timeout 120 "$build/ellicast" "$cmd" "${args[@]}" > /dev/null 2> "$tmp/err.txt"
-          code=$?
+          if [ "$cmd" = receive ]; then
+            port=$((47000 + RANDOM % 2000))
+            until_s=$((3 + size / 8000000))
+            /usr/bin/time -f "%e %M" -o "$tmp/time.txt" timeout 120 "$build/ellicast" receive --from "127.0.0.1:$port" \
+              -o "$tmp/rx.ellc" --until "$until_s" -q > /dev/null 2> "$tmp/err.txt" &
+            rx=$!
+            sleep 0.5
+            python3 "$root/bench/send_datagrams.py" "$f" "127.0.0.1:$port"
+            wait $rx
+            code=$?
+          else
+            /usr/bin/time -f "%e %M" -o "$tmp/time.txt" timeout 120 "$build/ellicast" "$cmd" "${args[@]}" > /dev/null 2> "$tmp/err.txt"
+            code=$?
+          fi
           set -e
           read -r secs kb < <(tail -1 "$tmp/time.txt")
           python3 - "$f" "$size" "$cmd" "$code" "$secs" "$kb" >> "$out" <<'PY'
