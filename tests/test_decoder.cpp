@@ -665,3 +665,32 @@ TEST_CASE("the mapped bunny with every point and no exact layer comes back as cl
     MESSAGE("bunny, every point, no exact layer: RMS " << d.percent(d.a_to_b.rms) << "% / " << d.percent(d.b_to_a.rms) << "%");
     CHECK(d.percent(d.a_to_b.rms) <= 0.0115);
 }
+
+TEST_CASE("ellipsoids that each cover the object lower the grid until the rasterizer's work follows what arrived") {
+    // 20,000 copies of a sphere filling the frame, and a sphere's points: at the default grid each
+    // copy costs about a million grid nodes (2 * 10^10 in all); the work budget lowers the grid.
+    auto points = fibonacci_sphere(2000, 1.0);
+    auto info = object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 20000, points.size(), kAttrNormal);
+    const std::vector<Ellipsoid> pile(20000, sphere_ellipsoid({0, 0, 0}, 1));
+    const DecodeOptions options;
+    CHECK(ellipsoid_raster_work(pile, info.frame, kDefaultGridResolution) > 1e10);
+    Mesh mesh;
+    ObjectDecodeReport report;
+    std::string error;
+    REQUIRE(decode_object(info, pile, points, 0, options, 0, mesh, report, error));
+    CHECK(report.has_surface);
+    bool said = false;
+    for (const std::string& note : report.notes) said |= note.find("overlap so much") != std::string::npos;
+    CHECK(said);
+    const double budget = options.base_raster_work + options.raster_work_per_element * double(pile.size() + points.size());
+    CHECK(ellipsoid_raster_work(pile, info.frame, report.grid_resolution) <= budget);
+    // Every point arrived: the result is the sphere all the same.
+    CHECK(mesh.positions.size() == points.size());
+    // One sphere: the work is far under the budget and the grid stays.
+    Mesh one;
+    ObjectDecodeReport one_report;
+    REQUIRE(decode_object(object_info({-1.25f, -1.25f, -1.25f}, 2.5f, 1, points.size(), kAttrNormal),
+                          {sphere_ellipsoid({0, 0, 0}, 1)}, points, 0, options, 0, one, one_report, error));
+    for (const std::string& note : one_report.notes) CHECK(note.find("overlap so much") == std::string::npos);
+    CHECK(one_report.grid_resolution > report.grid_resolution);
+}

@@ -337,8 +337,23 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
             report.notes.push_back("grid " + std::to_string(wanted) + " lowered to " + std::to_string(resolution) +
                                    ": at most " + std::to_string(budget) + " grid nodes for the " +
                                    std::to_string(size_t(elements)) + " ellipsoids and points received");
+        // And the rasterizer's work: ellipsoids that each cover much of the object.
+        const double work_budget = options.base_raster_work + options.raster_work_per_element * elements;
+        const int fits = resolution;
+        double work = ellipsoid_raster_work(ellipsoids, info.frame, resolution);
+        while (work > work_budget && resolution > kMinGridResolution) {
+            const int lower = int(std::floor(resolution * std::cbrt(work_budget / work)));
+            resolution = std::max(kMinGridResolution, std::min(resolution - 1, lower));
+            work = ellipsoid_raster_work(ellipsoids, info.frame, resolution);
+        }
+        if (resolution != fits)
+            report.notes.push_back("grid " + std::to_string(fits) + " lowered to " + std::to_string(resolution) +
+                                   ": the " + std::to_string(ellipsoids.size()) +
+                                   " ellipsoids received overlap so much that rasterizing them would visit over " +
+                                   std::to_string(uint64_t(work_budget)) + " grid nodes");
     }
     EllipsoidGrid grid;
+    report.grid_resolution = resolution;
     progress("rasterize", 0);
     if (!rasterize_ellipsoids(ellipsoids, info.frame, resolution, grid, error, &report.skipped_ellipsoids))
         return false;
@@ -378,6 +393,7 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
                                        std::to_string(info.point_count) + " points, not all received");
                 base = std::move(smaller);
                 grid = std::move(coarser);
+                report.grid_resolution = resolution;
             }
         }
     }

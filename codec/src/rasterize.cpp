@@ -98,6 +98,22 @@ size_t ellipsoid_grid_nodes(const std::vector<Ellipsoid>& ellipsoids, const Fram
     return total;
 }
 
+double ellipsoid_raster_work(const std::vector<Ellipsoid>& ellipsoids, const Frame& frame, int resolution) {
+    if (resolution < kMinGridResolution || resolution > kMaxGridResolution || !std::isfinite(frame.scale) ||
+        !(frame.scale > 0))
+        return 0;
+    const double h = double(frame.scale) / resolution;
+    double work = 0;
+    for (const auto& e : ellipsoids) {
+        PreparedEllipsoid p;
+        if (!prepare(e, p)) continue;
+        double nodes = 1;
+        for (int k = 0; k < 3; ++k) nodes *= std::min(2 * p.half[k] / h + 4, double(kMaxGridNodes));
+        work += nodes;
+    }
+    return work;
+}
+
 bool rasterize_ellipsoids(const std::vector<Ellipsoid>& ellipsoids, const Frame& frame, int resolution,
                           EllipsoidGrid& out, std::string& error, size_t* skipped) {
     out = EllipsoidGrid{};

@@ -84,6 +84,9 @@ bool rasterize_ellipsoids(const std::vector<Ellipsoid>& ellipsoids, const Frame&
 // The node count of the grid rasterize_ellipsoids would build (0 when no ellipsoid is usable,
 // SIZE_MAX when it would overflow), without building it.
 size_t ellipsoid_grid_nodes(const std::vector<Ellipsoid>& ellipsoids, const Frame& frame, int resolution);
+// What rasterize_ellipsoids would visit at `resolution`: the nodes of every usable ellipsoid's
+// bounding box (with the margin it draws), summed; an upper bound of its work.
+double ellipsoid_raster_work(const std::vector<Ellipsoid>& ellipsoids, const Frame& frame, int resolution);
 
 // ---------------------------------------------------------------------------------------------
 // Marching cubes (marching_cubes.cpp)
@@ -400,6 +403,13 @@ struct DecodeOptions {
     // decode_stream shares kBaseGridNodesInAll out over the objects for base_grid_nodes.
     size_t base_grid_nodes = size_t(1) << 18;
     size_t grid_nodes_per_element = 2048;
+    // The same for the rasterizer's work (ellipsoid_raster_work): ellipsoids that each cover much of
+    // the object cost their volume each (100,000 of them in 2.2 MB took over 120 s). Honest bases
+    // visit a few million nodes (the bunny 13.8 million at its grid hint of 98, fandisk 8.4); the
+    // resolution is lowered until the work is at most base_raster_work + raster_work_per_element *
+    // (ellipsoids + points received).
+    double base_raster_work = double(1u << 26);
+    double raster_work_per_element = 1024;
     // The size of a partial reconstruction: an object whose points have not all arrived is written
     // with at most max(min_faces, faces_per_point * point_count) triangles (point_count from its
     // stream info; a closed mesh has about 2 a point), the base's filler simplified by the quadric
@@ -438,6 +448,7 @@ struct ObjectDecodeReport {
     size_t sheet_points = 0;   // points also inserted into the other side of a sheet's thin base
     bool complete = false;           // every declared point arrived
     bool has_surface = false;        // false: output is a point set (no ellipsoids, or a PointSet object)
+    int grid_resolution = 0;         // the resolution of the grid the base was built on (0: none)
     bool exact = false;              // written as its original triangles (the exact layer, spec 19)
     bool has_connectivity = false;   // the stream carries its exact layer (some of it arrived)
     uint64_t connectivity_bytes = 0, connectivity_size = 0;  // bytes of it received, of its coded size
