@@ -129,5 +129,51 @@ int main(int argc, char** argv) {
         ok = ok && packetize_stream(info, c, 3, p) == Error::Ok &&
              write(dir + "/ellipsoids.ellc", cat({&p.stream_info, &p.ellipsoids, &p.points}));
     }
+    {   // Ellipsoids that each cover the whole object: a rasterizer pays each one's volume in grid
+        // nodes. 100,000 of them, with a point each spread over the frame.
+        StreamInfo info;
+        ObjectInfo o = object(0);
+        o.kind = ObjectKind::Surface;
+        o.ellipsoid_count = 100'000;
+        o.point_count = 100'000;
+        info.objects.push_back(o);
+        std::vector<ObjectContent> c(1);
+        c[0].points.resize(o.point_count);
+        for (uint32_t i = 0; i < o.point_count; ++i)
+            c[0].points[i].position = {(i * 37) % 16384, (i * 101) % 16384, (i * 7) % 16384};
+        for (uint32_t i = 0; i < o.ellipsoid_count; ++i) {
+            Ellipsoid e;
+            e.center = {0.5f + 0.001f * float(i % 7), 0.5f, 0.5f};
+            e.radii = {0.49f, 0.45f, 0.4f};
+            c[0].ellipsoids.push_back(quantize_ellipsoid(e, o.frame));
+        }
+        StreamPackets p;
+        ok = ok && packetize_stream(info, c, 3, p) == Error::Ok &&
+             write(dir + "/covering-ellipsoids.ellc", cat({&p.stream_info, &p.ellipsoids, &p.points}));
+    }
+    {   // A pile of flat discs (a sheet's ellipsoids) and points just off their plane, within their
+        // reach: a decoder that tries every disc for every point does 10^10 tests.
+        StreamInfo info;
+        ObjectInfo o = object(0);
+        o.kind = ObjectKind::Surface;
+        o.ellipsoid_count = 200'000;
+        o.point_count = 50'000;
+        info.objects.push_back(o);
+        std::vector<ObjectContent> c(1);
+        for (uint32_t i = 0; i < o.ellipsoid_count; ++i) {
+            Ellipsoid e;
+            e.center = {0.5f, 0.5f, 0.5f};
+            e.radii = {0.3f, 0.3f, 0.004f};
+            c[0].ellipsoids.push_back(quantize_ellipsoid(e, o.frame));
+        }
+        for (uint32_t i = 0; i < o.point_count; ++i) {
+            SurfacePoint sp;
+            sp.position = {0.3f + 0.4f * float(i % 223) / 223, 0.3f + 0.4f * float(i / 223) / 225, 0.503f};
+            c[0].points.push_back(quantize_point(sp, info, o));
+        }
+        StreamPackets p;
+        ok = ok && packetize_stream(info, c, 3, p) == Error::Ok &&
+             write(dir + "/disc-pile.ellc", cat({&p.stream_info, &p.ellipsoids, &p.points}));
+    }
     return ok ? 0 : 1;
 }
