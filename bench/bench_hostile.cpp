@@ -30,10 +30,29 @@ ObjectInfo object(uint32_t points) {
     return o;
 }
 
+// A stream of one surface object of `ellipsoids` and `points` (to be filled in `content`).
+StreamInfo surface_stream(uint32_t ellipsoids, uint32_t points, ObjectContent& content) {
+    StreamInfo info;
+    ObjectInfo o = object(points);
+    o.kind = ObjectKind::Surface;
+    o.ellipsoid_count = ellipsoids;
+    info.objects.push_back(o);
+    content.points.resize(points);
+    content.ellipsoids.resize(ellipsoids);
+    return info;
+}
+
 std::vector<std::vector<uint8_t>> cat(std::initializer_list<const std::vector<std::vector<uint8_t>>*> groups) {
     std::vector<std::vector<uint8_t>> all;
     for (const auto* g : groups) all.insert(all.end(), g->begin(), g->end());
     return all;
+}
+
+// Writes a surface stream: its stream info, ellipsoids and points.
+bool write_surface(const std::string& path, const StreamInfo& info, const ObjectContent& content) {
+    StreamPackets p;
+    return packetize_stream(info, {content}, 3, p) == Error::Ok &&
+           write(path, cat({&p.stream_info, &p.ellipsoids, &p.points}));
 }
 
 }  // namespace
@@ -111,69 +130,43 @@ int main(int argc, char** argv) {
         ok = ok && write(dir + "/sparse-points.ellc", sparse);
     }
     {   // A million ellipsoids over one object.
-        StreamInfo info;
-        ObjectInfo o = object(0);
-        o.kind = ObjectKind::Surface;
-        o.ellipsoid_count = 1'000'000;
-        o.point_count = 1;
-        info.objects.push_back(o);
-        std::vector<ObjectContent> c(1);
-        c[0].points.resize(1);
-        c[0].ellipsoids.resize(o.ellipsoid_count);
-        for (uint32_t i = 0; i < o.ellipsoid_count; ++i) {
-            QuantizedEllipsoid& e = c[0].ellipsoids[i];
+        ObjectContent c;
+        const StreamInfo info = surface_stream(1'000'000, 1, c);
+        for (uint32_t i = 0; i < c.ellipsoids.size(); ++i) {
+            QuantizedEllipsoid& e = c.ellipsoids[i];
             e.center = {uint16_t(i % 32768), uint16_t((i * 7) % 32768), uint16_t((i * 13) % 32768)};
             e.radii = {100, 200, 300};
         }
-        StreamPackets p;
-        ok = ok && packetize_stream(info, c, 3, p) == Error::Ok &&
-             write(dir + "/ellipsoids.ellc", cat({&p.stream_info, &p.ellipsoids, &p.points}));
+        ok = ok && write_surface(dir + "/ellipsoids.ellc", info, c);
     }
     {   // Ellipsoids that each cover the whole object: a rasterizer pays each one's volume in grid
         // nodes. 100,000 of them, with a point each spread over the frame.
-        StreamInfo info;
-        ObjectInfo o = object(0);
-        o.kind = ObjectKind::Surface;
-        o.ellipsoid_count = 100'000;
-        o.point_count = 100'000;
-        info.objects.push_back(o);
-        std::vector<ObjectContent> c(1);
-        c[0].points.resize(o.point_count);
-        for (uint32_t i = 0; i < o.point_count; ++i)
-            c[0].points[i].position = {(i * 37) % 16384, (i * 101) % 16384, (i * 7) % 16384};
-        for (uint32_t i = 0; i < o.ellipsoid_count; ++i) {
+        ObjectContent c;
+        const StreamInfo info = surface_stream(100'000, 100'000, c);
+        for (uint32_t i = 0; i < c.points.size(); ++i)
+            c.points[i].position = {(i * 37) % 16384, (i * 101) % 16384, (i * 7) % 16384};
+        for (uint32_t i = 0; i < c.ellipsoids.size(); ++i) {
             Ellipsoid e;
             e.center = {0.5f + 0.001f * float(i % 7), 0.5f, 0.5f};
             e.radii = {0.49f, 0.45f, 0.4f};
-            c[0].ellipsoids.push_back(quantize_ellipsoid(e, o.frame));
+            c.ellipsoids[i] = quantize_ellipsoid(e, info.objects[0].frame);
         }
-        StreamPackets p;
-        ok = ok && packetize_stream(info, c, 3, p) == Error::Ok &&
-             write(dir + "/covering-ellipsoids.ellc", cat({&p.stream_info, &p.ellipsoids, &p.points}));
+        ok = ok && write_surface(dir + "/covering-ellipsoids.ellc", info, c);
     }
     {   // A pile of flat discs (a sheet's ellipsoids) and points just off their plane, within their
         // reach: a decoder that tries every disc for every point does 10^10 tests.
-        StreamInfo info;
-        ObjectInfo o = object(0);
-        o.kind = ObjectKind::Surface;
-        o.ellipsoid_count = 200'000;
-        o.point_count = 50'000;
-        info.objects.push_back(o);
-        std::vector<ObjectContent> c(1);
-        for (uint32_t i = 0; i < o.ellipsoid_count; ++i) {
-            Ellipsoid e;
-            e.center = {0.5f, 0.5f, 0.5f};
-            e.radii = {0.3f, 0.3f, 0.004f};
-            c[0].ellipsoids.push_back(quantize_ellipsoid(e, o.frame));
-        }
-        for (uint32_t i = 0; i < o.point_count; ++i) {
+        ObjectContent c;
+        const StreamInfo info = surface_stream(200'000, 50'000, c);
+        Ellipsoid disc;
+        disc.center = {0.5f, 0.5f, 0.5f};
+        disc.radii = {0.3f, 0.3f, 0.004f};
+        for (auto& e : c.ellipsoids) e = quantize_ellipsoid(disc, info.objects[0].frame);
+        for (uint32_t i = 0; i < c.points.size(); ++i) {
             SurfacePoint sp;
             sp.position = {0.3f + 0.4f * float(i % 223) / 223, 0.3f + 0.4f * float(i / 223) / 225, 0.503f};
-            c[0].points.push_back(quantize_point(sp, info, o));
+            c.points[i] = quantize_point(sp, info, info.objects[0]);
         }
-        StreamPackets p;
-        ok = ok && packetize_stream(info, c, 3, p) == Error::Ok &&
-             write(dir + "/disc-pile.ellc", cat({&p.stream_info, &p.ellipsoids, &p.points}));
+        ok = ok && write_surface(dir + "/disc-pile.ellc", info, c);
     }
     return ok ? 0 : 1;
 }
