@@ -19,6 +19,11 @@ bool same_stream_fields(const StreamInfo& a, const StreamInfo& b) {
 ReceivedStream::ReceivedStream() : ReceivedStream(Limits{}) {}
 ReceivedStream::ReceivedStream(Limits limits) : limits_(limits) {}
 
+SharedMemoryBudget ReceivedStream::budget_in_force() const {
+    if (shared_budget_) return *shared_budget_;
+    return {held_memory_, bytes_taken_, limits_.memory_base, limits_.memory_per_byte};
+}
+
 void ReceivedStream::share_memory_budget(std::shared_ptr<SharedMemoryBudget> budget) {
     if (shared_budget_) shared_budget_->held -= held_memory_;
     shared_budget_ = std::move(budget);
@@ -220,20 +225,13 @@ Error ReceivedStream::take_object_packet(const PacketView& packet, uint64_t wher
     ReceivedObject& object = objects_[id];
     // The byte budget (spec 11.2): checked before the packet, so what it adds (at most what one
     // packet's records cost) may take the objects past it once.
-    if (shared_budget_ && shared_budget_->held > shared_budget_->budget()) {
-        const SharedMemoryBudget& b = *shared_budget_;
+    const SharedMemoryBudget b = budget_in_force();
+    if (b.held > b.budget())
         return reject(where, Error::MalformedPayload,
-                      name + ": the candidate streams hold " + std::to_string(b.held) +
-                          " bytes together, over this receiver's budget of " + std::to_string(b.budget()) + " (" +
-                          std::to_string(b.base) + " plus " + std::to_string(b.per_byte) + " times the " +
-                          std::to_string(b.bytes) + " bytes of datagrams taken)");
-    }
-    if (!shared_budget_ && held_memory_ > memory_budget())
-        return reject(where, Error::MalformedPayload,
-                      name + ": the objects hold " + std::to_string(held_memory_) + " bytes, over this receiver's budget of " +
-                          std::to_string(memory_budget()) + " (" + std::to_string(limits_.memory_base) + " plus " +
-                          std::to_string(limits_.memory_per_byte) + " times the " + std::to_string(bytes_taken_) +
-                          " bytes of packets taken)");
+                      name + (shared_budget_ ? ": the candidate streams hold " : ": the objects hold ") +
+                          std::to_string(b.held) + " bytes, over this receiver's budget of " + std::to_string(b.budget()) +
+                          " (" + std::to_string(b.base) + " plus " + std::to_string(b.per_byte) + " times the " +
+                          std::to_string(b.bytes) + " bytes of intact packets taken)");
     const uint64_t before = object.memory();
     const Error e = take_object_content(object, packet, name, where);
     const uint64_t after = object.memory();

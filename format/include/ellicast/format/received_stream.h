@@ -196,9 +196,7 @@ public:
     // the budget they make.
     uint64_t held_memory() const { return held_memory_; }
     uint64_t bytes_taken() const { return bytes_taken_; }
-    uint64_t memory_budget() const {
-        return shared_budget_ ? shared_budget_->budget() : limits_.memory_base + limits_.memory_per_byte * bytes_taken_;
-    }
+    uint64_t memory_budget() const { return budget_in_force().budget(); }
     // Joins a budget shared with other receivers (their owner counts the bytes): from now on a packet
     // of an object is refused while all of them together hold more than it allows. What this one
     // holds already is added to it; the owner takes it back (held_memory()) when it drops this one.
@@ -337,6 +335,8 @@ private:
     size_t pending_bytes_ = 0;
     uint64_t held_memory_ = 0, bytes_taken_ = 0;  // the byte budget (spec 11.2)
     std::shared_ptr<SharedMemoryBudget> shared_budget_;
+    // The budget a packet is checked against: the shared one, or this receiver's own figures.
+    SharedMemoryBudget budget_in_force() const;
     ReceiveCounters counters_;
     std::vector<Rejection> rejections_;
     uint8_t newest_minor_ = 0;
