@@ -12,8 +12,6 @@
 #include <cstdint>
 #include <deque>
 #include <numeric>
-#include <unordered_map>
-#include <unordered_set>
 
 namespace ellicast {
 
@@ -160,6 +158,9 @@ public:
     explicit KdTree(const std::vector<std::array<uint32_t, 3>>& p) : p_(p), order_(p.size()), min_index_(p.size()) {
         std::iota(order_.begin(), order_.end(), 0u);
         build(0, order_.size(), 0);
+        // The points in tree order, next to their indices: a search reads them in sequence.
+        at_.resize(order_.size());
+        for (size_t j = 0; j < order_.size(); ++j) at_[j] = {p_[order_[j]], order_[j]};
     }
 
     // The `k` points nearest to `q` other than a and b, by (squared distance, index), nearest first.
@@ -197,10 +198,16 @@ private:
         }
         return d;
     }
-    void consider(uint32_t i, const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k,
+    // The point at position j of the tree order, and its index.
+    struct Entry {
+        std::array<uint32_t, 3> p;
+        uint32_t index;
+    };
+    void consider(const Entry& e, const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k,
                   std::vector<std::pair<uint64_t, uint32_t>>& best) const {
+        const uint32_t i = e.index;
         if (i == a || i == b) return;
-        const std::pair<uint64_t, uint32_t> item{dist2(p_[i], q), i};
+        const std::pair<uint64_t, uint32_t> item{dist2(e.p, q), i};
         if (best.size() == k && !(item < best.back())) return;
         best.insert(std::upper_bound(best.begin(), best.end(), item), item);
         if (best.size() > k) best.pop_back();
@@ -208,12 +215,12 @@ private:
     void search(size_t lo, size_t hi, int axis, const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k,
                 std::vector<std::pair<uint64_t, uint32_t>>& best) const {
         if (hi - lo <= 8) {
-            for (size_t j = lo; j < hi; ++j) consider(order_[j], q, a, b, k, best);
+            for (size_t j = lo; j < hi; ++j) consider(at_[j], q, a, b, k, best);
             return;
         }
         const size_t mid = (lo + hi) / 2;
-        const uint32_t m = order_[mid];
-        const int64_t split = p_[m][axis];
+        const Entry& m = at_[mid];
+        const int64_t split = m.p[axis];
         const bool left_first = q[axis] <= split;  // on the split: the lower indices first
         consider(m, q, a, b, k, best);
         const int next = (axis + 1) % 3;
@@ -231,6 +238,7 @@ private:
     const std::vector<std::array<uint32_t, 3>>& p_;
     std::vector<uint32_t> order_;
     std::vector<uint32_t> min_index_;  // by a subtree's mid: the lowest point index in it
+    std::vector<Entry> at_;            // the points in tree order (order_), with their indices
 };
 
 int index_bits(size_t n) {
@@ -252,9 +260,59 @@ std::array<int64_t, 3> prediction(const std::vector<std::array<uint32_t, 3>>& p,
 }
 
 // The decoder's state, shared by both directions: T, D and Q of spec 19.2.
+// The directed edges taken so far: a set of edge keys with open addressing (linear probing), grown
+// by doubling at half load. Edge keys never equal kEmpty (vertex numbers are below 2^32 - 1).
+class EdgeSet {
+public:
+    void reserve(size_t n) {
+        size_t size = 16;
+        while (size < 2 * n) size *= 2;
+        if (size > slots_.size()) rehash(size);
+    }
+    void insert(uint64_t key) {
+        if (2 * (count_ + 1) > slots_.size()) rehash(std::max<size_t>(16, 2 * slots_.size()));
+        if (place(slots_, key)) ++count_;
+    }
+    bool contains(uint64_t key) const {
+        if (slots_.empty()) return false;
+        const size_t mask = slots_.size() - 1;
+        for (size_t i = hash(key) & mask;; i = (i + 1) & mask) {
+            if (slots_[i] == key) return true;
+            if (slots_[i] == kEmpty) return false;
+        }
+    }
+
+private:
+    static constexpr uint64_t kEmpty = UINT64_MAX;
+    static size_t hash(uint64_t x) {  // the splitmix64 finalizer
+        x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+        x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+        return size_t(x ^ (x >> 31));
+    }
+    // Puts key into slots (a power of two long, never full); false when it was there.
+    static bool place(std::vector<uint64_t>& slots, uint64_t key) {
+        const size_t mask = slots.size() - 1;
+        for (size_t i = hash(key) & mask;; i = (i + 1) & mask) {
+            if (slots[i] == key) return false;
+            if (slots[i] == kEmpty) {
+                slots[i] = key;
+                return true;
+            }
+        }
+    }
+    void rehash(size_t size) {
+        std::vector<uint64_t> slots(size, kEmpty);
+        for (uint64_t key : slots_)
+            if (key != kEmpty) place(slots, key);
+        slots_ = std::move(slots);
+    }
+    std::vector<uint64_t> slots_;
+    size_t count_ = 0;
+};
+
 struct Traversal {
     std::vector<Triangle> triangles;
-    std::unordered_set<uint64_t> edges;
+    EdgeSet edges;
     std::deque<Gate> gates;
     void take(uint32_t a, uint32_t b, uint32_t c) {
         triangles.push_back({a, b, c});
@@ -680,12 +738,14 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
             return Error::MalformedPayload;
     if (input.empty() || total < 3) return Error::MalformedPayload;
     const uint32_t carried = uint32_t(total - n);
-    // The input's triangles not yet coded, by their directed edges (a triangle is found by any of its
-    // three, rotated so that edge comes first).
-    std::unordered_map<uint64_t, std::vector<uint32_t>> by_edge;
+    // The input's triangles, by their directed edges (a triangle is found by any of its three,
+    // rotated so that edge comes first): (edge key, triangle) sorted, so that the triangles of one
+    // edge are together and in input order.
+    std::vector<std::pair<uint64_t, uint32_t>> by_edge;
     by_edge.reserve(input.size() * 3);
     for (uint32_t t = 0; t < input.size(); ++t)
-        for (int k = 0; k < 3; ++k) by_edge[edge_key(input[t][k], input[t][(k + 1) % 3])].push_back(t);
+        for (int k = 0; k < 3; ++k) by_edge.emplace_back(edge_key(input[t][k], input[t][(k + 1) % 3]), t);
+    std::sort(by_edge.begin(), by_edge.end());
     std::vector<bool> done(input.size(), false);
     size_t next_seed = 0;
     const int w = index_bits(total);
@@ -704,6 +764,7 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
     RangeEncoder rc;
     Contexts ctx;
     Traversal tr;
+    tr.edges.reserve(3 * input.size());
     std::vector<std::pair<uint64_t, uint32_t>> best, near;
     carried_order.clear();
     uint32_t m = 0;
@@ -744,15 +805,16 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
         }
         const Gate g = tr.gates.front();
         tr.gates.pop_front();
-        if (tr.edges.count(edge_key(g.b, g.a))) continue;
+        if (tr.edges.contains(edge_key(g.b, g.a))) continue;
         // The first input triangle not yet coded with the directed edge b->a (in decoder numbering;
         // a and b are known, so their input indices are found through carried_order).
         const uint32_t in_a = g.a < n ? g.a : carried_order[g.a - n], in_b = g.b < n ? g.b : carried_order[g.b - n];
         int64_t found = -1;
         uint32_t x = 0;
-        if (auto it = by_edge.find(edge_key(in_b, in_a)); it != by_edge.end())
-            for (uint32_t t : it->second)
-                if (!done[t]) {
+        const uint64_t wanted = edge_key(in_b, in_a);
+        for (auto it = std::lower_bound(by_edge.begin(), by_edge.end(), std::make_pair(wanted, uint32_t(0)));
+             it != by_edge.end() && it->first == wanted; ++it)
+            if (const uint32_t t = it->second; !done[t]) {
                     found = t;
                     for (int k = 0; k < 3; ++k)
                         if (input[t][k] == in_b && input[t][(k + 1) % 3] == in_a) x = input[t][(k + 2) % 3];
@@ -813,6 +875,8 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
     Contexts ctx;
     Traversal tr;
     tr.triangles.reserve(triangle_count);
+    // Room for a closed mesh's edges (about two triangles a vertex); a larger claimed count grows it.
+    tr.edges.reserve(3 * std::min<size_t>(triangle_count, 2 * total + 16));
     std::vector<QuantizedPoint> fresh_vertices;
     std::vector<std::pair<uint64_t, uint32_t>> best, near;
     auto fresh = [&](const Prediction& r, uint32_t& v) {
@@ -852,7 +916,7 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
         }
         const Gate g = tr.gates.front();
         tr.gates.pop_front();
-        if (tr.edges.count(edge_key(g.b, g.a))) continue;
+        if (tr.edges.contains(edge_key(g.b, g.a))) continue;
         if (rc.bit(ctx.none)) continue;
         const std::array<int64_t, 3> r = prediction(positions, g);
         uint32_t x = 0;
