@@ -91,6 +91,7 @@ Eigen::Matrix3d local_axes(const GrowthContext& ctx, const Vec3& c, double radiu
 void prepare_growth(GrowthContext& ctx) {
     const auto& nodes = ctx.tree.nodes();
     const auto& tris = ctx.tree.triangles();
+    ctx.balls = tree_balls(ctx.tree);
     ctx.node_moments.assign(nodes.size(), {});
     for (size_t k = nodes.size(); k-- > 0;) {
         const auto& node = nodes[k];
@@ -129,7 +130,39 @@ bool triangle_meets_unit_ball(const V3 v[3]) {
 
 }  // namespace
 
-bool clear_of_surface(const TriangleTree& tree, const Candidate& e, uint32_t* hint) {
+bool ellipsoid_meets_triangle(const Candidate& e, const TriangleTree::Triangle& t) {
+    const Eigen::Matrix3d M = e.radii.cwiseInverse().asDiagonal() * e.axes.transpose();
+    V3 v[3];
+    for (int j = 0; j < 3; ++j) {
+        Vec3 w = M * (to_vec(t.v[j]) - e.center);
+        v[j] = {w.x(), w.y(), w.z()};
+    }
+    return triangle_meets_unit_ball(v);
+}
+
+TreeBalls tree_balls(const TriangleTree& tree) {
+    TreeBalls balls;
+    balls.nodes.reserve(tree.nodes().size());
+    for (const auto& node : tree.nodes()) {
+        Vec3 mid, ext;
+        for (int k = 0; k < 3; ++k) {
+            mid[k] = 0.5 * (node.bounds.min[k] + node.bounds.max[k]);
+            ext[k] = 0.5 * (node.bounds.max[k] - node.bounds.min[k]);
+        }
+        balls.nodes.push_back({mid.x(), mid.y(), mid.z(), ext.norm()});
+    }
+    balls.triangles.reserve(tree.triangles().size());
+    for (const auto& t : tree.triangles()) {
+        const Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), c = to_vec(t.v[2]);
+        const Vec3 g = (a + b + c) / 3.0;
+        const double r = std::sqrt(std::max({(a - g).squaredNorm(), (b - g).squaredNorm(), (c - g).squaredNorm()}));
+        balls.triangles.push_back({g.x(), g.y(), g.z(), r});
+    }
+    return balls;
+}
+
+bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* blockers,
+                      const TreeBalls* balls) {
     const auto& nodes = tree.nodes();
     if (nodes.empty()) return true;
     const auto& tris = tree.triangles();
@@ -143,38 +176,65 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, uint32_t* hi
             v[j] = {w.x(), w.y(), w.z()};
         }
     };
-    if (hint && *hint < tris.size()) {  // the triangle that stopped the previous try often stops this one
-        V3 v[3];
-        mapped(tris[*hint], v);
-        if (triangle_meets_unit_ball(v)) return false;
+    if (blockers) {  // the triangles that stopped the previous tries often stop this one
+        for (uint32_t k = 0; k < blockers->count; ++k) {
+            const uint32_t t = blockers->triangles[k];
+            if (t >= tris.size()) continue;
+            V3 v[3];
+            mapped(tris[t], v);
+            if (triangle_meets_unit_ball(v)) return false;
+        }
     }
+    // The ellipsoid's bounding box, a hair wider: the culls below only skip what is clearly apart,
+    // so that the answer is the triangles' own (triangle_meets_unit_ball), whatever the order in
+    // which they are tried and however the tree groups them.
     Vec3 half;
-    for (int k = 0; k < 3; ++k) half[k] = (e.axes.row(k).transpose().cwiseProduct(e.radii)).norm();
+    for (int k = 0; k < 3; ++k)
+        half[k] = (e.axes.row(k).transpose().cwiseProduct(e.radii)).norm() * (1 + 1e-9) + 1e-12 * std::abs(e.center[k]);
     const V3 c = to_arr(e.center);
-    // A node is skipped when its bounding ball, mapped into unit-ball space, stays outside the unit ball.
-    auto mapped_gap = [&](const TriangleTree::Node& node) {
+    // A node is skipped when its bounding ball, mapped into unit-ball space, stays clearly outside the
+    // unit ball.
+    auto mapped_gap = [&](uint32_t k) {
+        if (balls) {
+            const auto& ball = balls->nodes[k];
+            return (M * (Vec3(ball[0], ball[1], ball[2]) - e.center)).norm() - ball[3] * inv_rmin;
+        }
+        const auto& node = nodes[k];
         Vec3 mid, ext;
-        for (int k = 0; k < 3; ++k) {
-            mid[k] = 0.5 * (node.bounds.min[k] + node.bounds.max[k]);
-            ext[k] = 0.5 * (node.bounds.max[k] - node.bounds.min[k]);
+        for (int j = 0; j < 3; ++j) {
+            mid[j] = 0.5 * (node.bounds.min[j] + node.bounds.max[j]);
+            ext[j] = 0.5 * (node.bounds.max[j] - node.bounds.min[j]);
         }
         return (M * (mid - e.center)).norm() - ext.norm() * inv_rmin;
     };
-    uint32_t stack[128];
+    // Each node with its mapped gap, computed once (when its parent orders its children).
+    struct Entry {
+        uint32_t node;
+        double gap;
+    };
+    Entry stack[128];
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = {0, mapped_gap(0)};
     while (top > 0) {
-        const auto& node = nodes[stack[--top]];
+        const Entry entry = stack[--top];
+        const auto& node = nodes[entry.node];
         bool apart = false;
         for (int k = 0; k < 3; ++k)
             apart = apart || node.bounds.min[k] > c[k] + half[k] || node.bounds.max[k] < c[k] - half[k];
-        if (apart || mapped_gap(node) > 1.0) continue;
+        if (apart || entry.gap > 1.0 + 1e-9) continue;
         if (node.is_leaf()) {
             for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+                if (balls) {
+                    // The ball mapped into unit-ball space lies within radius / r_min of its mapped
+                    // centre; a margin keeps rounding from skipping a triangle that touches.
+                    const auto& ball = balls->triangles[i];
+                    const double reach = 1.0 + 1e-9 + ball[3] * inv_rmin;
+                    if ((M * (Vec3(ball[0], ball[1], ball[2]) - e.center)).squaredNorm() > reach * reach) continue;
+                }
                 V3 v[3];
                 mapped(tris[i], v);
                 if (triangle_meets_unit_ball(v)) {
-                    if (hint) *hint = i;
+                    if (blockers) blockers->add(i);
                     return false;
                 }
             }
@@ -182,19 +242,19 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, uint32_t* hi
         }
         if (top + 2 > 128) return false;
         // Nearer child last, so it is visited first: a blocked ellipsoid is found out sooner.
-        double gl = mapped_gap(nodes[node.first]), gr = mapped_gap(nodes[node.right]);
-        if (gl <= gr) {
-            stack[top++] = node.right;
-            stack[top++] = node.first;
+        const Entry left{node.first, mapped_gap(node.first)}, right{node.right, mapped_gap(node.right)};
+        if (left.gap <= right.gap) {
+            stack[top++] = right;
+            stack[top++] = left;
         } else {
-            stack[top++] = node.first;
-            stack[top++] = node.right;
+            stack[top++] = left;
+            stack[top++] = right;
         }
     }
     return true;
 }
 
-bool ellipsoid_inside(const GrowthContext& ctx, const Candidate& e, uint32_t* hint) {
+bool ellipsoid_inside(const GrowthContext& ctx, const Candidate& e, Blockers* blockers) {
     if (ctx.grid.sample(e.center) <= 0.5) return false;
     if (!ctx.closed) {
         // An open surface has holes an ellipsoid could slip through without touching a triangle:
@@ -209,14 +269,14 @@ bool ellipsoid_inside(const GrowthContext& ctx, const Candidate& e, uint32_t* hi
             if (ctx.grid.sample(p) <= 0.5) return false;
         }
     }
-    return clear_of_surface(ctx.tree, e, hint);
+    return clear_of_surface(ctx.tree, e, blockers, &ctx.balls);
 }
 
 namespace {
 
 // Stretches e while it stays inside: per axis (the first `axes` of them) try to extend both ends,
 // then one end (moving the centre), with halving steps.
-void stretch(const GrowthContext& ctx, Candidate& e, int axes, uint32_t& hint) {
+void stretch(const GrowthContext& ctx, Candidate& e, int axes, Blockers& blockers) {
     int tests = 0;
     for (double step = 1.0; step > 0.02 && tests < 120; step *= 0.5) {
         bool improved = true;
@@ -233,7 +293,7 @@ void stretch(const GrowthContext& ctx, Candidate& e, int axes, uint32_t& hint) {
                         t.center += e.axes.col(axis) * (mode == 1 ? 0.5 * delta : -0.5 * delta);
                     }
                     ++tests;
-                    if (ellipsoid_inside(ctx, t, &hint)) {
+                    if (ellipsoid_inside(ctx, t, &blockers)) {
                         e = t;
                         improved = true;
                         break;
@@ -273,16 +333,16 @@ bool grow_ellipsoid(const GrowthContext& ctx, const Vec3& p, const Vec3& n, Cand
     e.radii = Vec3::Constant(r - std::min(0.03 * r, 0.1 * h));
     e.center = p + n * r;
     e.axes = local_axes(ctx, e.center, 2.5 * r, n);
-    uint32_t hint = UINT32_MAX;
+    Blockers blockers;
     int shrink = 0;
-    while (!ellipsoid_inside(ctx, e, &hint)) {
+    while (!ellipsoid_inside(ctx, e, &blockers)) {
         if (++shrink > 6) return false;
         e.radii *= 0.7;
         e.center = p + n * (e.radii.x() / 0.97);
         if (e.radii.x() < ctx.min_radius) return false;
     }
 
-    stretch(ctx, e, 3, hint);
+    stretch(ctx, e, 3, blockers);
     out = e;
     return true;
 }
@@ -291,11 +351,11 @@ bool grow_flat(const GrowthContext& ctx, const Vec3& p, const Vec3& n, double th
     const double h = ctx.grid.h;
     double t = std::max(thickness, ctx.min_radius);
     Candidate e;
-    uint32_t hint = UINT32_MAX;
+    Blockers blockers;
     for (int tries = 0;; ++tries) {
         e.center = p + n * t;
         e.radii = Vec3::Constant(t - std::min(0.03 * t, 0.1 * h));
-        if (ellipsoid_inside(ctx, e, &hint)) break;
+        if (ellipsoid_inside(ctx, e, &blockers)) break;
         t *= 0.7;
         if (tries >= 6 || t < ctx.min_radius) return false;
     }
@@ -309,7 +369,7 @@ bool grow_flat(const GrowthContext& ctx, const Vec3& p, const Vec3& n, double th
     e.axes.col(0) = a;
     e.axes.col(1) = n.cross(a).normalized();
     e.axes.col(2) = e.axes.col(0).cross(e.axes.col(1));
-    stretch(ctx, e, 2, hint);
+    stretch(ctx, e, 2, blockers);
     out = e;
     return true;
 }

@@ -6,6 +6,8 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <random>
@@ -92,6 +94,13 @@ struct Candidate {
     double volume() const { return 4.18879020478639 * radii.x() * radii.y() * radii.z(); }
 };
 
+// Balls around the nodes and triangles of a TriangleTree, for tests against an ellipsoid: per node
+// (index order) the centre of its box and half its diagonal, per triangle (leaf order) its centroid
+// and the distance to its farthest corner.
+struct TreeBalls {
+    std::vector<std::array<double, 4>> nodes, triangles;
+};
+
 struct GrowthContext {
     const TriangleTree& tree;
     const VoxelGrid& grid;
@@ -100,18 +109,44 @@ struct GrowthContext {
     double min_radius = 0;  // smaller spheres are not worth a candidate
     // Per tree node: area, area-weighted centroid sum and second moments (for local PCA).
     std::vector<std::array<double, 10>> node_moments;
+    // Balls around the tree's nodes and triangles (see clear_of_surface).
+    TreeBalls balls;
 };
 
 // Fills ctx.node_moments from the tree.
 void prepare_growth(GrowthContext& ctx);
 
-// True when the solid ellipsoid meets no triangle (exact, in double precision). `hint`, when given,
-// is a triangle (in leaf order) tested first and is set to the one found in the way.
-bool clear_of_surface(const TriangleTree& tree, const Candidate& e, uint32_t* hint = nullptr);
+// The triangles (in leaf order) that stopped the last few tries of one growth. A stretch tries each
+// axis and end in turn, and each is usually stopped by the triangle that stopped it the time before:
+// tested first, they settle most failing tries without a search. They only speed the answer up.
+struct Blockers {
+    static constexpr uint32_t kSize = 8;
+    std::array<uint32_t, kSize> triangles{};
+    uint32_t count = 0, next = 0;
+    void add(uint32_t t) {
+        triangles[next] = t;
+        next = (next + 1) % kSize;
+        count = std::min(count + 1, kSize);
+    }
+};
+
+// True when the solid ellipsoid meets no triangle (exact, in double precision: no triangle for which
+// ellipsoid_meets_triangle holds, whatever the tree's grouping and the shortcuts). `blockers`, when
+// given, are tested first, and the triangle found in the way joins them. `balls`, when given, are
+// the tree's (tree_balls): a triangle whose ball clearly misses the ellipsoid is not tested, and a
+// node's ball is not computed again at every visit (the answer is the same, found sooner).
+bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* blockers = nullptr,
+                      const TreeBalls* balls = nullptr);
+
+// The test clear_of_surface applies to each triangle: the solid ellipsoid meets the triangle.
+bool ellipsoid_meets_triangle(const Candidate& e, const TriangleTree::Triangle& t);
+
+// The balls of every node and triangle of the tree.
+TreeBalls tree_balls(const TriangleTree& tree);
 
 // True when the ellipsoid is inside the model: clear of the surface, centre inside, and (for an
 // open surface) not leaking out through a hole (checked on the winding grid).
-bool ellipsoid_inside(const GrowthContext& ctx, const Candidate& e, uint32_t* hint = nullptr);
+bool ellipsoid_inside(const GrowthContext& ctx, const Candidate& e, Blockers* blockers = nullptr);
 
 // Grows a candidate from surface point `p` with unit inward normal `n`: a sphere tangent at p
 // grown until it touches the surface elsewhere, then stretched axis by axis (moving its centre

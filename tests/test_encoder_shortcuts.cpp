@@ -1,0 +1,89 @@
+// The encoder's shortcuts give the answers of the plain computations they replace: the tests against
+// the surface that skip triangles and nodes by their balls and try the last blockers first, and the
+// selection that keeps each candidate's voxel runs between rounds. The encoder's streams depend on
+// these answers bit for bit (the same input, the same stream), so a shortcut may only be faster.
+#include "../codec/src/encoder_internal.h"
+#include "shapes.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+using namespace ellicast;
+using namespace ellicast::detail;
+
+namespace {
+
+// A lumpy closed surface: an ellipsoid with bumps, and a box beside it (two parts, flat faces and
+// sharp edges as well as curved ones).
+Mesh lumpy_scene() {
+    Mesh m = samples::uv_ellipsoid(40, {0, 0, 0}, {1.0, 0.7, 0.5});
+    for (auto& p : m.positions) {
+        const double bump = 1.0 + 0.08 * std::sin(7 * p[0]) * std::cos(5 * p[1]) + 0.04 * std::sin(11 * p[2]);
+        for (auto& c : p) c = float(c * bump);
+    }
+    Mesh b = samples::box({0.6f, 0.5f, 0.9f});
+    const uint32_t first = uint32_t(m.positions.size());
+    for (auto p : b.positions) m.positions.push_back({p[0] + 1.6f, p[1], p[2]});
+    for (auto t : b.triangles) m.triangles.push_back({t[0] + first, t[1] + first, t[2] + first});
+    return m;
+}
+
+Candidate random_candidate(Random& rng, const TriangleTree::Box& box) {
+    Candidate e;
+    for (int k = 0; k < 3; ++k) e.center[k] = box.min[k] + rng.uniform() * (box.max[k] - box.min[k]);
+    Eigen::Quaterniond q(rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5);
+    e.axes = q.normalized().toRotationMatrix();
+    for (int k = 0; k < 3; ++k) e.radii[k] = 0.01 + 0.4 * rng.uniform() * rng.uniform();
+    return e;
+}
+
+}  // namespace
+
+// The answer by definition: no triangle, tried one by one, meets the ellipsoid.
+bool clear_by_brute_force(const TriangleTree& tree, const Candidate& e) {
+    for (const auto& t : tree.triangles())
+        if (ellipsoid_meets_triangle(e, t)) return false;
+    return true;
+}
+
+TEST_CASE("the encoder's surface test answers as each triangle does, with or without its shortcuts (balls, last blockers)") {
+    const Mesh m = lumpy_scene();
+    const TriangleTree tree(m.positions, m.triangles);
+    const TreeBalls balls = tree_balls(tree);
+    REQUIRE(balls.nodes.size() == tree.nodes().size());
+    REQUIRE(balls.triangles.size() == tree.triangles().size());
+    Random rng(20261128);
+    Blockers blockers;
+    size_t clear = 0, blocked = 0, grazing = 0;
+    for (int i = 0; i < 6000; ++i) {
+        Candidate e = random_candidate(rng, tree.bounds());
+        const bool plain = clear_by_brute_force(tree, e);
+        CHECK(clear_of_surface(tree, e) == plain);
+        CHECK(clear_of_surface(tree, e, &blockers, &balls) == plain);
+        CHECK(clear_of_surface(tree, e, nullptr, &balls) == plain);
+        (plain ? clear : blocked) += 1;
+        if (!plain || i % 4 != 0) continue;
+        // Grow it until it just touches the surface (by bisection), then ask on both sides of the
+        // touch: where rounding decides, the tree's culls and the shortcuts must decide alike.
+        double lo = 1, hi = 64;
+        for (int k = 0; k < 60; ++k) {
+            const double mid = 0.5 * (lo + hi);
+            Candidate t = e;
+            t.radii *= mid;
+            (clear_by_brute_force(tree, t) ? lo : hi) = mid;
+        }
+        for (double s : {lo, hi, std::nextafter(lo, 0.0), std::nextafter(hi, 100.0)}) {
+            Candidate t = e;
+            t.radii *= s;
+            const bool expected = clear_by_brute_force(tree, t);
+            CHECK(clear_of_surface(tree, t) == expected);
+            CHECK(clear_of_surface(tree, t, &blockers, &balls) == expected);
+            ++grazing;
+        }
+    }
+    MESSAGE(clear << " clear, " << blocked << " blocked, " << grazing << " grazing");
+    CHECK(clear > 500);
+    CHECK(blocked > 500);
+    CHECK(grazing > 400);
+}
