@@ -87,3 +87,37 @@ TEST_CASE("the encoder's surface test answers as each triangle does, with or wit
     CHECK(blocked > 500);
     CHECK(grazing > 400);
 }
+
+TEST_CASE("the selection of ellipsoids chooses the same with its kept voxel runs as without, over growing candidate lists") {
+    const Mesh m = lumpy_scene();
+    const TriangleTree tree(m.positions, m.triangles);
+    const VoxelGrid grid = build_closed_winding_grid(tree, tree.bounds(), 40, 2);
+    const VoxelGrid fine = build_closed_winding_grid(tree, tree.bounds(), 80, 2);
+    std::vector<Vec3> samples;
+    for (size_t i = 0; i < m.positions.size(); i += 3)
+        samples.emplace_back(m.positions[i][0], m.positions[i][1], m.positions[i][2]);
+    Random rng(7);
+    std::vector<Candidate> candidates;
+    SelectionCache cache_plain, cache_fine;
+    // Rounds as the encoder has them: more candidates each time, the coverage aimed at rising.
+    for (int round = 0; round < 4; ++round) {
+        for (int i = 0; i < 150; ++i) {
+            Candidate e = random_candidate(rng, tree.bounds());
+            if (clear_of_surface(tree, e) && grid.sample(e.center) > 0.5) candidates.push_back(e);
+        }
+        const double aim = 0.6 + 0.1 * round;
+        for (const VoxelGrid* measure : {static_cast<const VoxelGrid*>(nullptr), &fine}) {
+            SelectionCache& cache = measure ? cache_fine : cache_plain;
+            const SelectionResult fresh =
+                select_ellipsoids(grid, measure, candidates, samples, grid.h, aim, 40, 60, {});
+            const SelectionResult kept =
+                select_ellipsoids(grid, measure, candidates, samples, grid.h, aim, 40, 60, {}, &cache);
+            CHECK(kept.volume == fresh.volume);
+            CHECK(kept.surface == fresh.surface);
+            CHECK(kept.coverage == fresh.coverage);
+            CHECK(!fresh.volume.empty());
+            CHECK(cache.spans.size() == candidates.size());
+        }
+    }
+    CHECK(candidates.size() > 100);
+}

@@ -62,6 +62,15 @@ bool VoxelBits::get(size_t x, size_t row) const { return bits_[row * words_per_r
 
 namespace {
 
+// Bits set in w, by the parallel sum (the portable build has no POPCNT instruction, and
+// std::popcount becomes a library call several times slower).
+inline size_t ones(uint64_t w) {
+    w = w - ((w >> 1) & 0x5555555555555555ull);
+    w = (w & 0x3333333333333333ull) + ((w >> 2) & 0x3333333333333333ull);
+    w = (w + (w >> 4)) & 0x0f0f0f0f0f0f0f0full;
+    return size_t((w * 0x0101010101010101ull) >> 56);
+}
+
 // Mask of bits [a, b) within word number `word` of a row.
 uint64_t span_mask(size_t word, size_t a, size_t b) {
     size_t lo = std::max(a, word * 64), hi = std::min(b, word * 64 + 64);
@@ -77,7 +86,7 @@ size_t VoxelBits::count(const std::vector<Span>& spans) const {
     size_t total = 0;
     for (const Span& s : spans)
         for (size_t w = s.x0 / 64; w * 64 < s.x1; ++w)
-            total += std::popcount(bits_[s.row * words_per_row_ + w] & span_mask(w, s.x0, s.x1));
+            total += ones(bits_[s.row * words_per_row_ + w] & span_mask(w, s.x0, s.x1));
     return total;
 }
 
@@ -93,7 +102,7 @@ void VoxelBits::fill(const std::vector<Span>& spans) {
 
 size_t VoxelBits::count_all() const {
     size_t total = 0;
-    for (uint64_t w : bits_) total += std::popcount(w);
+    for (uint64_t w : bits_) total += ones(w);
     return total;
 }
 
@@ -133,19 +142,25 @@ bool inside_inflated(const Candidate& e, const Vec3& p, double inflate) {
 SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measure,
                                   const std::vector<Candidate>& candidates, const std::vector<Vec3>& surface_samples,
                                   double near, double coverage, uint32_t max_volume, uint32_t max_count,
-                                  const std::function<void(double)>& progress) {
+                                  const std::function<void(double)>& progress, SelectionCache* cache) {
     SelectionResult result;
     const size_t n = candidates.size();
+    SelectionCache own;
+    SelectionCache& c = cache ? *cache : own;
+    const size_t rasterized = std::min(c.spans.size(), n);
+    c.spans.resize(n);
+    c.fine_spans.resize(n);
+    c.fine_done.resize(n, 0);
     const size_t rows = size_t(grid.n[1]) * grid.n[2];
     VoxelBits remaining(grid, false);
     for (size_t row = 0; row < rows; ++row)
         for (int x = 0; x < grid.n[0]; ++x)
             if (grid.inside(row * grid.n[0] + x)) remaining.set(x, row, true);
     const size_t interior = remaining.count_all();
-    std::vector<std::vector<Span>> spans(n);
+    std::vector<std::vector<Span>>& spans = c.spans;
     std::vector<size_t> gains(n);
     parallel_for(n, 2, [&](size_t i) {
-        spans[i] = rasterize(grid, candidates[i], 0);
+        if (i >= rasterized) spans[i] = rasterize(grid, candidates[i], 0);
         gains[i] = remaining.count(spans[i]);
     });
     if (progress) progress(0.3);
@@ -167,7 +182,8 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
         n, gains, [&](size_t i) { return remaining.count(spans[i]); },
         [&](size_t i) {
             if (measured) {
-                const auto fine = rasterize(*measure, candidates[i], 0);
+                if (!c.fine_done[i]) c.fine_spans[i] = rasterize(*measure, candidates[i], 0), c.fine_done[i] = 1;
+                const auto& fine = c.fine_spans[i];
                 covered += measured->count(fine);
                 measured->clear(fine);
             } else {
@@ -198,8 +214,12 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
         if (in_grid) by_voxel.push_back({grid.index(idx[0], idx[1], idx[2]), uint32_t(s)});
     }
     std::sort(by_voxel.begin(), by_voxel.end());
-    std::vector<std::vector<uint32_t>> near_samples(n);
-    parallel_for(n, 2, [&](size_t i) {
+    std::vector<std::vector<uint32_t>>& near_samples = c.near_samples;
+    const size_t found = std::min(c.near_count, n);
+    near_samples.resize(n);
+    parallel_for(n - found, 2, [&](size_t k) {
+        const size_t i = found + k;
+        near_samples[i].clear();
         for (const Span& sp : rasterize(grid, candidates[i], near + grid.h)) {
             const uint64_t first = uint64_t(sp.row) * grid.n[0] + sp.x0, last = uint64_t(sp.row) * grid.n[0] + sp.x1;
             auto it = std::lower_bound(by_voxel.begin(), by_voxel.end(), std::make_pair(first, uint32_t(0)));
@@ -209,6 +229,7 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
         }
         std::sort(near_samples[i].begin(), near_samples[i].end());
     });
+    c.near_count = n;
     for (size_t i = 0; i < n; ++i)
         if (chosen[i])
             for (uint32_t s : near_samples[i]) done[s] = true;

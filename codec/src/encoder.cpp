@@ -325,8 +325,11 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     for (size_t i = 0; i < measure_grid.size(); ++i) measure_interior += measure_grid.inside(i);
     // Aim a little higher: quantization may shrink a few ellipsoids by a step.
     const double aim = std::min(1.0, options.coverage + 0.01);
+    // Every selection below is over these grids and samples, and the candidates only grow.
+    SelectionCache selection_cache;
     SelectionResult chosen = select_ellipsoids(grid, measure, candidates, samples, near, aim, max_volume,
-                                               max_inside, [&](double f) { progress("selection", 0.7 + 0.1 * f); });
+                                               max_inside, [&](double f) { progress("selection", 0.7 + 0.1 * f); },
+                                               &selection_cache);
 
     // More rounds where the first left interior uncovered (corners, crevices, sharp edges, the thin
     // layer under flat faces): seeds at the surface points nearest to uncovered voxels, each growing
@@ -338,7 +341,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     for (int round = 0; round < 3 && chosen.coverage < aim && interior > 0 && gained >= 0.0025; ++round) {
         const double before = chosen.coverage;
         VoxelBits covered(grid, false);
-        for (uint32_t i : chosen.volume) covered.fill(rasterize(grid, candidates[i], 0));
+        for (uint32_t i : chosen.volume) covered.fill(selection_cache.spans[i]);
         std::vector<size_t> uncovered;
         for (size_t row = 0; row < size_t(grid.n[1]) * grid.n[2]; ++row)
             for (int x = 0; x < grid.n[0]; ++x)
@@ -371,7 +374,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
             if (more_ok[i]) candidates.push_back(more[i]);
         report.candidates = uint32_t(candidates.size());
         chosen = select_ellipsoids(grid, measure, candidates, samples, near, aim, max_volume, max_inside,
-                                   [&](double f) { progress("selection", 0.9 + 0.05 * f); });
+                                   [&](double f) { progress("selection", 0.9 + 0.05 * f); }, &selection_cache);
         gained = chosen.coverage - before;
     }
 
@@ -480,7 +483,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         if (pass >= 2 || !fine || report.coverage >= options.coverage + 0.002 || short_of_aim || select_aim >= 1) break;
         select_aim = std::min(1.0, select_aim + (options.coverage + 0.005 - report.coverage));
         chosen = select_ellipsoids(grid, measure, candidates, samples, near, select_aim, max_volume, max_inside,
-                                   [&](double f) { progress("selection", 0.95 + 0.04 * f); });
+                                   [&](double f) { progress("selection", 0.95 + 0.04 * f); }, &selection_cache);
     }
     if (interior == 0 && report.flat_ellipsoids == 0 && out.empty())
         warnings.push_back(mesh.name + ": no interior volume and no sheet found; no ellipsoids");

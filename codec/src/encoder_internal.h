@@ -192,15 +192,27 @@ struct SelectionResult {
     double coverage = 0;            // covered fraction of interior voxels by the chosen ones (measuring grid)
 };
 
+// What select_ellipsoids works out per candidate, kept between calls over the same grids, surface
+// samples and `near` whose candidate list only grows (an encoder's rounds): each candidate's runs
+// of voxels on the working and the measuring grid, and the surface samples near it.
+struct SelectionCache {
+    std::vector<std::vector<Span>> spans;          // on the working grid
+    std::vector<std::vector<Span>> fine_spans;     // on the measuring grid, where fine_done
+    std::vector<char> fine_done;
+    std::vector<std::vector<uint32_t>> near_samples;  // the first near_count candidates'
+    size_t near_count = 0;
+};
+
 // Greedy: the largest candidate first, then the one with the largest gain of covered interior
 // voxels, until `coverage` or `max_volume`; then, until `max_count` in all, the candidate covering
 // the most surface samples still farther than `near` from every chosen ellipsoid. Gains are
 // counted on `grid`; the coverage (when to stop, and the result's) on `measure` when given (a
-// finer grid over the same model: a truer measure than the working grid's voxel centres).
+// finer grid over the same model: a truer measure than the working grid's voxel centres). With a
+// `cache`, what an earlier call worked out for the same candidates is not worked out again.
 SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measure,
                                   const std::vector<Candidate>& candidates, const std::vector<Vec3>& surface_samples,
                                   double near, double coverage, uint32_t max_volume, uint32_t max_count,
-                                  const std::function<void(double)>& progress);
+                                  const std::function<void(double)>& progress, SelectionCache* cache = nullptr);
 
 // ---------------------------------------------------------------------------------------------
 // sheet_ellipsoids.cpp
