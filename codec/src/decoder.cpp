@@ -56,7 +56,11 @@ std::vector<uint32_t> insertion_order(size_t count, bool with_normals) {
         for (int b = 0; b < bits; ++b) r |= ((x >> b) & 1u) << (bits - 1 - b);
         return r;
     };
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return reversed(a) < reversed(b); });
+    // The indices by their bit-reversed value: walk the reversed values in order and keep those
+    // whose index is in range (reversal is its own inverse), in time linear in the count.
+    order.clear();
+    for (uint64_t r = 0; r < (uint64_t(1) << bits); ++r)
+        if (const uint32_t x = reversed(uint32_t(r)); x < count) order.push_back(x);
     return order;
 }
 
