@@ -203,12 +203,22 @@ PY
     speed)
       # Issue 30: encode, exact decode and reconstruction side by side with Draco in one run, on the
       # bunny, a 50k-vertex closed torus and (ELLICAST_SPEED_LARGE=0 leaves it out) the same torus at
-      # 500k vertices; best of ELLICAST_SPEED_RUNS (default 3) wall times each.
+      # 500k vertices, and low-poly glTF assets (the Box, the Duck, the milk truck); best of
+      # ELLICAST_SPEED_RUNS (default 3) wall times each. ELLICAST_SPEED_BASELINE=PATH adds the same
+      # steps with another build (an earlier commit's tool) and says whether its bytes are the same.
       echo "== speed: ellicast against draco_encoder/draco_decoder (bench/speed.py)" >&2
       large=--large
       [ "${ELLICAST_SPEED_LARGE:-1}" = 0 ] && large=
+      gltf=()
+      lowpoly=""
+      for g in "$samples/gltf/Box-glb/Box.glb" "$samples/gltf/Duck-glb/Duck.glb" "$samples/gltf/CesiumMilkTruck/CesiumMilkTruck.gltf"; do
+        [ -f "$g" ] && lowpoly="${lowpoly:+$lowpoly,}$g"
+      done
+      [ -n "$lowpoly" ] && gltf=(--gltf "$lowpoly")
+      baseline=()
+      [ -n "${ELLICAST_SPEED_BASELINE:-}" ] && baseline=(--baseline "$ELLICAST_SPEED_BASELINE")
       python3 "$root/bench/speed.py" "$build/ellicast" "$samples/meshes" "$results/speed.txt" $large \
-        --runs "${ELLICAST_SPEED_RUNS:-3}" ;;
+        --runs "${ELLICAST_SPEED_RUNS:-3}" "${gltf[@]}" "${baseline[@]}" ;;
     live)
       # The live view in headless Chromium (issue 33): the bunny at 1 Mbit/s with no loss and at 30%
       # loss: when the first picture is drawn after tune-in, the time from a model's event to its

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Speed side by side with Draco (issue 30), in one run on this machine.
 
-Usage: bench/speed.py ELLICAST SAMPLES_MESHES OUT_TXT [--large] [--runs N]
+Usage: bench/speed.py ELLICAST SAMPLES_MESHES OUT_TXT [--large] [--runs N] [--gltf A.glb,B.gltf,...]
+                      [--baseline OTHER_ELLICAST]
 
 Models: the bunny (shared samples), the bumpy torus of bench_encode (400 x 125 = 50,000 vertices,
 closed, written here as a binary PLY) and, with --large, the same torus sampled ten times finer
@@ -14,8 +15,11 @@ subdivision onto the surface gives). For each, the best wall time of N runs (def
 - reconstruction: `ellicast decode --no-exact` of every packet (ellipsoids, marching cubes, every point
   inserted with flips and collapses): its wall time, and the insertion stage alone as the decoder
   reports it, in points per second.
-Ratios are ellicast / Draco (a reconstruction against Draco's decode of the same model). Speed figures
-mean something only on an otherwise idle machine: the table records the load average.
+Ratios are ellicast / Draco (a reconstruction against Draco's decode of the same model). With --gltf,
+low-poly glTF assets too (encode, exact decode, reconstruction; draco_encoder reads no glTF). With
+--baseline, the same steps with another build of ellicast (an earlier commit), in the same run, and
+whether its streams and reconstructions are byte for byte the same. Speed figures mean something
+only on an otherwise idle machine: the table records the load average.
 """
 import math
 import os
@@ -66,14 +70,33 @@ def best(runs, cmd):
     return min(r[0] for r in results), min(results)[1]
 
 
+def option(args, name, default=None):
+    """Removes `name VALUE` from args and returns VALUE (or default)."""
+    if name not in args:
+        return default
+    k = args.index(name)
+    value = args[k + 1]
+    del args[k:k + 2]
+    return value
+
+
+def reconstruction(ellicast, stream, out, runs):
+    """Best wall time of `decode --no-exact` and the best insertion stage it reports; its log."""
+    rec, insertion, log = float('inf'), float('inf'), ''
+    for _ in range(runs):
+        elapsed, log = timed([ellicast, 'decode', '-q', '--no-exact', stream, '-o', out])
+        rec = min(rec, elapsed)
+        insertion = min([insertion] + [float(x) for x in re.findall(r'insertion ([\d.]+) s', log)])
+    return rec, insertion, log
+
+
 def main():
     args = sys.argv[1:]
     large = '--large' in args
-    runs = 3
-    if '--runs' in args:
-        runs = int(args[args.index('--runs') + 1])
-        del args[args.index('--runs'):args.index('--runs') + 2]
     args = [a for a in args if a != '--large']
+    runs = int(option(args, '--runs', 3))
+    baseline = option(args, '--baseline')
+    gltf = option(args, '--gltf')
     ellicast, meshes, out_txt = args[:3]
     tmp = tempfile.mkdtemp(prefix='ellicast-speed-')
     models = [('bunny', os.path.join(meshes, 'bunny.ply'))]
@@ -93,21 +116,21 @@ def main():
     say('Speed: ellicast against Draco (draco_encoder -cl 7 -qp 14 / draco_decoder), best wall time of %d runs,'
         % runs)
     say('load average at the start: %s' % ' '.join('%.2f' % x for x in os.getloadavg()))
+    if baseline:
+        say('baseline: %s, run in the same session on the same inputs (its streams compared byte for byte)'
+            % baseline)
     say()
     say('| model | vertices | points | encode ellicast | encode Draco | ratio | exact decode ellicast | decode Draco '
         '| ratio | reconstruction (wall) | ratio | insertion | points/s |')
     say('|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|')
+    before = []
     for name, path in models:
         stem = os.path.join(tmp, re.sub(r'\W+', '_', name))
         enc, _ = best(runs, [ellicast, 'encode', '-q', path, '-o', stem + '.ellc'])
         denc, _ = best(runs, ['draco_encoder', '-i', path, '-o', stem + '.drc', '-cl', '7', '-qp', '14'])
         dec, _ = best(runs, [ellicast, 'decode', '-q', stem + '.ellc', '-o', stem + '.exact.ply'])
         ddec, _ = best(runs, ['draco_decoder', '-i', stem + '.drc', '-o', stem + '.draco.ply'])
-        rec, insertion, log = float('inf'), float('inf'), ''
-        for _ in range(runs):
-            elapsed, log = timed([ellicast, 'decode', '-q', '--no-exact', stem + '.ellc', '-o', stem + '.rec.ply'])
-            rec = min(rec, elapsed)
-            insertion = min([insertion] + [float(x) for x in re.findall(r'insertion ([\d.]+) s', log)])
+        rec, insertion, log = reconstruction(ellicast, stem + '.ellc', stem + '.rec.ply', runs)
         points = sum(int(a) for a, _ in re.findall(r'(\d+)/(\d+) points', log))
         with open(path, 'rb') as f:
             head = f.read(4096).decode('latin-1')
@@ -115,9 +138,51 @@ def main():
         say('| %s | %s | %d | %.2f s | %.3f s | %.0fx | %.3f s | %.3f s | %.1fx | %.2f s | %.0fx | %.2f s | %.0f |' % (
             name, vertices.group(1) if vertices else '?', points, enc, denc, enc / denc, dec, ddec, dec / ddec, rec,
             rec / ddec, insertion, points / insertion if insertion > 0 else float('nan')))
+        if baseline:
+            benc, _ = best(runs, [baseline, 'encode', '-q', path, '-o', stem + '.before.ellc'])
+            bdec, _ = best(runs, [baseline, 'decode', '-q', stem + '.before.ellc', '-o', stem + '.before.exact.ply'])
+            brec, binsertion, _ = reconstruction(baseline, stem + '.before.ellc', stem + '.before.rec.ply', runs)
+            with open(stem + '.ellc', 'rb') as a, open(stem + '.before.ellc', 'rb') as b:
+                same = a.read() == b.read()
+            with open(stem + '.rec.ply', 'rb') as a, open(stem + '.before.rec.ply', 'rb') as b:
+                same_rec = a.read() == b.read()
+            before.append((name, benc, enc, bdec, dec, brec, rec, binsertion, insertion, same, same_rec))
+    # Low-poly glTF assets: what a catalogue holds (encode and reconstruction only: draco_encoder
+    # reads no glTF).
+    if gltf:
+        say()
+        say('| low-poly glTF | encode ellicast | exact decode | reconstruction (wall) |')
+        say('|---|---:|---:|---:|')
+        for path in gltf.split(','):
+            name = os.path.basename(path)
+            stem = os.path.join(tmp, re.sub(r'\W+', '_', name))
+            enc, _ = best(runs, [ellicast, 'encode', '-q', path, '-o', stem + '.ellc'])
+            dec, _ = best(runs, [ellicast, 'decode', '-q', stem + '.ellc', '-o', stem + '.exact.glb'])
+            rec, _, _ = reconstruction(ellicast, stem + '.ellc', stem + '.rec.glb', runs)
+            say('| %s | %.2f s | %.3f s | %.2f s |' % (name, enc, dec, rec))
+            if baseline:
+                benc, _ = best(runs, [baseline, 'encode', '-q', path, '-o', stem + '.before.ellc'])
+                bdec, _ = best(runs, [baseline, 'decode', '-q', stem + '.before.ellc', '-o', stem + '.before.exact.glb'])
+                brec, _, _ = reconstruction(baseline, stem + '.before.ellc', stem + '.before.rec.glb', runs)
+                with open(stem + '.ellc', 'rb') as a, open(stem + '.before.ellc', 'rb') as b:
+                    same = a.read() == b.read()
+                with open(stem + '.rec.glb', 'rb') as a, open(stem + '.before.rec.glb', 'rb') as b:
+                    same_rec = a.read() == b.read()
+                before.append((name, benc, enc, bdec, dec, brec, rec, float('nan'), float('nan'), same, same_rec))
     say()
     say('reconstruction = `ellicast decode --no-exact` of every packet, whole process; insertion = its insertion '
         'stage (points with their flips and collapses) as the decoder reports it.')
+    if before:
+        say()
+        say('Against the baseline build (before / now, wall):')
+        say()
+        say('| model | encode | exact decode | reconstruction | insertion | same stream | same reconstruction |')
+        say('|---|---:|---:|---:|---:|---|---|')
+        for name, benc, enc, bdec, dec, brec, rec, bins, ins, same, same_rec in before:
+            insertion = '%.2f / %.2f s' % (bins, ins) if bins == bins else '-'
+            say('| %s | %.2f / %.2f s (%.2fx) | %.3f / %.3f s (%.2fx) | %.2f / %.2f s | %s | %s | %s |' % (
+                name, benc, enc, enc / benc, bdec, dec, dec / bdec, brec, rec, insertion,
+                'yes' if same else 'NO', 'yes' if same_rec else 'NO'))
     with open(out_txt, 'w') as f:
         f.write('\n'.join(lines) + '\n')
 
