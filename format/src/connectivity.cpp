@@ -260,9 +260,9 @@ std::array<int64_t, 3> prediction(const std::vector<std::array<uint32_t, 3>>& p,
 }
 
 // The decoder's state, shared by both directions: T, D and Q of spec 19.2.
-// The directed edges taken so far: a set of edge keys with open addressing (linear probing), grown
-// by doubling at half load. Edge keys never equal kEmpty (vertex numbers are below 2^32 - 1).
-class EdgeSet {
+// A set of edge keys with open addressing (linear probing), grown by doubling at half load. Edge
+// keys never equal kEmpty (vertex numbers are below 2^32 - 1).
+class KeySet {
 public:
     void reserve(size_t n) {
         size_t size = 16;
@@ -310,15 +310,53 @@ private:
     size_t count_ = 0;
 };
 
+// The directed edges taken so far, by their first vertex: up to kInPlace of them in place (a closed
+// mesh's vertices start about 6 on average), the rest, and any vertex beyond `vertices`, in a
+// KeySet. Looking an edge up then reads the memory of its vertex, near that of the vertices the
+// traversal has just taken, where a hash of every edge would read anywhere.
+class EdgeSet {
+public:
+    void reset(size_t vertices) {
+        lists_.assign(vertices, {});
+        overflow_ = KeySet();
+    }
+    void insert(uint32_t a, uint32_t b) {
+        if (a < lists_.size()) {
+            auto& list = lists_[a];
+            for (uint32_t k = 1; k <= list[0]; ++k)
+                if (list[k] == b) return;
+            if (list[0] < kInPlace) {
+                list[++list[0]] = b;
+                return;
+            }
+        }
+        overflow_.insert(edge_key(a, b));
+    }
+    bool contains(uint32_t a, uint32_t b) const {
+        if (a < lists_.size()) {
+            const auto& list = lists_[a];
+            for (uint32_t k = 1; k <= list[0]; ++k)
+                if (list[k] == b) return true;
+            if (list[0] < kInPlace) return false;
+        }
+        return overflow_.contains(edge_key(a, b));
+    }
+
+private:
+    static constexpr uint32_t kInPlace = 7;
+    std::vector<std::array<uint32_t, kInPlace + 1>> lists_;  // [0]: how many follow
+    KeySet overflow_;
+};
+
 struct Traversal {
     std::vector<Triangle> triangles;
     EdgeSet edges;
     std::deque<Gate> gates;
     void take(uint32_t a, uint32_t b, uint32_t c) {
         triangles.push_back({a, b, c});
-        edges.insert(edge_key(a, b));
-        edges.insert(edge_key(b, c));
-        edges.insert(edge_key(c, a));
+        edges.insert(a, b);
+        edges.insert(b, c);
+        edges.insert(c, a);
         gates.push_back({a, b, c});
         gates.push_back({b, c, a});
         gates.push_back({c, a, b});
@@ -764,7 +802,7 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
     RangeEncoder rc;
     Contexts ctx;
     Traversal tr;
-    tr.edges.reserve(3 * input.size());
+    tr.edges.reset(total);
     std::vector<std::pair<uint64_t, uint32_t>> best, near;
     carried_order.clear();
     uint32_t m = 0;
@@ -805,7 +843,7 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
         }
         const Gate g = tr.gates.front();
         tr.gates.pop_front();
-        if (tr.edges.contains(edge_key(g.b, g.a))) continue;
+        if (tr.edges.contains(g.b, g.a)) continue;
         // The first input triangle not yet coded with the directed edge b->a (in decoder numbering;
         // a and b are known, so their input indices are found through carried_order).
         const uint32_t in_a = g.a < n ? g.a : carried_order[g.a - n], in_b = g.b < n ? g.b : carried_order[g.b - n];
@@ -875,8 +913,9 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
     Contexts ctx;
     Traversal tr;
     tr.triangles.reserve(triangle_count);
-    // Room for a closed mesh's edges (about two triangles a vertex); a larger claimed count grows it.
-    tr.edges.reserve(3 * std::min<size_t>(triangle_count, 2 * total + 16));
+    // In place for the points and as many carried vertices (a claimed carried count is only a
+    // claim: the others' edges go to the table, which grows with the triangles actually taken).
+    tr.edges.reset(std::min<size_t>(total, 2 * n + 4096));
     std::vector<QuantizedPoint> fresh_vertices;
     std::vector<std::pair<uint64_t, uint32_t>> best, near;
     auto fresh = [&](const Prediction& r, uint32_t& v) {
@@ -916,7 +955,7 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
         }
         const Gate g = tr.gates.front();
         tr.gates.pop_front();
-        if (tr.edges.contains(edge_key(g.b, g.a))) continue;
+        if (tr.edges.contains(g.b, g.a)) continue;
         if (rc.bit(ctx.none)) continue;
         const std::array<int64_t, 3> r = prediction(positions, g);
         uint32_t x = 0;
