@@ -90,6 +90,21 @@ def reconstruction(ellicast, stream, out, runs):
     return rec, insertion, log
 
 
+def same_bytes(a, b):
+    with open(a, 'rb') as fa, open(b, 'rb') as fb:
+        return fa.read() == fb.read()
+
+
+def with_baseline(baseline, path, stem, ext, runs):
+    """The same steps with the baseline build: its encode, exact decode, reconstruction and insertion
+    times, and whether its stream and reconstruction are the same bytes as this build's."""
+    enc, _ = best(runs, [baseline, 'encode', '-q', path, '-o', stem + '.before.ellc'])
+    dec, _ = best(runs, [baseline, 'decode', '-q', stem + '.before.ellc', '-o', stem + '.before.exact' + ext])
+    rec, insertion, _ = reconstruction(baseline, stem + '.before.ellc', stem + '.before.rec' + ext, runs)
+    return (enc, dec, rec, insertion, same_bytes(stem + '.ellc', stem + '.before.ellc'),
+            same_bytes(stem + '.rec' + ext, stem + '.before.rec' + ext))
+
+
 def main():
     args = sys.argv[1:]
     large = '--large' in args
@@ -139,14 +154,7 @@ def main():
             name, vertices.group(1) if vertices else '?', points, enc, denc, enc / denc, dec, ddec, dec / ddec, rec,
             rec / ddec, insertion, points / insertion if insertion > 0 else float('nan')))
         if baseline:
-            benc, _ = best(runs, [baseline, 'encode', '-q', path, '-o', stem + '.before.ellc'])
-            bdec, _ = best(runs, [baseline, 'decode', '-q', stem + '.before.ellc', '-o', stem + '.before.exact.ply'])
-            brec, binsertion, _ = reconstruction(baseline, stem + '.before.ellc', stem + '.before.rec.ply', runs)
-            with open(stem + '.ellc', 'rb') as a, open(stem + '.before.ellc', 'rb') as b:
-                same = a.read() == b.read()
-            with open(stem + '.rec.ply', 'rb') as a, open(stem + '.before.rec.ply', 'rb') as b:
-                same_rec = a.read() == b.read()
-            before.append((name, benc, enc, bdec, dec, brec, rec, binsertion, insertion, same, same_rec))
+            before.append((name, enc, dec, rec, insertion) + with_baseline(baseline, path, stem, '.ply', runs))
     # Low-poly glTF assets: what a catalogue holds (encode and reconstruction only: draco_encoder
     # reads no glTF).
     if gltf:
@@ -161,14 +169,7 @@ def main():
             rec, _, _ = reconstruction(ellicast, stem + '.ellc', stem + '.rec.glb', runs)
             say('| %s | %.2f s | %.3f s | %.2f s |' % (name, enc, dec, rec))
             if baseline:
-                benc, _ = best(runs, [baseline, 'encode', '-q', path, '-o', stem + '.before.ellc'])
-                bdec, _ = best(runs, [baseline, 'decode', '-q', stem + '.before.ellc', '-o', stem + '.before.exact.glb'])
-                brec, _, _ = reconstruction(baseline, stem + '.before.ellc', stem + '.before.rec.glb', runs)
-                with open(stem + '.ellc', 'rb') as a, open(stem + '.before.ellc', 'rb') as b:
-                    same = a.read() == b.read()
-                with open(stem + '.rec.glb', 'rb') as a, open(stem + '.before.rec.glb', 'rb') as b:
-                    same_rec = a.read() == b.read()
-                before.append((name, benc, enc, bdec, dec, brec, rec, float('nan'), float('nan'), same, same_rec))
+                before.append((name, enc, dec, rec, float('nan')) + with_baseline(baseline, path, stem, '.glb', runs))
     say()
     say('reconstruction = `ellicast decode --no-exact` of every packet, whole process; insertion = its insertion '
         'stage (points with their flips and collapses) as the decoder reports it.')
@@ -178,8 +179,8 @@ def main():
         say()
         say('| model | encode | exact decode | reconstruction | insertion | same stream | same reconstruction |')
         say('|---|---:|---:|---:|---:|---|---|')
-        for name, benc, enc, bdec, dec, brec, rec, bins, ins, same, same_rec in before:
-            insertion = '%.2f / %.2f s' % (bins, ins) if bins == bins else '-'
+        for name, enc, dec, rec, ins, benc, bdec, brec, bins, same, same_rec in before:
+            insertion = '%.2f / %.2f s' % (bins, ins) if ins == ins else '-'
             say('| %s | %.2f / %.2f s (%.2fx) | %.3f / %.3f s (%.2fx) | %.2f / %.2f s | %s | %s | %s |' % (
                 name, benc, enc, enc / benc, bdec, dec, dec / bdec, brec, rec, insertion,
                 'yes' if same else 'NO', 'yes' if same_rec else 'NO'))
