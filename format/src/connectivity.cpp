@@ -264,11 +264,6 @@ std::array<int64_t, 3> prediction(const std::vector<std::array<uint32_t, 3>>& p,
 // keys never equal kEmpty (vertex numbers are below 2^32 - 1).
 class KeySet {
 public:
-    void reserve(size_t n) {
-        size_t size = 16;
-        while (size < 2 * n) size *= 2;
-        if (size > slots_.size()) rehash(size);
-    }
     void insert(uint64_t key) {
         if (2 * (count_ + 1) > slots_.size()) rehash(std::max<size_t>(16, 2 * slots_.size()));
         if (place(slots_, key)) ++count_;
