@@ -193,24 +193,32 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* bl
         half[k] = (e.axes.row(k).transpose().cwiseProduct(e.radii)).norm() * (1 + 1e-9) + 1e-12 * std::abs(e.center[k]);
     const V3 c = to_arr(e.center);
     // A node is skipped when its bounding ball, mapped into unit-ball space, stays clearly outside the
-    // unit ball.
+    // unit ball: when the squared distance of its mapped centre exceeds (1 + radius / r_min)^2, with a
+    // margin. The difference of the two (no square root) also orders the children: the answer does
+    // not depend on the order, only how soon a blocked ellipsoid is found out.
     auto mapped_gap = [&](uint32_t k) {
+        Vec3 mid;
+        double radius;
         if (balls) {
             const auto& ball = balls->nodes[k];
-            return (M * (Vec3(ball[0], ball[1], ball[2]) - e.center)).norm() - ball[3] * inv_rmin;
+            mid = Vec3(ball[0], ball[1], ball[2]);
+            radius = ball[3];
+        } else {
+            const auto& node = nodes[k];
+            Vec3 ext;
+            for (int j = 0; j < 3; ++j) {
+                mid[j] = 0.5 * (node.bounds.min[j] + node.bounds.max[j]);
+                ext[j] = 0.5 * (node.bounds.max[j] - node.bounds.min[j]);
+            }
+            radius = ext.norm();
         }
-        const auto& node = nodes[k];
-        Vec3 mid, ext;
-        for (int j = 0; j < 3; ++j) {
-            mid[j] = 0.5 * (node.bounds.min[j] + node.bounds.max[j]);
-            ext[j] = 0.5 * (node.bounds.max[j] - node.bounds.min[j]);
-        }
-        return (M * (mid - e.center)).norm() - ext.norm() * inv_rmin;
+        const double reach = 1.0 + 1e-9 + radius * inv_rmin;
+        return (M * (mid - e.center)).squaredNorm() - reach * reach;
     };
     // Each node with its mapped gap, computed once (when its parent orders its children).
     struct Entry {
         uint32_t node;
-        double gap;
+        double gap;  // > 0: clearly apart
     };
     Entry stack[128];
     int top = 0;
@@ -221,7 +229,7 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* bl
         bool apart = false;
         for (int k = 0; k < 3; ++k)
             apart = apart || node.bounds.min[k] > c[k] + half[k] || node.bounds.max[k] < c[k] - half[k];
-        if (apart || entry.gap > 1.0 + 1e-9) continue;
+        if (apart || entry.gap > 0) continue;
         if (node.is_leaf()) {
             for (uint32_t i = node.first; i < node.first + node.count; ++i) {
                 if (balls) {
