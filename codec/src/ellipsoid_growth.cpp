@@ -140,17 +140,24 @@ bool ellipsoid_meets_triangle(const Candidate& e, const TriangleTree::Triangle& 
     return triangle_meets_unit_ball(v);
 }
 
+namespace {
+
+// A ball holding a node's box: its centre and half its diagonal.
+std::array<double, 4> node_ball(const TriangleTree::Node& node) {
+    Vec3 mid, ext;
+    for (int k = 0; k < 3; ++k) {
+        mid[k] = 0.5 * (node.bounds.min[k] + node.bounds.max[k]);
+        ext[k] = 0.5 * (node.bounds.max[k] - node.bounds.min[k]);
+    }
+    return {mid.x(), mid.y(), mid.z(), ext.norm()};
+}
+
+}  // namespace
+
 TreeBalls tree_balls(const TriangleTree& tree) {
     TreeBalls balls;
     balls.nodes.reserve(tree.nodes().size());
-    for (const auto& node : tree.nodes()) {
-        Vec3 mid, ext;
-        for (int k = 0; k < 3; ++k) {
-            mid[k] = 0.5 * (node.bounds.min[k] + node.bounds.max[k]);
-            ext[k] = 0.5 * (node.bounds.max[k] - node.bounds.min[k]);
-        }
-        balls.nodes.push_back({mid.x(), mid.y(), mid.z(), ext.norm()});
-    }
+    for (const auto& node : tree.nodes()) balls.nodes.push_back(node_ball(node));
     balls.triangles.reserve(tree.triangles().size());
     for (const auto& t : tree.triangles()) {
         const Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), c = to_vec(t.v[2]);
@@ -197,23 +204,9 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* bl
     // margin. The difference of the two (no square root) also orders the children: the answer does
     // not depend on the order, only how soon a blocked ellipsoid is found out.
     auto mapped_gap = [&](uint32_t k) {
-        Vec3 mid;
-        double radius;
-        if (balls) {
-            const auto& ball = balls->nodes[k];
-            mid = Vec3(ball[0], ball[1], ball[2]);
-            radius = ball[3];
-        } else {
-            const auto& node = nodes[k];
-            Vec3 ext;
-            for (int j = 0; j < 3; ++j) {
-                mid[j] = 0.5 * (node.bounds.min[j] + node.bounds.max[j]);
-                ext[j] = 0.5 * (node.bounds.max[j] - node.bounds.min[j]);
-            }
-            radius = ext.norm();
-        }
-        const double reach = 1.0 + 1e-9 + radius * inv_rmin;
-        return (M * (mid - e.center)).squaredNorm() - reach * reach;
+        const std::array<double, 4> ball = balls ? balls->nodes[k] : node_ball(nodes[k]);
+        const double reach = 1.0 + 1e-9 + ball[3] * inv_rmin;
+        return (M * (Vec3(ball[0], ball[1], ball[2]) - e.center)).squaredNorm() - reach * reach;
     };
     // Each node with its mapped gap, computed once (when its parent orders its children).
     struct Entry {

@@ -215,7 +215,7 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
     }
     std::sort(by_voxel.begin(), by_voxel.end());
     std::vector<std::vector<uint32_t>>& near_samples = c.near_samples;
-    const size_t found = std::min(c.near_count, n);
+    const size_t found = std::min(near_samples.size(), n);
     near_samples.resize(n);
     parallel_for(n - found, 2, [&](size_t k) {
         const size_t i = found + k;
@@ -229,7 +229,6 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
         }
         std::sort(near_samples[i].begin(), near_samples[i].end());
     });
-    c.near_count = n;
     for (size_t i = 0; i < n; ++i)
         if (chosen[i])
             for (uint32_t s : near_samples[i]) done[s] = true;

@@ -199,8 +199,7 @@ struct SelectionCache {
     std::vector<std::vector<Span>> spans;          // on the working grid
     std::vector<std::vector<Span>> fine_spans;     // on the measuring grid, where fine_done
     std::vector<char> fine_done;
-    std::vector<std::vector<uint32_t>> near_samples;  // the first near_count candidates'
-    size_t near_count = 0;
+    std::vector<std::vector<uint32_t>> near_samples;  // of the first near_samples.size() candidates
 };
 
 // Greedy: the largest candidate first, then the one with the largest gain of covered interior

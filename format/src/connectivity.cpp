@@ -155,35 +155,32 @@ private:
 // is skipped when it cannot hold a point nearer than the k-th, or as near with a lower index.
 class KdTree {
 public:
-    explicit KdTree(const std::vector<std::array<uint32_t, 3>>& p) : p_(p), order_(p.size()), min_index_(p.size()) {
-        std::iota(order_.begin(), order_.end(), 0u);
-        build(0, order_.size(), 0);
-        // The points in tree order, next to their indices: a search reads them in sequence.
-        at_.resize(order_.size());
-        for (size_t j = 0; j < order_.size(); ++j) at_[j] = {p_[order_[j]], order_[j]};
+    explicit KdTree(const std::vector<std::array<uint32_t, 3>>& p) : at_(p.size()), min_index_(p.size()) {
+        for (size_t j = 0; j < p.size(); ++j) at_[j] = {p[j], uint32_t(j)};
+        build(0, at_.size(), 0);
     }
 
     // The `k` points nearest to `q` other than a and b, by (squared distance, index), nearest first.
     void nearest(const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k,
                  std::vector<std::pair<uint64_t, uint32_t>>& best) const {
         best.clear();
-        search(0, order_.size(), 0, q, a, b, k, best);
+        search(0, at_.size(), 0, q, a, b, k, best);
     }
 
 private:
-    // Builds the subtree over order_[lo, hi) and returns the lowest point index in it (kept by mid).
+    // Builds the subtree over at_[lo, hi) and returns the lowest point index in it (kept by mid).
     uint32_t build(size_t lo, size_t hi, int axis) {
         if (hi - lo <= 8) return lowest_in_leaf(lo, hi);
         const size_t mid = (lo + hi) / 2;
-        std::nth_element(order_.begin() + lo, order_.begin() + mid, order_.begin() + hi, [&](uint32_t x, uint32_t y) {
-            return p_[x][axis] < p_[y][axis] || (p_[x][axis] == p_[y][axis] && x < y);
+        std::nth_element(at_.begin() + lo, at_.begin() + mid, at_.begin() + hi, [&](const Entry& x, const Entry& y) {
+            return x.p[axis] < y.p[axis] || (x.p[axis] == y.p[axis] && x.index < y.index);
         });
         const uint32_t left = build(lo, mid, (axis + 1) % 3), right = build(mid + 1, hi, (axis + 1) % 3);
-        return min_index_[mid] = std::min({left, right, order_[mid]});
+        return min_index_[mid] = std::min({left, right, at_[mid].index});
     }
     uint32_t lowest_in_leaf(size_t lo, size_t hi) const {
         uint32_t m = UINT32_MAX;
-        for (size_t j = lo; j < hi; ++j) m = std::min(m, order_[j]);
+        for (size_t j = lo; j < hi; ++j) m = std::min(m, at_[j].index);
         return m;
     }
     uint32_t lowest(size_t lo, size_t hi) const {
@@ -235,10 +232,10 @@ private:
             (plane == best.back().first && lowest(other_lo, other_hi) < best.back().second))
             search(other_lo, other_hi, next, q, a, b, k, best);
     }
-    const std::vector<std::array<uint32_t, 3>>& p_;
-    std::vector<uint32_t> order_;
+    // The points in tree order (each subtree a range, its split point at the middle), next to their
+    // indices: a search reads them in sequence.
+    std::vector<Entry> at_;
     std::vector<uint32_t> min_index_;  // by a subtree's mid: the lowest point index in it
-    std::vector<Entry> at_;            // the points in tree order (order_), with their indices
 };
 
 int index_bits(size_t n) {
