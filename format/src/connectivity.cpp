@@ -154,23 +154,27 @@ private:
 // coordinates along a split are ordered by index, ties go to the lower indices first, and a subtree
 // is skipped when it cannot hold a point nearer than the k-th, or as near with a lower index.
 class KdTree {
+    static constexpr size_t kLeaf = 8;  // most points in a leaf (a range scanned whole)
 public:
     explicit KdTree(const std::vector<std::array<uint32_t, 3>>& p) : at_(p.size()), min_index_(p.size()) {
         for (size_t j = 0; j < p.size(); ++j) at_[j] = {p[j], uint32_t(j)};
         build(0, at_.size(), 0);
     }
 
-    // The `k` points nearest to `q` other than a and b, by (squared distance, index), nearest first.
+    // The `k` points nearest to `q` other than a and b, by (squared distance, index), nearest first
+    // (k <= kRanks).
     void nearest(const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k,
                  std::vector<std::pair<uint64_t, uint32_t>>& best) const {
+        Query query(q, a, b, std::min<size_t>(k, kRanks));
+        if (query.k > 0) search(query);
         best.clear();
-        search(0, at_.size(), 0, q, a, b, k, best);
+        for (size_t j = 0; j < query.n; ++j) best.emplace_back(query.items[j].d, query.items[j].i);
     }
 
 private:
     // Builds the subtree over at_[lo, hi) and returns the lowest point index in it (kept by mid).
     uint32_t build(size_t lo, size_t hi, int axis) {
-        if (hi - lo <= 8) return lowest_in_leaf(lo, hi);
+        if (hi - lo <= kLeaf) return lowest_in_leaf(lo, hi);
         const size_t mid = (lo + hi) / 2;
         std::nth_element(at_.begin() + lo, at_.begin() + mid, at_.begin() + hi, [&](const Entry& x, const Entry& y) {
             return x.p[axis] < y.p[axis] || (x.p[axis] == y.p[axis] && x.index < y.index);
@@ -185,7 +189,7 @@ private:
     }
     uint32_t lowest(size_t lo, size_t hi) const {
         if (hi <= lo) return UINT32_MAX;
-        return hi - lo <= 8 ? lowest_in_leaf(lo, hi) : min_index_[(lo + hi) / 2];
+        return hi - lo <= kLeaf ? lowest_in_leaf(lo, hi) : min_index_[(lo + hi) / 2];
     }
     static uint64_t dist2(const std::array<uint32_t, 3>& p, const std::array<int64_t, 3>& q) {
         uint64_t d = 0;
@@ -200,37 +204,95 @@ private:
         std::array<uint32_t, 3> p;
         uint32_t index;
     };
-    void consider(const Entry& e, const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k,
-                  std::vector<std::pair<uint64_t, uint32_t>>& best) const {
+    // One search: the prediction, the gate's two vertices (never candidates), k, and the k best so far
+    // in order with the last one's (distance, index) beside them.
+    struct Query {
+        Query(const std::array<int64_t, 3>& q_, uint32_t a_, uint32_t b_, size_t k_) : q(q_), a(a_), b(b_), k(k_) {}
+        const std::array<int64_t, 3>& q;
+        uint32_t a, b;
+        size_t k;
+        struct Item {
+            uint64_t d;
+            uint32_t i;
+        };
+        std::array<Item, kRanks> items;  // the first n are set (not zeroed for every search)
+        size_t n = 0;
+        uint64_t worst = UINT64_MAX;      // the k-th's distance once there are k, the largest before
+        uint32_t worst_index = UINT32_MAX;
+        bool full() const { return n == k; }
+    };
+    static void consider(const Entry& e, Query& s) {
         const uint32_t i = e.index;
-        if (i == a || i == b) return;
-        const std::pair<uint64_t, uint32_t> item{dist2(e.p, q), i};
-        if (best.size() == k && !(item < best.back())) return;
-        best.insert(std::upper_bound(best.begin(), best.end(), item), item);
-        if (best.size() > k) best.pop_back();
-    }
-    void search(size_t lo, size_t hi, int axis, const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k,
-                std::vector<std::pair<uint64_t, uint32_t>>& best) const {
-        if (hi - lo <= 8) {
-            for (size_t j = lo; j < hi; ++j) consider(at_[j], q, a, b, k, best);
-            return;
+        if (i == s.a || i == s.b) return;
+        const uint64_t d = dist2(e.p, s.q);
+        if (s.full() && (d > s.worst || (d == s.worst && i > s.worst_index))) return;
+        // Insertion into the sorted items (at most kRanks): shift the larger ones up.
+        size_t j = s.full() ? s.n - 1 : s.n++;
+        while (j > 0 && (s.items[j - 1].d > d || (s.items[j - 1].d == d && s.items[j - 1].i > i))) {
+            s.items[j] = s.items[j - 1];
+            --j;
         }
-        const size_t mid = (lo + hi) / 2;
-        const Entry& m = at_[mid];
-        const int64_t split = m.p[axis];
-        const bool left_first = q[axis] <= split;  // on the split: the lower indices first
-        consider(m, q, a, b, k, best);
-        const int next = (axis + 1) % 3;
-        if (left_first) search(lo, mid, next, q, a, b, k, best);
-        else search(mid + 1, hi, next, q, a, b, k, best);
-        // The other side holds points at least |q - split| away along this axis (ties included): it
-        // can only matter with one nearer than the k-th, or as near with a lower index.
-        const int64_t gap = q[axis] - split;
-        const uint64_t plane = uint64_t(gap * gap);
-        const size_t other_lo = left_first ? mid + 1 : lo, other_hi = left_first ? hi : mid;
-        if (best.size() < k || plane < best.back().first ||
-            (plane == best.back().first && lowest(other_lo, other_hi) < best.back().second))
-            search(other_lo, other_hi, next, q, a, b, k, best);
+        s.items[j] = {d, i};
+        if (s.full()) s.worst = s.items[s.n - 1].d, s.worst_index = s.items[s.n - 1].i;
+    }
+    // Searches the tree. A subtree over at_[lo, hi) lies at least sqrt(box) from q, where `off` holds
+    // the squared distance from q to its box along each axis and `box` their sum (Arya & Mount's
+    // incremental distance), a lower bound on the distance of every point in it. The search goes down
+    // the nearer side of each split to a leaf, leaving the split point and the farther side on a stack
+    // with their bound, and takes them back, last first, while they can hold a point nearer than the
+    // k-th, or as near with a lower index. The answer does not depend on the order points are
+    // considered in.
+    void search(Query& s) const {
+        struct Pending {
+            uint32_t lo, hi, mid;  // the farther side at_[lo, hi) of the split point at_[mid]
+            int axis;              // the axis below the split
+            uint64_t box;          // the farther side's bound (and the split point's)
+            std::array<uint64_t, 3> off;
+        };
+        // Depth: one entry a level, a level halving the range (at most 33 for 2^32 points).
+        std::array<Pending, 40> stack;
+        size_t depth = 0;
+        size_t lo = 0, hi = at_.size();
+        int axis = 0;
+        uint64_t box = 0;
+        std::array<uint64_t, 3> off{};
+        for (;;) {
+            while (hi - lo > kLeaf) {
+                const size_t mid = (lo + hi) / 2;
+                const int64_t split = at_[mid].p[axis];
+                const bool left_first = s.q[axis] <= split;  // on the split: the lower indices first
+                const int next = axis == 2 ? 0 : axis + 1;
+                // The split point and the other side lie |q - split| away along this axis at least
+                // (ties included), and as far as the box along the others.
+                const int64_t gap = s.q[axis] - split;
+                const uint64_t along = uint64_t(gap * gap);
+                const uint64_t far_box = box - off[axis] + along;
+                if (!s.full() || far_box <= s.worst) {  // else neither can matter, now or later (a bound only tightens)
+                    Pending& far = stack[depth++];
+                    far.lo = uint32_t(left_first ? mid + 1 : lo);
+                    far.hi = uint32_t(left_first ? hi : mid);
+                    far.mid = uint32_t(mid);
+                    far.axis = next;
+                    far.off = off;
+                    far.off[axis] = along;
+                    far.box = far_box;
+                }
+                if (!left_first) lo = mid + 1;
+                else hi = mid;
+                axis = next;
+            }
+            for (size_t j = lo; j < hi; ++j) consider(at_[j], s);
+            // Back up to the first pending side that can still matter.
+            for (;;) {
+                if (depth == 0) return;
+                const Pending& far = stack[--depth];
+                if (!s.full() || far.box <= s.worst) consider(at_[far.mid], s);
+                if (!s.full() || far.box < s.worst || (far.box == s.worst && lowest(far.lo, far.hi) < s.worst_index)) {
+                    lo = far.lo, hi = far.hi, axis = far.axis, box = far.box, off = far.off;
+                    break;
+                }
+            }
+        }
     }
     // The points in tree order (each subtree a range, its split point at the middle), next to their
     // indices: a search reads them in sequence.
