@@ -4,19 +4,49 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace ellicast {
 
 bool collapse_link_ok(DecoderTriMesh& mesh, OpenMesh::HalfedgeHandle h) {
-    if (!mesh.is_collapse_ok(h)) return false;
-    const auto from = mesh.from_vertex_handle(h), to = mesh.to_vertex_handle(h);
+    // First OpenMesh's TriConnectivity::is_collapse_ok, restated here over the two one-rings gathered
+    // once (OpenMesh's walks them three times through circulators whose every step is checked: it
+    // took 7,700 instructions a call, 7.6% of the bunny's reconstruction). Its tests, in its order:
+    if (mesh.status(mesh.edge_handle(h)).deleted()) return false;
+    const auto o = mesh.opposite_halfedge_handle(h);
+    const auto from = mesh.to_vertex_handle(o), to = mesh.to_vertex_handle(h);
+    if (mesh.status(from).deleted() || mesh.status(to).deleted()) return false;
+    // The two edges of a face beside the edge must not both lie on the border; vl and vr are the
+    // faces' third corners (invalid where the edge is a border).
+    OpenMesh::VertexHandle vl, vr;
+    for (const auto side : {h, o}) {
+        if (mesh.is_boundary(side)) continue;
+        const auto h1 = mesh.next_halfedge_handle(side), h2 = mesh.next_halfedge_handle(h1);
+        (side == h ? vl : vr) = mesh.to_vertex_handle(h1);
+        if (mesh.is_boundary(mesh.opposite_halfedge_handle(h1)) && mesh.is_boundary(mesh.opposite_halfedge_handle(h2)))
+            return false;
+    }
+    if (vl == vr) return false;  // equal, or both invalid
+    // No neighbour common to both ends but vl and vr.
+    static thread_local std::vector<OpenMesh::VertexHandle> ring_from, ring_to;
+    ring_from.clear();
+    ring_to.clear();
+    for (auto a : mesh.vv_range(from)) ring_from.push_back(a);
+    for (auto b : mesh.vv_range(to)) ring_to.push_back(b);
+    for (auto a : ring_from)
+        if (a != vl && a != vr && std::find(ring_to.begin(), ring_to.end(), a) != ring_to.end()) return false;
+    // An edge between two border vertices must be a border edge.
+    if (mesh.is_boundary(from) && mesh.is_boundary(to) && !mesh.is_boundary(h) && !mesh.is_boundary(o)) return false;
+    // Then the link condition in full: as many common neighbours, and as many faces holding both
+    // ends, as the edge has faces (counted with repetition: a vertex met twice around a
+    // non-manifold one counts twice).
     int apexes = 0;
     if (!mesh.is_boundary(h)) ++apexes;
-    if (!mesh.is_boundary(mesh.opposite_halfedge_handle(h))) ++apexes;
+    if (!mesh.is_boundary(o)) ++apexes;
     int common = 0;
-    for (auto a : mesh.vv_range(from)) {
+    for (auto a : ring_from) {
         if (a == to) continue;
-        for (auto b : mesh.vv_range(to)) common += a == b;
+        for (auto b : ring_to) common += a == b;
     }
     if (common != apexes) return false;
     int faces = 0;
