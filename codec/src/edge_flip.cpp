@@ -12,6 +12,8 @@
 //    normal (unless folded), or would be degenerate.
 #include "ellicast/codec/decoder.h"
 
+#include "mesh_ops.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -101,7 +103,7 @@ static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat,
     if (!old_ok) {  // a degenerate old face: any legal flip that helps
         measure();
         if (!(new_worst < old_worst) || !flip_keeps_manifold(mesh, h0, h1)) return false;
-        mesh.flip(e);
+        detail::flip_edge(mesh, e);
         r.face_changed(mesh.face_handle(h0));
         r.face_changed(mesh.face_handle(h1));
         ++r.flips;
@@ -144,7 +146,7 @@ static bool try_flip(Reconstruction& r, OpenMesh::EdgeHandle e, double cos_flat,
         flip = flip && (new_worst < kSliverCos || new_worst < old_worst);
     }
     if (!flip || !flip_keeps_manifold(mesh, h0, h1)) return false;  // topology last: it walks a one-ring
-    mesh.flip(e);
+    detail::flip_edge(mesh, e);
     r.face_changed(mesh.face_handle(h0));
     r.face_changed(mesh.face_handle(h1));
     ++r.flips;

@@ -2,6 +2,7 @@
 #include "ellicast/codec/decoder.h"
 
 #include "closest_point.h"
+#include "mesh_ops.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,7 +36,7 @@ void FaceGrid::reset(const Vec3& lo, const Vec3& hi, double cell, size_t max_cel
 void FaceGrid::cell_range(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f, std::array<int, 3>& lo,
                           std::array<int, 3>& hi) const {
     Vec3 mn(std::numeric_limits<double>::max()), mx(-std::numeric_limits<double>::max());
-    for (auto v : mesh.fv_range(f)) {
+    for (auto v : detail::corners(mesh, f)) {
         mn.minimize(mesh.point(v));
         mx.maximize(mesh.point(v));
     }
@@ -55,8 +56,8 @@ void FaceGrid::add_entries(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f) {
     const bool exact = span > 8;
     Vec3 a, b, c;
     if (exact) {
-        auto it = mesh.cfv_iter(f);
-        a = mesh.point(*it), b = mesh.point(*++it), c = mesh.point(*++it);
+        const auto corner = detail::corners(mesh, f);
+        a = mesh.point(corner[0]), b = mesh.point(corner[1]), c = mesh.point(corner[2]);
     }
     const double reach2 = 0.75 * cell_ * cell_ * 1.0001;  // (sqrt(3)/2 cell)^2
     Vec3 normal(0, 0, 0);
@@ -142,10 +143,10 @@ OpenMesh::FaceHandle FaceGrid::nearest(const DecoderTriMesh& mesh, const Vec3& p
             seen_[e.face] = stamp_;
             OpenMesh::FaceHandle f(int(e.face));
             if (accept && !accept(f)) continue;
-            auto fv = mesh.cfv_iter(f);
-            const Vec3& a = mesh.point(*fv);
-            const Vec3& b = mesh.point(*++fv);
-            const Vec3& cc = mesh.point(*++fv);
+            const auto corner = detail::corners(mesh, f);
+            const Vec3& a = mesh.point(corner[0]);
+            const Vec3& b = mesh.point(corner[1]);
+            const Vec3& cc = mesh.point(corner[2]);
             std::array<double, 3> bc;
             Vec3 q = detail::closest_point_on_triangle(p, a, b, cc, &bc);
             double d2 = (q - p).sqrnorm();

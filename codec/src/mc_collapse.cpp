@@ -1,6 +1,8 @@
 // Removing marching-cubes vertices by collapsing them into nearby original vertices.
 #include "ellicast/codec/decoder.h"
 
+#include "mesh_ops.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -51,7 +53,7 @@ bool collapse_link_ok(DecoderTriMesh& mesh, OpenMesh::HalfedgeHandle h) {
     if (common != apexes) return false;
     int faces = 0;
     for (auto f : mesh.vf_range(from))
-        for (auto v : mesh.fv_range(f)) faces += v == to;
+        for (auto v : detail::corners(mesh, f)) faces += v == to;
     return faces == apexes;
 }
 
@@ -70,7 +72,7 @@ double collapse_worst_dot(const DecoderTriMesh& mesh, OpenMesh::HalfedgeHandle h
         Vec3 p[3], q[3];
         int n = 0;
         bool has_to = false;
-        for (auto v : mesh.fv_range(f)) {
+        for (auto v : detail::corners(mesh, f)) {
             has_to |= v == to;
             p[n] = mesh.point(v);
             q[n] = v == from ? target : p[n];
@@ -190,7 +192,7 @@ bool flip_link_edge(Reconstruction& r, OpenMesh::VertexHandle m) {
         if (area > best_area && mesh.is_flip_ok(e)) best_area = area, best = e;
     }
     if (!best.is_valid() || best_area < 1e-6) return false;
-    mesh.flip(best);
+    detail::flip_edge(mesh, best);
     r.face_changed(mesh.face_handle(mesh.halfedge_handle(best, 0)));
     r.face_changed(mesh.face_handle(mesh.halfedge_handle(best, 1)));
     ++r.flips;

@@ -12,6 +12,8 @@
 //    agrees with their normal is, nearly always, the right one. A few rounds of this.
 #include "ellicast/codec/decoder.h"
 
+#include "mesh_ops.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -214,7 +216,7 @@ size_t flip_towards_agreement(Reconstruction& r, NormalView& view, const std::ve
         if (OpenMesh::cross(d - a, c - a).norm() < 1e-6 * scale || OpenMesh::cross(b - d, c - d).norm() < 1e-6 * scale)
             continue;
         if (!mesh.is_flip_ok(e)) continue;
-        mesh.flip(e);
+        detail::flip_edge(mesh, e);
         r.face_changed(mesh.face_handle(h0));
         r.face_changed(mesh.face_handle(h1));
         for (auto v : {va, vb, vc, vd}) view.forget(v);

@@ -1,6 +1,8 @@
 // Inserting an original vertex into the nearest triangle of the current mesh.
 #include "ellicast/codec/decoder.h"
 
+#include "mesh_ops.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -26,7 +28,7 @@ Vec3 face_normal(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f, OpenMesh::V
                  const Vec3& moved_to) {
     Vec3 p[3];
     int n = 0;
-    for (auto v : mesh.fv_range(f)) p[n++] = v == moved ? moved_to : mesh.point(v);
+    for (auto v : detail::corners(mesh, f)) p[n++] = v == moved ? moved_to : mesh.point(v);
     return OpenMesh::cross(p[1] - p[0], p[2] - p[0]);
 }
 
@@ -140,7 +142,7 @@ Insertion insert_into_face(Reconstruction& r, uint32_t point_index, const std::a
     {
         // Same corner order as FaceGrid::nearest's barycentric coordinates.
         int n = 0;
-        for (auto v : mesh.fv_range(f)) fv[n++] = v;
+        for (auto v : detail::corners(mesh, f)) fv[n++] = v;
         for (auto h : mesh.fh_range(f)) {
             auto a = mesh.from_vertex_handle(h), b = mesh.to_vertex_handle(h);
             for (int i = 0; i < 3; ++i)
