@@ -35,14 +35,12 @@ void FaceGrid::reset(const Vec3& lo, const Vec3& hi, double cell, size_t max_cel
 
 void FaceGrid::cell_range(const DecoderTriMesh& mesh, OpenMesh::FaceHandle f, std::array<int, 3>& lo,
                           std::array<int, 3>& hi) const {
-    Vec3 mn(std::numeric_limits<double>::max()), mx(-std::numeric_limits<double>::max());
-    for (auto v : detail::corners(mesh, f)) {
-        mn.minimize(mesh.point(v));
-        mx.maximize(mesh.point(v));
-    }
+    const auto corner = detail::corners(mesh, f);
+    const Vec3 &a = mesh.point(corner[0]), &b = mesh.point(corner[1]), &c = mesh.point(corner[2]);
     for (int k = 0; k < 3; ++k) {
-        lo[k] = std::clamp(int(std::floor((mn[k] - lo_[k]) / cell_)), 0, dims_[k] - 1);
-        hi[k] = std::clamp(int(std::floor((mx[k] - lo_[k]) / cell_)), 0, dims_[k] - 1);
+        const double mn = std::min({a[k], b[k], c[k]}), mx = std::max({a[k], b[k], c[k]});
+        lo[k] = std::clamp(int(std::floor((mn - lo_[k]) / cell_)), 0, dims_[k] - 1);
+        hi[k] = std::clamp(int(std::floor((mx - lo_[k]) / cell_)), 0, dims_[k] - 1);
     }
 }
 
