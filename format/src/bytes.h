@@ -61,13 +61,19 @@ private:
 class BitReader {
 public:
     explicit BitReader(std::span<const uint8_t> in) : in_(in) {}
+    // The next `bits` bits, LSB-first (a field of at most 32: the value keeps the first 32 of a longer
+    // one); bits past the end read as 0 (and still count).
     uint32_t get(int bits) {
-        uint32_t v = 0;
-        for (int i = 0; i < bits; ++i, ++pos_) {
-            size_t byte = pos_ >> 3;
-            if (byte < in_.size() && ((in_[byte] >> (pos_ & 7)) & 1u)) v |= 1u << i;
-        }
-        return v;
+        if (bits <= 0) return 0;
+        const int n = bits > 32 ? 32 : bits;
+        // The (up to) five bytes holding them, gathered into one word: a field is at most 32 bits
+        // and starts at most 7 bits into its first byte.
+        const size_t first = pos_ >> 3;
+        uint64_t word = 0;
+        for (size_t k = 0; k < 5 && first + k < in_.size(); ++k) word |= uint64_t(in_[first + k]) << (8 * k);
+        const uint64_t v = (word >> (pos_ & 7)) & ((uint64_t(1) << n) - 1);
+        pos_ += size_t(bits);
+        return uint32_t(v);
     }
     size_t position() const { return pos_; }           // bits read so far
     size_t size_bits() const { return in_.size() * 8; }
