@@ -30,12 +30,9 @@ inline void flip_edge(DecoderTriMesh& mesh, OpenMesh::EdgeHandle e) {
     const auto fa = mesh.face_handle(a0), fb = mesh.face_handle(b0);
     mesh.set_vertex_handle(a0, va1);
     mesh.set_vertex_handle(b0, vb1);
-    mesh.set_next_halfedge_handle(a0, a2);
-    mesh.set_next_halfedge_handle(a2, b1);
-    mesh.set_next_halfedge_handle(b1, a0);
-    mesh.set_next_halfedge_handle(b0, b2);
-    mesh.set_next_halfedge_handle(b2, a1);
-    mesh.set_next_halfedge_handle(a1, b0);
+    // The two new triangles' cycles: a0 a2 b1 and b0 b2 a1.
+    const std::array<std::array<OpenMesh::HalfedgeHandle, 2>, 6> next{{{a0, a2}, {a2, b1}, {b1, a0}, {b0, b2}, {b2, a1}, {a1, b0}}};
+    for (const auto& [h, after] : next) mesh.set_next_halfedge_handle(h, after);
     mesh.set_face_handle(a1, fb);
     mesh.set_face_handle(b1, fa);
     mesh.set_halfedge_handle(fa, a0);
