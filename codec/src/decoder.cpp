@@ -533,6 +533,12 @@ bool exact_mesh(const ReceivedStream& stream, size_t object, Mesh& out, std::str
     std::vector<uint32_t> vertex(points.size(), UINT32_MAX);
     Mesh m;
     m.colors_have_alpha = info.has(kAttrColorAlpha);
+    // At most every point and carried vertex, each once (a point no triangle uses is left out).
+    m.triangles.reserve(triangles.size());
+    m.positions.reserve(points.size());
+    if (info.has_normals()) m.normals.reserve(points.size());
+    if (info.has(kAttrTexcoord)) m.texcoords.reserve(points.size());
+    if (info.has(kAttrColor)) m.colors.reserve(points.size());
     for (const Triangle& t : triangles) {
         std::array<uint32_t, 3> face;
         for (int k = 0; k < 3; ++k) {
