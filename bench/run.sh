@@ -217,8 +217,11 @@ PY
       [ -n "$lowpoly" ] && gltf=(--gltf "$lowpoly")
       baseline=()
       [ -n "${ELLICAST_SPEED_BASELINE:-}" ] && baseline=(--baseline "$ELLICAST_SPEED_BASELINE")
+      # ELLICAST_SPEED_INSTRUCTIONS=1: the decodes counted in instructions too (valgrind; deterministic).
+      count=()
+      [ "${ELLICAST_SPEED_INSTRUCTIONS:-0}" = 1 ] && count=(--instructions)
       python3 "$root/bench/speed.py" "$build/ellicast" "$samples/meshes" "$results/speed.txt" $large \
-        --runs "${ELLICAST_SPEED_RUNS:-3}" "${gltf[@]}" "${baseline[@]}" ;;
+        --runs "${ELLICAST_SPEED_RUNS:-3}" "${gltf[@]}" "${baseline[@]}" "${count[@]}" ;;
     live)
       # The live view in headless Chromium (issue 33): the bunny at 1 Mbit/s with no loss and at 30%
       # loss: when the first picture is drawn after tune-in, the time from a model's event to its

@@ -2,7 +2,7 @@
 """Speed side by side with Draco (issue 30), in one run on this machine.
 
 Usage: bench/speed.py ELLICAST SAMPLES_MESHES OUT_TXT [--large] [--runs N] [--gltf A.glb,B.gltf,...]
-                      [--baseline OTHER_ELLICAST]
+                      [--baseline OTHER_ELLICAST] [--instructions]
 
 Models: the bunny (shared samples), the bumpy torus of bench_encode (400 x 125 = 50,000 vertices,
 closed, written here as a binary PLY) and, with --large, the same torus sampled ten times finer
@@ -19,7 +19,10 @@ Ratios are ellicast / Draco (a reconstruction against Draco's decode of the same
 low-poly glTF assets too (encode, exact decode, reconstruction; draco_encoder reads no glTF). With
 --baseline, the same steps with another build of ellicast (an earlier commit), in the same run, and
 whether its streams and reconstructions are byte for byte the same. Speed figures mean something
-only on an otherwise idle machine: the table records the load average.
+only on an otherwise idle machine: the table records the load average. With --instructions, the
+exact decode and the reconstruction of each mesh model are also counted in instructions under
+valgrind's callgrind (deterministic, where this machine's wall times wander by 20-50% between runs),
+for the baseline too: a change of a few percent shows there and nowhere else.
 """
 import math
 import os
@@ -90,6 +93,19 @@ def reconstruction(ellicast, stream, out, runs):
     return rec, insertion, log
 
 
+def instructions(cmd):
+    """Instructions `cmd` executes (valgrind --tool=callgrind), or None without valgrind."""
+    try:
+        out = subprocess.run(['valgrind', '--tool=callgrind', '--callgrind-out-file=/dev/null'] + cmd,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    except FileNotFoundError:
+        return None
+    m = re.search(r'Collected : (\d+)', out.stderr) or re.search(r'I\s+refs:\s+([\d,]+)', out.stderr)
+    if out.returncode != 0 or not m:
+        sys.exit('speed: %s failed under valgrind:\n%s' % (' '.join(cmd), out.stderr[-2000:]))
+    return int(m.group(1).replace(',', ''))
+
+
 def same_bytes(a, b):
     with open(a, 'rb') as fa, open(b, 'rb') as fb:
         return fa.read() == fb.read()
@@ -108,7 +124,8 @@ def with_baseline(baseline, path, stem, ext, runs):
 def main():
     args = sys.argv[1:]
     large = '--large' in args
-    args = [a for a in args if a != '--large']
+    count = '--instructions' in args
+    args = [a for a in args if a not in ('--large', '--instructions')]
     runs = int(option(args, '--runs', 3))
     baseline = option(args, '--baseline')
     gltf = option(args, '--gltf')
@@ -184,6 +201,31 @@ def main():
             say('| %s | %.2f / %.2f s (%.2fx) | %.3f / %.3f s (%.2fx) | %.2f / %.2f s | %s | %s | %s |' % (
                 name, benc, enc, enc / benc, bdec, dec, dec / bdec, brec, rec, insertion,
                 'yes' if same else 'NO', 'yes' if same_rec else 'NO'))
+    if count:
+        say()
+        say('Instructions (valgrind --tool=callgrind, one run each; deterministic):')
+        say()
+        if baseline:
+            say('| model | exact decode, baseline / now | reconstruction, baseline / now |')
+            say('|---|---:|---:|')
+        else:
+            say('| model | exact decode | reconstruction |')
+            say('|---|---:|---:|')
+        for name, _ in models:
+            print('speed: counting instructions for %s (valgrind: a few minutes)' % name, file=sys.stderr, flush=True)
+            stem = os.path.join(tmp, re.sub(r'\W+', '_', name))
+            steps = [['decode', '-q', stem + '%s.ellc', '-o', stem + '.count.ply'],
+                     ['decode', '-q', '--no-exact', stem + '%s.ellc', '-o', stem + '.count.ply']]
+            now = [instructions([ellicast] + [a % '' if '%s' in a else a for a in step]) for step in steps]
+            if None in now:
+                say('(valgrind is not installed: no instruction counts)')
+                break
+            if baseline:
+                was = [instructions([baseline] + [a % '.before' if '%s' in a else a for a in step]) for step in steps]
+                say('| %s | %s |' % (name, ' | '.join('%.1fM / %.1fM (%.2fx)' % (w / 1e6, n / 1e6, n / w)
+                                                       for w, n in zip(was, now))))
+            else:
+                say('| %s | %s |' % (name, ' | '.join('%.1fM' % (n / 1e6) for n in now)))
     with open(out_txt, 'w') as f:
         f.write('\n'.join(lines) + '\n')
 
