@@ -214,14 +214,15 @@ def main():
         for name, _ in models:
             print('speed: counting instructions for %s (valgrind: a few minutes)' % name, file=sys.stderr, flush=True)
             stem = os.path.join(tmp, re.sub(r'\W+', '_', name))
-            steps = [['decode', '-q', stem + '%s.ellc', '-o', stem + '.count.ply'],
-                     ['decode', '-q', '--no-exact', stem + '%s.ellc', '-o', stem + '.count.ply']]
-            now = [instructions([ellicast] + [a % '' if '%s' in a else a for a in step]) for step in steps]
+            def decodes(tool, stream):  # the exact decode and the reconstruction
+                return [[tool, 'decode', '-q', stream, '-o', stem + '.count.ply'],
+                        [tool, 'decode', '-q', '--no-exact', stream, '-o', stem + '.count.ply']]
+            now = [instructions(cmd) for cmd in decodes(ellicast, stem + '.ellc')]
             if None in now:
                 say('(valgrind is not installed: no instruction counts)')
                 break
             if baseline:
-                was = [instructions([baseline] + [a % '.before' if '%s' in a else a for a in step]) for step in steps]
+                was = [instructions(cmd) for cmd in decodes(baseline, stem + '.before.ellc')]
                 say('| %s | %s |' % (name, ' | '.join('%.1fM / %.1fM (%.2fx)' % (w / 1e6, n / 1e6, n / w)
                                                        for w, n in zip(was, now))))
             else:

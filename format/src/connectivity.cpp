@@ -217,9 +217,12 @@ private:
         };
         std::array<Item, kRanks> items;  // the first n are set (not zeroed for every search)
         size_t n = 0;
-        uint64_t worst = UINT64_MAX;      // the k-th's distance once there are k, the largest before
+        uint64_t worst = UINT64_MAX;  // the k-th's distance and index, set once there are k
         uint32_t worst_index = UINT32_MAX;
         bool full() const { return n == k; }
+        // Whether points at least sqrt(box) away may still be taken (the bound of a split point, or
+        // of a side with the index test below).
+        bool within(uint64_t box) const { return !full() || box <= worst; }
     };
     static void consider(const Entry& e, Query& s) {
         const uint32_t i = e.index;
@@ -267,7 +270,7 @@ private:
                 const int64_t gap = s.q[axis] - split;
                 const uint64_t along = uint64_t(gap * gap);
                 const uint64_t far_box = box - off[axis] + along;
-                if (!s.full() || far_box <= s.worst) {  // else neither can matter, now or later (a bound only tightens)
+                if (s.within(far_box)) {  // else neither can matter, now or later (the bound only tightens)
                     Pending& far = stack[depth++];
                     far.lo = uint32_t(left_first ? mid + 1 : lo);
                     far.hi = uint32_t(left_first ? hi : mid);
@@ -286,7 +289,8 @@ private:
             for (;;) {
                 if (depth == 0) return;
                 const Pending& far = stack[--depth];
-                if (!s.full() || far.box <= s.worst) consider(at_[far.mid], s);
+                if (!s.within(far.box)) continue;
+                consider(at_[far.mid], s);
                 if (!s.full() || far.box < s.worst || (far.box == s.worst && lowest(far.lo, far.hi) < s.worst_index)) {
                     lo = far.lo, hi = far.hi, axis = far.axis, box = far.box, off = far.off;
                     break;
