@@ -37,6 +37,7 @@ std::string packet_type_name(uint8_t type) {
     case 0x16: return "MORPH_ANIMATION";
     case 0x17: return "CAMERA";
     case 0x18: return "LIGHT";
+    case 0x19: return "EXTRAS";
     default: {
         char buf[24];
         std::snprintf(buf, sizeof buf, "UNKNOWN(0x%02X)", type);
@@ -46,7 +47,7 @@ std::string packet_type_name(uint8_t type) {
 }
 
 bool is_known_packet_type(uint8_t type) {
-    return (type >= 0x01 && type <= 0x0D) || (type >= 0x10 && type <= 0x18) || type == 0x20;
+    return (type >= 0x01 && type <= 0x0D) || (type >= 0x10 && type <= 0x19) || type == 0x20;
 }
 
 const char* error_name(Error e) {

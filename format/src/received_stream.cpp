@@ -1,6 +1,8 @@
 // Collects the packets of one stream as they arrive: any order, duplicates, damage, late stream info.
 #include "ellicast/format.h"
 
+#include "fragments.h"
+
 #include <algorithm>
 
 namespace ellicast {
@@ -88,6 +90,7 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
     case PacketType::MorphAnimation: e = take_morph_animation(packet, where); break;
     case PacketType::Camera: e = take_camera(packet, where); break;
     case PacketType::Light: e = take_light(packet, where); break;
+    case PacketType::Extras: e = take_extras(packet, where); break;
     case PacketType::Manifest: {
         // A decoder checks its layout and takes nothing from it: verifying signatures is the
         // job of the filter in front of it (spec 16.3), which needs the sender's key.
@@ -859,19 +862,8 @@ Error ReceivedStream::take_texture_fragment(const PacketView& packet, uint64_t w
         ++counters_.duplicates;
         return Error::Ok;
     }
-    // The parts of [begin, end) that no earlier fragment brought.
     const uint32_t begin = f.offset, end = static_cast<uint32_t>(f.offset + f.data.size());
-    std::vector<std::pair<uint32_t, uint32_t>> gaps;
-    uint32_t cursor = begin;
-    auto piece = t.pieces.upper_bound(begin);
-    if (piece != t.pieces.begin()) --piece;
-    for (; piece != t.pieces.end() && piece->first < end; ++piece) {
-        const uint32_t piece_end = static_cast<uint32_t>(piece->first + piece->second.size());
-        if (piece_end <= cursor) continue;
-        if (piece->first > cursor) gaps.emplace_back(cursor, piece->first);
-        cursor = std::max(cursor, piece_end);
-    }
-    if (cursor < end) gaps.emplace_back(cursor, end);
+    const auto gaps = detail::missing_runs(t.pieces, begin, end);
     uint64_t fresh = 0;
     for (auto [a, b] : gaps) fresh += b - a;
     if (fresh == 0) {
@@ -891,9 +883,7 @@ Error ReceivedStream::take_texture_fragment(const PacketView& packet, uint64_t w
     t.memory += memory;
     texture_bytes_ += memory;
     if (t.received_bytes == t.info.image_size) {
-        std::vector<uint8_t> image;
-        image.reserve(t.info.image_size);
-        for (const auto& [offset, bytes] : t.pieces) image.insert(image.end(), bytes.begin(), bytes.end());
+        std::vector<uint8_t> image = detail::join_runs(t.pieces);
         texture_bytes_ -= t.memory;
         t.memory = 0;
         t.pieces.clear();

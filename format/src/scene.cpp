@@ -334,6 +334,51 @@ Error decode_texture_fragment_payload(std::span<const uint8_t> payload, TextureF
 // ------------------------------------------------------------------------------------------
 // Packetizing
 
+namespace {
+
+size_t weights_tracks(const SceneAnimation& animation) {
+    return size_t(std::count_if(animation.tracks.begin(), animation.tracks.end(),
+                                [](const auto& t) { return t.path == AnimationPath::Weights; }));
+}
+
+// Where each animation goes (spec 22.5): its tracks other than weights make an animation of the
+// ANIMATION table, its weights tracks a morph animation of the MORPH_ANIMATION table.
+struct AnimationTables {
+    std::vector<uint16_t> animation_index, morph_index;  // kNone: not in that table
+    size_t animation_count = 0, morph_count = 0;
+};
+AnimationTables animation_tables(const std::vector<SceneAnimation>& animations) {
+    AnimationTables t;
+    t.animation_index.assign(animations.size(), kNone);
+    t.morph_index.assign(animations.size(), kNone);
+    for (size_t i = 0; i < animations.size(); ++i) {
+        const size_t weights = weights_tracks(animations[i]);
+        if (weights < animations[i].tracks.size()) t.animation_index[i] = static_cast<uint16_t>(t.animation_count++);
+        if (weights > 0) t.morph_index[i] = static_cast<uint16_t>(t.morph_count++);
+    }
+    return t;
+}
+
+// The size of the table a target of `kind` indexes (1 for the asset and the scene).
+size_t extras_table_size(const SceneDescription& scene, ExtrasTarget kind) {
+    switch (kind) {
+    case ExtrasTarget::Asset:
+    case ExtrasTarget::Scene: return 1;
+    case ExtrasTarget::Node: return scene.nodes.size();
+    case ExtrasTarget::Mesh: return scene.meshes.size();
+    case ExtrasTarget::Material: return scene.materials.size();
+    case ExtrasTarget::Texture: return scene.textures.size();
+    case ExtrasTarget::Animation: return scene.animations.size();  // mapped to its table when sent
+    case ExtrasTarget::Skin: return scene.skins.size();
+    case ExtrasTarget::Camera: return scene.cameras.size();
+    case ExtrasTarget::Light: return scene.lights.size();
+    case ExtrasTarget::MorphAnimation: return 0;  // a description names every animation Animation
+    }
+    return 0;
+}
+
+}  // namespace
+
 Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_t stream_id, uint32_t first_sequence,
                       ScenePackets& out) {
     if (packet_size < kMinPacketSize || packet_size > kMaxPacketSize) return Error::MalformedPayload;
@@ -460,16 +505,15 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
     // weights tracks form a morph animation (format 1.6, spec 22.5), which joins the ANIMATION of its
     // other tracks or, when it has none, stands alone.
     if (scene.animations.size() > 0xFFFF) return Error::MalformedPayload;
-    std::vector<uint16_t> animation_index(scene.animations.size(), kNone), morph_index(scene.animations.size(), kNone);
-    size_t animation_count = 0, morph_count = 0;
-    for (size_t i = 0; i < scene.animations.size(); ++i) {
-        const auto& tracks = scene.animations[i].tracks;
-        const size_t weights = size_t(std::count_if(tracks.begin(), tracks.end(),
-                                                    [](const auto& t) { return t.path == AnimationPath::Weights; }));
+    for (const auto& animation : scene.animations) {
+        const auto& tracks = animation.tracks;
+        const size_t weights = weights_tracks(animation);
         if (tracks.empty() || weights > 0xFFFF || tracks.size() - weights > 0xFFFF) return Error::MalformedPayload;
-        if (weights < tracks.size()) animation_index[i] = static_cast<uint16_t>(animation_count++);
-        if (weights > 0) morph_index[i] = static_cast<uint16_t>(morph_count++);
     }
+    const AnimationTables tables = animation_tables(scene.animations);
+    const std::vector<uint16_t>& animation_index = tables.animation_index;
+    const std::vector<uint16_t>& morph_index = tables.morph_index;
+    const size_t animation_count = tables.animation_count, morph_count = tables.morph_count;
     if (animation_count > 0xFFFF || morph_count > 0xFFFF) return Error::MalformedPayload;
     for (const bool morph : {false, true}) {  // every ANIMATION packet, then every MORPH_ANIMATION packet
         for (size_t i = 0; i < scene.animations.size(); ++i) {
@@ -554,6 +598,44 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
         l.light_count = static_cast<uint16_t>(scene.lights.size());
         l.name = utf8_prefix(l.name, std::min(kMaxName, capacity - kLightFixedSize));
         packets.cameras_lights.push_back(emit(PacketType::Light, encode_light_payload(l), kCameraLightMinor));
+    }
+    // EXTRAS (format 1.12, spec 28): every text in target order, in fragments that fill the packets.
+    if (scene.extras.size() > 0xFFFF) return Error::MalformedPayload;
+    // An animation's text goes to the table its animation is sent in (spec 28.1: kind 6, or 10 for
+    // one of weights tracks only).
+    std::vector<SceneExtras> texts;
+    for (const SceneExtras& e : scene.extras) {
+        if (static_cast<uint8_t>(e.kind) >= kExtrasTargetKinds || e.index >= extras_table_size(scene, e.kind) ||
+            e.text.empty() || e.text.size() > kMaxExtrasText || !acceptable_extras_text(e.text))
+            return Error::MalformedPayload;
+        SceneExtras wire = e;
+        if (e.kind == ExtrasTarget::Animation && animation_index[e.index] == kNone) {
+            wire.kind = ExtrasTarget::MorphAnimation;
+            wire.index = morph_index[e.index];
+        } else if (e.kind == ExtrasTarget::Animation) {
+            wire.index = animation_index[e.index];
+        }
+        texts.push_back(std::move(wire));
+    }
+    std::sort(texts.begin(), texts.end(), [](const SceneExtras& a, const SceneExtras& b) {
+        return std::make_pair(a.kind, a.index) < std::make_pair(b.kind, b.index);
+    });
+    for (size_t i = 1; i < texts.size(); ++i)
+        if (texts[i].kind == texts[i - 1].kind && texts[i].index == texts[i - 1].index) return Error::MalformedPayload;
+    const size_t per_extras = capacity - kExtrasHeaderSize;
+    for (const SceneExtras& e : texts) {
+        ExtrasFragment f;
+        f.kind = e.kind;
+        f.index = e.index;
+        f.text_count = static_cast<uint16_t>(texts.size());
+        f.text_size = static_cast<uint32_t>(e.text.size());
+        f.text_crc = crc32c(reinterpret_cast<const uint8_t*>(e.text.data()), e.text.size());
+        for (size_t offset = 0; offset < e.text.size(); offset += per_extras) {
+            const size_t n = std::min(per_extras, e.text.size() - offset);
+            f.offset = static_cast<uint32_t>(offset);
+            f.data.assign(e.text.begin() + std::ptrdiff_t(offset), e.text.begin() + std::ptrdiff_t(offset + n));
+            packets.extras.push_back(emit(PacketType::Extras, encode_extras_payload(f), kExtrasMinor));
+        }
     }
     out = std::move(packets);
     return Error::Ok;

@@ -1,4 +1,4 @@
-// ellicast format 1.10 (this library reads format 1.0 to 1.10): packets, their payloads, quantization,
+// ellicast format 1.12 (this library reads format 1.0 to 1.12): packets, their payloads, quantization,
 // the receiver's state, container files. This header includes every header of the format library;
 // each of them can also be included alone.
 //
@@ -25,6 +25,7 @@
 //   format/skin.h                 SKIN and JOINT_WEIGHTS (1.5) payloads, influences [21]
 //   format/morph.h                MORPH_DELTAS (1.6) payloads: morph target displacements [22.1]
 //   format/camera_light.h        CAMERA and LIGHT (1.10) payloads: cameras and punctual lights [26]
+//   format/extras.h              EXTRAS (1.12) payloads: the glTF extras of the asset and the scene's elements [28]
 //   format/scene.h                SCENE, MATERIAL, TEXTURE_FRAGMENT (1.1), SceneDescription, packetize_scene [15]
 //   format/manifest.h             MANIFEST (1.2) layout, packet digests, SHA-256 [16]
 //   format/repair.h               POINTS_REPAIR (1.2): the erasure code over points [17]
@@ -48,6 +49,7 @@
 #include "ellicast/format/skin.h"
 #include "ellicast/format/morph.h"
 #include "ellicast/format/camera_light.h"
+#include "ellicast/format/extras.h"
 #include "ellicast/format/scene.h"
 #include "ellicast/format/manifest.h"
 #include "ellicast/format/repair.h"

@@ -11,6 +11,7 @@
 #include "ellicast/format/connectivity.h"
 #include "ellicast/format/constants.h"
 #include "ellicast/format/error.h"
+#include "ellicast/format/extras.h"
 #include "ellicast/format/material_extensions.h"
 #include "ellicast/format/normals.h"
 #include "ellicast/format/packet.h"
@@ -279,6 +280,20 @@ public:
     std::optional<uint16_t> light_count() const { return light_count_; }
     const std::map<uint16_t, SceneLight>& lights() const { return lights_; }
 
+    // Extras (format 1.12, spec 28): the text of each target that has taken a fragment, and the
+    // text count of the EXTRAS packets accepted.
+    struct ReceivedExtras {
+        uint32_t text_size = 0, text_crc = 0;  // the description (spec 28.1)
+        std::map<uint32_t, std::vector<uint8_t>> pieces;  // disjoint runs of bytes, until complete
+        uint64_t received_bytes = 0;
+        uint64_t memory = 0;    // what its runs (then its text) count toward the texture cap
+        bool complete = false;  // every byte arrived, the CRC-32C matches and the text is JSON
+        std::string text;       // the whole text, once complete
+    };
+    using ExtrasKey = std::pair<ExtrasTarget, uint16_t>;
+    std::optional<uint16_t> extras_count() const { return extras_count_; }
+    const std::map<ExtrasKey, ReceivedExtras>& extras() const { return extras_; }
+
 private:
     Error take_animation(const PacketView& packet, uint64_t where);
     Error take_morph_animation(const PacketView& packet, uint64_t where);
@@ -289,6 +304,7 @@ private:
     Error take_skin(const PacketView& packet, uint64_t where);
     Error take_camera(const PacketView& packet, uint64_t where);
     Error take_light(const PacketView& packet, uint64_t where);
+    Error take_extras(const PacketView& packet, uint64_t where);
     Error take_joint_weights(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_scene(const PacketView& packet, uint64_t where);
     Error take_material(const PacketView& packet, uint64_t where);
@@ -346,7 +362,7 @@ private:
     std::map<uint16_t, Material> materials_;
     std::map<uint16_t, MaterialExtensions> material_extensions_;
     std::map<uint16_t, ReceivedTexture> textures_;
-    size_t texture_bytes_ = 0;  // textures, patches and animation keys (the texture cap)
+    size_t texture_bytes_ = 0;  // textures, patches, animation keys, cameras, lights and extras (the texture cap)
     uint64_t carried_elements_ = 0;  // format 1.11: carried vertices of the exact layers taken (spec 27.1)
     std::optional<uint16_t> animation_count_;
     std::map<uint16_t, ReceivedAnimation> animations_;
@@ -357,6 +373,8 @@ private:
     std::optional<uint16_t> camera_count_, light_count_;
     std::map<uint16_t, SceneCamera> cameras_;
     std::map<uint16_t, SceneLight> lights_;
+    std::optional<uint16_t> extras_count_;
+    std::map<ExtrasKey, ReceivedExtras> extras_;
 };
 
 // The objects a receiver waits for joint weights of (spec 21.3): those of the meshes of the node

@@ -13,6 +13,7 @@
 #include "ellicast/format/camera_light.h"
 #include "ellicast/format/constants.h"
 #include "ellicast/format/error.h"
+#include "ellicast/format/extras.h"
 #include "ellicast/format/skin.h"
 
 #include <array>
@@ -136,6 +137,10 @@ struct SceneDescription {
     // by packetize_scene.
     std::vector<SceneCamera> cameras;
     std::vector<SceneLight> lights;
+    // Format 1.12 (spec 28): the extras texts, at most one a target, each naming an element of these
+    // tables (kind Animation: an index into `animations`, which packetize_scene sends as the ANIMATION
+    // or MORPH_ANIMATION table's, spec 28.1; kind MorphAnimation is not used here).
+    std::vector<SceneExtras> extras;
 };
 
 std::vector<uint8_t> encode_scene_payload(const SceneBatch& batch);
@@ -157,6 +162,7 @@ struct ScenePackets {
                                                   // MORPH_ANIMATION packets (format 1.6)
     std::vector<std::vector<uint8_t>> skins;      // SKIN packets, skin by skin (format 1.5)
     std::vector<std::vector<uint8_t>> cameras_lights;  // CAMERA, then LIGHT packets (format 1.10)
+    std::vector<std::vector<uint8_t>> extras;     // EXTRAS packets, text by text in target order (format 1.12)
 };
 
 // Cuts a scene description into packets of at most `packet_size` bytes, numbered from
@@ -166,7 +172,8 @@ struct ScenePackets {
 // values of another count than its keys need, a float that is not finite, negative or not strictly
 // increasing times, a cubic spline of one key, or a node outside the node table; for cameras and
 // lights (format 1.10) when a table has more than 65534 entries, a record breaks spec 26.2 / 26.3, or a
-// node names one outside its table.
+// node names one outside its table; for extras (format 1.12) when a target is named twice, lies outside
+// its table, or its text is empty, longer than 65536 bytes or not acceptable JSON (spec 28.1).
 Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_t stream_id, uint32_t first_sequence,
                       ScenePackets& out);
 
