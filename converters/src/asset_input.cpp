@@ -4,6 +4,7 @@
 #include "ellicast/converters/asset.h"
 
 #include "gltf_read.h"
+#include "json_value.h"
 #include "material_extensions.h"
 #include "ellicast/converters/image_file.h"
 
@@ -103,9 +104,66 @@ public:
         for (int old : order) add_node(old);
         if (asset_.objects.empty()) throw InputError(path_ + ": the scene holds no triangle or point primitive to send");
         read_animations();
+        // Format 1.12 (spec 28): the asset's and the default scene's extras.
+        add_extras(ExtrasTarget::Asset, 0, model_.asset.extras_json_string, path_ + ": the asset");
+        if (!model_.scenes.empty()) {
+            const int scene = model_.defaultScene >= 0 && size_t(model_.defaultScene) < model_.scenes.size() ? model_.defaultScene : 0;
+            add_extras(ExtrasTarget::Scene, 0, model_.scenes[size_t(scene)].extras_json_string, path_ + ": scene " + std::to_string(scene));
+        }
+        warn_extras_not_carried();
     }
 
 private:
+    // Format 1.12 (spec 28): an element's extras, as JSON text (the reader keeps them as text, see
+    // load_model), for the element `index` of the description's table of `kind`; none for an absent
+    // or null value, a warning for one too large or not acceptable.
+    void add_extras(ExtrasTarget kind, size_t index, const std::string& text, const std::string& where) {
+        if (text.empty() || text == "null") return;
+        if (!acceptable_extras_text(text)) {
+            warnings_.push_back(where + ": its extras are not JSON ellicast can carry (not finite numbers, duplicate "
+                                "member names, or nested deeper than 32); not sent");
+            return;
+        }
+        if (text.size() > kMaxExtrasText) {
+            warnings_.push_back(where + ": its extras (" + std::to_string(text.size()) + " bytes of JSON) are larger than " +
+                                std::to_string(kMaxExtrasText) + " bytes; not sent");
+            return;
+        }
+        asset_.scene.extras.push_back({kind, uint16_t(index), text});
+    }
+
+    // What has extras but no table in the stream (spec 28.4): said once, counting them.
+    void warn_extras_not_carried() {
+        std::map<std::string, size_t> found;
+        auto count = [&](const std::string& v, const char* what) {
+            if (!v.empty() && v != "null") ++found[what];
+        };
+        count(model_.extras_json_string, "the glTF root object");
+        for (const auto& m : model_.meshes)
+            for (const auto& p : m.primitives) count(p.extras_json_string, "primitive");
+        for (const auto& a : model_.accessors) count(a.extras_json_string, "accessor");
+        for (const auto& b : model_.bufferViews) count(b.extras_json_string, "buffer view");
+        for (const auto& b : model_.buffers) count(b.extras_json_string, "buffer");
+        for (const auto& i : model_.images) count(i.extras_json_string, "image");
+        for (const auto& smp : model_.samplers) count(smp.extras_json_string, "sampler");
+        // (Not animation samplers: tinygltf gives each the extras of its animation.)
+        for (const auto& a : model_.animations)
+            for (const auto& c : a.channels) count(c.extras_json_string, "animation channel");
+        for (const auto& m : model_.materials) {
+            count(m.normalTexture.extras_json_string, "texture info");
+            count(m.occlusionTexture.extras_json_string, "texture info");
+            count(m.emissiveTexture.extras_json_string, "texture info");
+            count(m.pbrMetallicRoughness.baseColorTexture.extras_json_string, "texture info");
+            count(m.pbrMetallicRoughness.metallicRoughnessTexture.extras_json_string, "texture info");
+        }
+        if (found.empty()) return;
+        std::vector<std::string> items;
+        for (const auto& [what, n] : found) items.push_back(std::to_string(n) + " " + what + (n == 1 ? "" : "s"));
+        warnings_.push_back(path_ + ": extras of " + join(items) +
+                            " not sent (ellicast carries the extras of the asset, its scene, nodes, meshes, materials, "
+                            "textures, animations, skins, cameras and lights)");
+    }
+
     // A glTF double as the f32 a CAMERA or LIGHT packet carries: the nearest, or the nearest on the
     // allowed side when rounding crosses `limit` (spec 26.5: a yfov just below pi, a cone angle of pi / 2).
     static float wire_float(double v, double limit = std::numeric_limits<double>::infinity()) {
@@ -146,6 +204,7 @@ private:
                 continue;
             }
             camera_map_.push_back(uint16_t(asset_.scene.cameras.size()));
+            add_extras(ExtrasTarget::Camera, asset_.scene.cameras.size(), g.extras_json_string, where);
             asset_.scene.cameras.push_back(std::move(c));
         }
         for (size_t i = 0; i < model_.lights.size(); ++i) {
@@ -174,6 +233,7 @@ private:
                 continue;
             }
             light_map_.push_back(uint16_t(asset_.scene.lights.size()));
+            add_extras(ExtrasTarget::Light, asset_.scene.lights.size(), g.extras_json_string, where);
             asset_.scene.lights.push_back(std::move(l));
         }
     }
@@ -285,6 +345,7 @@ private:
                 out.skin = skin_index(node.skin, where);
             }
         }
+        if (size_t(old) < model_.nodes.size()) add_extras(ExtrasTarget::Node, out.index, node.extras_json_string, where);
         asset_.scene.nodes.push_back(std::move(out));
     }
 
@@ -320,6 +381,7 @@ private:
             if (asset_.scene.meshes.size() >= kMaxTable) throw InputError(path_ + ": more than 65534 meshes");
             index = uint16_t(asset_.scene.meshes.size());
             out.index = index;
+            add_extras(ExtrasTarget::Mesh, index, gmesh.extras_json_string, path_ + ": " + label);
             asset_.scene.meshes.push_back(std::move(out));
         }
         mesh_map_[m] = index;
@@ -457,6 +519,7 @@ private:
             }
             if (asset_.scene.skins.size() >= kMaxTable) throw InputError(path_ + ": more than 65534 skins");
             index = uint16_t(asset_.scene.skins.size());
+            add_extras(ExtrasTarget::Skin, index, skin.extras_json_string, what);
             asset_.scene.skins.push_back(std::move(out));
         } catch (const InputError& e) {
             warnings_.push_back(std::string(e.what()) + "; the skin is not sent (its meshes are sent in their bind pose)");
@@ -598,6 +661,7 @@ private:
             m.extensions = material_patch::make(
                 gm, core_sent, [&](int index, const std::string& at) { return texture_index(index, at); }, where,
                 warnings_);
+            add_extras(ExtrasTarget::Material, asset_.scene.materials.size(), gm.extras_json_string, where);
             asset_.scene.materials.push_back(std::move(m));
         }
     }
@@ -689,6 +753,7 @@ private:
         if (asset_.scene.textures.size() >= kMaxTable) throw InputError(path_ + ": more than 65534 textures");
         out.image = *bytes;
         out.info.index = uint16_t(asset_.scene.textures.size());
+        add_extras(ExtrasTarget::Texture, out.info.index, tex.extras_json_string, path_ + ": texture " + std::to_string(index));
         asset_.scene.textures.push_back(std::move(out));
         return texture_map_[key] = uint16_t(asset_.scene.textures.size() - 1);
     }
@@ -783,6 +848,7 @@ private:
                 warnings_.push_back(where + ": nothing of it can be sent; the animation is left out");
                 continue;
             }
+            add_extras(ExtrasTarget::Animation, asset_.scene.animations.size(), anim.extras_json_string, where);
             asset_.scene.animations.push_back(std::move(out));
         }
     }

@@ -80,11 +80,14 @@ class AssetWriter {
 public:
     AssetWriter(const std::string& path, const Asset& asset, const AssetWriteOptions& options,
                 std::vector<std::string>& warnings)
-        : path_(path), asset_(asset), options_(options), warnings_(warnings) {}
+        : path_(path), asset_(asset), options_(options), warnings_(warnings) {
+        for (const SceneExtras& e : asset.scene.extras) extras_[{e.kind, e.index}] = &e.text;
+    }
 
     tinygltf::Model build() {
         model_.asset.version = "2.0";
         model_.asset.generator = "ellicast";
+        extras_at(ExtrasTarget::Asset, 0, "/asset");
         write_textures();
         write_materials();
         write_cameras_lights();
@@ -109,8 +112,24 @@ public:
                 node.translation = {0, 0, 0};
         return std::move(model_);
     }
+    // Format 1.12: what build() leaves for the serialized document (the elements' extras).
+    const gltf_write::JsonPatches& patches() const { return extras_patches_; }
 
 private:
+    // Format 1.12 (spec 28.3): the extras of the asset's element `index` of the table of `kind` go
+    // into the written document at `place` (a JSON pointer to the written element), set after
+    // tinygltf has serialized the model (its values drop nulls).
+    void extras_at(ExtrasTarget kind, size_t index, const std::string& place) {
+        const auto it = extras_.find({kind, uint16_t(index)});
+        if (index > 0xFFFF || it == extras_.end()) return;
+        if (!acceptable_extras_text(*it->second)) {  // a receiver's texts were checked (spec 28.1)
+            warnings_.push_back(path_ + ": the extras of " + extras_target_name(kind) + " " + std::to_string(index) +
+                                " are not JSON; written without them");
+            return;
+        }
+        extras_patches_.emplace_back(place + "/extras", *it->second);
+    }
+
     bool object_present(size_t o) const { return o < asset_.objects.size() && !asset_.objects[o].positions.empty(); }
 
     // ---- textures: one glTF image per distinct image file, one sampler per distinct setting
@@ -177,6 +196,7 @@ private:
             tinygltf::Texture texture;
             texture.source = source;
             texture.sampler = sit->second;
+            extras_at(ExtrasTarget::Texture, t, "/textures/" + std::to_string(model_.textures.size()));
             texture_out_[t] = int(model_.textures.size());
             model_.textures.push_back(texture);
         }
@@ -212,6 +232,7 @@ private:
                 }
             }
             material_whole_.push_back(whole);
+            extras_at(ExtrasTarget::Material, i, "/materials/" + std::to_string(model_.materials.size()));
             model_.materials.push_back(std::move(g));
         }
     }
@@ -285,6 +306,7 @@ private:
         if (it == untextured_.end()) {
             warnings_.push_back(what + " has no TEXCOORD_0 but material " + std::to_string(material) +
                                 " has textures: drawn with an untextured copy of the material");
+            extras_at(ExtrasTarget::Material, material, "/materials/" + std::to_string(model_.materials.size()));
             model_.materials.push_back(gltf_material(asset_.scene.materials[material], material, true));
             it = untextured_.emplace(material, int(model_.materials.size()) - 1).first;
         }
@@ -569,6 +591,7 @@ private:
             warnings_.push_back(label + " has no object to show; nodes showing it are written without it");
         } else {
             index = int(model_.meshes.size());
+            extras_at(ExtrasTarget::Mesh, mi, "/meshes/" + std::to_string(index));
             model_.meshes.push_back(std::move(g));
             if (dq) dequantization_[index] = *dq;
         }
@@ -632,6 +655,7 @@ private:
         for (const SceneCamera& c : asset_.scene.cameras) {
             tinygltf::Camera g;
             g.name = c.name;
+            extras_at(ExtrasTarget::Camera, model_.cameras.size(), "/cameras/" + std::to_string(model_.cameras.size()));
             if (!valid_camera(c)) {
                 warnings_.push_back(path_ + ": camera " + std::to_string(model_.cameras.size()) +
                                     " has values glTF does not allow; written as a default perspective camera");
@@ -657,6 +681,8 @@ private:
             static const char* kTypes[] = {"directional", "point", "spot"};
             tinygltf::Light g;
             g.name = l.name;
+            extras_at(ExtrasTarget::Light, model_.lights.size(),
+                      "/extensions/KHR_lights_punctual/lights/" + std::to_string(model_.lights.size()));
             if (!valid_light(l)) {
                 warnings_.push_back(path_ + ": light " + std::to_string(model_.lights.size()) +
                                     " has values KHR_lights_punctual does not allow; written as a white point light");
@@ -773,6 +799,7 @@ private:
             const std::string what = path_ + ": node " + std::to_string(i) + (n.name.empty() ? "" : " (" + n.name + ")");
             tinygltf::Node g;
             g.name = n.name;
+            extras_at(ExtrasTarget::Node, i, "/nodes/" + std::to_string(out[i]));
             set_transform(g, n, what);
             if (n.mesh != kNone) {
                 if (n.mesh >= asset_.scene.meshes.size()) {
@@ -807,6 +834,7 @@ private:
             else model_.nodes[size_t(out[size_t(parent_[i])])].children.push_back(out[i]);
         }
         if (!scene.nodes.empty()) {  // tinygltf writes an empty scene as null
+            extras_at(ExtrasTarget::Scene, 0, "/scenes/0");
             model_.scenes.push_back(std::move(scene));
             model_.defaultScene = 0;
         }
@@ -897,6 +925,7 @@ private:
                 warnings_.push_back(what + ": no track of it can be written; left out");
                 continue;
             }
+            extras_at(ExtrasTarget::Animation, a, "/animations/" + std::to_string(model_.animations.size()));
             model_.animations.push_back(std::move(g));
         }
     }
@@ -1009,6 +1038,7 @@ private:
         const SceneSkin& skin = asset_.scene.skins[s];
         tinygltf::Skin g;
         g.name = skin.name;
+        extras_at(ExtrasTarget::Skin, s, "/skins/" + std::to_string(model_.skins.size()));
         std::vector<float> matrices;
         for (const SkinJoint& j : skin.joints) {
             g.joints.push_back(out[j.node]);
@@ -1116,6 +1146,8 @@ private:
     const AssetWriteOptions& options_;
     std::vector<std::string>& warnings_;
     tinygltf::Model model_;
+    std::map<std::pair<ExtrasTarget, uint16_t>, const std::string*> extras_;  // format 1.12: (kind, index) -> text
+    gltf_write::JsonPatches extras_patches_;  // where the written elements' extras go
     std::vector<int> texture_out_;
     std::vector<bool> material_whole_;  // per asset material: every texture it uses was written
     std::set<std::string> used_extensions_;  // extensions the materials' patches use (spec 18)
@@ -1170,8 +1202,9 @@ bool write_asset(const std::string& path, const Asset& asset, const AssetWriteOp
         error = path + ": unknown output type '" + ext + "' (expected .glb, .gltf, .ply or .obj)";
         return false;
     }
-    tinygltf::Model model = AssetWriter(path, asset, options, warnings).build();
-    return save_model(path, model, ext == ".glb", error);
+    AssetWriter writer(path, asset, options, warnings);
+    tinygltf::Model model = writer.build();
+    return save_model(path, model, ext == ".glb", error, writer.patches());
 }
 
 bool write_asset_glb(const Asset& asset, const AssetWriteOptions& options, std::vector<uint8_t>& out,
@@ -1180,8 +1213,9 @@ bool write_asset_glb(const Asset& asset, const AssetWriteOptions& options, std::
         error = bad;
         return false;
     }
-    tinygltf::Model model = AssetWriter("glb", asset, options, warnings).build();
-    return glb_bytes(model, out, error);
+    AssetWriter writer("glb", asset, options, warnings);
+    tinygltf::Model model = writer.build();
+    return glb_bytes(model, out, error, writer.patches());
 }
 
 }  // namespace ellicast

@@ -40,6 +40,38 @@ std::set<uint16_t> received_morphs(const ReceivedStream& stream, const std::map<
 void received_skins(const ReceivedStream& stream, const std::map<uint16_t, uint16_t>& node_map, Asset& asset,
                     std::vector<std::string>& warnings);
 
+// Format 1.12 (spec 28.3): the extras of the stream's element (`wire`, `wire_index`) go to the
+// written element `asset_index` of the same table (an animation's, MORPH_ANIMATION's included, to
+// the asset's animation) once its text is complete.
+void carry_extras(const ReceivedStream& stream, ExtrasTarget wire, uint16_t wire_index, size_t asset_index, Asset& asset) {
+    const auto it = stream.extras().find({wire, wire_index});
+    if (it == stream.extras().end() || !it->second.complete) return;
+    const ExtrasTarget kind = wire == ExtrasTarget::MorphAnimation ? ExtrasTarget::Animation : wire;
+    asset.scene.extras.push_back({kind, uint16_t(asset_index), it->second.text});
+}
+
+// Extras texts that are not complete yet (spec 28.3), said in one warning.
+void warn_extras_waiting(const ReceivedStream& stream, std::vector<std::string>& warnings) {
+    const auto count = stream.extras_count();
+    if (!count) return;
+    size_t complete = 0;
+    std::string first;
+    for (const auto& [key, e] : stream.extras()) {
+        if (e.complete) {
+            ++complete;
+            continue;
+        }
+        if (first.empty())
+            first = std::string(extras_target_name(key.first)) +
+                    (key.first == ExtrasTarget::Asset || key.first == ExtrasTarget::Scene ? "" : " " + std::to_string(key.second)) +
+                    ", " + std::to_string(e.received_bytes) + " of " + std::to_string(e.text_size) + " bytes";
+    }
+    if (complete == *count) return;
+    warnings.push_back(std::to_string(*count - complete) + " of " + std::to_string(*count) +
+                       " extras texts have not arrived whole; their elements are written without extras" +
+                       (first.empty() ? "" : " (the first: " + first + ")"));
+}
+
 // A name as it can be shown and written (glTF is UTF-8 JSON): ill-formed UTF-8 replaced by U+FFFD
 // (spec 15.1), with a warning.
 std::string shown_name(const std::string& name, const std::string& what, std::vector<std::string>& warnings) {
@@ -62,12 +94,14 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
         camera_map[index] = uint16_t(asset.scene.cameras.size());
         SceneCamera out = c;
         out.name = shown_name(c.name, "camera " + std::to_string(index), warnings);
+        carry_extras(stream, ExtrasTarget::Camera, index, asset.scene.cameras.size(), asset);
         asset.scene.cameras.push_back(std::move(out));
     }
     for (const auto& [index, l] : stream.lights()) {
         light_map[index] = uint16_t(asset.scene.lights.size());
         SceneLight out = l;
         out.name = shown_name(l.name, "light " + std::to_string(index), warnings);
+        carry_extras(stream, ExtrasTarget::Light, index, asset.scene.lights.size(), asset);
         asset.scene.lights.push_back(std::move(out));
     }
     if (const auto count = stream.camera_count(); count && stream.cameras().size() < *count)
@@ -80,6 +114,8 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
         if (!stream.materials().empty() || !stream.textures().empty())
             warnings.push_back("no SCENE packet arrived: materials and textures cannot be placed; each object is "
                                "written as its own node");
+        carry_extras(stream, ExtrasTarget::Asset, 0, 0, asset);
+        warn_extras_waiting(stream, warnings);
         return asset;  // write_asset gives each object its own node and mesh
     }
 
@@ -92,6 +128,7 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
         out.info = t.info;
         out.info.index = uint16_t(asset.scene.textures.size());
         out.image = t.image;
+        carry_extras(stream, ExtrasTarget::Texture, index, out.info.index, asset);
         asset.scene.textures.push_back(std::move(out));
     }
 
@@ -162,6 +199,7 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
         }
         material_map[index] = uint16_t(asset.scene.materials.size());
         out.index = uint16_t(asset.scene.materials.size());
+        carry_extras(stream, ExtrasTarget::Material, index, out.index, asset);
         asset.scene.materials.push_back(std::move(out));
     }
     if (stream.materials().size() < material_count)
@@ -186,6 +224,7 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
                 p.material = kNone;
             }
         }
+        carry_extras(stream, ExtrasTarget::Mesh, index, out.index, asset);
         asset.scene.meshes.push_back(std::move(out));
     }
 
@@ -249,6 +288,7 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
         };
         attach(out.camera, camera_map, "camera");
         attach(out.light, light_map, "light");
+        carry_extras(stream, ExtrasTarget::Node, index, out.index, asset);
         asset.scene.nodes.push_back(std::move(out));
     }
     const std::set<uint16_t> morphed = received_morphs(stream, mesh_map, asset, warnings);
@@ -259,6 +299,10 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
     };
     received_animations(stream, node_map, node_targets, asset, warnings);
     received_skins(stream, node_map, asset, warnings);
+    // The asset and its scene are always written (spec 28.3).
+    carry_extras(stream, ExtrasTarget::Asset, 0, 0, asset);
+    carry_extras(stream, ExtrasTarget::Scene, 0, 0, asset);
+    warn_extras_waiting(stream, warnings);
     const size_t node_count = stream.scene_node_count();
     if (nodes.size() < node_count || cut_off)
         warnings.push_back(std::to_string(node_count - nodes.size()) + " of " + std::to_string(node_count) +
@@ -370,6 +414,8 @@ void received_animations(const ReceivedStream& stream, const std::map<uint16_t, 
                                std::to_string(declared) +
                                " tracks left out (a node not shown or without its morph targets, times that do not "
                                "increase, or a target moved twice)");
+        carry_extras(stream, s.morph_only ? ExtrasTarget::MorphAnimation : ExtrasTarget::Animation, s.index,
+                     asset.scene.animations.size(), asset);
         asset.scene.animations.push_back(std::move(a));
     }
     // Why an animation (or morph animation) that arrived in part or whole is not shown.
@@ -459,6 +505,7 @@ void received_skins(const ReceivedStream& stream, const std::map<uint16_t, uint1
             out.name = shown_name(s->second.name, "skin " + std::to_string(skin), warnings);
             out.skeleton = s->second.skeleton == kNone ? kNone : node_map.at(s->second.skeleton);
             for (const auto& [j, joint] : s->second.joints) out.joints.push_back({node_map.at(joint.node), joint.inverse_bind});
+            carry_extras(stream, ExtrasTarget::Skin, skin, asset.scene.skins.size(), asset);
             asset.scene.skins.push_back(std::move(out));
         }
         node.skin = it->second;

@@ -596,6 +596,9 @@ void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadI
                 const std::function<bool(const std::string&)>& carried) {
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(image_loader, image_user_data);
+    // Extras travel as the asset's JSON (format 1.12, spec 28): kept as text, nulls included (the
+    // parsed values drop null members and array elements).
+    loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
     std::string err, warn;
     // The file is read once; every check and tinygltf work on these bytes.
     const std::vector<uint8_t> bytes = read_file_bytes(path);

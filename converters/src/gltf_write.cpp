@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstring>
+
 namespace ellicast::gltf_write {
 
 int add_buffer_view(tinygltf::Model& model, const void* data, size_t bytes, int target) {
@@ -165,6 +167,19 @@ void drop_infinite_zfar(nlohmann::json& doc) {
             camera["perspective"].erase("zfar");
 }
 
+// The document with each patch's value set at its pointer (a patch whose text is not JSON, or whose
+// pointer names no place, is left out: the writer made both).
+void apply_patches(nlohmann::json& doc, const JsonPatches& patches) {
+    for (const auto& [pointer, text] : patches) {
+        nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
+        if (value.is_discarded()) continue;
+        try {
+            doc[nlohmann::json::json_pointer(pointer)] = std::move(value);
+        } catch (const nlohmann::json::exception&) {
+        }
+    }
+}
+
 uint32_t read_u32le(const std::string& s, size_t at) {
     return uint32_t(uint8_t(s[at])) | uint32_t(uint8_t(s[at + 1])) << 8 | uint32_t(uint8_t(s[at + 2])) << 16 |
            uint32_t(uint8_t(s[at + 3])) << 24;
@@ -173,31 +188,33 @@ void put_u32le(std::vector<uint8_t>& out, uint32_t v) {
     for (int k = 0; k < 4; ++k) out.push_back(uint8_t(v >> (8 * k)));
 }
 
-// The GLB `bytes` with its JSON chunk passed through drop_infinite_zfar; false when it is not the GLB
-// tinygltf writes (a 12-byte header, then a JSON chunk).
-bool fix_glb(const std::string& bytes, std::vector<uint8_t>& out) {
+// The GLB `bytes` with its JSON chunk passed through drop_infinite_zfar and the patches; false when it
+// is not the GLB tinygltf writes (a 12-byte header, then a JSON chunk).
+bool fix_glb(const std::string& bytes, std::vector<uint8_t>& out, const JsonPatches& patches) {
     if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0 || bytes.compare(16, 4, "JSON") != 0) return false;
     const size_t json_length = read_u32le(bytes, 12);
     if (20 + json_length > bytes.size()) return false;
     nlohmann::json doc = nlohmann::json::parse(bytes.substr(20, json_length), nullptr, false);
     if (doc.is_discarded()) return false;
     drop_infinite_zfar(doc);
+    apply_patches(doc, patches);
     std::string json = doc.dump();
     while (json.size() % 4) json += ' ';
-    const std::string rest = bytes.substr(20 + json_length);
-    out.clear();
-    out.insert(out.end(), bytes.begin(), bytes.begin() + 8);  // magic, version
-    put_u32le(out, uint32_t(12 + 8 + json.size() + rest.size()));
-    put_u32le(out, uint32_t(json.size()));
-    out.insert(out.end(), bytes.begin() + 16, bytes.begin() + 20);  // "JSON"
-    out.insert(out.end(), json.begin(), json.end());
-    out.insert(out.end(), rest.begin(), rest.end());
+    const size_t rest = bytes.size() - 20 - json_length;  // the BIN chunk, if any
+    std::vector<uint8_t> glb(bytes.begin(), bytes.begin() + 8);  // magic, version
+    put_u32le(glb, uint32_t(12 + 8 + json.size() + rest));
+    put_u32le(glb, uint32_t(json.size()));
+    glb.resize(20 + json.size() + rest);
+    std::memcpy(glb.data() + 16, bytes.data() + 16, 4);  // "JSON"
+    std::memcpy(glb.data() + 20, json.data(), json.size());
+    if (rest) std::memcpy(glb.data() + 20 + json.size(), bytes.data() + 20 + json_length, rest);
+    out = std::move(glb);
     return true;
 }
 
 }  // namespace
 
-bool glb_bytes(tinygltf::Model& model, std::vector<uint8_t>& out, std::string& error) {
+bool glb_bytes(tinygltf::Model& model, std::vector<uint8_t>& out, std::string& error, const JsonPatches& patches) {
     if (!model.buffers.empty()) model.buffers[0].uri.clear();  // buffer 0 with no uri goes to the GLB BIN chunk
     tinygltf::TinyGLTF writer;
     std::ostringstream stream;
@@ -206,8 +223,8 @@ bool glb_bytes(tinygltf::Model& model, std::vector<uint8_t>& out, std::string& e
         return false;
     }
     const std::string bytes = stream.str();
-    if (has_infinite_camera(model)) {
-        if (!fix_glb(bytes, out)) {
+    if (has_infinite_camera(model) || !patches.empty()) {
+        if (!fix_glb(bytes, out, patches)) {
             error = "tinygltf wrote a GLB whose JSON chunk does not parse";
             return false;
         }
@@ -217,7 +234,8 @@ bool glb_bytes(tinygltf::Model& model, std::vector<uint8_t>& out, std::string& e
     return true;
 }
 
-bool save_model(const std::string& path, tinygltf::Model& model, bool binary, std::string& error) {
+bool save_model(const std::string& path, tinygltf::Model& model, bool binary, std::string& error,
+                const JsonPatches& patches) {
     if (!model.buffers.empty()) {
         if (binary) {
             model.buffers[0].uri.clear();  // buffer 0 with no uri goes to the GLB BIN chunk
@@ -228,7 +246,7 @@ bool save_model(const std::string& path, tinygltf::Model& model, bool binary, st
     tinygltf::TinyGLTF writer;
     if (binary) {
         std::vector<uint8_t> bytes;
-        if (!glb_bytes(model, bytes, error)) {
+        if (!glb_bytes(model, bytes, error, patches)) {
             error = path + ": " + error;
             return false;
         }
@@ -255,6 +273,7 @@ bool save_model(const std::string& path, tinygltf::Model& model, bool binary, st
         return false;
     }
     drop_infinite_zfar(doc);
+    apply_patches(doc, patches);
     std::string message;
     if (!model.buffers.empty()) {
         const std::string bin_name = std::filesystem::path(path).stem().string() + ".bin";

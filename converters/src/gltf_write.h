@@ -11,6 +11,7 @@
 #include <array>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ellicast::gltf_write {
@@ -61,11 +62,18 @@ tinygltf::Primitive add_primitive(tinygltf::Model& model, const Mesh& mesh);
 // True when every triangle index is below the vertex count.
 bool valid_indices(const Mesh& mesh);
 
-// The GLB bytes of `model` (buffer 0 as the BIN chunk), in memory. False with `error` otherwise.
-bool glb_bytes(tinygltf::Model& model, std::vector<uint8_t>& out, std::string& error);
+// JSON values set in the document tinygltf serializes: a JSON pointer ("/nodes/3/extras") and the
+// value as JSON text. For what tinygltf's values cannot hold (a null inside extras, format 1.12).
+using JsonPatches = std::vector<std::pair<std::string, std::string>>;
+
+// The GLB bytes of `model` (buffer 0 as the BIN chunk), in memory, with `patches` set. False with
+// `error` otherwise.
+bool glb_bytes(tinygltf::Model& model, std::vector<uint8_t>& out, std::string& error, const JsonPatches& patches = {});
 
 // Writes `model` to `path`: binary (.glb, buffer 0 as the BIN chunk) or JSON with buffer 0 in a
-// .bin of the same stem beside it. Writes through a temporary name. False with `error` otherwise.
-bool save_model(const std::string& path, tinygltf::Model& model, bool binary, std::string& error);
+// .bin of the same stem beside it, with `patches` set. Writes through a temporary name. False with
+// `error` otherwise.
+bool save_model(const std::string& path, tinygltf::Model& model, bool binary, std::string& error,
+                const JsonPatches& patches = {});
 
 }  // namespace ellicast::gltf_write

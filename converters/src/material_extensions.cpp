@@ -1,6 +1,8 @@
 // The patch of format 1.3 (spec section 18) to and from tinygltf materials. See material_extensions.h.
 #include "material_extensions.h"
 
+#include "json_value.h"
+
 #include <nlohmann/json.hpp>
 
 #include <climits>
@@ -15,50 +17,8 @@ namespace {
 
 using json = nlohmann::json;
 
-json to_json(const tinygltf::Value& v) {
-    if (v.IsBool()) return v.Get<bool>();
-    if (v.IsInt()) return v.Get<int>();
-    if (v.IsReal()) return v.Get<double>();
-    if (v.IsString()) return v.Get<std::string>();
-    if (v.IsArray()) {
-        json a = json::array();
-        for (size_t i = 0; i < v.ArrayLen(); ++i) a.push_back(to_json(v.Get(int(i))));
-        return a;
-    }
-    if (v.IsObject()) {
-        json o = json::object();
-        for (const std::string& key : v.Keys()) o[key] = to_json(v.Get(key));
-        return o;
-    }
-    return nullptr;  // null (and binary, which JSON text never holds)
-}
-
-tinygltf::Value to_value(const json& j) {
-    switch (j.type()) {
-    case json::value_t::boolean: return tinygltf::Value(j.get<bool>());
-    case json::value_t::number_integer: {
-        const int64_t n = j.get<int64_t>();
-        return n >= INT_MIN && n <= INT_MAX ? tinygltf::Value(int(n)) : tinygltf::Value(double(n));
-    }
-    case json::value_t::number_unsigned: {
-        const uint64_t n = j.get<uint64_t>();
-        return n <= uint64_t(INT_MAX) ? tinygltf::Value(int(n)) : tinygltf::Value(double(n));
-    }
-    case json::value_t::number_float: return tinygltf::Value(j.get<double>());
-    case json::value_t::string: return tinygltf::Value(j.get<std::string>());
-    case json::value_t::array: {
-        tinygltf::Value::Array a;
-        for (const json& e : j) a.push_back(to_value(e));
-        return tinygltf::Value(std::move(a));
-    }
-    case json::value_t::object: {
-        tinygltf::Value::Object o;
-        for (const auto& [key, e] : j.items()) o[key] = to_value(e);
-        return tinygltf::Value(std::move(o));
-    }
-    default: return tinygltf::Value();
-    }
-}
+using json_value::to_json;
+using json_value::to_value;
 
 bool ends_with_texture(const std::string& name) {
     return name.size() >= 7 && name.compare(name.size() - 7, 7, "Texture") == 0;

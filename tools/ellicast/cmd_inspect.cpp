@@ -146,6 +146,12 @@ nlohmann::json to_json(const StreamReport& r, bool with_packets) {
             j["scene"]["lights"] = r.stream.lights().size();
             j["scene"]["light_count"] = *count;
         }
+        if (const auto count = r.stream.extras_count()) {  // format 1.12
+            size_t whole = 0;
+            for (const auto& [key, e] : r.stream.extras()) whole += e.complete;
+            j["scene"]["extras"] = whole;
+            j["scene"]["extras_count"] = *count;
+        }
     }
     json damaged = json::array();
     for (const auto& d : r.damaged)
@@ -281,6 +287,11 @@ void print_text(const StreamReport& r, bool with_packets) {
             out << ", cameras (format 1.10) " << r.stream.cameras().size() << "/" << *count;
         if (const auto count = r.stream.light_count())
             out << ", lights (format 1.10) " << r.stream.lights().size() << "/" << *count;
+        if (const auto count = r.stream.extras_count()) {
+            size_t whole = 0;
+            for (const auto& [key, e] : r.stream.extras()) whole += e.complete;
+            out << ", extras (format 1.12) " << whole << " complete of " << *count;
+        }
         out << "\n";
     }
     out << "damaged regions: " << r.damaged.size() << "\n";

@@ -29,6 +29,14 @@ std::string attribute_names(uint8_t a) {
     return out;
 }
 
+bool VersionOrder::operator()(const std::string& a, const std::string& b) const {
+    const auto parts = [](const std::string& v) {
+        const size_t dot = v.find('.');
+        return std::make_pair(std::atoi(v.substr(0, dot).c_str()), dot == std::string::npos ? 0 : std::atoi(v.c_str() + dot + 1));
+    };
+    return parts(a) < parts(b);
+}
+
 StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>& bytes, const auth::PublicKey* key) {
     StreamReport r;
     r.path = path;
@@ -363,6 +371,49 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
                                                               " joints of a skin that uses it"});
                     break;
                 }
+            }
+        }
+    }
+    // Spec 28.3: every announced extras text complete, and each naming an element of the stream.
+    if (const auto count = r.stream.extras_count()) {
+        if (r.stream.extras().size() < *count)
+            r.violations.push_back({std::nullopt, std::to_string(*count - r.stream.extras().size()) + " of " +
+                                                      std::to_string(*count) + " extras texts missing", true});
+        const auto table_size = [&](ExtrasTarget kind) -> std::optional<size_t> {
+            const auto opt = [](const auto& c) { return c ? std::optional<size_t>(*c) : std::nullopt; };
+            switch (kind) {
+            case ExtrasTarget::Asset:
+            case ExtrasTarget::Scene: return 1;
+            case ExtrasTarget::Node: return r.stream.has_scene() ? std::optional<size_t>(r.stream.scene_node_count()) : std::nullopt;
+            case ExtrasTarget::Mesh: return r.stream.has_scene() ? std::optional<size_t>(r.stream.scene_mesh_count()) : std::nullopt;
+            case ExtrasTarget::Material:
+                return r.stream.materials().empty() ? std::nullopt
+                                                    : std::optional<size_t>(r.stream.materials().begin()->second.material_count);
+            case ExtrasTarget::Texture:
+                return r.stream.textures().empty() ? std::nullopt
+                                                   : std::optional<size_t>(r.stream.textures().begin()->second.info.texture_count);
+            case ExtrasTarget::Animation: return opt(r.stream.animation_count());
+            case ExtrasTarget::Skin: return opt(r.stream.skin_count());
+            case ExtrasTarget::Camera: return opt(r.stream.camera_count());
+            case ExtrasTarget::Light: return opt(r.stream.light_count());
+            case ExtrasTarget::MorphAnimation: return opt(r.stream.morph_animation_count());
+            }
+            return std::nullopt;
+        };
+        for (const auto& [key, e] : r.stream.extras()) {
+            const std::string name = std::string("extras of ") + extras_target_name(key.first) +
+                                     (key.first == ExtrasTarget::Asset || key.first == ExtrasTarget::Scene ? "" : " " + std::to_string(key.second));
+            if (!e.complete)
+                r.violations.push_back({std::nullopt, name + ": " + std::to_string(e.received_bytes) + " of " +
+                                                          std::to_string(e.text_size) + " bytes received", true});
+            const auto size = table_size(key.first);
+            if (!size || key.second >= *size)
+                r.violations.push_back({std::nullopt, name + ": no such " + extras_target_name(key.first) + " in the stream"});
+            if (key.first == ExtrasTarget::MorphAnimation) {
+                const auto a = r.stream.morph_animations().find(key.second);
+                if (a != r.stream.morph_animations().end() && a->second.joins != kNone)
+                    r.violations.push_back({std::nullopt, name + ": that morph animation joins animation " +
+                                                              std::to_string(a->second.joins) + " (its extras go there)"});
             }
         }
     }

@@ -40,6 +40,11 @@ struct TypeCount {
     uint64_t bytes = 0;
 };
 
+// "1.2" before "1.10": major, then minor, as numbers.
+struct VersionOrder {
+    bool operator()(const std::string& a, const std::string& b) const;
+};
+
 struct StreamReport {
     std::string path;
     uint64_t file_size = 0;
@@ -49,7 +54,7 @@ struct StreamReport {
     std::vector<DamagedRegion> damaged;
     ReceivedStream stream;
     std::map<uint8_t, TypeCount> per_type;      // by packet type
-    std::map<std::string, uint64_t> versions;   // "1.0" -> packets
+    std::map<std::string, uint64_t, VersionOrder> versions;   // "1.0" -> packets, in version order
     std::map<uint32_t, uint64_t> stream_ids;    // every stream id seen in an intact packet
     uint64_t stream_info_parts = 0;             // STREAM_INFO packets taken (accepted or duplicate)
     // Repair packets (POINTS_REPAIR, CONNECTIVITY_REPAIR) that brought nothing because what they
