@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent format 1.11 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.12 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
@@ -36,7 +36,9 @@ LIGHT packets and the node record's camera and light fields of spec section 26: 
 glTF and KHR_lights_punctual on the f32 values) and comparisons, and the cameras and lights a receiver shows
 on its nodes, spec 26.4; for format 1.11 the EXACT_MESH and EXACT_MESH_REPAIR packets of spec section 27: their
 checks (those of CONNECTIVITY and CONNECTIVITY_REPAIR with carried_count, and one kind of exact layer per object),
-and the coded mesh decoded with the same range decoder, the carried vertices with their attributes, spec 27.2) so
+and the coded mesh decoded with the same range decoder, the carried vertices with their attributes, spec 27.2; for
+format 1.12 the EXTRAS packets of spec section 28: their checks, the description and text count comparisons, the
+fragments kept by byte, and the CRC-32C and JSON checks of a whole text, spec 28.1) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -76,7 +78,11 @@ KNOWN_18 = {0x0B: "NORMALS"}
 KNOWN_110 = {0x17: "CAMERA", 0x18: "LIGHT"}
 # Format 1.11 (spec sections 4 and 27): skippable, belongs to an object.
 KNOWN_111 = {0x0C: "EXACT_MESH", 0x0D: "EXACT_MESH_REPAIR"}
-SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14, 0x15, 0x16} | set(KNOWN_110)  # JOINT_WEIGHTS and MORPH_DELTAS belong to an object
+# Format 1.12 (spec sections 4 and 28): skippable, stream-level.
+KNOWN_112 = {0x19: "EXTRAS"}
+EXTRAS_KINDS = ("asset", "scene", "node", "mesh", "material", "texture", "animation", "skin", "camera", "light",
+                "morph animation")
+SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14, 0x15, 0x16} | set(KNOWN_110) | set(KNOWN_112)  # JOINT_WEIGHTS and MORPH_DELTAS belong to an object
 # The real numbers pi and pi / 2, exactly enough: every f32 is a double, and none lies between pi and
 # the double nearest it (spec 26.2, 26.3 compare the f32 values with the real numbers).
 PI = Fraction(314159265358979323846264338327950288, 10 ** 35)
@@ -1431,6 +1437,7 @@ class Receiver:
         self.material_count = None  # that of the materials and patches held
         self.camera_count, self.cameras = None, {}  # format 1.10: table size of the CAMERA packets, index -> fields
         self.light_count, self.lights = None, {}  # likewise for LIGHT
+        self.extras_count, self.texts = None, {}  # format 1.12: text_count of the EXTRAS packets, (kind, index) -> text
         self.stream_id = None
         self.info = None
         self.object_count = 0
@@ -1451,7 +1458,7 @@ class Receiver:
         t = h["type"]
         if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12 and t not in KNOWN_13 and t not in KNOWN_14
                                    and t not in KNOWN_15 and t not in KNOWN_16 and t not in KNOWN_17 and t not in KNOWN_18
-                                   and t not in KNOWN_110 and t not in KNOWN_111)
+                                   and t not in KNOWN_110 and t not in KNOWN_111 and t not in KNOWN_112)
                                   or not self.know_11):
             if not h["flags"] & 1:
                 return self.reject(offset, "unknown critical type")
@@ -1477,6 +1484,8 @@ class Receiver:
             result = self.morph_animation(h, offset)
         elif t in (0x17, 0x18):
             result = self.camera_light(h, offset)
+        elif t == 0x19:
+            result = self.extras(h, offset)
         elif t == 0x07 and decode_joint_weights(h["payload"]) is None:
             # Spec 21.2: checked at step 11, before the packet can be held.
             return self.reject(offset, "malformed payload")
@@ -1942,6 +1951,57 @@ class Receiver:
             self.light_count = d["count"]
         return self.news(True)
 
+    def extras(self, h, offset):
+        """Spec 28.1: rules 1..5, then checks 1..6 in their order; bytes kept by offset, the first copy of each."""
+        p = h["payload"]
+        if len(p) < 21:
+            return self.reject(offset, "malformed payload")
+        kind, index, count, size, crc, at = p[0], struct.unpack_from("<H", p, 2)[0], struct.unpack_from("<H", p, 4)[0], \
+            *struct.unpack_from("<III", p, 8)
+        data = p[20:]
+        if kind > 10 or (kind in (0, 1) and index != 0) or count == 0 or size == 0 or size > 65536 \
+                or at + len(data) > size:
+            return self.reject(offset, "malformed payload")
+        if self.extras_count is not None and count != self.extras_count:
+            return self.reject(offset, "stream mismatch")  # check 1
+        key = (kind, index)
+        t = self.texts.get(key)
+        if t is not None:
+            if (t["size"], t["crc"]) != (size, crc):
+                return self.reject(offset, "stream mismatch")  # check 2: the description
+            if t["complete"]:
+                return self.news(False)  # check 3
+        elif len(self.texts) >= count:
+            return self.reject(offset, "stream mismatch")  # check 2: one target more than text_count
+        got = t["got"] if t is not None else [False] * size
+        fresh = [k for k in range(len(data)) if not got[at + k]]
+        if not fresh:
+            return self.news(False)  # check 3 (check 4, the memory cap, no vector reaches)
+        if t is None:
+            t = self.texts[key] = dict(size=size, crc=crc, have=bytearray(size), got=got, received=0,
+                                       complete=False, text=None)
+            self.extras_count = count
+        for k in fresh:
+            t["got"][at + k] = True
+            t["have"][at + k] = data[k]
+        t["received"] += len(fresh)
+        if t["received"] == size:
+            whole = bytes(t["have"])
+            t["got"], t["have"], t["received"] = [False] * size, bytearray(size), 0  # discarded unless both pass
+            if crc32c(whole) != crc:
+                return self.reject(offset, "stream mismatch")  # check 5
+            try:
+                PatchReader(whole.decode("utf-8")).document()  # rules 2..7 of 18.2 on any value
+            except (UnicodeDecodeError, PatchError):
+                return self.reject(offset, "malformed payload")  # check 6
+            t["complete"], t["text"], t["received"] = True, whole.decode("utf-8"), size
+        return self.news(True)
+
+    def extras_json(self):
+        return [dict(kind=EXTRAS_KINDS[k], index=i, text_size=t["size"], text_crc=t["crc"],
+                     received_bytes=t["received"], complete=t["complete"], text=t["text"])
+                for (k, i), t in sorted(self.texts.items())]
+
     def cameras_lights_json(self):
         cameras, lights = [], []
         for k in sorted(self.cameras):
@@ -2317,7 +2377,7 @@ class Receiver:
                     out.append(dict(index=m, tracks=[], morph_only=True, morph_tracks=morphs))
         return out
 
-    def scene_json(self, viewed=False):
+    def scene_json(self, viewed=False, with_extras=False):
         nodes = [self.nodes[k] for k in sorted(self.nodes)]
         meshes = [self.meshes[k] for k in sorted(self.meshes)]
         textures = []
@@ -2351,7 +2411,8 @@ class Receiver:
                     textures=textures, animation_count=self.animation_count, animations=self.animations_json(),
                     skin_count=self.skin_count, skins=self.skins_json(), morph_animation_count=self.morph_count,
                     morph_animations=self.animations_json(morph=True), shown=self.shown(viewed),
-                    **(self.cameras_lights_json() if viewed else {}))
+                    **(self.cameras_lights_json() if viewed else {}),
+                    **(dict(extras_count=self.extras_count, extras=self.extras_json()) if with_extras else {}))
 
     def shown(self, viewed=False):
         """Spec 15.4 and 18.4: what a receiver shows (and spec 26.4: the cameras and lights on shown nodes)."""
@@ -2739,6 +2800,7 @@ def decode(buf):
         name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or KNOWN_12.get(h["type"]) or \
             KNOWN_13.get(h["type"]) or KNOWN_14.get(h["type"]) or KNOWN_15.get(h["type"]) or KNOWN_16.get(h["type"]) or \
             KNOWN_17.get(h["type"]) or KNOWN_18.get(h["type"]) or KNOWN_110.get(h["type"]) or KNOWN_111.get(h["type"]) or \
+            KNOWN_112.get(h["type"]) or \
             "UNKNOWN(0x%02X)" % h["type"]
         plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
                           flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
@@ -2752,7 +2814,9 @@ def decode(buf):
     # Format 1.10 (README): the camera and light keys are there when the file holds a CAMERA or LIGHT packet
     # or a SCENE packet that says 1.10 or later.
     viewed = any(h["type"] in KNOWN_110 or (h["type"] == 0x10 and h["minor"] >= 10) for _, _, h in packets)
-    out["scene"] = r.scene_json(viewed) if any_scene else None
+    # Format 1.12 (README): the extras keys are there when the file holds an EXTRAS packet.
+    with_extras = any(h["type"] in KNOWN_112 for _, _, h in packets)
+    out["scene"] = r.scene_json(viewed, with_extras) if any_scene else None
     if any_scene:
         # The same objects but for their format 1.5 influence records and format 1.6 displacement records,
         # which a 1.0 decoder skips (README).

@@ -375,7 +375,7 @@ inline bool is_scene_type(uint8_t type) {
            type == uint8_t(PacketType::TextureFragment) || type == uint8_t(PacketType::MaterialExtensions) ||
            type == uint8_t(PacketType::Animation) || type == uint8_t(PacketType::Skin) ||
            type == uint8_t(PacketType::MorphAnimation) || type == uint8_t(PacketType::Camera) ||
-           type == uint8_t(PacketType::Light);
+           type == uint8_t(PacketType::Light) || type == uint8_t(PacketType::Extras);
 }
 
 inline nlohmann::json none_or(uint16_t v) { return v == kNone ? nlohmann::json(nullptr) : nlohmann::json(v); }
@@ -725,7 +725,23 @@ inline nlohmann::json shown_json(const ReceivedStream& s, bool viewed = false) {
     return out;
 }
 
-inline nlohmann::json scene_json(const ReceivedStream& s, bool viewed = false) {
+// Format 1.12 (spec 28): every target that took a fragment, in (kind, index) order: its description,
+// the bytes held, and the text once complete.
+inline nlohmann::json extras_json(const ReceivedStream& s) {
+    nlohmann::json texts = nlohmann::json::array();
+    for (const auto& [key, e] : s.extras())
+        texts.push_back({{"kind", extras_target_name(key.first)},
+                         {"index", key.second},
+                         {"text_size", e.text_size},
+                         {"text_crc", e.text_crc},
+                         {"received_bytes", e.received_bytes},
+                         {"complete", e.complete},
+                         {"text", e.complete ? nlohmann::json(e.text) : nlohmann::json(nullptr)}});
+    return texts;
+}
+
+// `with_extras`: the file holds an EXTRAS packet (format 1.12): the extras keys are there.
+inline nlohmann::json scene_json(const ReceivedStream& s, bool viewed = false, bool with_extras = false) {
     using nlohmann::json;
     json nodes = json::array(), meshes = json::array(), materials = json::array(), textures = json::array(),
          extensions = json::array();
@@ -783,6 +799,11 @@ inline nlohmann::json scene_json(const ReceivedStream& s, bool viewed = false) {
         out["cameras"] = cameras;
         out["light_count"] = s.light_count() ? json(*s.light_count()) : json(nullptr);
         out["lights"] = lights;
+    }
+    if (with_extras) {
+        // Format 1.12: the text_count of the EXTRAS packets accepted (null when none was), every text held.
+        out["extras_count"] = s.extras_count() ? json(*s.extras_count()) : json(nullptr);
+        out["extras"] = extras_json(s);
     }
     return out;
 }
@@ -881,6 +902,7 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     ReceivedStream as_1_0;
     bool any_scene_packet = false;
     bool viewed = false;  // format 1.10: a CAMERA or LIGHT packet, or a SCENE packet saying 1.10 or later
+    bool with_extras = false;  // format 1.12: an EXTRAS packet
     json packets = json::array();
     for (const ContainerPacket& p : contents.packets) {
         const ReceiveCounters before = stream.counters();
@@ -899,6 +921,7 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
         if (h.type == uint8_t(PacketType::Camera) || h.type == uint8_t(PacketType::Light) ||
             (h.type == uint8_t(PacketType::Scene) && h.version_minor >= kCameraLightMinor))
             viewed = true;
+        if (h.type == uint8_t(PacketType::Extras)) with_extras = true;
         if (h.type > uint8_t(PacketType::Points)) old.header.type = 0xFF;  // a type a 1.0 decoder does not know
         as_1_0.add_parsed(old, p.offset);
         char version[8];
@@ -933,7 +956,7 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     out["objects"] = objects_json(stream);
     // Format 1.1: present when the file holds any SCENE, MATERIAL, TEXTURE_FRAGMENT, (format 1.3)
     // MATERIAL_EXTENSIONS, (format 1.4) ANIMATION, (format 1.5) SKIN or (format 1.6) MORPH_ANIMATION packet.
-    out["scene"] = any_scene_packet ? scene_json(stream, viewed) : json(nullptr);
+    out["scene"] = any_scene_packet ? scene_json(stream, viewed, with_extras) : json(nullptr);
     if (any_scene_packet) {
         json info_1_0 = as_1_0.info() ? stream_info_json(*as_1_0.info(), as_1_0.objects().size()) : json(nullptr);
         // The same objects but for their format 1.5 influence records and format 1.6 displacement

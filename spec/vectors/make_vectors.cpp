@@ -7709,6 +7709,241 @@ void camera_light_vectors(Writer& w) {
     }
 }
 
+// ---- Format 1.12: extras (spec 28) ----
+
+// The room of the camera vectors with the extras of 7 targets: the asset, the scene, node 1 'Eye'
+// (escapes, a surrogate pair, a null), node 3 'Bulb' (a 400-byte text in 3 fragments at packet size
+// 200), mesh 0 (a string), camera 2 (a number) and light 0 (an array).
+std::vector<SceneExtras> room_extras() {
+    std::string long_text = "{\"description\":\"";
+    while (long_text.size() < 390) long_text += "A bulb hangs from the ceiling of the room. ";
+    long_text = long_text.substr(0, 390) + "\",\"watts\":60}";
+    return {{ExtrasTarget::Asset, 0, "{\"copyright\":\"ellicast vectors\",\"tags\":[\"room\",\"lights\"]}"},
+            {ExtrasTarget::Scene, 0, "{\"level\":3}"},
+            {ExtrasTarget::Node, 1,
+             "{\"id\":\"eye-1\",\"visible\":true,\"offset\":[0,1.5e-3,-2],\"note\":null,"
+             "\"label\":\"caf\\u00e9 \\ud83d\\ude00\"}"},
+            {ExtrasTarget::Node, 3, long_text},
+            {ExtrasTarget::Mesh, 0, "\"the room's walls\""},
+            {ExtrasTarget::Camera, 2, " 42 "},
+            {ExtrasTarget::Light, 0, "[true,false,null]"}};
+}
+
+// An EXTRAS packet (format 1.12, stream-level, skippable) around a fragment as given.
+Packet extras_packet(const ExtrasFragment& f, uint32_t sequence) {
+    PacketHeader h;
+    h.version_minor = kExtrasMinor;
+    h.type = uint8_t(PacketType::Extras);
+    h.flags = kFlagSkippable;
+    h.stream_id = kStreamId;
+    h.sequence = sequence;
+    h.object_id = kStreamObjectId;
+    return write_packet(h, encode_extras_payload(f));
+}
+
+// The fragment of `e`'s text [from, to) with its description (text_count `count`).
+ExtrasFragment extras_fragment(const SceneExtras& e, uint16_t count, size_t from, size_t to) {
+    ExtrasFragment f;
+    f.kind = e.kind;
+    f.index = e.index;
+    f.text_count = count;
+    f.text_size = uint32_t(e.text.size());
+    f.text_crc = crc32c(reinterpret_cast<const uint8_t*>(e.text.data()), e.text.size());
+    f.offset = uint32_t(from);
+    f.data.assign(e.text.begin() + long(from), e.text.begin() + long(to));
+    return f;
+}
+
+// EXTRAS packets of `texts` as given (no check: faulty texts too), each cut into fragments of at most
+// `per_packet` bytes, numbered from `sequence`; text_count `count`.
+Packets extras_packets(const std::vector<SceneExtras>& texts, uint16_t count, size_t per_packet, uint32_t sequence) {
+    Packets out;
+    for (const SceneExtras& e : texts)
+        for (size_t offset = 0; offset < e.text.size(); offset += per_packet)
+            out.push_back(extras_packet(extras_fragment(e, count, offset, std::min(e.text.size(), offset + per_packet)),
+                                        sequence++));
+    return out;
+}
+
+void extras_vectors(Writer& w) {
+    SceneDescription scene = viewed_room();
+    scene.extras = room_extras();
+    const ViewedStream base = make_viewed_stream(scene);
+    Packets stream = base.all();
+    const size_t extras_at = stream.size();
+    stream.insert(stream.end(), base.scene.extras.begin(), base.scene.extras.end());
+    constexpr size_t kPer = 200 - kPacketOverhead - kExtrasHeaderSize;  // 156 text bytes a packet
+    // The reference packetizer's packets are the ones the spec's rules make of these texts.
+    if (base.scene.extras.size() != 9 ||
+        base.scene.extras != extras_packets(scene.extras, 7, kPer, get32(base.scene.extras[0], 12))) {
+        std::cerr << "make_vectors: the room's extras are not the 9 EXTRAS packets expected\n";
+        std::exit(1);
+    }
+    const std::string room =
+        "the room of valid/extras (the viewed room of valid/camera_light with 7 extras texts in 9 EXTRAS packets "
+        "at its end: the asset, the scene, node 1, node 3 in 3 fragments, mesh 0, camera 2, light 0)";
+    w.write("valid", "extras",
+            "format 1.12 (spec 28): the viewed room of valid/camera_light with the extras of 7 targets in 9 EXTRAS "
+            "packets after its CAMERA and LIGHT packets (text_count 7): the asset (an object), the scene ({\"level\":3}), "
+            "node 1 (an object with escapes, a surrogate pair and a null), node 3 (403 bytes in 3 fragments of 156, "
+            "156 and 91 bytes), mesh 0 (a string), camera 2 (the number 42 with spaces around it) and light 0 (an "
+            "array); every text complete",
+            stream);
+
+    // ---- unusual ----
+    {
+        Packets extras(stream.begin() + long(extras_at), stream.end());
+        std::reverse(extras.begin(), extras.end());
+        Packets sent;
+        for (const Packet& p : extras) {
+            sent.push_back(p);
+            sent.push_back(p);  // the same packet again: a duplicate
+        }
+        sent.insert(sent.end(), stream.begin(), stream.begin() + long(extras_at));
+        w.write("unusual", "extras_first",
+                "the packets of valid/extras with its 9 EXTRAS packets first, in reverse order (node 3's fragments "
+                "last first), each sent twice in a row, then the rest: every second copy a duplicate (spec 28.1 "
+                "check 3); decodes as valid/extras",
+                sent);
+    }
+    {
+        const SceneExtras& bulb = scene.extras[3];
+        Packets sent(stream.begin(), stream.begin() + long(extras_at));
+        const Packets singles = extras_packets({scene.extras[0], scene.extras[1], scene.extras[2], scene.extras[4],
+                                                scene.extras[5], scene.extras[6]},
+                                               7, kPer, 100);
+        sent.insert(sent.end(), singles.begin(), singles.end());
+        // Node 3's text re-cut: [0, 100), [60, 210), [10, 50) (nothing new), [200, 340), [300, 403).
+        for (const auto& [from, to] : std::vector<std::pair<size_t, size_t>>{{0, 100}, {60, 210}, {10, 50}, {200, 340}, {300, 403}})
+            sent.push_back(extras_packet(extras_fragment(bulb, 7, from, to), uint32_t(200 + sent.size())));
+        w.write("unusual", "extras_overlapping",
+                "the room with its extras sent otherwise: the 6 one-fragment texts, then node 3's 403-byte text cut "
+                "into fragments of bytes 0..99, 60..209, 10..49, 200..339 and 300..402: overlapping bytes are kept from their "
+                "first copy (spec 28.1), the fragment of bytes 10..49 brings none and is a duplicate; decodes as "
+                "valid/extras",
+                sent);
+    }
+    {
+        Packets sent = stream;
+        for (size_t i = extras_at; i < sent.size(); ++i) {
+            sent[i][kHeaderSize + 1] = 0xFF;  // reserved
+            sent[i][kHeaderSize + 6] = 0xAB, sent[i][kHeaderSize + 7] = 0xCD;
+            reseal(sent[i]);
+        }
+        w.write("unusual", "extras_reserved",
+                room + ", with the reserved bytes 1 and 6..7 of every EXTRAS payload set (FF, AB CD): ignored "
+                       "(spec 28.1); decodes as valid/extras",
+                sent);
+    }
+    {
+        std::string deepest(32, '[');
+        deepest += std::string(32, ']');
+        std::vector<SceneExtras> texts = scene.extras;
+        texts[1].text = deepest;  // the scene's text: arrays 32 deep, the most allowed
+        Packets sent(stream.begin(), stream.begin() + long(extras_at));
+        const Packets extras = extras_packets(texts, 7, kPer, uint32_t(sent.size()));
+        sent.insert(sent.end(), extras.begin(), extras.end());
+        w.write("unusual", "extras_deepest",
+                room + ", with the scene's text 32 arrays nested (the value depth 1, the innermost depth 32): "
+                       "acceptable (spec 28.1); every text complete",
+                sent);
+    }
+
+    // ---- faulty ----
+    const size_t E = kHeaderSize;  // payload offsets below
+    auto appended = [&](size_t k, const std::function<void(Packet&)>& edit) {
+        Packets sent = stream;
+        Packet p = stream[extras_at + k];
+        restamp_packet(p, 900);
+        edit(p);
+        reseal(p);
+        sent.push_back(p);
+        return sent;
+    };
+    struct Case {
+        const char* name;
+        size_t packet;  // 0 asset, 1 scene, 2 node 1, 3..5 node 3, 6 mesh 0, 7 camera 2, 8 light 0
+        const char* what;
+        std::function<void(Packet&)> edit;
+        const char* reason;
+    };
+    const std::vector<Case> cases = {
+        {"extras_short", 0, "the asset's packet again with its payload cut to the 20 bytes of fixed fields",
+         [&](Packet& p) {
+             const std::vector<uint8_t> payload = payload_of(p);
+             p = with_payload(p, std::vector<uint8_t>(payload.begin(), payload.begin() + 20));
+         },
+         "malformed payload (spec 28.1 rule 1)"},
+        {"extras_kind_11", 6, "mesh 0's packet again with target_kind 11", [&](Packet& p) { p[E] = 11; }, "malformed payload (spec 28.1 rule 2)"},
+        {"extras_scene_index_1", 1, "the scene's packet again with target_index 1", [&](Packet& p) { p[E + 2] = 1; }, "malformed payload (spec 28.1 rule 2)"},
+        {"extras_text_count_zero", 1, "the scene's packet again with text_count 0", [&](Packet& p) { p[E + 4] = 0; }, "malformed payload (spec 28.1 rule 3)"},
+        {"extras_text_size_huge", 3, "node 3's first fragment again with text_size 65537", [&](Packet& p) { put32(p, E + 8, 65537); }, "malformed payload (spec 28.1 rule 4)"},
+        {"extras_past_text", 5, "node 3's last fragment (91 bytes) again at offset 313, so that it ends at 404, past the 403-byte text", [&](Packet& p) { put32(p, E + 16, 313); }, "malformed payload (spec 28.1 rule 5)"},
+        {"extras_count_differs", 7, "camera 2's packet again with text_count 8", [&](Packet& p) { p[E + 4] = 8; }, "stream mismatch (spec 28.1 check 1)"},
+        {"extras_crc_differs", 8, "light 0's packet again with another text_crc", [&](Packet& p) { put32(p, E + 12, get32(p, E + 12) ^ 1); }, "stream mismatch (spec 28.1 check 2: another description)"},
+        {"extras_one_too_many", 6, "mesh 0's packet again as the text of node 2 (target_kind 2, index 2), an eighth target of a stream that announced 7", [&](Packet& p) { p[E] = 2, p[E + 2] = 2; }, "stream mismatch (spec 28.1 check 2: more targets than text_count)"},
+    };
+    for (const Case& c : cases)
+        w.write("faulty", c.name,
+                room + ", then " + c.what + " (sequence 900): rejected as " + c.reason + "; the rest decodes as valid/extras",
+                appended(c.packet, c.edit));
+    // Texts that pass every packet check but not the checks of a whole text (spec 28.1 checks 5 and 6).
+    auto with_scene_text = [&](const std::string& text, bool wrong_crc) {
+        std::vector<SceneExtras> texts = scene.extras;
+        texts[1].text = text;
+        Packets sent(stream.begin(), stream.begin() + long(extras_at));
+        Packets extras = extras_packets(texts, 7, kPer, uint32_t(sent.size()));
+        if (wrong_crc) {
+            put32(extras[1], E + 12, get32(extras[1], E + 12) ^ 0x80000000u);
+            reseal(extras[1]);
+        }
+        sent.insert(sent.end(), extras.begin(), extras.end());
+        return sent;
+    };
+    w.write("faulty", "extras_crc_wrong",
+            room + ", with the scene's one fragment carrying a text_crc that is not its text's: it completes the text, "
+                   "whose CRC-32C does not match: rejected as stream mismatch (spec 28.1 check 5) and its bytes "
+                   "discarded; the scene's text is held without a byte, not complete, so the stream is not complete",
+            with_scene_text("{\"level\":3}", true));
+    w.write("faulty", "extras_not_json",
+            room + ", with the scene's text {\"level\":} (its CRC-32C right): the fragment that completes it is "
+                   "rejected as malformed payload (spec 28.1 check 6: not one JSON text) and its bytes discarded",
+            with_scene_text("{\"level\":}", false));
+    w.write("faulty", "extras_duplicate_name",
+            room + ", with the scene's text {\"a\":1,\"a\":2}: rejected as malformed payload when complete (spec "
+                   "28.1 check 6: rule 6 of 18.2, two members of one name) and its bytes discarded",
+            with_scene_text("{\"a\":1,\"a\":2}", false));
+    w.write("faulty", "extras_too_deep",
+            room + ", with the scene's text 33 arrays nested: rejected as malformed payload when complete (spec "
+                   "28.1 check 6: deeper than 32) and its bytes discarded",
+            with_scene_text(std::string(33, '[') + std::string(33, ']'), false));
+    w.write("faulty", "extras_nan",
+            room + ", with the scene's text {\"level\":NaN}: rejected as malformed payload when complete (spec 28.1 "
+                   "check 6: NaN is no JSON) and its bytes discarded",
+            with_scene_text("{\"level\":NaN}", false));
+    {
+        Packets sent = stream;
+        sent.erase(sent.begin() + long(extras_at + 4));  // node 3's middle fragment
+        w.write("faulty", "extras_fragment_missing",
+                room + ", without node 3's middle fragment (bytes 156..311): node 3's text holds 247 of its 403 "
+                       "bytes and is not complete (node 3 is written without extras, spec 28.3); no rejection, but "
+                       "the stream is not complete, so the recording does not conform",
+                sent);
+    }
+    {
+        std::vector<SceneExtras> texts = scene.extras;
+        texts[2].index = 9;  // node 1's text, for a node 9 of a 5-node table
+        Packets sent(stream.begin(), stream.begin() + long(extras_at));
+        const Packets extras = extras_packets(texts, 7, kPer, uint32_t(sent.size()));
+        sent.insert(sent.end(), extras.begin(), extras.end());
+        w.write("faulty", "extras_target_past_table",
+                room + ", with node 1's text sent as node 9's, past the SCENE packets' node_count 5: every packet "
+                       "accepted (spec 28.1 does not check the index against the table), the text shown on no "
+                       "element (28.3), but the recording does not conform",
+                sent);
+    }
+}
+
 // Format 1.11: vertices carried by the exact layer (EXACT_MESH, EXACT_MESH_REPAIR, spec 27). The
 // exact-layer stream's sphere and panel (section 19's vectors) at packet size 256, each sending only
 // part of its vertices as points: the sphere (normals) its first 33 points in the shuffled order, the
@@ -8165,6 +8400,7 @@ int main(int argc, char** argv) {
     normals_vectors(w);
     camera_light_vectors(w);
     exact_mesh_vectors(w);
+    extras_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
