@@ -212,18 +212,21 @@ TEST_CASE("a hostile stream of EXTRAS fragments cannot take more memory than the
     f.text_count = 1;
     f.text_size = 65536;
     f.text_crc = crc32c(reinterpret_cast<const uint8_t*>(text.data()), text.size());
-    size_t accepted = 0, refused = 0;
-    for (uint32_t at = 0; at < 65536; at += 2) {
-        f.offset = at;
-        f.data = {uint8_t(' ')};
+    const auto packet = [&](uint32_t sequence) {
         PacketHeader h;
         h.version_minor = kExtrasMinor;
         h.type = uint8_t(PacketType::Extras);
         h.flags = kFlagSkippable;
         h.stream_id = 5;
-        h.sequence = at;
+        h.sequence = sequence;
         h.object_id = kStreamObjectId;
-        const Error e = stream.add_packet(write_packet(h, encode_extras_payload(f)), at);
+        return write_packet(h, encode_extras_payload(f));
+    };
+    size_t accepted = 0, refused = 0;
+    for (uint32_t at = 0; at < 65536; at += 2) {
+        f.offset = at;
+        f.data = {uint8_t(' ')};
+        const Error e = stream.add_packet(packet(at), at);
         (e == Error::Ok ? accepted : refused) += 1;
         if (e != Error::Ok) CHECK(e == Error::MalformedPayload);
     }
@@ -238,13 +241,7 @@ TEST_CASE("a hostile stream of EXTRAS fragments cannot take more memory than the
     f.kind = ExtrasTarget::Asset;
     f.index = 0;
     f.offset = 0;
-    PacketHeader h;
-    h.version_minor = kExtrasMinor;
-    h.type = uint8_t(PacketType::Extras);
-    h.flags = kFlagSkippable;
-    h.stream_id = 5;
-    h.object_id = kStreamObjectId;
-    CHECK(stream.add_packet(write_packet(h, encode_extras_payload(f)), 1) == Error::StreamMismatch);
+    CHECK(stream.add_packet(packet(70000), 1) == Error::StreamMismatch);
     CHECK(stream.extras().size() == 1);
 }
 

@@ -7550,10 +7550,22 @@ ViewedStream make_viewed_stream(const SceneDescription& scene) {
     return s;
 }
 
-// A CAMERA or LIGHT packet (format 1.10, stream-level, skippable) around a payload as given.
-Packet viewed_packet(PacketType type, const std::vector<uint8_t>& payload, uint32_t sequence) {
+// `stream`, then a copy of its packet `k` (sequence 900) with `edit` made to it (resealed).
+Packets with_edited_copy(const Packets& stream, size_t k, const std::function<void(Packet&)>& edit) {
+    Packets sent = stream;
+    Packet p = stream[k];
+    restamp_packet(p, 900);
+    edit(p);
+    reseal(p);
+    sent.push_back(p);
+    return sent;
+}
+
+// A CAMERA or LIGHT packet (format 1.10, stream-level, skippable) around a payload as given; another
+// stream-level type of a later version with `minor`.
+Packet viewed_packet(PacketType type, const std::vector<uint8_t>& payload, uint32_t sequence, uint8_t minor = kCameraLightMinor) {
     PacketHeader h;
-    h.version_minor = kCameraLightMinor;
+    h.version_minor = minor;
     h.type = uint8_t(type);
     h.flags = kFlagSkippable;
     h.stream_id = kStreamId;
@@ -7633,13 +7645,7 @@ void camera_light_vectors(Writer& w) {
 
     // ---- faulty ----
     auto camera_edit = [&](size_t k, const std::function<void(Packet&)>& edit) {
-        Packets sent = stream;
-        Packet p = stream[viewed_at + k];
-        restamp_packet(p, 900);
-        edit(p);
-        reseal(p);
-        sent.push_back(p);
-        return sent;
+        return with_edited_copy(stream, viewed_at + k, edit);
     };
     const size_t C = kHeaderSize;  // payload offsets below
     struct Case {
@@ -7731,14 +7737,7 @@ std::vector<SceneExtras> room_extras() {
 
 // An EXTRAS packet (format 1.12, stream-level, skippable) around a fragment as given.
 Packet extras_packet(const ExtrasFragment& f, uint32_t sequence) {
-    PacketHeader h;
-    h.version_minor = kExtrasMinor;
-    h.type = uint8_t(PacketType::Extras);
-    h.flags = kFlagSkippable;
-    h.stream_id = kStreamId;
-    h.sequence = sequence;
-    h.object_id = kStreamObjectId;
-    return write_packet(h, encode_extras_payload(f));
+    return viewed_packet(PacketType::Extras, encode_extras_payload(f), sequence, kExtrasMinor);
 }
 
 // The fragment of `e`'s text [from, to) with its description (text_count `count`).
@@ -7852,13 +7851,7 @@ void extras_vectors(Writer& w) {
     // ---- faulty ----
     const size_t E = kHeaderSize;  // payload offsets below
     auto appended = [&](size_t k, const std::function<void(Packet&)>& edit) {
-        Packets sent = stream;
-        Packet p = stream[extras_at + k];
-        restamp_packet(p, 900);
-        edit(p);
-        reseal(p);
-        sent.push_back(p);
-        return sent;
+        return with_edited_copy(stream, extras_at + k, edit);
     };
     struct Case {
         const char* name;
