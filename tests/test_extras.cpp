@@ -139,7 +139,7 @@ TEST_CASE("a mesh's morph target names come back with its targets, and lights' e
     CHECK(extras_of(lit_out, "lights") == std::vector<std::string>{R"({"dimmer":null,"gel":"blue"})"});
 }
 
-TEST_CASE("extras the stream has no table for are named in one warning; a too large or absent text is not sent") {
+TEST_CASE("extras the stream has no table for are named in one warning, and a too large or absent text is not sent") {
     const fs::path dir = scratch_dir("extras_not_carried");
     const fs::path input = tagged(source_dir() / "samples" / "khronos" / "AnimatedMorphCube" / "AnimatedMorphCube.gltf", dir,
                                   {"accessors", "bufferViews"}, [](nlohmann::json& doc) {
