@@ -8,7 +8,9 @@
 #include "encode_options.h"
 #include "support.h"
 
+#include <algorithm>
 #include <functional>
+#include <tuple>
 
 #include <Eigen/Dense>
 
@@ -74,7 +76,8 @@ inline std::vector<uint8_t> referenced_image(const Asset& a, const TextureRef& r
 
 // Checks that `out` has the scene of `in`: node count, names, parents, which nodes show a mesh and
 // how many primitives it has, transforms (to float precision), materials with their factors, modes
-// and texture images byte for byte, and (format 1.10) the same cameras and lights on the same nodes.
+// and texture images byte for byte, (format 1.10) the same cameras and lights on the same nodes, and
+// (format 1.12) the same extras on the same elements.
 inline void check_same_scene(const Asset& in, const Asset& out) {
     REQUIRE(out.scene.nodes.size() == in.scene.nodes.size());
     for (size_t i = 0; i < in.scene.nodes.size(); ++i) {
@@ -130,6 +133,14 @@ inline void check_same_scene(const Asset& in, const Asset& out) {
         CAPTURE(i);
         CHECK(a == b);
     }
+    // Extras (format 1.12): the same texts on the same elements.
+    const auto texts = [](const Asset& a) {
+        std::vector<std::tuple<uint8_t, uint16_t, std::string>> out;
+        for (const SceneExtras& e : a.scene.extras) out.emplace_back(uint8_t(e.kind), e.index, e.text);
+        std::sort(out.begin(), out.end());
+        return out;
+    };
+    CHECK(texts(in) == texts(out));
     // Animations (format 1.4): the same tracks over the same nodes, key for key.
     REQUIRE(out.scene.animations.size() == in.scene.animations.size());
     for (size_t i = 0; i < in.scene.animations.size(); ++i) {

@@ -100,7 +100,9 @@ TEST_CASE("glTF extras travel on the asset, its scene, nodes, meshes, materials,
         for (const std::string& w : in.warnings)
             CHECK_MESSAGE((w.find("extras of ") == std::string::npos && w.find("its extras") == std::string::npos), w);
         const nlohmann::json source = gltf_json(input);
-        const nlohmann::json out = extras_round_trip(in, dir);
+        Asset decoded;
+        const nlohmann::json out = extras_round_trip(in, dir, 0, &decoded);
+        check_same_scene(in, decoded);  // the same texts on the same elements, and the rest of the scene
         CHECK(out["asset"]["extras"] == source["asset"]["extras"]);
         CHECK(out["scenes"][0]["extras"] == source["scenes"][source.value("scene", 0)]["extras"]);
         for (const std::string& table : c.tables) {
