@@ -62,9 +62,8 @@ void warn_extras_waiting(const ReceivedStream& stream, std::vector<std::string>&
             continue;
         }
         if (first.empty())
-            first = std::string(extras_target_name(key.first)) +
-                    (key.first == ExtrasTarget::Asset || key.first == ExtrasTarget::Scene ? "" : " " + std::to_string(key.second)) +
-                    ", " + std::to_string(e.received_bytes) + " of " + std::to_string(e.text_size) + " bytes";
+            first = extras_target_label(key.first, key.second) + ", " + std::to_string(e.received_bytes) + " of " +
+                    std::to_string(e.text_size) + " bytes";
     }
     if (complete == *count) return;
     warnings.push_back(std::to_string(*count - complete) + " of " + std::to_string(*count) +

@@ -17,6 +17,11 @@ const char* extras_target_name(ExtrasTarget kind) {
     return k < kExtrasTargetKinds ? names[k] : "unknown";
 }
 
+std::string extras_target_label(ExtrasTarget kind, uint16_t index) {
+    const bool whole = kind == ExtrasTarget::Asset || kind == ExtrasTarget::Scene;
+    return std::string(extras_target_name(kind)) + (whole ? "" : " " + std::to_string(index));
+}
+
 std::vector<uint8_t> encode_extras_payload(const ExtrasFragment& f) {
     std::vector<uint8_t> out;
     out.reserve(kExtrasHeaderSize + f.data.size());
@@ -66,8 +71,7 @@ Error ReceivedStream::take_extras(const PacketView& packet, uint64_t where) {
                       "EXTRAS payload inconsistent or out of range (shorter than 21 bytes, target kind above 10, an "
                       "asset or scene text with an index, text count 0, text size 0 or above 65536, or a fragment "
                       "past the text)");
-    const std::string what = std::string("extras of ") + extras_target_name(f.kind) +
-                              (f.kind == ExtrasTarget::Asset || f.kind == ExtrasTarget::Scene ? "" : " " + std::to_string(f.index));
+    const std::string what = "extras of " + extras_target_label(f.kind, f.index);
     // 1, 2: the text count, then the description (or room for another target).
     if (extras_count_ && *extras_count_ != f.text_count)
         return reject(where, Error::StreamMismatch, "EXTRAS text count " + std::to_string(f.text_count) +

@@ -401,8 +401,7 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             return std::nullopt;
         };
         for (const auto& [key, e] : r.stream.extras()) {
-            const std::string name = std::string("extras of ") + extras_target_name(key.first) +
-                                     (key.first == ExtrasTarget::Asset || key.first == ExtrasTarget::Scene ? "" : " " + std::to_string(key.second));
+            const std::string name = "extras of " + extras_target_label(key.first, key.second);
             if (!e.complete)
                 r.violations.push_back({std::nullopt, name + ": " + std::to_string(e.received_bytes) + " of " +
                                                           std::to_string(e.text_size) + " bytes received", true});

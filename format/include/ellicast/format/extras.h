@@ -36,6 +36,8 @@ inline constexpr uint32_t kMaxExtrasText = 65536;  // bytes of one text (spec 28
 // "asset", "scene", "node", "mesh", "material", "texture", "animation", "skin", "camera", "light",
 // "morph animation".
 const char* extras_target_name(ExtrasTarget kind);
+// A target as messages name it: "asset", "scene", "node 3", "morph animation 0".
+std::string extras_target_label(ExtrasTarget kind, uint16_t index);
 
 // Sender side: one element's extras, the JSON text as it travels (SceneDescription::extras).
 struct SceneExtras {
