@@ -49,7 +49,7 @@ extern "C" {
 #endif
 
 /* The library's version (1.0.0: the SONAME's major is 1) and the newest format version it reads and
- * writes (spec/format.md: 1.12). */
+ * writes (spec/format.md: 1.13). */
 #define ELLICAST_VERSION_MAJOR 1
 #define ELLICAST_VERSION_MINOR 0
 #define ELLICAST_VERSION_PATCH 0

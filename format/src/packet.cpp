@@ -38,6 +38,7 @@ std::string packet_type_name(uint8_t type) {
     case 0x17: return "CAMERA";
     case 0x18: return "LIGHT";
     case 0x19: return "EXTRAS";
+    case 0x1A: return "REQUIRED_EXTENSION";
     default: {
         char buf[24];
         std::snprintf(buf, sizeof buf, "UNKNOWN(0x%02X)", type);
@@ -47,7 +48,7 @@ std::string packet_type_name(uint8_t type) {
 }
 
 bool is_known_packet_type(uint8_t type) {
-    return (type >= 0x01 && type <= 0x0D) || (type >= 0x10 && type <= 0x19) || type == 0x20;
+    return (type >= 0x01 && type <= 0x0D) || (type >= 0x10 && type <= 0x1A) || type == 0x20;
 }
 
 const char* error_name(Error e) {

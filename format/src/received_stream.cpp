@@ -91,6 +91,7 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
     case PacketType::Camera: e = take_camera(packet, where); break;
     case PacketType::Light: e = take_light(packet, where); break;
     case PacketType::Extras: e = take_extras(packet, where); break;
+    case PacketType::RequiredExtension: e = take_required_extension(packet, where); break;
     case PacketType::Manifest: {
         // A decoder checks its layout and takes nothing from it: verifying signatures is the
         // job of the filter in front of it (spec 16.3), which needs the sender's key.

@@ -637,6 +637,17 @@ Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_
             packets.extras.push_back(emit(PacketType::Extras, encode_extras_payload(f), kExtrasMinor));
         }
     }
+    // REQUIRED_EXTENSION (format 1.13, spec 29): one packet a name, in the list's order.
+    const auto& required = scene.required_extensions;
+    if (required.size() > kMaxRequiredExtensions) return Error::MalformedPayload;
+    for (size_t i = 0; i < required.size(); ++i) {
+        if (!is_extension_name(required[i]) || std::find(required.begin(), required.begin() + std::ptrdiff_t(i), required[i]) !=
+                                                   required.begin() + std::ptrdiff_t(i))
+            return Error::MalformedPayload;
+        const RequiredExtension e{static_cast<uint8_t>(required.size()), static_cast<uint8_t>(i), required[i]};
+        packets.required_extensions.push_back(
+            emit(PacketType::RequiredExtension, encode_required_extension_payload(e), kRequiredExtensionMinor));
+    }
     out = std::move(packets);
     return Error::Ok;
 }

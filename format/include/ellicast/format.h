@@ -1,4 +1,4 @@
-// ellicast format 1.12 (this library reads format 1.0 to 1.12): packets, their payloads, quantization,
+// ellicast format 1.13 (this library reads format 1.0 to 1.13): packets, their payloads, quantization,
 // the receiver's state, container files. This header includes every header of the format library;
 // each of them can also be included alone.
 //
@@ -50,6 +50,7 @@
 #include "ellicast/format/morph.h"
 #include "ellicast/format/camera_light.h"
 #include "ellicast/format/extras.h"
+#include "ellicast/format/required_extensions.h"
 #include "ellicast/format/scene.h"
 #include "ellicast/format/manifest.h"
 #include "ellicast/format/repair.h"

@@ -294,6 +294,11 @@ public:
     std::optional<uint16_t> extras_count() const { return extras_count_; }
     const std::map<ExtrasKey, ReceivedExtras>& extras() const { return extras_; }
 
+    // Required extensions (format 1.13, spec 29): the names held, by name_index, and the name count of
+    // the REQUIRED_EXTENSION packets accepted.
+    std::optional<uint8_t> required_extension_count() const { return required_extension_count_; }
+    const std::map<uint8_t, std::string>& required_extensions() const { return required_extensions_; }
+
 private:
     Error take_animation(const PacketView& packet, uint64_t where);
     Error take_morph_animation(const PacketView& packet, uint64_t where);
@@ -305,6 +310,7 @@ private:
     Error take_camera(const PacketView& packet, uint64_t where);
     Error take_light(const PacketView& packet, uint64_t where);
     Error take_extras(const PacketView& packet, uint64_t where);
+    Error take_required_extension(const PacketView& packet, uint64_t where);
     Error take_joint_weights(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_scene(const PacketView& packet, uint64_t where);
     Error take_material(const PacketView& packet, uint64_t where);
@@ -375,6 +381,8 @@ private:
     std::map<uint16_t, SceneLight> lights_;
     std::optional<uint16_t> extras_count_;
     std::map<ExtrasKey, ReceivedExtras> extras_;
+    std::optional<uint8_t> required_extension_count_;
+    std::map<uint8_t, std::string> required_extensions_;
 };
 
 // The objects a receiver waits for joint weights of (spec 21.3): those of the meshes of the node

@@ -141,6 +141,9 @@ struct SceneDescription {
     // tables (kind Animation: an index into `animations`, which packetize_scene sends as the ANIMATION
     // or MORPH_ANIMATION table's, spec 28.1; kind MorphAnimation is not used here).
     std::vector<SceneExtras> extras;
+    // Format 1.13 (spec 29): the names of the extensions the source asset required, in its order (at
+    // most 255, each a name of spec 29.1, each once).
+    std::vector<std::string> required_extensions;
 };
 
 std::vector<uint8_t> encode_scene_payload(const SceneBatch& batch);
@@ -163,6 +166,7 @@ struct ScenePackets {
     std::vector<std::vector<uint8_t>> skins;      // SKIN packets, skin by skin (format 1.5)
     std::vector<std::vector<uint8_t>> cameras_lights;  // CAMERA, then LIGHT packets (format 1.10)
     std::vector<std::vector<uint8_t>> extras;     // EXTRAS packets, text by text in target order (format 1.12)
+    std::vector<std::vector<uint8_t>> required_extensions;  // REQUIRED_EXTENSION packets, in name order (format 1.13)
 };
 
 // Cuts a scene description into packets of at most `packet_size` bytes, numbered from
@@ -173,7 +177,8 @@ struct ScenePackets {
 // increasing times, a cubic spline of one key, or a node outside the node table; for cameras and
 // lights (format 1.10) when a table has more than 65534 entries, a record breaks spec 26.2 / 26.3, or a
 // node names one outside its table; for extras (format 1.12) when a target is named twice, lies outside
-// its table, or its text is empty, longer than 65536 bytes or not acceptable JSON (spec 28.1).
+// its table, or its text is empty, longer than 65536 bytes or not acceptable JSON (spec 28.1); for required extensions
+// (format 1.13) when there are more than 255, or one is not a name of spec 29.1 or is listed twice.
 Error packetize_scene(const SceneDescription& scene, size_t packet_size, uint32_t stream_id, uint32_t first_sequence,
                       ScenePackets& out);
 
