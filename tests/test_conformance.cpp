@@ -460,8 +460,8 @@ TEST_CASE("a texture with fragments missing is not complete and the material usi
 }
 
 TEST_CASE("a format 1.0 decoder skips the 1.1 scene packets of every scene vector and decodes the same objects") {
-    // (and the 1.3, 1.4, 1.5, 1.6, 1.10 and 1.12 ones: MATERIAL_EXTENSIONS, ANIMATION, SKIN, JOINT_WEIGHTS,
-    // MORPH_ANIMATION, MORPH_DELTAS, CAMERA, LIGHT, EXTRAS)
+    // (and the 1.3, 1.4, 1.5, 1.6, 1.10, 1.12 and 1.13 ones: MATERIAL_EXTENSIONS, ANIMATION, SKIN, JOINT_WEIGHTS,
+    // MORPH_ANIMATION, MORPH_DELTAS, CAMERA, LIGHT, EXTRAS, REQUIRED_EXTENSION)
     size_t checked = 0;
     for (const std::string set : {"valid", "unusual", "faulty"})
         for (const auto& file : vectors_in(set)) {
@@ -473,7 +473,8 @@ TEST_CASE("a format 1.0 decoder skips the 1.1 scene packets of every scene vecto
                 if (p["type"] == "SCENE" || p["type"] == "MATERIAL" || p["type"] == "TEXTURE_FRAGMENT" ||
                     p["type"] == "MATERIAL_EXTENSIONS" || p["type"] == "ANIMATION" || p["type"] == "SKIN" ||
                     p["type"] == "JOINT_WEIGHTS" || p["type"] == "MORPH_ANIMATION" || p["type"] == "MORPH_DELTAS" ||
-                    p["type"] == "CAMERA" || p["type"] == "LIGHT" || p["type"] == "EXTRAS")
+                    p["type"] == "CAMERA" || p["type"] == "LIGHT" || p["type"] == "EXTRAS" ||
+                    p["type"] == "REQUIRED_EXTENSION")
                     ++scene_packets;
             CHECK(j["as_1_0"]["same_objects"] == true);
             CHECK(j["as_1_0"]["counters"]["skipped"] == scene_packets);

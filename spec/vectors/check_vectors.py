@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent format 1.12 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.13 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
@@ -38,7 +38,8 @@ on its nodes, spec 26.4; for format 1.11 the EXACT_MESH and EXACT_MESH_REPAIR pa
 checks (those of CONNECTIVITY and CONNECTIVITY_REPAIR with carried_count, and one kind of exact layer per object),
 and the coded mesh decoded with the same range decoder, the carried vertices with their attributes, spec 27.2; for
 format 1.12 the EXTRAS packets of spec section 28: their checks, the description and text count comparisons, the
-fragments kept by byte, and the CRC-32C and JSON checks of a whole text, spec 28.1) so
+fragments kept by byte, and the CRC-32C and JSON checks of a whole text, spec 28.1; for format 1.13 the
+REQUIRED_EXTENSION packets of spec section 29: their checks, the name count and name comparisons, spec 29.1) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -80,9 +81,12 @@ KNOWN_110 = {0x17: "CAMERA", 0x18: "LIGHT"}
 KNOWN_111 = {0x0C: "EXACT_MESH", 0x0D: "EXACT_MESH_REPAIR"}
 # Format 1.12 (spec sections 4 and 28): skippable, stream-level.
 KNOWN_112 = {0x19: "EXTRAS"}
+# Format 1.13 (spec sections 4 and 29): skippable, stream-level.
+KNOWN_113 = {0x1A: "REQUIRED_EXTENSION"}
+NAME_BYTES = set(b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_")
 EXTRAS_KINDS = ("asset", "scene", "node", "mesh", "material", "texture", "animation", "skin", "camera", "light",
                 "morph animation")
-SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14, 0x15, 0x16} | set(KNOWN_110) | set(KNOWN_112)  # JOINT_WEIGHTS and MORPH_DELTAS belong to an object
+SCENE_TYPES = set(KNOWN_11) | {0x13, 0x14, 0x15, 0x16} | set(KNOWN_110) | set(KNOWN_112) | set(KNOWN_113)  # JOINT_WEIGHTS and MORPH_DELTAS belong to an object
 # The real numbers pi and pi / 2, exactly enough: every f32 is a double, and none lies between pi and
 # the double nearest it (spec 26.2, 26.3 compare the f32 values with the real numbers).
 PI = Fraction(314159265358979323846264338327950288, 10 ** 35)
@@ -1438,6 +1442,7 @@ class Receiver:
         self.camera_count, self.cameras = None, {}  # format 1.10: table size of the CAMERA packets, index -> fields
         self.light_count, self.lights = None, {}  # likewise for LIGHT
         self.extras_count, self.texts = None, {}  # format 1.12: text_count of the EXTRAS packets, (kind, index) -> text
+        self.name_count, self.names = None, {}  # format 1.13: name_count of the REQUIRED_EXTENSION packets, index -> name
         self.stream_id = None
         self.info = None
         self.object_count = 0
@@ -1458,7 +1463,7 @@ class Receiver:
         t = h["type"]
         if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12 and t not in KNOWN_13 and t not in KNOWN_14
                                    and t not in KNOWN_15 and t not in KNOWN_16 and t not in KNOWN_17 and t not in KNOWN_18
-                                   and t not in KNOWN_110 and t not in KNOWN_111 and t not in KNOWN_112)
+                                   and t not in KNOWN_110 and t not in KNOWN_111 and t not in KNOWN_112 and t not in KNOWN_113)
                                   or not self.know_11):
             if not h["flags"] & 1:
                 return self.reject(offset, "unknown critical type")
@@ -1486,6 +1491,8 @@ class Receiver:
             result = self.camera_light(h, offset)
         elif t == 0x19:
             result = self.extras(h, offset)
+        elif t == 0x1A:
+            result = self.required_extension(h, offset)
         elif t == 0x07 and decode_joint_weights(h["payload"]) is None:
             # Spec 21.2: checked at step 11, before the packet can be held.
             return self.reject(offset, "malformed payload")
@@ -1997,6 +2004,22 @@ class Receiver:
             t["complete"], t["text"], t["received"] = True, whole.decode("utf-8"), size
         return self.news(True)
 
+    def required_extension(self, h, offset):
+        """Spec 29.1: rules 1..3, then comparisons 1..3."""
+        p = h["payload"]
+        if not 5 <= len(p) <= 68 or p[0] == 0 or p[1] >= p[0] or any(b not in NAME_BYTES for b in p[4:]):
+            return self.reject(offset, "malformed payload")
+        count, index, name = p[0], p[1], bytes(p[4:]).decode("ascii")
+        if self.name_count is not None and count != self.name_count:
+            return self.reject(offset, "stream mismatch")  # comparison 1
+        if index in self.names:
+            return self.news(False) if self.names[index] == name else self.reject(offset, "stream mismatch")  # 2
+        if name in self.names.values():
+            return self.reject(offset, "stream mismatch")  # comparison 3
+        self.name_count = count
+        self.names[index] = name
+        return self.news(True)
+
     def extras_json(self):
         return [dict(kind=EXTRAS_KINDS[k], index=i, text_size=t["size"], text_crc=t["crc"],
                      received_bytes=t["received"], complete=t["complete"], text=t["text"])
@@ -2377,7 +2400,7 @@ class Receiver:
                     out.append(dict(index=m, tracks=[], morph_only=True, morph_tracks=morphs))
         return out
 
-    def scene_json(self, viewed=False, with_extras=False):
+    def scene_json(self, viewed=False, with_extras=False, with_required=False):
         nodes = [self.nodes[k] for k in sorted(self.nodes)]
         meshes = [self.meshes[k] for k in sorted(self.meshes)]
         textures = []
@@ -2412,7 +2435,10 @@ class Receiver:
                     skin_count=self.skin_count, skins=self.skins_json(), morph_animation_count=self.morph_count,
                     morph_animations=self.animations_json(morph=True), shown=self.shown(viewed),
                     **(self.cameras_lights_json() if viewed else {}),
-                    **(dict(extras_count=self.extras_count, extras=self.extras_json()) if with_extras else {}))
+                    **(dict(extras_count=self.extras_count, extras=self.extras_json()) if with_extras else {}),
+                    **(dict(required_extension_count=self.name_count,
+                            required_extensions=[dict(index=k, name=self.names[k]) for k in sorted(self.names)])
+                       if with_required else {}))
 
     def shown(self, viewed=False):
         """Spec 15.4 and 18.4: what a receiver shows (and spec 26.4: the cameras and lights on shown nodes)."""
@@ -2800,7 +2826,7 @@ def decode(buf):
         name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or KNOWN_12.get(h["type"]) or \
             KNOWN_13.get(h["type"]) or KNOWN_14.get(h["type"]) or KNOWN_15.get(h["type"]) or KNOWN_16.get(h["type"]) or \
             KNOWN_17.get(h["type"]) or KNOWN_18.get(h["type"]) or KNOWN_110.get(h["type"]) or KNOWN_111.get(h["type"]) or \
-            KNOWN_112.get(h["type"]) or \
+            KNOWN_112.get(h["type"]) or KNOWN_113.get(h["type"]) or \
             "UNKNOWN(0x%02X)" % h["type"]
         plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
                           flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
@@ -2816,7 +2842,9 @@ def decode(buf):
     viewed = any(h["type"] in KNOWN_110 or (h["type"] == 0x10 and h["minor"] >= 10) for _, _, h in packets)
     # Format 1.12 (README): the extras keys are there when the file holds an EXTRAS packet.
     with_extras = any(h["type"] in KNOWN_112 for _, _, h in packets)
-    out["scene"] = r.scene_json(viewed, with_extras) if any_scene else None
+    # Format 1.13 (README): the required extensions' keys are there when the file holds a REQUIRED_EXTENSION packet.
+    with_required = any(h["type"] in KNOWN_113 for _, _, h in packets)
+    out["scene"] = r.scene_json(viewed, with_extras, with_required) if any_scene else None
     if any_scene:
         # The same objects but for their format 1.5 influence records and format 1.6 displacement records,
         # which a 1.0 decoder skips (README).

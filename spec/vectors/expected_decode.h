@@ -375,7 +375,8 @@ inline bool is_scene_type(uint8_t type) {
            type == uint8_t(PacketType::TextureFragment) || type == uint8_t(PacketType::MaterialExtensions) ||
            type == uint8_t(PacketType::Animation) || type == uint8_t(PacketType::Skin) ||
            type == uint8_t(PacketType::MorphAnimation) || type == uint8_t(PacketType::Camera) ||
-           type == uint8_t(PacketType::Light) || type == uint8_t(PacketType::Extras);
+           type == uint8_t(PacketType::Light) || type == uint8_t(PacketType::Extras) ||
+           type == uint8_t(PacketType::RequiredExtension);
 }
 
 inline nlohmann::json none_or(uint16_t v) { return v == kNone ? nlohmann::json(nullptr) : nlohmann::json(v); }
@@ -740,8 +741,10 @@ inline nlohmann::json extras_json(const ReceivedStream& s) {
     return texts;
 }
 
-// `with_extras`: the file holds an EXTRAS packet (format 1.12): the extras keys are there.
-inline nlohmann::json scene_json(const ReceivedStream& s, bool viewed = false, bool with_extras = false) {
+// `with_extras`: the file holds an EXTRAS packet (format 1.12): the extras keys are there;
+// `with_required`: a REQUIRED_EXTENSION packet (format 1.13): the required extensions' keys are there.
+inline nlohmann::json scene_json(const ReceivedStream& s, bool viewed = false, bool with_extras = false,
+                                 bool with_required = false) {
     using nlohmann::json;
     json nodes = json::array(), meshes = json::array(), materials = json::array(), textures = json::array(),
          extensions = json::array();
@@ -804,6 +807,14 @@ inline nlohmann::json scene_json(const ReceivedStream& s, bool viewed = false, b
         // Format 1.12: the text_count of the EXTRAS packets accepted (null when none was), every text held.
         out["extras_count"] = s.extras_count() ? json(*s.extras_count()) : json(nullptr);
         out["extras"] = extras_json(s);
+    }
+    if (with_required) {
+        // Format 1.13: the name_count of the REQUIRED_EXTENSION packets accepted (null when none was),
+        // every name held, in index order.
+        json names = json::array();
+        for (const auto& [index, name] : s.required_extensions()) names.push_back({{"index", index}, {"name", name}});
+        out["required_extension_count"] = s.required_extension_count() ? json(*s.required_extension_count()) : json(nullptr);
+        out["required_extensions"] = names;
     }
     return out;
 }
@@ -903,6 +914,7 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     bool any_scene_packet = false;
     bool viewed = false;  // format 1.10: a CAMERA or LIGHT packet, or a SCENE packet saying 1.10 or later
     bool with_extras = false;  // format 1.12: an EXTRAS packet
+    bool with_required = false;  // format 1.13: a REQUIRED_EXTENSION packet
     json packets = json::array();
     for (const ContainerPacket& p : contents.packets) {
         const ReceiveCounters before = stream.counters();
@@ -922,6 +934,7 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
             (h.type == uint8_t(PacketType::Scene) && h.version_minor >= kCameraLightMinor))
             viewed = true;
         if (h.type == uint8_t(PacketType::Extras)) with_extras = true;
+        if (h.type == uint8_t(PacketType::RequiredExtension)) with_required = true;
         if (h.type > uint8_t(PacketType::Points)) old.header.type = 0xFF;  // a type a 1.0 decoder does not know
         as_1_0.add_parsed(old, p.offset);
         char version[8];
@@ -956,7 +969,7 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     out["objects"] = objects_json(stream);
     // Format 1.1: present when the file holds any SCENE, MATERIAL, TEXTURE_FRAGMENT, (format 1.3)
     // MATERIAL_EXTENSIONS, (format 1.4) ANIMATION, (format 1.5) SKIN or (format 1.6) MORPH_ANIMATION packet.
-    out["scene"] = any_scene_packet ? scene_json(stream, viewed, with_extras) : json(nullptr);
+    out["scene"] = any_scene_packet ? scene_json(stream, viewed, with_extras, with_required) : json(nullptr);
     if (any_scene_packet) {
         json info_1_0 = as_1_0.info() ? stream_info_json(*as_1_0.info(), as_1_0.objects().size()) : json(nullptr);
         // The same objects but for their format 1.5 influence records and format 1.6 displacement

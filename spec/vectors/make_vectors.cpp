@@ -7937,6 +7937,135 @@ void extras_vectors(Writer& w) {
     }
 }
 
+// ---- Format 1.13: required extensions (spec 29) ----
+
+// A REQUIRED_EXTENSION packet (format 1.13, stream-level, skippable).
+Packet required_packet(uint8_t count, uint8_t index, const std::string& name, uint32_t sequence) {
+    return viewed_packet(PacketType::RequiredExtension, encode_required_extension_payload({count, index, name}), sequence,
+                         kRequiredExtensionMinor);
+}
+
+void required_extension_vectors(Writer& w) {
+    SceneDescription scene = viewed_room();
+    scene.required_extensions = {"KHR_materials_unlit", "KHR_texture_transform"};
+    const ViewedStream base = make_viewed_stream(scene);
+    Packets stream = base.all();
+    const size_t names_at = stream.size();
+    const uint32_t sequence = uint32_t(names_at);
+    // The reference packetizer's packets are the ones spec 29.1 makes of these names.
+    const Packets expected = {required_packet(2, 0, "KHR_materials_unlit", sequence),
+                              required_packet(2, 1, "KHR_texture_transform", sequence + 1)};
+    if (base.scene.required_extensions != expected) {
+        std::cerr << "make_vectors: the room's required extensions are not the 2 REQUIRED_EXTENSION packets expected\n";
+        std::exit(1);
+    }
+    stream.insert(stream.end(), expected.begin(), expected.end());
+    const Packets room(stream.begin(), stream.begin() + long(names_at));
+    const std::string what =
+        "the room of valid/required_extensions (the viewed room of valid/camera_light, then 2 REQUIRED_EXTENSION "
+        "packets, name_count 2: KHR_materials_unlit at index 0, KHR_texture_transform at index 1)";
+    w.write("valid", "required_extensions",
+            "format 1.13 (spec 29): the viewed room of valid/camera_light with 2 REQUIRED_EXTENSION packets after its "
+            "CAMERA and LIGHT packets (name_count 2): KHR_materials_unlit (index 0) and KHR_texture_transform (index "
+            "1); every name held",
+            stream);
+
+    // ---- unusual ----
+    {
+        Packets sent;
+        for (size_t k = stream.size(); k-- > names_at;) {
+            Packet p = stream[k];
+            p[kHeaderSize + 2] = 0xAB, p[kHeaderSize + 3] = 0xCD;  // reserved
+            reseal(p);
+            sent.push_back(p);
+            sent.push_back(p);  // the same packet again: a duplicate
+        }
+        sent.insert(sent.end(), room.begin(), room.end());
+        w.write("unusual", "required_extensions_first",
+                "the packets of valid/required_extensions with its 2 REQUIRED_EXTENSION packets first, index 1 "
+                "before index 0, each with its reserved bytes 2..3 set to AB CD (ignored) and sent twice in a row "
+                "(every second copy a duplicate, spec 29.1 comparison 2), then the room; decodes as "
+                "valid/required_extensions",
+                sent);
+    }
+    {
+        Packets sent = room;
+        const std::string longest = "EXT_" + std::string(60, 'z');  // 64 bytes, the longest name
+        sent.push_back(required_packet(3, 2, longest, 13));
+        sent.push_back(required_packet(3, 0, "X", 14));  // 1 byte, the shortest
+        sent.push_back(required_packet(3, 1, "x", 15));  // another name: case counts
+        w.write("unusual", "required_extensions_limits",
+                "the room, then 3 REQUIRED_EXTENSION packets of name_count 3: index 2 a 64-byte name (EXT_ and 60 "
+                "times z, a 68-byte payload, the longest spec 29.1 allows), index 0 the 1-byte name X (a 5-byte "
+                "payload, the shortest), index 1 the name x (another name than X: names compare byte for byte); "
+                "every name held",
+                sent);
+    }
+
+    // ---- faulty ----
+    const size_t E = kHeaderSize;
+    struct Case {
+        const char* name;
+        size_t packet;  // 0 KHR_materials_unlit, 1 KHR_texture_transform
+        const char* what;
+        std::function<void(Packet&)> edit;
+        const char* reason;
+    };
+    auto renamed = [](const std::string& name) {
+        return [name](Packet& p) {
+            std::vector<uint8_t> payload = payload_of(p);
+            payload.resize(4);
+            payload.insert(payload.end(), name.begin(), name.end());
+            p = with_payload(p, payload);
+        };
+    };
+    const std::vector<Case> cases = {
+        {"required_extension_short", 0, "index 0's packet again with its payload cut to its 4 bytes of fixed fields (no name)",
+         [&](Packet& p) {
+             const std::vector<uint8_t> payload = payload_of(p);
+             p = with_payload(p, std::vector<uint8_t>(payload.begin(), payload.begin() + 4));
+         },
+         "malformed payload (spec 29.1 rule 1)"},
+        {"required_extension_too_long", 1, "index 1's packet again with a 65-byte name (EXT_ and 61 times z; a 69-byte payload)",
+         renamed("EXT_" + std::string(61, 'z')), "malformed payload (spec 29.1 rule 1)"},
+        {"required_extension_count_zero", 0, "index 0's packet again with name_count 0", [&](Packet& p) { p[E] = 0; },
+         "malformed payload (spec 29.1 rule 2)"},
+        {"required_extension_index_past", 1, "index 1's packet again with name_index 2, not below name_count 2",
+         [&](Packet& p) { p[E + 1] = 2; }, "malformed payload (spec 29.1 rule 2)"},
+        {"required_extension_bad_byte", 0, "index 0's packet again with the name KHR-materials_unlit (a hyphen)",
+         renamed("KHR-materials_unlit"), "malformed payload (spec 29.1 rule 3)"},
+        {"required_extension_count_differs", 1, "index 1's packet again with name_count 3", [&](Packet& p) { p[E] = 3; },
+         "stream mismatch (spec 29.1 comparison 1)"},
+        {"required_extension_name_differs", 1, "index 1's packet again with the name KHR_texture_basisu",
+         renamed("KHR_texture_basisu"), "stream mismatch (spec 29.1 comparison 2)"},
+    };
+    for (const Case& c : cases)
+        w.write("faulty", c.name,
+                what + ", then " + c.what + " (sequence 900): rejected as " + c.reason +
+                    "; the rest decodes as valid/required_extensions",
+                with_edited_copy(stream, names_at + c.packet, c.edit));
+    {
+        Packets sent = room;
+        sent.push_back(stream[names_at]);
+        sent.push_back(required_packet(2, 1, "KHR_materials_unlit", 900));
+        sent.push_back(stream[names_at + 1]);
+        w.write("faulty", "required_extension_listed_twice",
+                "the room, index 0's packet (KHR_materials_unlit), then a packet of index 1 with the name "
+                "KHR_materials_unlit again (sequence 900): rejected as stream mismatch (spec 29.1 comparison 3: the "
+                "name is held at index 0), then index 1's own packet (KHR_texture_transform), accepted; decodes as "
+                "valid/required_extensions but for the rejection",
+                sent);
+    }
+    {
+        Packets sent = room;
+        sent.push_back(stream[names_at]);
+        w.write("faulty", "required_extension_missing",
+                what + ", without index 1's packet: no rejection; 1 of 2 names held, so the stream is not complete "
+                       "and the recording does not conform (spec 29.2)",
+                sent);
+    }
+}
+
 // Format 1.11: vertices carried by the exact layer (EXACT_MESH, EXACT_MESH_REPAIR, spec 27). The
 // exact-layer stream's sphere and panel (section 19's vectors) at packet size 256, each sending only
 // part of its vertices as points: the sphere (normals) its first 33 points in the shuffled order, the
@@ -8394,6 +8523,7 @@ int main(int argc, char** argv) {
     camera_light_vectors(w);
     exact_mesh_vectors(w);
     extras_vectors(w);
+    required_extension_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
