@@ -111,6 +111,7 @@ public:
             add_extras(ExtrasTarget::Scene, 0, model_.scenes[size_t(scene)].extras_json_string, path_ + ": scene " + std::to_string(scene));
         }
         warn_extras_not_carried();
+        read_required_extensions();
     }
 
 private:
@@ -130,6 +131,29 @@ private:
             return;
         }
         asset_.scene.extras.push_back({kind, uint16_t(index), text});
+    }
+
+    // Format 1.13 (spec 29.3): the source's required extensions but those of how it stored geometry
+    // (the receiver chooses its own storage and requires what it uses).
+    void read_required_extensions() {
+        static const std::set<std::string> storage = {"KHR_draco_mesh_compression", "KHR_mesh_quantization",
+                                                      "EXT_meshopt_compression"};
+        std::vector<std::string>& out = asset_.scene.required_extensions;
+        for (const std::string& name : model_.extensionsRequired) {
+            if (storage.count(name) || std::find(out.begin(), out.end(), name) != out.end()) continue;
+            if (!is_extension_name(name)) {
+                warnings_.push_back(path_ + ": required extension \"" + name +
+                                    "\" is not an extension name ellicast can send (letters, digits and underscores, "
+                                    "at most 64); the output will not require it");
+                continue;
+            }
+            out.push_back(name);
+        }
+        if (out.size() > kMaxRequiredExtensions) {
+            warnings_.push_back(path_ + ": " + std::to_string(out.size()) + " required extensions, more than the " +
+                                std::to_string(kMaxRequiredExtensions) + " a stream can name; the output will require none");
+            out.clear();
+        }
     }
 
     // What has extras but no table in the stream (spec 28.4): said once, counting them.
@@ -933,13 +957,23 @@ private:
 
     // Whole-file things ellicast does not carry (cameras and lights travel from format 1.10 on).
     void warn_not_carried() {
-        std::vector<std::string> unknown;
-        for (const auto& ext : model_.extensionsUsed)  // material extensions: carried, or named per material
+        std::vector<std::string> unknown, required;
+        auto listed = [](const std::vector<std::string>& list, const std::string& ext) {
+            return std::find(list.begin(), list.end(), ext) != list.end();
+        };
+        std::vector<std::string> names = model_.extensionsUsed;
+        for (const auto& ext : model_.extensionsRequired)
+            if (!listed(names, ext)) names.push_back(ext);
+        for (const auto& ext : names)  // material extensions: carried, or named per material
             if (!kGeometryExtensions.count(ext) && ext != "KHR_texture_transform" && ext != "KHR_lights_punctual" &&
-                (ext.rfind("KHR_materials_", 0) != 0 || ext == "KHR_materials_variants"))
+                (ext.rfind("KHR_materials_", 0) != 0 || ext == "KHR_materials_variants")) {
                 unknown.push_back(ext);
+                if (listed(model_.extensionsRequired, ext)) required.push_back(ext);
+            }
         if (!unknown.empty())
-            warnings_.push_back(path_ + ": extension(s) " + join(unknown) + " not sent");
+            warnings_.push_back(path_ + ": extension(s) " + join(unknown) + " not sent" +
+                                (required.empty() ? "" : " (the input requires " + join(required) +
+                                                             ": the output shows the asset without it)"));
     }
 
 public:
@@ -1024,12 +1058,10 @@ Asset load_asset(const std::string& path, const InputOptions& options) {
     if (std::filesystem::file_size(path, ec) == 0) throw InputError(path + ": the file is empty");
     tinygltf::Model model;
     CapturedImages images;
-    // Material extensions and texture transforms travel (MATERIAL_EXTENSIONS, spec 18): a required one
-    // is not "ignored" here (KHR_materials_variants is not carried: named in warn_not_carried).
-    load_model(path, model, capture_image, &images, asset.warnings, options, [](const std::string& ext) {
-        return (ext.rfind("KHR_materials_", 0) == 0 && ext != "KHR_materials_variants") || ext == "KHR_texture_transform" ||
-               ext == "KHR_lights_punctual";
-    });
+    // Material extensions and texture transforms travel (MATERIAL_EXTENSIONS, spec 18), lights too: a
+    // required one is not "ignored" here; warn_not_carried names, once, every extension that is not sent
+    // (KHR_materials_variants, EXT_texture_webp, ...), required or not.
+    load_model(path, model, capture_image, &images, asset.warnings, options, [](const std::string&) { return true; });
     GltfAssetReader reader(path, model, images, asset);
     reader.read();
     reader.warn_attributes();

@@ -102,6 +102,7 @@ public:
             model_.extensionsRequired.push_back(kQuantizationExtension);
         }
         for (const std::string& name : used_extensions_) model_.extensionsUsed.push_back(name);
+        require_source_extensions();
         // tinygltf writes a node with no property at all (an unnamed leaf with the default transform,
         // as Khronos SimpleSkin has) as JSON null, which is invalid glTF: give it its identity
         // translation explicitly, which means the same.
@@ -651,6 +652,32 @@ private:
 
     // ---- cameras and lights (format 1.10, spec 26.4): every one of the asset, in order. Records that
     // break spec 26.2 / 26.3 cannot come from a stream; an Asset made otherwise has them left out.
+    // Format 1.13 (spec 29.2): the source's required extensions that this output uses are required
+    // again, after those its own storage requires; the others are named in one warning.
+    void require_source_extensions() {
+        std::vector<std::string> lacking;
+        for (const std::string& name : asset_.scene.required_extensions) {
+            auto& required = model_.extensionsRequired;
+            if (std::find(required.begin(), required.end(), name) != required.end()) continue;
+            const auto& used = model_.extensionsUsed;
+            // tinygltf lists KHR_lights_punctual as used itself when it writes lights.
+            const bool uses = std::find(used.begin(), used.end(), name) != used.end() ||
+                              (name == "KHR_lights_punctual" && !model_.lights.empty());
+            if (uses) {
+                if (name == "KHR_lights_punctual" && std::find(used.begin(), used.end(), name) == used.end())
+                    model_.extensionsUsed.push_back(name);
+                required.push_back(name);
+            } else {
+                lacking.push_back(name);
+            }
+        }
+        if (lacking.empty()) return;
+        std::string names;
+        for (const std::string& n : lacking) names += (names.empty() ? "" : ", ") + n;
+        warnings_.push_back(path_ + ": the source required " + names + ", which this output does not use (its content did not travel or has not arrived); the output "
+                            "does not require " + (lacking.size() == 1 ? "it" : "them"));
+    }
+
     void write_cameras_lights() {
         for (const SceneCamera& c : asset_.scene.cameras) {
             tinygltf::Camera g;

@@ -71,6 +71,17 @@ void warn_extras_waiting(const ReceivedStream& stream, std::vector<std::string>&
                        (first.empty() ? "" : " (the first: " + first + ")"));
 }
 
+// Format 1.13 (spec 29.2): the source's required extensions held, in their order; the writer requires
+// those its output uses. Names not held yet are said in one warning.
+void carry_required_extensions(const ReceivedStream& stream, Asset& asset) {
+    for (const auto& [index, name] : stream.required_extensions()) asset.scene.required_extensions.push_back(name);
+    const auto count = stream.required_extension_count();
+    if (count && stream.required_extensions().size() < *count)
+        asset.warnings.push_back(std::to_string(*count - stream.required_extensions().size()) + " of the source's " +
+                                 std::to_string(*count) +
+                                 " required extensions have not arrived; the output does not require them");
+}
+
 // A name as it can be shown and written (glTF is UTF-8 JSON): ill-formed UTF-8 replaced by U+FFFD
 // (spec 15.1), with a warning.
 std::string shown_name(const std::string& name, const std::string& what, std::vector<std::string>& warnings) {
@@ -86,6 +97,7 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
     Asset asset;
     asset.objects = std::move(objects);
     auto& warnings = asset.warnings;
+    carry_required_extensions(stream, asset);
     // Cameras and lights (format 1.10, spec 26.4): every one that arrived, renumbered in index order,
     // whether or not a node names it (also with no SCENE packet at all).
     std::map<uint16_t, uint16_t> camera_map, light_map;

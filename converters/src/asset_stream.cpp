@@ -65,6 +65,7 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
     take(scene.skins, out.scene_packets, out.scene_bytes);
     take(scene.cameras_lights, out.scene_packets, out.scene_bytes);  // format 1.10, with the base
     take(scene.extras, out.scene_packets, out.scene_bytes);          // format 1.12, with the base
+    take(scene.required_extensions, out.scene_packets, out.scene_bytes);  // format 1.13, with the base
     take(stream.points, out.point_packets, out.point_bytes);
     take(stream.normals, out.normal_packets, out.normal_bytes);
     // Format 1.5: the skin weights of every point of each weighted object (spec 21.2), after the points.

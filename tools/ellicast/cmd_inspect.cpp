@@ -12,6 +12,7 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <utility>
 
 namespace ellicast::cli {
 namespace {
@@ -152,6 +153,12 @@ nlohmann::json to_json(const StreamReport& r, bool with_packets) {
             j["scene"]["extras"] = whole;
             j["scene"]["extras_count"] = *count;
         }
+        if (const auto count = r.stream.required_extension_count()) {  // format 1.13
+            json names = json::array();
+            for (const auto& [index, name] : r.stream.required_extensions()) names.push_back(name);
+            j["scene"]["required_extensions"] = names;
+            j["scene"]["required_extension_count"] = *count;
+        }
     }
     json damaged = json::array();
     for (const auto& d : r.damaged)
@@ -291,6 +298,11 @@ void print_text(const StreamReport& r, bool with_packets) {
             size_t whole = 0;
             for (const auto& [key, e] : r.stream.extras()) whole += e.complete;
             out << ", extras (format 1.12) " << whole << " complete of " << *count;
+        }
+        if (const auto count = r.stream.required_extension_count()) {
+            out << ", required extensions (format 1.13) " << r.stream.required_extensions().size() << "/" << unsigned(*count);
+            const char* sep = ": ";
+            for (const auto& [index, name] : r.stream.required_extensions()) out << std::exchange(sep, ", ") << name;
         }
         out << "\n";
     }

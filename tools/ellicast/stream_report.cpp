@@ -416,6 +416,12 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
             }
         }
     }
+    // Spec 29.2: a name held at every index below the name count.
+    if (const auto count = r.stream.required_extension_count()) {
+        std::string missing = missing_ranges(r.stream.required_extensions(), *count);
+        if (!missing.empty())
+            r.violations.push_back({std::nullopt, "required extension names missing: " + missing, true});
+    }
     // Spec 26.4: cameras and lights complete, their names valid UTF-8, every node naming one inside its table.
     {
         const auto check = [&](const auto& table, std::optional<uint16_t> count, const char* what, auto field) {
