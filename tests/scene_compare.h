@@ -77,7 +77,7 @@ inline std::vector<uint8_t> referenced_image(const Asset& a, const TextureRef& r
 // Checks that `out` has the scene of `in`: node count, names, parents, which nodes show a mesh and
 // how many primitives it has, transforms (to float precision), materials with their factors, modes
 // and texture images byte for byte, (format 1.10) the same cameras and lights on the same nodes, and
-// (format 1.12) the same extras on the same elements.
+// (format 1.12) the same extras on the same elements, (format 1.13) the same required extensions.
 inline void check_same_scene(const Asset& in, const Asset& out) {
     REQUIRE(out.scene.nodes.size() == in.scene.nodes.size());
     for (size_t i = 0; i < in.scene.nodes.size(); ++i) {
@@ -141,6 +141,8 @@ inline void check_same_scene(const Asset& in, const Asset& out) {
         return out;
     };
     CHECK(texts(in) == texts(out));
+    // Required extensions (format 1.13): the same names in the same order.
+    CHECK(in.scene.required_extensions == out.scene.required_extensions);
     // Animations (format 1.4): the same tracks over the same nodes, key for key.
     REQUIRE(out.scene.animations.size() == in.scene.animations.size());
     for (size_t i = 0; i < in.scene.animations.size(); ++i) {
