@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <vector>
 #include <string>
@@ -50,6 +51,20 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
+}
+
+// A copy of the .gltf `source` in `dir` with `edit` made to its JSON, named `prefix` + its name, with
+// the files beside it (buffers, images) copied too; its path.
+inline std::filesystem::path edited_gltf(const std::filesystem::path& source, const std::filesystem::path& dir,
+                                         const std::function<void(nlohmann::json&)>& edit, const std::string& prefix = "Edited_") {
+    namespace fs = std::filesystem;
+    for (const auto& entry : fs::directory_iterator(source.parent_path()))
+        if (entry.path() != source) fs::copy_file(entry.path(), dir / entry.path().filename(), fs::copy_options::overwrite_existing);
+    nlohmann::json doc = nlohmann::json::parse(std::ifstream(source));
+    edit(doc);
+    const fs::path out = dir / (prefix + source.filename().string());
+    std::ofstream(out) << doc.dump(1);
+    return out;
 }
 
 // The npm packages the glTF checks use (scripts/setup.sh installs them into .cache/node).

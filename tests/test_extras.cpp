@@ -27,19 +27,18 @@ nlohmann::json tag(const std::string& table, size_t i) {
 // the KHR_lights_punctual lights), written to `dir` with its .bin and images beside it.
 fs::path tagged(const fs::path& source, const fs::path& dir, const std::vector<std::string>& tables,
                 const std::function<void(nlohmann::json&)>& edit = {}) {
-    for (const auto& entry : fs::directory_iterator(source.parent_path()))
-        if (entry.path() != source) fs::copy_file(entry.path(), dir / entry.path().filename(), fs::copy_options::overwrite_existing);
-    nlohmann::json doc = nlohmann::json::parse(std::ifstream(source));
-    doc["asset"]["extras"] = {{"copyright", "ellicast tests"}, {"empty", nlohmann::json::object()}};
-    for (size_t s = 0; s < doc["scenes"].size(); ++s) doc["scenes"][s]["extras"] = tag("scene", s);
-    for (const std::string& table : tables) {
-        nlohmann::json& elements = table == "lights" ? doc["extensions"]["KHR_lights_punctual"]["lights"] : doc[table];
-        for (size_t i = 0; i < elements.size(); ++i) elements[i]["extras"] = tag(table, i);
-    }
-    if (edit) edit(doc);
-    const fs::path out = dir / ("Tagged_" + source.filename().string());
-    std::ofstream(out) << doc.dump(1);
-    return out;
+    return edited_gltf(
+        source, dir,
+        [&](nlohmann::json& doc) {
+            doc["asset"]["extras"] = {{"copyright", "ellicast tests"}, {"empty", nlohmann::json::object()}};
+            for (size_t s = 0; s < doc["scenes"].size(); ++s) doc["scenes"][s]["extras"] = tag("scene", s);
+            for (const std::string& table : tables) {
+                nlohmann::json& elements = table == "lights" ? doc["extensions"]["KHR_lights_punctual"]["lights"] : doc[table];
+                for (size_t i = 0; i < elements.size(); ++i) elements[i]["extras"] = tag(table, i);
+            }
+            if (edit) edit(doc);
+        },
+        "Tagged_");
 }
 
 // The document of a written .gltf.

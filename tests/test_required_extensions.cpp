@@ -19,15 +19,7 @@ namespace {
 // The Khronos sample `sample` (under samples/khronos) with `edit` made to its document, written to a
 // scratch folder with the files beside it.
 fs::path edited_sample(const std::string& sample, const std::string& scratch, const std::function<void(nlohmann::json&)>& edit) {
-    const fs::path source = source_dir() / "samples" / "khronos" / sample;
-    const fs::path dir = scratch_dir(scratch);
-    for (const auto& entry : fs::directory_iterator(source.parent_path()))
-        if (entry.path() != source) fs::copy_file(entry.path(), dir / entry.path().filename(), fs::copy_options::overwrite_existing);
-    nlohmann::json doc = nlohmann::json::parse(std::ifstream(source));
-    edit(doc);
-    const fs::path out = dir / ("Edited_" + source.filename().string());
-    std::ofstream(out) << doc.dump(1);
-    return out;
+    return edited_gltf(source_dir() / "samples" / "khronos" / sample, scratch_dir(scratch), edit);
 }
 
 struct Written {
