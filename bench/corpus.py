@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Real glTF assets through `ellicast convert`: sizes, time, the Khronos validator's verdict, and
-what of the scene comes back (nodes, materials, images, animations, skins, morph targets), as a
-Markdown table.
+what of the scene comes back: feature by feature (kept, lost with a warning that names it, lost
+silently) and counted (nodes, materials, images, animations, skins, morph targets), as a Markdown
+table.
 
 Usage: bench/corpus.py ELLICAST NODE_MODULES OUT_DIR FOLDER... (every .gltf / .glb under the folders;
 the reference's bench/run.sh corpus passes ../shared/samples/gltf and $ELLICAST_CORPUS, e.g. a
@@ -55,6 +56,91 @@ def census(doc):
     }
 
 
+TEXTURE_SLOTS = ('baseColorTexture', 'metallicRoughnessTexture', 'normalTexture', 'occlusionTexture', 'emissiveTexture')
+
+
+def features(doc):
+    """The scene of `doc` feature by feature, as {description: word}: the word a warning about the
+    feature's loss must contain (as tests/test_catalogue_features.cpp has them)."""
+    out = {}
+    nodes = doc.get('nodes', [])
+    scenes = doc.get('scenes', [])
+    if scenes:
+        s = doc.get('scene', 0)
+        stack = list(scenes[s if s < len(scenes) else 0].get('nodes', []))
+    else:
+        stack = list(range(len(nodes)))
+    reached = set()
+    while stack:
+        i = stack.pop()
+        if not isinstance(i, int) or i in reached or not 0 <= i < len(nodes):
+            continue
+        reached.add(i)
+        n = nodes[i]
+        stack += n.get('children', [])
+        name = n.get('name', '')
+        if name:
+            out['node ' + name] = name
+        if 'camera' in n:
+            out['a camera on node ' + name] = 'camera'
+        if 'KHR_lights_punctual' in n.get('extensions', {}):
+            out['a light on node ' + name] = 'light'
+        if 'extras' in n:
+            out['extras of node %s: %s' % (name, json.dumps(n['extras'], sort_keys=True))] = 'extras'
+    for c in doc.get('cameras', []):
+        out['camera %s %s' % (c.get('type', ''), c.get('name', ''))] = 'camera'
+    for l in doc.get('extensions', {}).get('KHR_lights_punctual', {}).get('lights', []):
+        out['light %s %s' % (l.get('type', ''), l.get('name', ''))] = 'light'
+    for m in doc.get('materials', []):
+        name = m.get('name', '?')
+        out['material ' + name] = name
+        for ext in m.get('extensions', {}):
+            out['material %s %s' % (name, ext)] = ext
+        pbr = m.get('pbrMetallicRoughness', {})
+        for slot in TEXTURE_SLOTS:
+            info = pbr.get(slot) or m.get(slot)
+            if info:
+                out['material %s %s on TEXCOORD_%d' % (name, slot, info.get('texCoord', 0))] = slot
+                for ext in info.get('extensions', {}):
+                    out['material %s %s %s' % (name, slot, ext)] = ext
+        if 'extras' in m:
+            out['extras of material ' + name] = 'extras'
+    for m in doc.get('meshes', []):
+        name = m.get('name', '?')
+        for p in m.get('primitives', []):
+            for attribute in p.get('attributes', {}):
+                out['mesh %s %s' % (name, attribute)] = attribute
+            if p.get('targets'):
+                out['mesh %s %d morph targets' % (name, len(p['targets']))] = 'target'
+        if 'extras' in m:
+            out['extras of mesh %s: %s' % (name, json.dumps(m['extras'], sort_keys=True))] = 'extras'
+    for a in doc.get('animations', []):
+        for c in a.get('channels', []):
+            t = c.get('target', {})
+            node = t.get('node', -1)
+            on = nodes[node].get('name', str(node)) if isinstance(node, int) and 0 <= node < len(nodes) else '-'
+            out['animation %s %s of %s' % (a.get('name', ''), t.get('path', ''), on)] = 'animation'
+    for k in doc.get('skins', []):
+        out['skin %s of %d joints' % (k.get('name', ''), len(k.get('joints', [])))] = 'skin'
+    for e in doc.get('extensionsUsed', []):
+        out['uses ' + e] = e
+    for e in doc.get('extensionsRequired', []):
+        out['requires ' + e] = e
+    if 'extras' in doc.get('asset', {}):
+        out['extras of the asset'] = 'extras'
+    return out
+
+
+def compare(doc_in, doc_out, warnings):
+    """Features of the input kept by the output, lost with a warning naming them, lost silently."""
+    a, b = features(doc_in), features(doc_out)
+    kept = [f for f in a if f in b]
+    lost = [f for f in a if f not in b]
+    named = [f for f in lost if any(a[f] in w for w in warnings)]
+    return {'features': len(a), 'kept': len(kept), 'named': sorted(named),
+            'silent': sorted(f for f in lost if f not in named)}
+
+
 def validate(path, node_modules):
     """The Khronos validator's [errors, warnings, warning codes] for a file, or None without it."""
     check = subprocess.run(['node', os.path.join(os.path.dirname(__file__), '..', 'tests', 'gltf_validate.js'), path],
@@ -106,7 +192,9 @@ def main():
             if line.startswith('stream: '):
                 row['stream_bytes'] = int(line.split(', ')[-1].split()[0])
         row['out_bytes'] = os.path.getsize(out)
-        row['out'] = census(gltf_json(out))
+        doc_out = gltf_json(out)
+        row['out'] = census(doc_out)
+        row['features'] = compare(doc_in, doc_out, row['warnings'])
         row['validator'] = validate(out, node_modules)
         row['validator_in'] = validate(path, node_modules)
         rows.append(row)
@@ -118,13 +206,14 @@ def main():
         a, b = row['in'][key], row['out'][key]
         return f'{a}' if a == b else f'**{a} -> {b}**'
 
-    lines = ['| asset | in / stream / out (KB) | time (s) | validator errors / warnings (of the output) | nodes | materials | images | '
-             'animations (channels) | skins | morph prims | dropped or changed (warnings) |',
-             '|---|---|---:|---|---|---|---|---|---|---|---|']
+    lines = ['| asset | in / stream / out (KB) | out / in | time (s) | validator errors / warnings (of the output) | features kept '
+             '/ lost with a warning / lost silently | nodes | materials | images | animations (channels) | skins | morph prims | '
+             'dropped or changed (warnings) |',
+             '|---|---|---:|---:|---|---|---|---|---|---|---|---|---|']
     for row in rows:
         if 'error' in row:
-            lines.append(f"| {row['asset']} | {row.get('in_bytes', 0) / 1024:.0f} / - / - | {row.get('seconds', '-')} | "
-                         f"not converted | | | | | | | {row['error']} |")
+            lines.append(f"| {row['asset']} | {row.get('in_bytes', 0) / 1024:.0f} / - / - | | {row.get('seconds', '-')} | "
+                         f"not converted | | | | | | | | {row['error']} |")
             continue
         v, s = row['validator'], row.get('validator_in')
         verdict = f'{v[0]} / {v[1]}' + (f" ({', '.join(v[2])})" if v[2] else '') if v else 'validator absent'
@@ -136,11 +225,24 @@ def main():
             warnings = warnings[:297] + '...'
         anim = f"{row['in']['animations']} ({row['in']['channels']})"
         anim_out = f"{row['out']['animations']} ({row['out']['channels']})"
+        f = row['features']
+        kept = f"{f['kept']} of {f['features']} / {len(f['named'])} / " + (
+            f"**{len(f['silent'])}: {'; '.join(f['silent'])}**" if f['silent'] else '0')
         lines.append(
             f"| {row['asset']} | {row['in_bytes'] / 1024:.0f} / {row.get('stream_bytes', 0) / 1024:.0f} / "
-            f"{row['out_bytes'] / 1024:.0f} | {row['seconds']} | {verdict} | {pair(row, 'nodes')} | "
+            f"{row['out_bytes'] / 1024:.0f} | {row['out_bytes'] / row['in_bytes']:.2f} | {row['seconds']} | {verdict} | {kept} | "
+            f"{pair(row, 'nodes')} | "
             f"{pair(row, 'materials')} | {pair(row, 'images')} | {anim if anim == anim_out else f'**{anim} -> {anim_out}**'} | "
             f"{pair(row, 'skins')} | {pair(row, 'morph')} | {warnings} |")
+    done = [r for r in rows if 'error' not in r]
+    ratios = sorted(r['out_bytes'] / r['in_bytes'] for r in done)
+    errors = sum((r['validator'] or [0])[0] or 0 for r in done)
+    silent = sum(len(r['features']['silent']) for r in done)
+    larger = [r['asset'] for r in done if r['out_bytes'] > 1.1 * r['in_bytes']]
+    lines += ['', f"{len(rows)} assets, {len(done)} converted; validator errors in the outputs: {errors}; features lost "
+                  f"silently: {silent}; outputs over 1.1x their input: {len(larger)}"
+                  + (f" ({', '.join(larger)})" if larger else '')
+                  + (f"; output / input: median {ratios[len(ratios) // 2]:.2f}, largest {ratios[-1]:.2f}" if ratios else '')]
     with open(os.path.join(out_dir, 'corpus.md'), 'w') as f:
         f.write('\n'.join(lines) + '\n')
     print('\n'.join(lines))
