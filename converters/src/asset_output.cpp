@@ -674,8 +674,9 @@ private:
         if (lacking.empty()) return;
         std::string names;
         for (const std::string& n : lacking) names += (names.empty() ? "" : ", ") + n;
-        warnings_.push_back(path_ + ": the source required " + names + ", which this output does not use (its content did not travel or has not arrived); the output "
-                            "does not require " + (lacking.size() == 1 ? "it" : "them"));
+        warnings_.push_back(path_ + ": the source required " + names +
+                            ", which this output does not use (its content did not travel or has not arrived); the "
+                            "output does not require " + (lacking.size() == 1 ? "it" : "them"));
     }
 
     void write_cameras_lights() {
