@@ -9,6 +9,7 @@
 #include "ellicast/converters/asset_stream.h"
 
 #include <fstream>
+#include <sstream>
 
 using namespace ellicast;
 using namespace ellicast::test;
@@ -95,6 +96,18 @@ TEST_CASE("the output requires what the source required and it uses, after its o
     check_same_scene(in, plain.received);
     CHECK(list(plain.doc, "extensionsRequired") == nlohmann::json({"KHR_texture_transform"}));
     CHECK(warnings_with(plain.warnings, "the source required KHR_materials_variants, which this output does not use") == 1);
+
+    // `ellicast convert` says it once: the encoder's warning names what is not sent.
+    int status = 0;
+    const std::string log = run_command(shell_quoted(ellicast_exe().string()) + " convert -q " + shell_quoted(input.string()) +
+                                            " " + shell_quoted((scratch_dir("required_transform_cli") / "out.glb").string()),
+                                        status);
+    REQUIRE_MESSAGE(status == 0, log);
+    size_t said = 0;
+    std::istringstream lines(log);
+    for (std::string line; std::getline(lines, line);)
+        said += line.rfind("ellicast: warning: ", 0) == 0 && line.find("KHR_materials_variants") != std::string::npos;
+    CHECK(said == 1);
 
     AssetWriteOptions quantized;
     quantized.quantize = true;

@@ -671,7 +671,7 @@ private:
                 lacking.push_back(name);
             }
         }
-        if (lacking.empty()) return;
+        if (lacking.empty() || !options_.warn_unused_required) return;
         std::string names;
         for (const std::string& n : lacking) names += (names.empty() ? "" : ", ") + n;
         warnings_.push_back(path_ + ": the source required " + names +

@@ -132,6 +132,7 @@ int run_convert(const ConvertArgs& a) {
     bar->finish();
     if (!ok) return fail(kExitFailure, a.input + ": " + error);
     std::vector<std::string> warnings = decoded.warnings;
+    write.warn_unused_required = false;  // the encoder named every extension it does not send
     if (!write_asset(a.output, decoded, write, warnings, error)) return fail(kExitFailure, error);
     print_warnings(warnings, a.verbose);
 
