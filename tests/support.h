@@ -133,6 +133,16 @@ inline std::vector<uint8_t> read_bytes(const std::filesystem::path& path) {
     return {std::istreambuf_iterator<char>(in), {}};
 }
 
+// The JSON of a .gltf file, or of a .glb file's JSON chunk.
+inline nlohmann::json gltf_document(const std::filesystem::path& path) {
+    const std::vector<uint8_t> b = read_bytes(path);
+    if (b.size() < 4 || !std::equal(b.begin(), b.begin() + 4, "glTF")) return nlohmann::json::parse(b.begin(), b.end());
+    REQUIRE(b.size() >= 20);
+    const uint32_t length = uint32_t(b[12]) | uint32_t(b[13]) << 8 | uint32_t(b[14]) << 16 | uint32_t(b[15]) << 24;
+    REQUIRE(20 + size_t(length) <= b.size());
+    return nlohmann::json::parse(b.begin() + 20, b.begin() + 20 + length);
+}
+
 // `bytes` in base64 (RFC 4648, with padding): for data: URIs of test assets.
 inline std::string base64(const std::vector<uint8_t>& bytes) {
     static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";

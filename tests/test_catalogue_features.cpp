@@ -16,16 +16,6 @@ using nlohmann::json;
 
 namespace {
 
-// The JSON of a .gltf, or of a .glb's JSON chunk.
-json gltf_document(const fs::path& path) {
-    const std::vector<uint8_t> bytes = read_bytes(path);
-    if (bytes.size() >= 20 && std::equal(bytes.begin(), bytes.begin() + 4, "glTF")) {
-        const uint32_t length = uint32_t(bytes[12]) | uint32_t(bytes[13]) << 8 | uint32_t(bytes[14]) << 16 | uint32_t(bytes[15]) << 24;
-        return json::parse(bytes.begin() + 20, bytes.begin() + 20 + length);
-    }
-    return json::parse(bytes.begin(), bytes.end());
-}
-
 // One feature of a scene, and the word a warning about its loss must contain.
 struct Feature {
     std::string what;  // unique description

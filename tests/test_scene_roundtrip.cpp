@@ -576,16 +576,6 @@ TEST_CASE("convert writes a glTF as its input was stored: Draco stays Draco, qua
 
 namespace {
 
-// The JSON chunk of a GLB file.
-nlohmann::json glb_json(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::vector<uint8_t> b{std::istreambuf_iterator<char>(in), {}};
-    REQUIRE(b.size() >= 20);
-    const uint32_t length = uint32_t(b[12]) | uint32_t(b[13]) << 8 | uint32_t(b[14]) << 16 | uint32_t(b[15]) << 24;
-    REQUIRE(20 + size_t(length) <= b.size());
-    return nlohmann::json::parse(b.begin() + 20, b.begin() + 20 + length);
-}
-
 // `asset` through encode and decode with every packet but those of `lost_type` (0: none), written as
 // .glb and .gltf under `dir`, each checked by the Khronos validator (no error, no warning); returns the
 // decoded asset. `bytes` gets the bytes of the CAMERA and LIGHT packets sent.
@@ -646,7 +636,7 @@ TEST_CASE("Khronos Cameras through encode and decode: both cameras come back on 
     check_same_scene(in, out);
     MESSAGE("Cameras.gltf: the 2 CAMERA packets cost " << bytes << " bytes");
     CHECK(bytes == 2 * (24 + 24));  // no names
-    const nlohmann::json json = glb_json(dir / "out.glb");
+    const nlohmann::json json = gltf_document(dir / "out.glb");
     REQUIRE(json["cameras"].size() == 2);
     CHECK(json["cameras"][0]["type"] == "perspective");
     CHECK(json["cameras"][0]["perspective"]["zfar"] == 100.0);
@@ -672,7 +662,7 @@ TEST_CASE("punctual lights and an infinite camera travel: directional, point wit
     Asset out = viewed_round_trip(in, dir, 0, &bytes);
     check_same_scene(in, out);
     MESSAGE("3 cameras and 3 lights: " << bytes << " bytes of CAMERA and LIGHT packets");
-    const nlohmann::json json = glb_json(dir / "out.glb");
+    const nlohmann::json json = gltf_document(dir / "out.glb");
     CHECK(json["extensionsUsed"].dump().find("KHR_lights_punctual") != std::string::npos);
     CHECK_FALSE(json.contains("extensionsRequired"));
     const auto& lights = json["extensions"]["KHR_lights_punctual"]["lights"];

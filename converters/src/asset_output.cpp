@@ -660,16 +660,7 @@ private:
             auto& required = model_.extensionsRequired;
             if (std::find(required.begin(), required.end(), name) != required.end()) continue;
             const auto& used = model_.extensionsUsed;
-            // tinygltf lists KHR_lights_punctual as used itself when it writes lights.
-            const bool uses = std::find(used.begin(), used.end(), name) != used.end() ||
-                              (name == "KHR_lights_punctual" && !model_.lights.empty());
-            if (uses) {
-                if (name == "KHR_lights_punctual" && std::find(used.begin(), used.end(), name) == used.end())
-                    model_.extensionsUsed.push_back(name);
-                required.push_back(name);
-            } else {
-                lacking.push_back(name);
-            }
+            (std::find(used.begin(), used.end(), name) != used.end() ? required : lacking).push_back(name);
         }
         if (lacking.empty() || !options_.warn_unused_required) return;
         std::string names;
@@ -726,6 +717,9 @@ private:
             }
             model_.lights.push_back(std::move(g));
         }
+        // Listed here rather than left to tinygltf (which adds it while serializing), so that the
+        // extensions used are known before the document is written (require_source_extensions).
+        if (!model_.lights.empty()) used_extensions_.insert("KHR_lights_punctual");
     }
 
     // ---- nodes
@@ -1178,7 +1172,7 @@ private:
     gltf_write::JsonPatches extras_patches_;  // where the written elements' extras go
     std::vector<int> texture_out_;
     std::vector<bool> material_whole_;  // per asset material: every texture it uses was written
-    std::set<std::string> used_extensions_;  // extensions the materials' patches use (spec 18)
+    std::set<std::string> used_extensions_;  // extensions the materials' patches use (spec 18), and lights'
     std::map<uint16_t, int> untextured_;
     std::map<std::tuple<size_t, int, bool>, std::optional<tinygltf::Primitive>> primitives_;
     std::set<size_t> skinned_meshes_;   // asset meshes written with JOINTS_0 / WEIGHTS_0
