@@ -13,7 +13,7 @@
 namespace ellicast::broadcast {
 
 // The base is what a receiver needs to show a model: stream info, ellipsoids, scene, materials.
-// Points, normals (format 1.8), skin weights, morph targets, texture fragments, animations and the exact layer (connectivity, or format 1.11's coded mesh) are detail: sent once per
+// Points, normals (format 1.8), further texture coordinates (1.14), skin weights, morph targets, texture fragments, animations and the exact layer (connectivity, or format 1.11's coded mesh) are detail: sent once per
 // cycle, spread over the chunks, so that a large texture does not ride along with every repetition of
 // the base.
 bool is_base_packet(const PacketHeader& header) {
@@ -21,6 +21,7 @@ bool is_base_packet(const PacketHeader& header) {
            header.type != static_cast<uint8_t>(PacketType::TextureFragment) &&
            header.type != static_cast<uint8_t>(PacketType::Animation) &&
            header.type != static_cast<uint8_t>(PacketType::Normals) &&
+           header.type != static_cast<uint8_t>(PacketType::Texcoords) &&
            header.type != static_cast<uint8_t>(PacketType::JointWeights) &&
            header.type != static_cast<uint8_t>(PacketType::MorphDeltas) &&
            header.type != static_cast<uint8_t>(PacketType::MorphAnimation) &&

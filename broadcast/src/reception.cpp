@@ -258,6 +258,9 @@ bool stream_complete(const ReceivedStream& stream) {
         if (object.points.size() < object.info->point_count) return false;
         // Format 1.3: an object with an exact layer is complete with its connectivity (spec 19.1).
         if (object.info->exact_layer && !(object.connectivity && object.connectivity->complete)) return false;
+        // Format 1.8 (spec 24.4): every normal entry; format 1.14 (spec 30.2): every further set's records.
+        if (object.info->surface_normals && !object.normals_complete()) return false;
+        if (!object.texcoords_complete()) return false;
     }
     const auto& textures = stream.textures();
     if (!textures.empty() && textures.size() < textures.begin()->second.info.texture_count) return false;

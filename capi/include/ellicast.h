@@ -49,7 +49,7 @@ extern "C" {
 #endif
 
 /* The library's version (1.0.0: the SONAME's major is 1) and the newest format version it reads and
- * writes (spec/format.md: 1.13). */
+ * writes (spec/format.md: 1.14). */
 #define ELLICAST_VERSION_MAJOR 1
 #define ELLICAST_VERSION_MINOR 0
 #define ELLICAST_VERSION_PATCH 0
@@ -68,7 +68,7 @@ typedef enum ellicast_status {
 
 /* "1.0.0". */
 ELLICAST_API const char* ellicast_version(void);
-/* The newest format version this library reads and writes (major 1, minor 9). */
+/* The newest format version this library reads and writes (major 1, minor 14). */
 ELLICAST_API void ellicast_format_version(int* major, int* minor);
 /* A short name for a status ("ELLICAST_ERROR_INPUT", ...). */
 ELLICAST_API const char* ellicast_status_name(ellicast_status status);

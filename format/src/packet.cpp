@@ -34,6 +34,7 @@ std::string packet_type_name(uint8_t type) {
     case 0x0B: return "NORMALS";
     case 0x0C: return "EXACT_MESH";
     case 0x0D: return "EXACT_MESH_REPAIR";
+    case 0x0E: return "TEXCOORDS";
     case 0x16: return "MORPH_ANIMATION";
     case 0x17: return "CAMERA";
     case 0x18: return "LIGHT";
@@ -48,7 +49,7 @@ std::string packet_type_name(uint8_t type) {
 }
 
 bool is_known_packet_type(uint8_t type) {
-    return (type >= 0x01 && type <= 0x0D) || (type >= 0x10 && type <= 0x1A) || type == 0x20;
+    return (type >= 0x01 && type <= 0x0E) || (type >= 0x10 && type <= 0x1A) || type == 0x20;
 }
 
 const char* error_name(Error e) {

@@ -310,6 +310,7 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
     std::vector<PendingBatch> point_batches;
     std::vector<std::pair<uint16_t, std::vector<uint8_t>>> map_payloads;  // format 1.7 (spec 23.3)
     std::vector<std::pair<uint16_t, std::vector<uint8_t>>> normals_payloads;  // format 1.8 (spec 24.2)
+    std::vector<std::pair<uint16_t, std::vector<uint8_t>>> texcoords_payloads;  // format 1.14 (spec 30.1)
     for (size_t i = 0; i < contents.size(); ++i) {
         const auto& content = contents[i];
         const ObjectInfo& object = info_in.objects[i];
@@ -331,6 +332,18 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
             auto payloads = detail::normals_payloads(content.normals, info_in.packet_size, info_in.normal_bits);
             if (payloads.empty()) return Error::MalformedPayload;
             for (auto& payload : payloads) normals_payloads.emplace_back(static_cast<uint16_t>(i), std::move(payload));
+        }
+        if (!content.texcoord_sets.empty()) {
+            // Format 1.14 (spec 30.3): numbered below with the rest, so sequence 0 here.
+            std::vector<std::vector<uint8_t>> packets;
+            if (packetize_texcoords(info_in, static_cast<uint16_t>(i), content.texcoord_sets, 0, 0, packets) != Error::Ok)
+                return Error::MalformedPayload;
+            for (const auto& packet : packets) {
+                PacketView view;
+                if (parse_packet(packet, view) != Error::Ok) return Error::MalformedPayload;
+                texcoords_payloads.emplace_back(static_cast<uint16_t>(i),
+                                                std::vector<uint8_t>(view.payload.begin(), view.payload.end()));
+            }
         }
         const size_t per_points = point_batch_size(info_in, object);
         if (per_points == 0) return Error::MalformedPayload;
@@ -357,6 +370,7 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
         for (const auto& batch : point_batches) crc = crc32c(batch.payload.data(), batch.payload.size(), crc);
         for (const auto& [object, payload] : map_payloads) crc = crc32c(payload.data(), payload.size(), crc);
         for (const auto& [object, payload] : normals_payloads) crc = crc32c(payload.data(), payload.size(), crc);
+        for (const auto& [object, payload] : texcoords_payloads) crc = crc32c(payload.data(), payload.size(), crc);
         info.content_id = crc == 0 ? 1 : crc;
     }
 
@@ -375,6 +389,7 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
         if (type == PacketType::Normals || (type == PacketType::StreamInfo && surface_normals))
             h.version_minor = kSurfaceNormalsMinor;
         if (type == PacketType::Normals) h.flags |= kFlagSkippable;
+        if (type == PacketType::Texcoords) h.version_minor = kTexcoordsMinor, h.flags |= kFlagSkippable;  // spec 30
         h.stream_id = stream_id;
         h.sequence = sequence++;
         h.object_id = object;
@@ -397,6 +412,8 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
             batch.payload));
     for (const auto& [object, payload] : normals_payloads)
         packets.normals.push_back(write_packet(header(PacketType::Normals, object), payload));
+    for (const auto& [object, payload] : texcoords_payloads)
+        packets.texcoords.push_back(write_packet(header(PacketType::Texcoords, object), payload));
     out = std::move(packets);
     return Error::Ok;
 }

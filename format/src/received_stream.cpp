@@ -135,6 +135,14 @@ Error ReceivedStream::add_parsed(const PacketView& packet, uint64_t where) {
         e = object_packet(check_normals_header(packet.payload) == Error::Ok,
                           "shorter than 8 bytes, or count 0, sent_count above count, or a run past index 2^32 - 1");
         break;
+    case PacketType::Texcoords: {
+        TexcoordsRun run;
+        e = object_packet(decode_texcoords_payload(packet.payload, run) == Error::Ok,
+                          "shorter than 28 bytes, or count 0, set_count 0 or above 7, set 0 or above set_count, bits "
+                          "outside 4..16, a run past index 2^32 - 1, a range not finite, negative or with an infinite "
+                          "end, or a length that does not match its count and bits");
+        break;
+    }
     default: e = take_object_packet(packet, where); break;
     }
     if (e == Error::Ok) {
@@ -256,6 +264,8 @@ Error ReceivedStream::take_object_content(ReceivedObject& object, const PacketVi
         return take_morph_deltas(object, packet, name, where);
     if (packet.header.type == static_cast<uint8_t>(PacketType::PointMap)) return take_point_map(object, packet, name, where);
     if (packet.header.type == static_cast<uint8_t>(PacketType::Normals)) return take_normals(object, packet, name, where);
+    if (packet.header.type == static_cast<uint8_t>(PacketType::Texcoords))
+        return take_texcoords(object, packet, name, where);
     bool news = false;
     if (packet.header.type == static_cast<uint8_t>(PacketType::Ellipsoids)) {
         EllipsoidBatch batch;
@@ -612,7 +622,7 @@ bool place_point(const ReceivedObject& object, uint32_t index, unsigned position
 
 uint64_t ReceivedObject::memory() const {
     return ellipsoids.memory() + points.memory() + unplaced.memory() + weights.memory() + morph.memory() +
-           normal_entries.memory() + map_memory;
+           normal_entries.memory() + map_memory + texcoord_memory();
 }
 
 bool ReceivedStream::take_point_record(ReceivedObject& object, uint32_t index, const QuantizedPoint& record) {

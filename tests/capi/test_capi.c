@@ -92,7 +92,7 @@ static void check_versions(void) {
     int major = 0, minor = 0;
     CHECK(strcmp(ellicast_version(), "1.0.0") == 0, "version %s", ellicast_version());
     ellicast_format_version(&major, &minor);
-    CHECK(major == 1 && minor == 13, "format %d.%d", major, minor);
+    CHECK(major == 1 && minor == 14, "format %d.%d", major, minor);
     CHECK(strcmp(ellicast_status_name(ELLICAST_ERROR_INPUT), "ELLICAST_ERROR_INPUT") == 0, "status name");
     CHECK(ellicast_last_error() != NULL, "last error never NULL");
 }

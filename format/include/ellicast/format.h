@@ -1,4 +1,4 @@
-// ellicast format 1.13 (this library reads format 1.0 to 1.13): packets, their payloads, quantization,
+// ellicast format 1.14 (this library reads format 1.0 to 1.14): packets, their payloads, quantization,
 // the receiver's state, container files. This header includes every header of the format library;
 // each of them can also be included alone.
 //
@@ -19,6 +19,7 @@
 //   format/payloads.h             STREAM_INFO, ELLIPSOIDS, POINTS / MAPPED_POINTS payloads, per-packet counts [5-7, 23.4]
 //   format/point_map.h            mapped points (1.7): cells, ranks, POINT_MAP payloads, the map level [23]
 //   format/normals.h              surface normals (1.8): NORMALS payloads, the surface normal of a point [24]
+//   format/texcoords.h            further texture-coordinate sets (1.14): TEXCOORDS payloads [30]
 //   format/packetize.h            ObjectContent and packetize_stream: a whole stream's geometry in packets [12]
 //   format/material_extensions.h  MATERIAL_EXTENSIONS (1.3): a material's JSON patch and its checks [18]
 //   format/animation.h            ANIMATION (1.4) and MORPH_ANIMATION (1.6) payloads, SceneAnimation [20, 22.2]
@@ -43,6 +44,7 @@
 #include "ellicast/format/payloads.h"
 #include "ellicast/format/point_map.h"
 #include "ellicast/format/normals.h"
+#include "ellicast/format/texcoords.h"
 #include "ellicast/format/packetize.h"
 #include "ellicast/format/material_extensions.h"
 #include "ellicast/format/animation.h"

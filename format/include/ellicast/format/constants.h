@@ -3,8 +3,8 @@
 // packets, the skippable flag) and the packet types. Follows spec/format.md sections 3 (Packet
 // structure), 4 (Packet types) and 9 (Versioning).
 //
-// This library implements format 1.13 (kFormatMajor.kSpecMinor), which includes every earlier minor
-// version: it reads streams of format 1.0 to 1.13 (and packets of a later minor version as section 9
+// This library implements format 1.14 (kFormatMajor.kSpecMinor), which includes every earlier minor
+// version: it reads streams of format 1.0 to 1.14 (and packets of a later minor version as section 9
 // says), and each packet it writes says the minor version its layout calls for: 1.1 (kFormatMinor)
 // for the types of 1.0 and 1.1, and for the types and fields added later the versions below.
 #pragma once
@@ -52,8 +52,10 @@ inline constexpr uint8_t kExactMeshMinor = 11;
 inline constexpr uint8_t kExtrasMinor = 12;
 // 1.13 added REQUIRED_EXTENSION, the names of the extensions the source asset required (spec 29).
 inline constexpr uint8_t kRequiredExtensionMinor = 13;
+// 1.14 added TEXCOORDS, an object's further texture-coordinate sets (spec 30).
+inline constexpr uint8_t kTexcoordsMinor = 14;
 // The newest format version this library reads and writes (spec/format.md's version).
-inline constexpr uint8_t kSpecMinor = 13;
+inline constexpr uint8_t kSpecMinor = 14;
 
 inline constexpr std::array<uint8_t, 4> kPacketMagic = {0xE1, 'L', 'C', 'S'};
 inline constexpr size_t kHeaderSize = 20;                       // bytes before the payload
@@ -82,6 +84,7 @@ enum class PacketType : uint8_t {
     Normals = 0x0B,       // 1.8, skippable: which normals of a run of points are sent, and those normals
     ExactMesh = 0x0C,     // 1.11, skippable: a piece of an object's coded mesh (the exact layer with carried vertices)
     ExactMeshRepair = 0x0D,  // 1.11, skippable: a repair symbol over an object's coded mesh
+    Texcoords = 0x0E,     // 1.14, skippable: one further texture-coordinate set of a run of an object's points
     Scene = 0x10,       // 1.1, skippable: nodes (hierarchy, names, transforms) and meshes (object + material)
     Material = 0x11,    // 1.1, skippable: one PBR material
     TextureFragment = 0x12,  // 1.1, skippable: a piece of one texture image, at its byte offset
@@ -94,7 +97,7 @@ enum class PacketType : uint8_t {
     Extras = 0x19,      // 1.12, skippable: a fragment of the extras JSON of the asset, the scene or an element
     RequiredExtension = 0x1A,  // 1.13, skippable: the name of one extension the source asset required
     Manifest = 0x20,    // 1.2, skippable: signed digests of the stream's other packets
-    // 0x00 is invalid; 0x0E..0x0F reserved for geometry; 0x1B..0x1F reserved for the scene;
+    // 0x00 is invalid; 0x0F reserved for geometry; 0x1B..0x1F reserved for the scene;
     // 0x21..0x7F future; 0x80..0xFF experimental.
 };
 
@@ -115,7 +118,7 @@ inline bool is_exact_layer_repair_type(uint8_t type) {
 // Name of a packet type ("STREAM_INFO", ...), or "UNKNOWN(0xNN)".
 std::string packet_type_name(uint8_t type);
 
-// True for the types this implementation decodes (every type up to format 1.13).
+// True for the types this implementation decodes (every type up to format 1.14).
 bool is_known_packet_type(uint8_t type);
 
 // An index into one of the scene's tables (spec 15, 21, 22) that names nothing.

@@ -7,6 +7,7 @@
 
 #include "ellicast/format/error.h"
 #include "ellicast/format/normals.h"
+#include "ellicast/format/texcoords.h"
 #include "ellicast/format/quantize.h"
 #include "ellicast/format/stream_info.h"
 
@@ -29,6 +30,9 @@ struct ObjectContent {
     // Format 1.8 (spec 24): for an object with surface normals, one entry per point (sent by
     // packetize_stream in NORMALS packets); empty otherwise.
     std::vector<NormalEntry> normals;
+    // Format 1.14 (spec 30): the object's further texture-coordinate sets (TEXCOORD_1, ...), each with
+    // a record per point (sent by packetize_stream in TEXCOORDS packets); empty for none.
+    std::vector<TexcoordSet> texcoord_sets;
 };
 
 struct StreamPackets {
@@ -37,6 +41,7 @@ struct StreamPackets {
     std::vector<std::vector<uint8_t>> points;       // every POINTS / MAPPED_POINTS packet, in stream order
     std::vector<std::vector<uint8_t>> maps;         // format 1.7: every POINT_MAP packet, object by object
     std::vector<std::vector<uint8_t>> normals;      // format 1.8: every NORMALS packet, object by object
+    std::vector<std::vector<uint8_t>> texcoords;    // format 1.14: every TEXCOORDS packet, object by object
 };
 
 // Cuts a stream into packets of at most info.packet_size bytes. Sequence numbers run from 0 in the

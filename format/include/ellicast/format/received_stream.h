@@ -22,6 +22,7 @@
 #include "ellicast/format/scene.h"
 #include "ellicast/format/skin.h"
 #include "ellicast/format/stream_info.h"
+#include "ellicast/format/texcoords.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -117,10 +118,24 @@ struct ReceivedObject {
     // Format 1.8 (spec 24.2): the normal entries of an object with surface normals, by point index.
     NormalEntries normal_entries;
     bool normals_complete() const { return info && normal_entries.size() == info->point_count; }
+    // Format 1.14 (spec 30.1): the further texture-coordinate sets, set s at [s - 1], sized by the
+    // set_count of the first TEXCOORDS packet accepted (empty before one).
+    std::vector<ReceivedTexcoordSet> texcoord_sets;
+    // Every point's record of every set (spec 30.2); true for an object without TEXCOORDS packets.
+    bool texcoords_complete() const {
+        for (const ReceivedTexcoordSet& s : texcoord_sets)
+            if (!info || s.records.size() != info->point_count) return false;
+        return true;
+    }
     uint64_t map_memory = 0;  // what the map fragments held cost (cells, starts, bookkeeping)
     // What the object's elements and per-point records cost as held (spec 11.2, the byte budget):
     // ellipsoids, points placed and not, influences, displacements, normal entries, map fragments.
     uint64_t memory() const;
+    uint64_t texcoord_memory() const {
+        uint64_t m = 0;
+        for (const ReceivedTexcoordSet& s : texcoord_sets) m += s.records.memory();
+        return m;
+    }
 };
 
 struct Rejection {
@@ -327,6 +342,7 @@ private:
     Error take_repair(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_point_map(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     Error take_normals(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
+    Error take_texcoords(ReceivedObject& object, const PacketView& packet, const std::string& name, uint64_t where);
     // Takes a point record that arrived (or was recovered): placed, or held unplaced for a mapped
     // object whose fragment has not arrived. False when the index was held already.
     bool take_point_record(ReceivedObject& object, uint32_t index, const QuantizedPoint& record);
