@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent format 1.13 decoder, written from spec/format.md alone (Python standard library only),
+"""An independent format 1.14 decoder, written from spec/format.md alone (Python standard library only),
 checked against the expected decodes of the conformance vectors.
 
     python3 spec/vectors/check_vectors.py            # every vector; exit 1 on any difference
@@ -39,7 +39,9 @@ checks (those of CONNECTIVITY and CONNECTIVITY_REPAIR with carried_count, and on
 and the coded mesh decoded with the same range decoder, the carried vertices with their attributes, spec 27.2; for
 format 1.12 the EXTRAS packets of spec section 28: their checks, the description and text count comparisons, the
 fragments kept by byte, and the CRC-32C and JSON checks of a whole text, spec 28.1; for format 1.13 the
-REQUIRED_EXTENSION packets of spec section 29: their checks, the name count and name comparisons, spec 29.1) so
+REQUIRED_EXTENSION packets of spec section 29: their checks, the name count and name comparisons, spec 29.1;
+for format 1.14 the TEXCOORDS packets of spec section 30: their checks, the set count, range and record comparisons,
+and the further texture-coordinate records held by set and index, spec 30.1) so
 that a disagreement between the spec text and the reference library shows up as a failing vector. Every complete texture is also checked to be a file of its
 image_type: a PNG file (chunk CRCs, IHDR, the inflated image data of the size IHDR announces) or a
 JPEG file (its marker structure: SOI, one frame header, the tables each scan uses, entropy-coded data,
@@ -83,6 +85,8 @@ KNOWN_111 = {0x0C: "EXACT_MESH", 0x0D: "EXACT_MESH_REPAIR"}
 KNOWN_112 = {0x19: "EXTRAS"}
 # Format 1.13 (spec sections 4 and 29): skippable, stream-level.
 KNOWN_113 = {0x1A: "REQUIRED_EXTENSION"}
+# Format 1.14 (spec sections 4 and 30): skippable, belongs to an object.
+KNOWN_114 = {0x0E: "TEXCOORDS"}
 NAME_BYTES = set(b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_")
 EXTRAS_KINDS = ("asset", "scene", "node", "mesh", "material", "texture", "animation", "skin", "camera", "light",
                 "morph animation")
@@ -1368,6 +1372,29 @@ def point_map_cells(p, level):
 # Format 1.8: surface normals (spec 24).
 
 
+def decode_texcoords(p):
+    """Spec 30.1, every check of step 11: (first_index, set, set_count, (bits, origin, scale), [(qu, qv)]) or None
+    when the payload is shorter than 28 bytes, count is 0, set_count is 0 or above 7, set is 0 or above set_count, bits
+    is outside 4..16, the run passes index 2^32 - 1, a range component is not finite, a scale is negative, an end
+    (origin + scale, rounded to f32) is infinite, or the length is not 28 + ceil(2 bits count / 8). The reserved bytes
+    9..11 and the padding bits are not looked at."""
+    if len(p) < 28:
+        return None
+    first, count, set_, set_count, bits = struct.unpack_from("<IHBBB", p, 0)
+    origin = struct.unpack_from("<2f", p, 12)
+    scale = struct.unpack_from("<2f", p, 20)
+    if count == 0 or not 1 <= set_count <= 7 or not 1 <= set_ <= set_count or not 4 <= bits <= 16 or \
+            first + count > 0xFFFFFFFF:
+        return None
+    if not finite(origin + scale) or min(scale) < 0 or any(f32_sum_infinite(o, s) for o, s in zip(origin, scale)):
+        return None
+    if len(p) != 28 + (2 * bits * count + 7) // 8:
+        return None
+    b = Bits(p[28:])
+    records = [(b.get(bits), b.get(bits)) for _ in range(count)]
+    return first, set_, set_count, (bits, list(origin), list(scale)), records
+
+
 def normals_header(p):
     """Spec 24.2, the fixed fields (step 11): (first_index, count, sent_count) or None."""
     if len(p) < 8:
@@ -1463,7 +1490,8 @@ class Receiver:
         t = h["type"]
         if t not in KNOWN_10 and ((t not in KNOWN_11 and t not in KNOWN_12 and t not in KNOWN_13 and t not in KNOWN_14
                                    and t not in KNOWN_15 and t not in KNOWN_16 and t not in KNOWN_17 and t not in KNOWN_18
-                                   and t not in KNOWN_110 and t not in KNOWN_111 and t not in KNOWN_112 and t not in KNOWN_113)
+                                   and t not in KNOWN_110 and t not in KNOWN_111 and t not in KNOWN_112 and t not in KNOWN_113
+                                   and t not in KNOWN_114)
                                   or not self.know_11):
             if not h["flags"] & 1:
                 return self.reject(offset, "unknown critical type")
@@ -1515,6 +1543,9 @@ class Receiver:
         elif t == 0x0B and normals_header(h["payload"]) is None:
             # Spec 24.2: the fixed fields are checked at step 11, before the packet can be held.
             return self.reject(offset, "malformed payload")
+        elif t == 0x0E and decode_texcoords(h["payload"]) is None:
+            # Spec 30.1: every check but those needing the object is made at step 11, before the packet can be held.
+            return self.reject(offset, "malformed payload")
         else:
             result = self.object_packet(h, offset)
         if result in ("accepted", "duplicate", "held", "skipped"):
@@ -1541,7 +1572,8 @@ class Receiver:
             # POINT_MAP fragments accepted, by first rank.
             # normals (format 1.8): an object's normal entries held, by point index (None: left to the surface).
             self.objects = [dict(info=None, ellipsoids={}, points={}, blocks={}, recovered=0, weights={},
-                                 morph={}, morph_kind=None, records={}, fragments={}, normals={}) for _ in range(count)]
+                                 morph={}, morph_kind=None, records={}, fragments={}, normals={}, texsets=None)
+                            for _ in range(count)]
             # Spec 11.1: held packets naming an object beyond the table are rejected now, in arrival order.
             for h, at in [x for x in self.held if x[0]["object_id"] >= count]:
                 self.counters["held"] -= 1
@@ -1598,6 +1630,8 @@ class Receiver:
             return self.point_map(obj, h, offset)
         if h["type"] == 0x0B:
             return self.normals(obj, h, offset)
+        if h["type"] == 0x0E:
+            return self.texcoords(obj, h, offset)
         ellipsoids = h["type"] == 2
         mapped = obj["info"]["map_level"] > 0
         # Spec 23.4, step 13: POINTS for an object whose map_level is not 0, MAPPED_POINTS for one whose map_level
@@ -1704,6 +1738,35 @@ class Receiver:
         fresh = [i for i in range(len(entries)) if first + i not in held]
         for i in fresh:
             held[first + i] = entries[i]
+        return self.news(bool(fresh))
+
+    def texcoords(self, obj, h, offset):
+        """Spec 30.1 with the object's entry: step 13 (the object carries texture coordinates), 14 (the run inside
+        point_count), 15 (set_count against the object's earlier packets, the range against the set's first packet,
+        each record against the one held; nothing kept on a contradiction)."""
+        if not obj["info"]["attributes"] & 2:
+            return self.reject(offset, "malformed payload")
+        first, set_, set_count, rng, records = decode_texcoords(h["payload"])
+        if first + len(records) > obj["info"]["point_count"]:
+            return self.reject(offset, "index out of range")
+        sets = obj["texsets"]
+        if sets is not None and len(sets) != set_count:
+            return self.reject(offset, "stream mismatch")
+        held = sets[set_ - 1] if sets is not None else None
+        if held is not None and held["range"] is not None and held["range"] != rng:
+            return self.reject(offset, "stream mismatch")
+        have = held["records"] if held is not None else {}
+        if any(first + i in have and have[first + i] != r for i, r in enumerate(records)):
+            return self.reject(offset, "stream mismatch")
+        fresh = [i for i in range(len(records)) if first + i not in have]
+        if fresh:
+            if sets is None:
+                sets = obj["texsets"] = [dict(range=None, records={}) for _ in range(set_count)]
+            held = sets[set_ - 1]
+            if held["range"] is None:
+                held["range"] = rng
+            for i in fresh:
+                held["records"][first + i] = records[i]
         return self.news(bool(fresh))
 
     def joint_weights(self, obj, h, offset):
@@ -2791,6 +2854,22 @@ def objects_json(r):
             if obj["info"]["surface_normals"]:
                 o["surface_normals"] = True
                 o["normals"] = normals_json(obj, r.info)
+            # Format 1.14 (spec 30): the further texture-coordinate sets, listed for an object that holds a
+            # TEXCOORDS packet (README).
+            if obj["texsets"] is not None:
+                sets = []
+                for k, s in enumerate(obj["texsets"]):
+                    rng = None
+                    records = []
+                    if s["range"] is not None:
+                        bits, origin, scale = s["range"]
+                        rng = dict(bits=bits, origin=[f32(v) for v in origin], scale=[f32(v) for v in scale])
+                        m = (1 << bits) - 1
+                        records = [dict(index=i, q=list(q), texcoord=[f32(origin[c] + q[c] / m * scale[c]) for c in range(2)])
+                                   for i, q in sorted(s["records"].items())]
+                    sets.append(dict(set=k + 1, range=rng, complete=len(s["records"]) == obj["info"]["point_count"],
+                                     records=records))
+                o["texcoord_sets"] = dict(set_count=len(obj["texsets"]), sets=sets)
             # Format 1.5 (spec 21.2): the influence records held, listed when there is one (README).
             if obj["weights"]:
                 o["weights"] = [dict(index=i, joints=j, weights=w) for i, (j, w) in sorted(obj["weights"].items())]
@@ -2826,7 +2905,7 @@ def decode(buf):
         name = KNOWN_10.get(h["type"]) or KNOWN_11.get(h["type"]) or KNOWN_12.get(h["type"]) or \
             KNOWN_13.get(h["type"]) or KNOWN_14.get(h["type"]) or KNOWN_15.get(h["type"]) or KNOWN_16.get(h["type"]) or \
             KNOWN_17.get(h["type"]) or KNOWN_18.get(h["type"]) or KNOWN_110.get(h["type"]) or KNOWN_111.get(h["type"]) or \
-            KNOWN_112.get(h["type"]) or KNOWN_113.get(h["type"]) or \
+            KNOWN_112.get(h["type"]) or KNOWN_113.get(h["type"]) or KNOWN_114.get(h["type"]) or \
             "UNKNOWN(0x%02X)" % h["type"]
         plist.append(dict(offset=offset, size=size, version="%d.%d" % (h["major"], h["minor"]), type=name,
                           flags=h["flags"], stream_id=h["stream_id"], sequence=h["sequence"],
@@ -2848,7 +2927,7 @@ def decode(buf):
     if any_scene:
         # The same objects but for their format 1.5 influence records and format 1.6 displacement records,
         # which a 1.0 decoder skips (README).
-        geometry = [{k: v for k, v in o.items() if k not in ("weights", "morph")} for o in out["objects"]]
+        geometry = [{k: v for k, v in o.items() if k not in ("weights", "morph", "texcoord_sets")} for o in out["objects"]]
         out["as_1_0"] = dict(counters=old.counters, newest_minor=old.newest_minor,
                              same_objects=info(old) == out["stream_info"] and objects_json(old) == geometry)
     out["signed"] = authenticate(packets) if any(h["type"] == 0x20 for _, _, h in packets) else None

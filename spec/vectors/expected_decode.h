@@ -299,6 +299,32 @@ inline nlohmann::json objects_json(const ReceivedStream& stream) {
                 o["surface_normals"] = true;
                 o["normals"] = normals_json(stream, i);
             }
+            // Format 1.14 (spec 30): the further texture-coordinate sets, listed only for an object that
+            // holds a TEXCOORDS packet, so that the decodes of streams without one stay as they were:
+            // set_count, and per set (1 .. set_count) its range (null before a packet of the set was
+            // accepted), whether every point's record is held, and the records by point index, each as
+            // its integers and its dequantized coordinates.
+            if (!object.texcoord_sets.empty()) {
+                json sets = json::array();
+                for (size_t s = 0; s < object.texcoord_sets.size(); ++s) {
+                    const ReceivedTexcoordSet& set = object.texcoord_sets[s];
+                    json records = json::array();
+                    for (const auto& [index, r] : set.records)
+                        records.push_back({{"index", index},
+                                           {"q", {r[0], r[1]}},
+                                           {"texcoord", floats(dequantize_texcoord({r[0], r[1]}, set.range).data(), 2)}});
+                    json range = nullptr;
+                    if (set.has_range)
+                        range = {{"bits", set.range.bits},
+                                 {"origin", floats(set.range.origin.data(), 2)},
+                                 {"scale", floats(set.range.scale.data(), 2)}};
+                    sets.push_back({{"set", s + 1},
+                                    {"range", range},
+                                    {"complete", set.records.size() == oi.point_count},
+                                    {"records", records}});
+                }
+                o["texcoord_sets"] = {{"set_count", object.texcoord_sets.size()}, {"sets", sets}};
+            }
             // Format 1.5 (spec 21.2): the influence records held, by point index; listed only for an
             // object that holds one, so that the decodes of streams without JOINT_WEIGHTS stay as they were.
             if (!object.weights.empty()) {
@@ -972,12 +998,13 @@ inline nlohmann::json expected_decode(const std::vector<uint8_t>& bytes) {
     out["scene"] = any_scene_packet ? scene_json(stream, viewed, with_extras, with_required) : json(nullptr);
     if (any_scene_packet) {
         json info_1_0 = as_1_0.info() ? stream_info_json(*as_1_0.info(), as_1_0.objects().size()) : json(nullptr);
-        // The same objects but for their format 1.5 influence records and format 1.6 displacement
-        // records, which a 1.0 decoder skips.
+        // The same objects but for their format 1.5 influence records, format 1.6 displacement records
+        // and format 1.14 further texture-coordinate sets, which a 1.0 decoder skips.
         json geometry = out["objects"];
         for (json& o : geometry) {
             o.erase("weights");
             o.erase("morph");
+            o.erase("texcoord_sets");
         }
         out["as_1_0"] = {{"counters", counters_json(as_1_0.counters())},
                          {"newest_minor", as_1_0.newest_minor()},

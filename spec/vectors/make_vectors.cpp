@@ -8066,6 +8066,239 @@ void required_extension_vectors(Writer& w) {
     }
 }
 
+// ---- Format 1.14: further texture-coordinate sets (spec 30) ----
+
+// The texture-coordinate stream (packet size 160): object 0, a surface of 40 points with texture
+// coordinates and two further sets (TEXCOORD_1 at 12 bits, TEXCOORD_2 at 8); object 1, a point set of
+// 12 points with texture coordinates and colour and one further set (16 bits, a range of scale 0 in v);
+// object 2, a surface of 10 points without texture coordinates.
+struct TexcoordsStream {
+    StreamInfo info;
+    std::vector<ObjectContent> contents;
+    Packets base, points, texcoords;  // the STREAM_INFO and ELLIPSOIDS packets; POINTS; TEXCOORDS
+    Packets all() const {
+        Packets out = base;
+        out.insert(out.end(), points.begin(), points.end());
+        out.insert(out.end(), texcoords.begin(), texcoords.end());
+        return out;
+    }
+};
+
+TexcoordsStream texcoords_stream() {
+    TexcoordsStream s;
+    s.info = default_info({make_object({-1, -1, -1}, 2, 4, 40, kAttrTexcoord),
+                           make_object({1, -1, -1}, 2, 0, 12, kAttrTexcoord | kAttrColor, ObjectKind::PointSet),
+                           make_object({-1, 2, -1}, 1, 3, 10, 0)},
+                          160);
+    Rng rng(1400);
+    for (const ObjectInfo& o : s.info.objects) s.contents.push_back(make_content(s.info, o, rng));
+    auto set = [&](size_t points, uint8_t bits, std::array<float, 2> origin, std::array<float, 2> scale) {
+        TexcoordSet t;
+        t.range = {bits, origin, scale};
+        const uint32_t max = (1u << bits) - 1;
+        for (size_t i = 0; i < points; ++i)
+            t.records.push_back({uint16_t(rng.uniform() * max + 0.5), uint16_t(scale[1] > 0 ? rng.uniform() * max + 0.5 : 0)});
+        return t;
+    };
+    s.contents[0].texcoord_sets = {set(40, 12, {-0.5f, 0}, {2, 1}), set(40, 8, {0, 0.25f}, {0.5f, 0.5f})};
+    s.contents[1].texcoord_sets = {set(12, 16, {3, 0.75f}, {1, 0})};
+    StreamPackets packets;
+    if (Error e = packetize_stream(s.info, s.contents, kStreamId, packets); e != Error::Ok) {
+        std::cerr << "make_vectors: packetize_stream (texcoords) failed: " << error_name(e) << "\n";
+        std::exit(1);
+    }
+    uint32_t sequence = 0;
+    auto number = [&](Packets p) {
+        for (Packet& q : p) restamp_packet(q, sequence++);
+        return p;
+    };
+    Packets base = packets.stream_info;
+    base.insert(base.end(), packets.ellipsoids.begin(), packets.ellipsoids.end());
+    s.base = number(base);
+    s.points = number(packets.points);
+    s.texcoords = number(packets.texcoords);
+    return s;
+}
+
+// A TEXCOORDS payload written as given (spec 30.1): the fixed fields, then the records at `bits`.
+std::vector<uint8_t> raw_texcoords_payload(uint32_t first, uint16_t count, uint8_t set, uint8_t set_count, uint8_t bits,
+                                           std::array<float, 2> origin, std::array<float, 2> scale,
+                                           const std::vector<std::array<uint16_t, 2>>& records) {
+    TexcoordsRun run;
+    run.first_index = first;
+    run.set = set;
+    run.set_count = set_count;
+    run.range = {bits, origin, scale};
+    run.records = records;
+    std::vector<uint8_t> out = encode_texcoords_payload(run);
+    out[4] = uint8_t(count);
+    out[5] = uint8_t(count >> 8);
+    return out;
+}
+
+void texcoords_vectors(Writer& w) {
+    const TexcoordsStream s = texcoords_stream();
+    const Packets stream = s.all();
+    // Object 0: set 1 in 2 packets (36 + 4 records of 24 bits), set 2 in 1 (40 of 16); object 1: 1 (12 of 32).
+    if (s.texcoords.size() != 4 || get16(s.texcoords[3], 16) != 1) {
+        std::cerr << "make_vectors: the texture-coordinate stream has " << s.texcoords.size()
+                  << " TEXCOORDS packets, not 4 with object 1's last\n";
+        std::exit(1);
+    }
+    const size_t first_texcoords = s.base.size() + s.points.size();
+    const std::string desc =
+        "the texture-coordinate stream (format 1.14, spec 30; packet size 160): object 0, a surface of 4 ellipsoids "
+        "and 40 points with texture coordinates and 2 further sets (TEXCOORD_1: 12 bits, origin (-0.5, 0), scale (2, 1), "
+        "points 0..35 and 36..39 in 2 TEXCOORDS packets; TEXCOORD_2: 8 bits, origin (0, 0.25), scale (0.5, 0.5), one "
+        "packet); object 1, a point set of 12 points with texture coordinates and RGB colour and 1 further set "
+        "(TEXCOORD_1: 16 bits, origin (3, 0.75), scale (1, 0), one packet); object 2, a surface of 3 ellipsoids and 10 "
+        "points without texture coordinates; the 4 TEXCOORDS packets (skippable, saying 1.14) after the POINTS packets";
+
+    // ---- valid ----
+    w.write("valid", "texcoords", desc + ", in stream order: every record of every set held", stream);
+
+    // ---- unusual ----
+    {
+        // The TEXCOORDS packets first (held until the stream info), in reverse, each twice, reserved bytes set.
+        Packets sent;
+        for (size_t k = s.texcoords.size(); k-- > 0;) {
+            Packet p = s.texcoords[k];
+            p[kHeaderSize + 9] = 0x5A, p[kHeaderSize + 10] = 0xA5, p[kHeaderSize + 11] = 0xFF;
+            reseal(p);
+            sent.push_back(p);
+            sent.push_back(p);
+        }
+        sent.insert(sent.end(), s.base.begin(), s.base.end());
+        sent.insert(sent.end(), s.points.begin(), s.points.end());
+        w.write("unusual", "texcoords_before_stream_info",
+                desc + ", with the 4 TEXCOORDS packets first, last to first, each with its reserved bytes 9..11 set to "
+                       "5A A5 FF (ignored) and sent twice in a row: held until the STREAM_INFO arrives (spec 11.2), then "
+                       "taken in the order they arrived (the second copy of each a duplicate); decodes as valid/texcoords "
+                       "but for the counters and the packets' outcomes",
+                sent);
+    }
+    {
+        // The extremes: 16 bits over the widest finite range, 4 bits, runs of one record.
+        TexcoordsStream t = texcoords_stream();
+        t.contents[0].texcoord_sets[1].range.bits = 4;
+        for (auto& r : t.contents[0].texcoord_sets[1].records) r = {uint16_t(r[0] & 15), uint16_t(r[1] & 15)};
+        t.contents[0].texcoord_sets[0].range = {16, {-1e30f, 0}, {2e30f, 0}};
+        for (auto& r : t.contents[0].texcoord_sets[0].records) r[1] = 0xFFFF;
+        StreamPackets packets;
+        if (packetize_stream(t.info, t.contents, kStreamId, packets) != Error::Ok) {
+            std::cerr << "make_vectors: packetize_stream (texcoords limits) failed\n";
+            std::exit(1);
+        }
+        Packets file = packets.stream_info;
+        for (const Packets* p : {&packets.ellipsoids, &packets.points, &packets.texcoords})
+            file.insert(file.end(), p->begin(), p->end());
+        // And object 1's set as runs of one record each, the last first.
+        Packets ones;
+        for (uint32_t i = 12; i-- > 0;) {
+            const auto& set = t.contents[1].texcoord_sets[0];
+            PacketHeader h;
+            h.version_minor = kTexcoordsMinor;
+            h.type = uint8_t(PacketType::Texcoords);
+            h.flags = kFlagSkippable;
+            h.stream_id = kStreamId;
+            h.object_id = 1;
+            ones.push_back(write_packet(h, raw_texcoords_payload(i, 1, 1, 1, 16, set.range.origin, set.range.scale,
+                                                                 {set.records[i]})));
+        }
+        Packets kept;
+        for (const Packet& p : file)
+            if (!(p[6] == uint8_t(PacketType::Texcoords) && get16(p, 16) == 1)) kept.push_back(p);
+        kept.insert(kept.end(), ones.begin(), ones.end());
+        w.write("unusual", "texcoords_limits",
+                "the texture-coordinate stream with object 0's TEXCOORD_1 at 16 bits over origin (-1e30, 0) and scale "
+                "(2e30, 0) (the largest range whose end is finite in f32: -1e30 + 2e30 = 1e30; v of every record 65535 "
+                "over a scale of 0, dequantized to the origin) and its TEXCOORD_2 at 4 bits (the fewest), and object 1's "
+                "set sent as 12 TEXCOORDS packets of one record each (count 1), point 11 first; every record held",
+                numbered(kept));
+    }
+
+    // ---- faulty ----
+    const size_t E = kHeaderSize;
+    struct Case {
+        const char* name;
+        size_t packet;  // index into s.texcoords
+        const char* what;
+        std::function<void(Packet&)> edit;
+        const char* reason;
+    };
+    auto payload_edit = [](std::function<void(std::vector<uint8_t>&)> f) {
+        return [f](Packet& p) {
+            std::vector<uint8_t> payload = payload_of(p);
+            f(payload);
+            p = with_payload(p, payload);
+        };
+    };
+    auto put_f32_at = [](std::vector<uint8_t>& payload, size_t at, float v) {
+        uint32_t bits;
+        std::memcpy(&bits, &v, 4);
+        for (int i = 0; i < 4; ++i) payload[at + i] = uint8_t(bits >> (8 * i));
+    };
+    const std::vector<Case> cases = {
+        {"texcoords_short", 2, "object 0's TEXCOORD_2 packet cut to 27 bytes of payload",
+         payload_edit([](std::vector<uint8_t>& p) { p.resize(27); }), "malformed payload (spec 30.1 step 11: shorter than 28 bytes)"},
+        {"texcoords_count_zero", 2, "object 0's TEXCOORD_2 packet with count 0 and no records",
+         payload_edit([](std::vector<uint8_t>& p) { p.resize(28), p[4] = 0, p[5] = 0; }), "malformed payload (spec 30.1 step 11: count 0)"},
+        {"texcoords_set_count_zero", 2, "object 0's TEXCOORD_2 packet with set_count 0", [&](Packet& p) { p[E + 7] = 0; },
+         "malformed payload (spec 30.1 step 11: set_count 0)"},
+        {"texcoords_set_count_eight", 2, "object 0's TEXCOORD_2 packet with set_count 8", [&](Packet& p) { p[E + 7] = 8; },
+         "malformed payload (spec 30.1 step 11: set_count above 7)"},
+        {"texcoords_set_zero", 2, "object 0's TEXCOORD_2 packet with set 0", [&](Packet& p) { p[E + 6] = 0; },
+         "malformed payload (spec 30.1 step 11: set 0)"},
+        {"texcoords_set_past_count", 2, "object 0's TEXCOORD_2 packet with set 3, above its set_count 2",
+         [&](Packet& p) { p[E + 6] = 3; }, "malformed payload (spec 30.1 step 11: set above set_count)"},
+        {"texcoords_bits_three", 2, "object 0's TEXCOORD_2 packet with bits 3 (its 80 bytes of records re-cut to 30)",
+         payload_edit([](std::vector<uint8_t>& p) { p[8] = 3, p.resize(28 + 30); }),
+         "malformed payload (spec 30.1 step 11: bits below 4)"},
+        {"texcoords_bits_seventeen", 2, "object 0's TEXCOORD_2 packet with bits 17 and count 4 (its records re-cut to the 17 bytes 4 records of 34 bits take)",
+         payload_edit([](std::vector<uint8_t>& p) { p[8] = 17, p[4] = 4, p[5] = 0, p.resize(28 + 17); }),
+         "malformed payload (spec 30.1 step 11: bits above 16)"},
+        {"texcoords_run_past_index", 2, "object 0's TEXCOORD_2 packet with first_index 4294967290 (a run of 40 past 2^32 - 1)",
+         payload_edit([](std::vector<uint8_t>& p) { p[0] = 0xFA, p[1] = p[2] = p[3] = 0xFF; }),
+         "malformed payload (spec 30.1 step 11: first_index + count > 2^32 - 1)"},
+        {"texcoords_origin_nan", 2, "object 0's TEXCOORD_2 packet with origin u NaN",
+         payload_edit([&](std::vector<uint8_t>& p) { put_f32_at(p, 12, std::numeric_limits<float>::quiet_NaN()); }),
+         "malformed payload (spec 30.1 step 11: a range component not finite)"},
+        {"texcoords_scale_negative", 2, "object 0's TEXCOORD_2 packet with scale v -0.5",
+         payload_edit([&](std::vector<uint8_t>& p) { put_f32_at(p, 24, -0.5f); }),
+         "malformed payload (spec 30.1 step 11: a negative scale)"},
+        {"texcoords_end_infinite", 2, "object 0's TEXCOORD_2 packet with origin u 3e38 and scale u 1e38 (finite each, their sum rounds to infinity in f32)",
+         payload_edit([&](std::vector<uint8_t>& p) { put_f32_at(p, 12, 3e38f), put_f32_at(p, 20, 1e38f); }),
+         "malformed payload (spec 30.1 step 11: origin + scale infinite)"},
+        {"texcoords_length", 2, "object 0's TEXCOORD_2 packet with one byte more",
+         payload_edit([](std::vector<uint8_t>& p) { p.push_back(0); }), "malformed payload (spec 30.1 step 11: the length)"},
+        {"texcoords_no_texcoord_attribute", 2, "object 0's TEXCOORD_2 packet sent as object 2's (which carries no texture coordinates; its 40 records past object 2's 10 points too)",
+         [&](Packet& p) { put16(p, 16, 2); }, "malformed payload (spec 30.1 step 13: the object carries no texture coordinates)"},
+        {"texcoords_index_past", 3, "object 1's TEXCOORDS packet with first_index 1 (points 1..12 of 12)",
+         [&](Packet& p) { p[E] = 1; }, "index out of range (spec 30.1 step 14)"},
+        {"texcoords_set_count_differs", 2, "object 0's TEXCOORD_2 packet with set_count 3",
+         [&](Packet& p) { p[E + 7] = 3; }, "stream mismatch (spec 30.1 step 15: set_count)"},
+        {"texcoords_range_differs", 1, "object 0's second TEXCOORD_1 packet (points 36..39) with origin v 0.125",
+         payload_edit([&](std::vector<uint8_t>& p) { put_f32_at(p, 16, 0.125f); }),
+         "stream mismatch (spec 30.1 step 15: the set's range)"},
+        {"texcoords_record_differs", 3, "object 1's TEXCOORDS packet with the u of point 0's record one higher",
+         payload_edit([](std::vector<uint8_t>& p) { p[28] = uint8_t(p[28] + 1); if (p[28] == 0) p[29] = uint8_t(p[29] + 1); }),
+         "stream mismatch (spec 30.1 step 15: a record)"},
+    };
+    for (const Case& c : cases)
+        w.write("faulty", c.name,
+                desc + ", then " + c.what + " (sequence 900): rejected as " + c.reason + "; the rest decodes as valid/texcoords",
+                with_edited_copy(stream, first_texcoords + c.packet, c.edit));
+    {
+        Packets sent(stream.begin(), stream.begin() + long(first_texcoords + 1));
+        sent.insert(sent.end(), stream.begin() + long(first_texcoords + 2), stream.end());
+        w.write("faulty", "texcoords_missing",
+                desc + ", without object 0's second TEXCOORD_1 packet (points 36..39): no rejection; object 0's "
+                       "TEXCOORD_1 holds 36 of 40 records, so the object is not complete and the recording does not "
+                       "conform (spec 30.2)",
+                sent);
+    }
+}
+
 // Format 1.11: vertices carried by the exact layer (EXACT_MESH, EXACT_MESH_REPAIR, spec 27). The
 // exact-layer stream's sphere and panel (section 19's vectors) at packet size 256, each sending only
 // part of its vertices as points: the sphere (normals) its first 33 points in the shuffled order, the
@@ -8524,6 +8757,7 @@ int main(int argc, char** argv) {
     exact_mesh_vectors(w);
     extras_vectors(w);
     required_extension_vectors(w);
+    texcoords_vectors(w);
     std::printf("%zu vectors, %zu bytes with their JSON\n", w.written.size(), w.total_bytes);
     return 0;
 }
