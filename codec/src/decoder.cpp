@@ -1,5 +1,6 @@
 // Whole-object and whole-stream reconstruction, and the output mesh with its attributes.
 #include "ellicast/codec/decoder.h"
+#include "ellicast/codec/triangle_tree.h"
 #include "filler_simplify.h"
 
 #include <algorithm>
@@ -81,19 +82,43 @@ double attribute_distance(const SurfacePoint& a, const SurfacePoint& b, const Ob
     return 0;
 }
 
-void copy_attributes(Mesh& out, const SurfacePoint& p, const ObjectInfo& info) {
+// Further texture-coordinate sets (format 1.14, spec 30.2): part of a point's attribute set when a
+// corner's set is chosen; a record not held (NaN) is not compared.
+double sets_distance(const PointTexcoordSets* sets, size_t a, size_t b) {
+    double d = 0;
+    if (!sets) return d;
+    for (const auto& set : *sets) {
+        const auto &s = set[a], &t = set[b];
+        if (std::isnan(s[0]) || std::isnan(t[0])) continue;
+        d += (double(s[0]) - t[0]) * (double(s[0]) - t[0]) + (double(s[1]) - t[1]) * (double(s[1]) - t[1]);
+    }
+    return d;
+}
+
+// The output mesh's further sets: as many arrays as the points have sets.
+void start_sets(Mesh& out, const PointTexcoordSets* sets) {
+    if (sets) out.texcoord_sets.assign(sets->size(), {});
+}
+
+void copy_attributes(Mesh& out, const SurfacePoint& p, const ObjectInfo& info, const PointTexcoordSets* sets = nullptr,
+                     size_t index = 0) {
     if (info.has_normals()) out.normals.push_back(p.normal);
     if (info.has(kAttrTexcoord)) out.texcoords.push_back(p.texcoord);
     if (info.has(kAttrColor)) out.colors.push_back(p.color);
+    if (sets)
+        for (size_t s = 0; s < sets->size(); ++s) out.texcoord_sets[s].push_back((*sets)[s][index]);
 }
 
 // Points of an object as a point set; identical positions of a surface object are one vertex.
-Mesh point_set(const ObjectInfo& info, const std::vector<SurfacePoint>& points, bool merge_identical) {
+Mesh point_set(const ObjectInfo& info, const std::vector<SurfacePoint>& points, bool merge_identical,
+               const PointTexcoordSets* sets) {
     Mesh out;
+    start_sets(out, sets);
     out.is_point_set = true;
     out.colors_have_alpha = info.has(kAttrColorAlpha);
     std::unordered_map<uint64_t, std::vector<uint32_t>> seen;
-    for (const auto& p : points) {
+    for (size_t k = 0; k < points.size(); ++k) {
+        const SurfacePoint& p = points[k];
         if (merge_identical) {
             uint64_t key = 0;
             for (float f : p.position) key = key * 1000003u ^ std::hash<float>{}(f);
@@ -104,7 +129,7 @@ Mesh point_set(const ObjectInfo& info, const std::vector<SurfacePoint>& points, 
             list.push_back(uint32_t(out.positions.size()));
         }
         out.positions.push_back(p.position);
-        copy_attributes(out, p, info);
+        copy_attributes(out, p, info, sets, k);
     }
     // Points without a surface cannot have surface normals (format 1.8): none rather than some.
     if (info.surface_normals && std::any_of(out.normals.begin(), out.normals.end(), left_to_surface)) out.normals.clear();
@@ -149,9 +174,11 @@ size_t remove_components_without_originals(Reconstruction& r) {
 
 }  // namespace
 
-Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::vector<SurfacePoint>& points) {
+Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::vector<SurfacePoint>& points,
+                  const PointTexcoordSets* texcoord_sets) {
     const DecoderTriMesh& mesh = r.mesh;
     Mesh out;
+    start_sets(out, texcoord_sets);
     out.colors_have_alpha = info.has(kAttrColorAlpha);
     const size_t nv = mesh.n_vertices();
     // Each marching-cubes vertex borrows the attribute sets of its nearest original vertex (along
@@ -246,7 +273,8 @@ Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::ve
                             double m = std::numeric_limits<double>::max();
                             const size_t compared = std::min(other->size(), kMaxSetsCompared);
                             for (size_t ti = 0; ti < compared; ++ti)
-                                m = std::min(m, attribute_distance(points[s], points[(*other)[ti]], info));
+                                m = std::min(m, attribute_distance(points[s], points[(*other)[ti]], info) +
+                                                    sets_distance(texcoord_sets, s, (*other)[ti]));
                             cost += m;
                         }
                         if (cost < best) best = cost, chosen = s;
@@ -272,7 +300,7 @@ Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::ve
                 const Vec3& p = mesh.point(corner[c]);
                 out.positions.push_back({float(p[0]), float(p[1]), float(p[2])});
                 if (chosen >= 0) {
-                    copy_attributes(out, points[size_t(chosen)], info);
+                    copy_attributes(out, points[size_t(chosen)], info, texcoord_sets, size_t(chosen));
                     if (info.surface_normals && left_to_surface(out.normals.back()))
                         out.normals.back() = geometric_normal(corner[c]);
                 } else if (info.has_normals()) {
@@ -287,12 +315,16 @@ Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::ve
     if (out.normals.size() != out.positions.size()) out.normals.clear();
     if (out.texcoords.size() != out.positions.size()) out.texcoords.clear();
     if (out.colors.size() != out.positions.size()) out.colors.clear();
+    if (out.texcoords.empty()) out.texcoord_sets.clear();
+    for (auto& set : out.texcoord_sets)
+        if (set.size() != out.positions.size()) out.texcoord_sets.clear();
     return out;
 }
 
 bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipsoids,
                    const std::vector<SurfacePoint>& points, int grid_hint, const DecodeOptions& options,
-                   size_t object_index, Mesh& out, ObjectDecodeReport& report, std::string& error) {
+                   size_t object_index, Mesh& out, ObjectDecodeReport& report, std::string& error,
+                   const PointTexcoordSets* sets) {
     report = ObjectDecodeReport{};
     report.ellipsoids = ellipsoids.size();
     report.points = points.size();
@@ -304,13 +336,13 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
     auto t0 = std::chrono::steady_clock::now();
 
     if (info.kind == ObjectKind::PointSet) {
-        out = point_set(info, points, false);
+        out = point_set(info, points, false, sets);
         report.vertices_out = out.positions.size();
         report.timings.output = seconds_since(t0);
         return true;
     }
     auto points_only = [&](const std::string& why) {
-        out = point_set(info, points, true);
+        out = point_set(info, points, true, sets);
         report.notes.push_back(why + (points.empty() ? ": nothing to build"
                                                      : ": no base surface; writing the " +
                                                            std::to_string(out.positions.size()) +
@@ -414,7 +446,7 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
                          options.reconstruction);
     if (info.has_normals()) r.normals = &points;
     r.sheet_points = &on_sheet;
-    if (options.snapshot) options.snapshot(object_index, 0, extract_mesh(r, info, points));
+    if (options.snapshot) options.snapshot(object_index, 0, extract_mesh(r, info, points, sets));
 
     auto t2 = std::chrono::steady_clock::now();
     double snapshot_time = 0;
@@ -443,7 +475,7 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
         if (options.snapshot && options.snapshot_every > 0 && (k + 1) % options.snapshot_every == 0 &&
             k + 1 < points.size()) {
             auto ts = std::chrono::steady_clock::now();
-            options.snapshot(object_index, k + 1, extract_mesh(r, info, points));
+            options.snapshot(object_index, k + 1, extract_mesh(r, info, points, sets));
             snapshot_time += seconds_since(ts);
         }
     }
@@ -467,7 +499,7 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
     report.timings.cleanup = seconds_since(t3);
 
     auto t4 = std::chrono::steady_clock::now();
-    out = extract_mesh(r, info, points);
+    out = extract_mesh(r, info, points, sets);
     // The grid's estimate can overshoot a little: a base alone is trimmed only past twice the budget.
     if (face_budget > 0 && (!points.empty() || out.triangles.size() > 2 * face_budget)) {
         report.simplified_faces = detail::simplify_filler(out, points, face_budget);
@@ -516,6 +548,67 @@ size_t shared_base_grid_nodes(const ReceivedStream& stream, const DecodeOptions&
     return std::min(options.base_grid_nodes, std::max<size_t>(4096, kBaseGridNodesInAll / with_base));
 }
 
+namespace {
+
+// Format 1.14 (spec 30.2): the further sets object `object` shows, the first `count` of its
+// TEXCOORDS sets: those holding a record, up to the first that holds none (glTF numbers sets
+// without gaps); none for an object without texture coordinates.
+size_t shown_sets(const ReceivedObject& o) {
+    if (!o.info || !o.info->has(kAttrTexcoord)) return 0;
+    size_t count = 0;
+    while (count < o.texcoord_sets.size() && !o.texcoord_sets[count].records.empty()) ++count;
+    return count;
+}
+
+// The shown sets' coordinates of the points of `indices` (NaN where a record has not arrived).
+PointTexcoordSets point_sets(const ReceivedObject& o, const std::vector<uint32_t>& indices) {
+    PointTexcoordSets sets(shown_sets(o));
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (size_t s = 0; s < sets.size(); ++s) {
+        const ReceivedTexcoordSet& held = o.texcoord_sets[s];
+        sets[s].reserve(indices.size());
+        for (uint32_t i : indices) {
+            const uint16_t* r = held.records.find(i);
+            sets[s].push_back(r ? dequantize_texcoord({r[0], r[1]}, held.range) : std::array<float, 2>{nan, nan});
+        }
+    }
+    return sets;
+}
+
+// Spec 30.2: a vertex whose point's record has not arrived (or that stands for no point) takes the
+// record of the held point nearest to it.
+void fill_missing_sets(Mesh& mesh, const ReceivedStream& stream, size_t object) {
+    const ReceivedObject& o = stream.objects()[object];
+    for (size_t s = 0; s < mesh.texcoord_sets.size(); ++s) {
+        auto& values = mesh.texcoord_sets[s];
+        if (std::none_of(values.begin(), values.end(), [](const auto& t) { return std::isnan(t[0]); })) continue;
+        std::vector<std::array<float, 3>> positions;
+        std::vector<std::array<float, 2>> records;
+        const ReceivedTexcoordSet& held = o.texcoord_sets[s];
+        for (const auto& [i, r] : held.records) {
+            const std::optional<QuantizedPoint> p = o.points.find(i);
+            if (!p) continue;
+            positions.push_back(dequantize_point(*p, *stream.info(), *o.info).position);
+            records.push_back(dequantize_texcoord({r[0], r[1]}, held.range));
+        }
+        if (records.empty()) {  // no held point has a record: the set cannot be shown
+            mesh.texcoord_sets.resize(s);
+            return;
+        }
+        std::vector<std::array<uint32_t, 3>> corners(positions.size());
+        for (uint32_t k = 0; k < corners.size(); ++k) corners[k] = {k, k, k};
+        const TriangleTree tree(positions, corners);
+        for (size_t v = 0; v < values.size(); ++v) {
+            if (!std::isnan(values[v][0])) continue;
+            const auto& q = mesh.positions[v];
+            const ClosestPoint c = tree.closest_point({q[0], q[1], q[2]});
+            values[v] = records[c.found ? c.triangle : 0];
+        }
+    }
+}
+
+}  // namespace
+
 bool exact_mesh(const ReceivedStream& stream, size_t object, Mesh& out, std::string& why, bool& unusable) {
     unusable = false;
     std::vector<Triangle> triangles;
@@ -531,8 +624,14 @@ bool exact_mesh(const ReceivedStream& stream, size_t object, Mesh& out, std::str
     points.reserve(points.size() + carried.size());
     for (const QuantizedPoint& q : carried) points.push_back(dequantize_point(q, *stream.info(), info));
     std::vector<uint32_t> vertex(points.size(), UINT32_MAX);
+    // Format 1.14: each point's further sets (by index: every point is held); none for a carried vertex.
+    std::vector<uint32_t> indices(points.size());
+    for (uint32_t i = 0; i < indices.size(); ++i) indices[i] = i;
+    const PointTexcoordSets sets = point_sets(stream.objects()[object], indices);
+    const size_t point_count = info.point_count;
     Mesh m;
     m.colors_have_alpha = info.has(kAttrColorAlpha);
+    m.texcoord_sets.assign(sets.size(), {});
     // At most every point and carried vertex, each once (a point no triangle uses is left out).
     m.triangles.reserve(triangles.size());
     m.positions.reserve(points.size());
@@ -550,6 +649,9 @@ bool exact_mesh(const ReceivedStream& stream, size_t object, Mesh& out, std::str
                 if (info.has_normals()) m.normals.push_back(p.normal);
                 if (info.has(kAttrTexcoord)) m.texcoords.push_back(p.texcoord);
                 if (info.has(kAttrColor)) m.colors.push_back(p.color);
+                for (size_t s = 0; s < sets.size(); ++s)
+                    m.texcoord_sets[s].push_back(t[k] < point_count ? sets[s][t[k]]
+                                                                    : std::array<float, 2>{NAN, NAN});
             }
             face[k] = v;
         }
@@ -557,6 +659,7 @@ bool exact_mesh(const ReceivedStream& stream, size_t object, Mesh& out, std::str
     }
     // Surface normals (format 1.8, spec 24.4): the exact object's own, over its triangles.
     if (info.surface_normals) fill_surface_normals(m);
+    fill_missing_sets(m, stream, object);
     out = std::move(m);
     return true;
 }
@@ -615,14 +718,21 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
             if (unusable) exact_note = "its exact layer is unusable (" + why + "): reconstructed";
         }
         std::vector<SurfacePoint> points = stream.points(i);
+        std::vector<uint32_t> indices;  // of the points, in the same order
+        indices.reserve(points.size());
+        for (const auto& [index, q] : objects[i].points) indices.push_back(index);
         size_t held = 0;
         if (options.insert_if) {
-            const size_t before = points.size();
-            std::erase_if(points, [&](const SurfacePoint& p) { return !options.insert_if(i, p.position); });
-            held = before - points.size();
+            size_t kept = 0;
+            for (size_t k = 0; k < points.size(); ++k)
+                if (options.insert_if(i, points[k].position)) points[kept] = points[k], indices[kept++] = indices[k];
+            held = points.size() - kept;
+            points.resize(kept);
+            indices.resize(kept);
         }
+        const PointTexcoordSets sets = point_sets(objects[i], indices);  // format 1.14
         if (!decode_object(*objects[i].info, stream.ellipsoids(i), points, info.grid_hint, shared, i, mesh,
-                           report.objects[i], object_error)) {
+                           report.objects[i], object_error, sets.empty() ? nullptr : &sets)) {
             // One object that cannot be built does not cost the others theirs.
             if (!exact_note.empty()) report.objects[i].notes.push_back(exact_note);
             report.objects[i].notes.push_back("not decoded: " + object_error);
@@ -647,6 +757,7 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
         report.timings.cleanup += t.cleanup;
         report.timings.output += t.output;
         if (mesh.positions.empty()) continue;
+        fill_missing_sets(mesh, stream, i);
         mesh.name = "object" + std::to_string(i);
         meshes.push_back(std::move(mesh));
         if (mesh_objects) mesh_objects->push_back(i);

@@ -516,40 +516,66 @@ SurfacePoint vertex_point(const Mesh& mesh, size_t i) {
     return p;
 }
 
+// A vertex's further texture-coordinate sets (format 1.14), quantized in their ranges; unused sets 0.
+using SetRecords = std::array<std::array<uint16_t, 2>, kMaxTexcoordSets>;
+
+SetRecords vertex_sets(const Mesh& mesh, size_t i, const std::vector<TexcoordRange>& ranges) {
+    SetRecords r{};
+    for (size_t s = 0; s < ranges.size(); ++s) r[s] = quantize_texcoord(mesh.texcoord_sets[s][i], ranges[s]);
+    return r;
+}
+
+// The points of a mesh: its vertices quantized, welded where position and every attribute (the
+// further texture-coordinate sets too: spec 30.2) are equal, in the spread order. `sets` receives the
+// further sets' records of each point (one entry per point when `ranges` is not empty).
 std::vector<QuantizedPoint> encode_points(const Mesh& mesh, const StreamInfo& info, const ObjectInfo& object,
-                                          uint32_t seed, std::vector<uint32_t>* vertex_points = nullptr) {
-    std::vector<QuantizedPoint> all;
+                                          uint32_t seed, std::vector<uint32_t>* vertex_points = nullptr,
+                                          const std::vector<TexcoordRange>& ranges = {},
+                                          std::vector<SetRecords>* sets = nullptr) {
+    struct Keyed {
+        QuantizedPoint q;
+        SetRecords sets;
+    };
+    std::vector<Keyed> all;
     all.reserve(mesh.positions.size());
-    for (size_t i = 0; i < mesh.positions.size(); ++i) {
-        all.push_back(quantize_point(vertex_point(mesh, i), info, object));
-    }
-    auto key = [](const QuantizedPoint& q) { return std::tie(q.position, q.normal, q.texcoord, q.color); };
-    std::sort(all.begin(), all.end(), [&](const QuantizedPoint& a, const QuantizedPoint& b) { return key(a) < key(b); });
-    all.erase(std::unique(all.begin(), all.end(), [&](const QuantizedPoint& a, const QuantizedPoint& b) { return key(a) == key(b); }),
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+        all.push_back({quantize_point(vertex_point(mesh, i), info, object), vertex_sets(mesh, i, ranges)});
+    auto key = [](const Keyed& k) { return std::tie(k.q.position, k.q.normal, k.q.texcoord, k.q.color, k.sets); };
+    std::sort(all.begin(), all.end(), [&](const Keyed& a, const Keyed& b) { return key(a) < key(b); });
+    all.erase(std::unique(all.begin(), all.end(), [&](const Keyed& a, const Keyed& b) { return key(a) == key(b); }),
               all.end());
     // Distinct positions; a seam's attribute sets follow each other.
     std::vector<std::array<uint32_t, 3>> positions;
     std::vector<size_t> first;
     for (size_t i = 0; i < all.size(); ++i)
-        if (i == 0 || all[i].position != all[i - 1].position) {
-            positions.push_back(all[i].position);
+        if (i == 0 || all[i].q.position != all[i - 1].q.position) {
+            positions.push_back(all[i].q.position);
             first.push_back(i);
         }
     first.push_back(all.size());
     std::vector<uint32_t> order = spread_order(positions, info.position_bits, seed);
-    std::vector<QuantizedPoint> out;
-    out.reserve(all.size());
+    std::vector<Keyed> sorted;
+    sorted.reserve(all.size());
     for (uint32_t p : order)
-        for (size_t i = first[p]; i < first[p + 1]; ++i) out.push_back(all[i]);
+        for (size_t i = first[p]; i < first[p + 1]; ++i) sorted.push_back(all[i]);
     if (vertex_points) {
         // The point each vertex became: its quantized position and attributes, looked up by value.
         std::map<std::tuple<std::array<uint32_t, 3>, std::array<uint32_t, 2>, std::array<uint32_t, 2>,
-                            std::array<uint32_t, 4>>, uint32_t> index;
-        for (uint32_t i = 0; i < out.size(); ++i) index.emplace(key(out[i]), i);
+                            std::array<uint32_t, 4>, SetRecords>, uint32_t> index;
+        for (uint32_t i = 0; i < sorted.size(); ++i) index.emplace(key(sorted[i]), i);
         vertex_points->resize(mesh.positions.size());
         for (size_t i = 0; i < mesh.positions.size(); ++i) {
-            (*vertex_points)[i] = index.at(key(quantize_point(vertex_point(mesh, i), info, object)));
+            const Keyed k{quantize_point(vertex_point(mesh, i), info, object), vertex_sets(mesh, i, ranges)};
+            (*vertex_points)[i] = index.at(key(k));
         }
+    }
+    std::vector<QuantizedPoint> out;
+    out.reserve(sorted.size());
+    for (const Keyed& k : sorted) out.push_back(k.q);
+    if (sets) {
+        sets->clear();
+        if (!ranges.empty())
+            for (const Keyed& k : sorted) sets->push_back(k.sets);
     }
     return out;
 }
@@ -761,6 +787,18 @@ void check_mesh(const Mesh& mesh, size_t m) {
     sized(mesh.normals.size(), "the normal array");
     sized(mesh.texcoords.size(), "the texture coordinate array");
     sized(mesh.colors.size(), "the colour array");
+    if (mesh.texcoord_sets.size() > kMaxTexcoordSets)
+        throw std::invalid_argument(name + ": " + std::to_string(mesh.texcoord_sets.size() + 1) +
+                                    " texture-coordinate sets, at most " + std::to_string(kMaxTexcoordSets + 1) +
+                                    " travel (TEXCOORD_0 to TEXCOORD_7)");
+    if (!mesh.texcoord_sets.empty() && !mesh.has_texcoords())
+        throw std::invalid_argument(name + ": TEXCOORD_1 and above without TEXCOORD_0");
+    for (size_t k = 0; k < mesh.texcoord_sets.size(); ++k) {
+        const std::string what = "the TEXCOORD_" + std::to_string(k + 1) + " array";
+        if (mesh.texcoord_sets[k].size() != n)
+            throw std::invalid_argument(name + ": " + what + " has " + std::to_string(mesh.texcoord_sets[k].size()) +
+                                        " values for " + std::to_string(n) + " vertices");
+    }
 }
 
 }  // namespace
@@ -831,13 +869,17 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         }
         progress("points", 0.97);
         std::vector<uint32_t> vertex_points;  // per vertex of the input (samples come after them)
+        // Format 1.14 (spec 30.3): a range per further texture-coordinate set, at the first set's bits.
+        std::vector<TexcoordRange> set_ranges;
+        for (const auto& values : mesh.texcoord_sets) set_ranges.push_back(texcoord_range(values, options.texcoord_bits));
+        std::vector<SetRecords> point_sets;
         if (!mesh.is_point_set && !mesh.triangles.empty() && options.sample_spacing > 0) {
             size_t added = 0;
             const Mesh sampled = with_surface_samples(mesh, sample_options(mesh, object.frame, options, report.flat_ellipsoids > 0), added);
             report.samples = uint32_t(added);
-            content.points = encode_points(sampled, info, object, object_seed, &vertex_points);
+            content.points = encode_points(sampled, info, object, object_seed, &vertex_points, set_ranges, &point_sets);
         } else {
-            content.points = encode_points(mesh, info, object, object_seed, &vertex_points);
+            content.points = encode_points(mesh, info, object, object_seed, &vertex_points, set_ranges, &point_sets);
         }
         // Format 1.8 (spec 24): normals left to the exact layer's surface where they agree with it;
         // the records then carry none, and NORMALS packets say which are sent.
@@ -865,8 +907,10 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         // data and without normals in its records (those would travel with each carried vertex); with
         // surface normals (format 1.8), the vertices whose normal the surface gives back.
         std::vector<QuantizedPoint> carried;
+        // Nor in an object with further texture-coordinate sets (format 1.14, spec 30.3): TEXCOORDS
+        // records are per point.
         if (options.point_share < 1 && options.exact_layer && !mesh.is_point_set && !mesh.per_point_data &&
-            !input.triangles.empty() && !object.has(kAttrNormal))
+            set_ranges.empty() && !input.triangles.empty() && !object.has(kAttrNormal))
             carried = carry_vertices(input, vertex_points, content.points, content.normals, options.point_share);
         // Format 1.7 (spec 23): points sent over a map of occupied cells, where that takes fewer bytes.
         // The map deals them to packets along a space-filling curve: the order changes, and every
@@ -889,6 +933,11 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
                     std::vector<NormalEntry> normals(order.size());
                     for (uint32_t i = 0; i < order.size(); ++i) normals[i] = content.normals[order[i]];
                     content.normals = std::move(normals);
+                }
+                if (!point_sets.empty()) {
+                    std::vector<SetRecords> sets(order.size());
+                    for (uint32_t i = 0; i < order.size(); ++i) sets[i] = point_sets[order[i]];
+                    point_sets = std::move(sets);
                 }
                 for (uint32_t& v : vertex_points)
                     if (v < new_index.size()) v = new_index[v];  // a carried vertex keeps its number
@@ -927,6 +976,15 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
             report.surface_normals = true;
             for (const NormalEntry& e : content.normals) report.normals_sent += e.sent;
         }
+        // Format 1.14 (spec 30): the further sets, a record per point in the points' final order.
+        for (size_t s = 0; s < set_ranges.size(); ++s) {
+            TexcoordSet set;
+            set.range = set_ranges[s];
+            set.records.reserve(point_sets.size());
+            for (const SetRecords& r : point_sets) set.records.push_back(r[s]);
+            content.texcoord_sets.push_back(std::move(set));
+        }
+        report.texcoord_sets = uint32_t(content.texcoord_sets.size());
         object.ellipsoid_count = uint32_t(content.ellipsoids.size());
         object.point_count = uint32_t(content.points.size());
         report.points = object.point_count;
@@ -956,6 +1014,12 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         for (const NormalEntry& e : result.contents[m].normals) {
             const uint8_t sent = e.sent;
             crc = crc32c(&sent, 1, crc);
+        }
+        // Further texture-coordinate sets (format 1.14): their ranges and records.
+        for (const TexcoordSet& set : result.contents[m].texcoord_sets) {
+            const float range[4] = {set.range.origin[0], set.range.origin[1], set.range.scale[0], set.range.scale[1]};
+            crc = crc32c(reinterpret_cast<const uint8_t*>(range), sizeof range, crc);
+            crc = crc32c(reinterpret_cast<const uint8_t*>(set.records.data()), set.records.size() * sizeof(set.records[0]), crc);
         }
     }
     info.content_id = crc;

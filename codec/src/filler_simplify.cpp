@@ -77,6 +77,7 @@ size_t simplify_filler(Mesh& mesh, const std::vector<SurfacePoint>& received, si
     Mesh out;
     out.name = mesh.name;
     out.colors_have_alpha = mesh.colors_have_alpha;
+    out.texcoord_sets.assign(mesh.texcoord_sets.size(), {});
     std::vector<uint32_t> index(mesh.positions.size(), UINT32_MAX);
     for (auto v : m.vertices()) {
         const uint32_t s = m.property(source, v);
@@ -84,6 +85,7 @@ size_t simplify_filler(Mesh& mesh, const std::vector<SurfacePoint>& received, si
         out.positions.push_back(mesh.positions[s]);
         if (mesh.has_normals()) out.normals.push_back(mesh.normals[s]);
         if (mesh.has_texcoords()) out.texcoords.push_back(mesh.texcoords[s]);
+        for (size_t k = 0; k < mesh.texcoord_sets.size(); ++k) out.texcoord_sets[k].push_back(mesh.texcoord_sets[k][s]);
         if (mesh.has_colors()) out.colors.push_back(mesh.colors[s]);
     }
     for (auto f : m.faces()) {

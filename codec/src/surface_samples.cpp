@@ -4,6 +4,8 @@
 // original surface and makes shared edges split at the same points from both sides.
 #include "surface_samples.h"
 
+#include "ellicast/format/texcoords.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -24,6 +26,7 @@ struct Corner {
     P3 normal{};
     std::array<float, 2> texcoord{};
     std::array<float, 4> color{};
+    std::array<std::array<float, 2>, kMaxTexcoordSets> sets{};  // TEXCOORD_1 .. (format 1.14)
 };
 
 struct Piece {
@@ -52,6 +55,8 @@ Corner midpoint(const Corner& a, const Corner& b) {
         m.normal = a.normal;  // opposite normals: keep one side's
     }
     for (int k = 0; k < 2; ++k) m.texcoord[k] = (a.texcoord[k] + b.texcoord[k]) * 0.5f;
+    for (size_t s = 0; s < kMaxTexcoordSets; ++s)
+        for (int k = 0; k < 2; ++k) m.sets[s][k] = (a.sets[s][k] + b.sets[s][k]) * 0.5f;
     for (int k = 0; k < 4; ++k) m.color[k] = (a.color[k] + b.color[k]) * 0.5f;
     return m;
 }
@@ -111,7 +116,7 @@ struct CornerBits {
     }
     bool operator()(const Corner& a, const Corner& b) const { return std::memcmp(&a, &b, sizeof(Corner)) == 0; }
 };
-static_assert(sizeof(Corner) == 12 * sizeof(float), "Corner is compared by its bytes: no padding");
+static_assert(sizeof(Corner) == (12 + 2 * kMaxTexcoordSets) * sizeof(float), "Corner is compared by its bytes: no padding");
 
 // Bisects every triangle; false (and `out` incomplete) as soon as more than `budget` distinct
 // corners are made. Both triangles along an edge make its midpoints, bit for bit, so `out` holds
@@ -133,6 +138,7 @@ bool bisect_all(const Mesh& mesh, const std::vector<std::array<bool, 3>>& sharp,
             c.position = mesh.positions[v];
             if (mesh.has_normals()) c.normal = mesh.normals[v];
             if (mesh.has_texcoords()) c.texcoord = mesh.texcoords[v];
+            for (size_t s = 0; s < mesh.texcoord_sets.size(); ++s) c.sets[s] = mesh.texcoord_sets[s][v];
             if (mesh.has_colors()) c.color = mesh.colors[v];
             root.limit[i] = sharp[t][i] ? crease_spacing : spacing;
         }
@@ -210,6 +216,7 @@ Mesh with_surface_samples(const Mesh& mesh, const SurfaceSampleOptions& options,
         out.positions.push_back(c.position);
         if (mesh.has_normals()) out.normals.push_back(c.normal);
         if (mesh.has_texcoords()) out.texcoords.push_back(c.texcoord);
+        for (size_t s = 0; s < mesh.texcoord_sets.size(); ++s) out.texcoord_sets[s].push_back(c.sets[s]);
         if (mesh.has_colors()) out.colors.push_back(c.color);
     }
     added = distinct;

@@ -456,13 +456,20 @@ struct ObjectDecodeReport {
     DecodeTimings timings;
 };
 
+// Format 1.14 (spec 30): the further texture-coordinate sets of the points given to the decoder,
+// [set - 1][k] for the k-th point; NaN where the point's record of that set has not arrived.
+using PointTexcoordSets = std::vector<std::vector<std::array<float, 2>>>;
+
 // Reconstructs one object from the ellipsoids and points that arrived (points in stream order,
 // as ReceivedStream::points gives them; `point_count` is the object's declared count and tells
 // whether the stream is complete). Returns false with `error` only when nothing can be built
-// (e.g. the grid would be too large); a missing base gives a point set and a note.
+// (e.g. the grid would be too large); a missing base gives a point set and a note. `sets`, when
+// given, are the points' further texture-coordinate sets: the output then has them too, each vertex
+// its point's (NaN where that record has not arrived; decode_stream fills those in, spec 30.2).
 bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipsoids,
                    const std::vector<SurfacePoint>& points, int grid_hint, const DecodeOptions& options,
-                   size_t object_index, Mesh& out, ObjectDecodeReport& report, std::string& error);
+                   size_t object_index, Mesh& out, ObjectDecodeReport& report, std::string& error,
+                   const PointTexcoordSets* sets = nullptr);
 
 struct StreamDecodeReport {
     std::vector<ObjectDecodeReport> objects;  // one per object of the table (empty for absent ones)
@@ -495,6 +502,7 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
 // The output mesh of a reconstruction in its current state, with attributes: seams are split by
 // attribute set (each face corner takes the set closest to the face's other corners), and
 // marching-cubes vertices take the attributes of their nearest original vertex.
-Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::vector<SurfacePoint>& points);
+Mesh extract_mesh(const Reconstruction& r, const ObjectInfo& info, const std::vector<SurfacePoint>& points,
+                  const PointTexcoordSets* sets = nullptr);
 
 }  // namespace ellicast

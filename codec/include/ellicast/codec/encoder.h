@@ -125,6 +125,7 @@ struct ObjectReport {
     uint64_t mapped_point_bytes = 0;  // MAPPED_POINTS packets (0 without a map)
     bool surface_normals = false;     // format 1.8: normals left to the surface where they agree
     uint32_t normals_sent = 0;        // of the points, those whose normal NORMALS packets send
+    uint32_t texcoord_sets = 0;       // format 1.14: further texture-coordinate sets sent (TEXCOORD_1, ...)
     uint32_t turned_faces = 0;        // triangles encoded turned round: parts that faced inward or
                                       // against their neighbours (the input is not changed)
     double interior_fraction = 0;     // of the grid's voxels, inside the surface

@@ -17,6 +17,9 @@ struct Mesh {
     std::vector<std::array<uint32_t, 3>> triangles;  // empty for a point set
     std::vector<std::array<float, 3>> normals;
     std::vector<std::array<float, 2>> texcoords;     // TEXCOORD_0
+    // TEXCOORD_1, TEXCOORD_2, ... (format 1.14): texcoord_sets[k] is TEXCOORD_<k + 1>, one entry per
+    // position each; at most 7, and only with TEXCOORD_0 (glTF numbers the sets without gaps).
+    std::vector<std::vector<std::array<float, 2>>> texcoord_sets;
     std::vector<std::array<float, 4>> colors;        // COLOR_0, linear RGBA in [0,1]
     bool colors_have_alpha = false;                  // COLOR_0 was RGBA rather than RGB
     bool is_point_set = false;                       // a point primitive: no surface to rebuild
