@@ -62,6 +62,10 @@ EllicastScheme::EllicastScheme(const Mesh& mesh, const EllicastSettings& setting
         state_->points_in_packet.push_back(0);
         packets_.push_back(std::move(p));
     }
+    for (auto& p : stream.texcoords) {  // format 1.14: further texture-coordinate sets, detail too
+        state_->points_in_packet.push_back(0);
+        packets_.push_back(std::move(p));
+    }
     ellipsoids_ = object.ellipsoid_count;
     points_ = object.point_count;
     state_->block_of.assign(packets_.size(), -1);

@@ -617,7 +617,7 @@ private:
         if (auto it = object_map_.find(key); it != object_map_.end()) return it->second;
         for (const auto& [attr, accessor] : prim.attributes) {
             (void)accessor;
-            if (attr == "POSITION" || attr == "NORMAL" || attr == "TEXCOORD_0" || attr == "COLOR_0" ||
+            if (attr == "POSITION" || attr == "NORMAL" || attr == "COLOR_0" || texcoord_set_carried(attr) ||
                 attr.rfind("JOINTS_", 0) == 0 || attr.rfind("WEIGHTS_", 0) == 0)  // read_weights takes every set
                 continue;
             not_carried_attributes_[attr] = true;
@@ -643,9 +643,31 @@ private:
         return result;
     }
 
+    // TEXCOORD_0 .. TEXCOORD_7 travel (format 1.14, spec 30).
+    static bool texcoord_set_carried(const std::string& attr) {
+        return attr.size() == 10 && attr.rfind("TEXCOORD_", 0) == 0 && attr[9] >= '0' &&
+               attr[9] <= char('0' + kMaxTexcoordSets);
+    }
+
+    // Format 1.14 (spec 30.3): a reference to set `set` of material `material` travels when every
+    // primitive drawn with the material has the sets 0 .. set; otherwise the first that lacks one.
+    std::string primitive_without_set(size_t material, int set) const {
+        for (size_t m = 0; m < model_.meshes.size(); ++m)
+            for (size_t p = 0; p < model_.meshes[m].primitives.size(); ++p) {
+                const tinygltf::Primitive& prim = model_.meshes[m].primitives[p];
+                if (prim.material != int(material)) continue;
+                for (int s = 0; s <= set; ++s)
+                    if (!prim.attributes.count("TEXCOORD_" + std::to_string(s)))
+                        return "mesh " + std::to_string(m) + " primitive " + std::to_string(p) + " has no TEXCOORD_" +
+                               std::to_string(s);
+            }
+        return {};
+    }
+
     void read_materials() {
         if (model_.materials.size() > kMaxTable) throw InputError(path_ + ": more than 65534 materials");
         for (size_t i = 0; i < model_.materials.size(); ++i) {
+            current_material_ = i;
             const tinygltf::Material& gm = model_.materials[i];
             const std::string where =
                 path_ + ": material " + std::to_string(i) + (gm.name.empty() ? "" : " (" + gm.name + ")");
@@ -691,8 +713,9 @@ private:
     }
 
     // The Asset texture reference of a material's glTF texture info (its KHR_texture_transform is
-    // checked here and travels in the material's patch). ellicast carries TEXCOORD_0 only: a reference
-    // to another set (also through the transform's texCoord) is not sent (nor its image, unless
+    // checked here and travels in the material's patch). ellicast carries TEXCOORD_0 to TEXCOORD_7
+    // (format 1.14): a reference to another set, to a set a primitive drawn with the material lacks,
+    // or through the transform's texCoord to a set other than 0, is not sent (nor its image, unless
     // another reference uses it); the material keeps its factors and its other textures, and the
     // warning names the material and the slot.
     TextureRef texture_ref(int index, int texcoord, double scale, const tinygltf::ExtensionMap& extensions,
@@ -704,11 +727,18 @@ private:
             warnings_.push_back(where + ": texCoord " + std::to_string(texcoord) + " is out of range; texture not sent");
             return ref;
         }
-        if (texcoord > 0) {
+        if (texcoord > int(kMaxTexcoordSets)) {
             warnings_.push_back(where + " uses TEXCOORD_" + std::to_string(texcoord) +
-                                "; ellicast carries TEXCOORD_0 only, so this texture is not sent (the material "
+                                "; ellicast carries TEXCOORD_0 to TEXCOORD_7, so this texture is not sent (the material "
                                 "keeps its factors and its other textures)");
             return ref;
+        }
+        if (texcoord > 0) {
+            if (const std::string lacking = primitive_without_set(current_material_, texcoord); !lacking.empty()) {
+                warnings_.push_back(where + " uses TEXCOORD_" + std::to_string(texcoord) + " but " + lacking +
+                                    "; this texture is not sent (the material keeps its factors and its other textures)");
+                return ref;
+            }
         }
         for (const auto& [name, value] : extensions) {
             if (name == "KHR_texture_transform") {
@@ -723,7 +753,7 @@ private:
             }
             warnings_.push_back(where + ": extension " + name + " of the texture reference not sent");
         }
-        ref.texcoord = 0;
+        ref.texcoord = uint8_t(texcoord);
         ref.texture = texture_index(index, where);
         return ref;
     }
@@ -987,7 +1017,7 @@ public:
         for (const auto& [name, seen] : not_carried_attributes_) names.push_back(name);
         if (!names.empty())
             warnings_.push_back(path_ + ": vertex attribute(s) " + join(names) +
-                                " not sent (ellicast carries POSITION, NORMAL, TEXCOORD_0 and COLOR_0" +
+                                " not sent (ellicast carries POSITION, NORMAL, TEXCOORD_0 to TEXCOORD_7 and COLOR_0" +
                                 (not_carried_attributes_.count("TANGENT")
                                      ? "; TANGENT is rebuilt on output for normal-mapped materials from the normals and "
                                        "texture coordinates)"
@@ -995,6 +1025,7 @@ public:
     }
 
 private:
+    size_t current_material_ = 0;  // the material read_materials is at (texture_ref's sets)
     const std::string& path_;
     const tinygltf::Model& model_;
     const CapturedImages& images_;

@@ -72,6 +72,19 @@ std::optional<Mesh> writable_object(const Mesh& in, const std::string& what, std
     for (auto& uv : m.texcoords)
         for (float& c : uv)
             if (!std::isfinite(c)) c = 0;
+    // Further sets (format 1.14): complete ones after a TEXCOORD_0, up to the first that is not.
+    if (!m.has_texcoords()) m.texcoord_sets.clear();
+    for (size_t s = 0; s < m.texcoord_sets.size(); ++s) {
+        if (m.texcoord_sets[s].size() == m.positions.size()) continue;
+        warnings.push_back(what + ": its TEXCOORD_" + std::to_string(s + 1) +
+                           " count differs from its vertex count; it and the sets after it left out");
+        m.texcoord_sets.resize(s);
+        break;
+    }
+    for (auto& set : m.texcoord_sets)
+        for (auto& uv : set)
+            for (float& c : uv)
+                if (!std::isfinite(c)) c = 0;
     m.normals = unit_normals(m.normals);
     return m;
 }
@@ -213,7 +226,7 @@ private:
             bool whole = true;
             for (const TextureRef* ref : {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
                                           &m.occlusion_texture, &m.emissive_texture})
-                if (ref->texture != kNone && ref->texcoord == 0 &&
+                if (ref->texture != kNone && ref->texcoord <= kMaxTexcoordSets &&
                     (ref->texture >= texture_out_.size() || texture_out_[ref->texture] < 0))
                     whole = false;
             tinygltf::Material g = gltf_material(m, i, false);
@@ -246,7 +259,7 @@ private:
                                 " is not available; primitives using the material get the default material");
             return -1;
         }
-        if (ref.texcoord != 0) {
+        if (ref.texcoord > kMaxTexcoordSets) {
             warnings_.push_back(what + " uses TEXCOORD_" + std::to_string(ref.texcoord) +
                                 ", which ellicast does not carry; the material is written without that texture");
             return -1;
@@ -275,12 +288,17 @@ private:
         g.doubleSided = m.double_sided;
         if (untextured) return g;
         pbr.baseColorTexture.index = texture_index(m.base_color_texture, what + " baseColorTexture");
+        pbr.baseColorTexture.texCoord = m.base_color_texture.texcoord;
         pbr.metallicRoughnessTexture.index = texture_index(m.metallic_roughness_texture, what + " metallicRoughnessTexture");
+        pbr.metallicRoughnessTexture.texCoord = m.metallic_roughness_texture.texcoord;
         g.normalTexture.index = texture_index(m.normal_texture, what + " normalTexture");
+        g.normalTexture.texCoord = m.normal_texture.texcoord;
         g.normalTexture.scale = std::isfinite(m.normal_texture.scale) ? m.normal_texture.scale : 1.0;
         g.occlusionTexture.index = texture_index(m.occlusion_texture, what + " occlusionTexture");
+        g.occlusionTexture.texCoord = m.occlusion_texture.texcoord;
         g.occlusionTexture.strength = clamp01(m.occlusion_texture.scale);
         g.emissiveTexture.index = texture_index(m.emissive_texture, what + " emissiveTexture");
+        g.emissiveTexture.texCoord = m.emissive_texture.texcoord;
         return g;
     }
 
@@ -289,6 +307,18 @@ private:
         return g.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
                g.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || g.normalTexture.index >= 0 ||
                g.occlusionTexture.index >= 0 || g.emissiveTexture.index >= 0;
+    }
+
+    // The highest texture-coordinate set the written material's core textures use (0 without any).
+    int highest_set(int material) const {
+        const auto& g = model_.materials[size_t(material)];
+        int set = 0;
+        for (const auto* t : {&g.pbrMetallicRoughness.baseColorTexture, &g.pbrMetallicRoughness.metallicRoughnessTexture,
+                              &g.emissiveTexture})
+            if (t->index >= 0) set = std::max(set, t->texCoord);
+        if (g.normalTexture.index >= 0) set = std::max(set, g.normalTexture.texCoord);
+        if (g.occlusionTexture.index >= 0) set = std::max(set, g.occlusionTexture.texCoord);
+        return set;
     }
 
     // The glTF material for a primitive of object `object` drawn with asset material `material`:
@@ -302,11 +332,14 @@ private:
             return -1;
         }
         if (!material_whole_[material]) return -1;  // named by texture_index
-        if (object.has_texcoords() || !has_texture(material)) return material;
+        const int set = highest_set(material);
+        if (!has_texture(material) || (object.has_texcoords() && int(object.texcoord_sets.size()) >= set))
+            return material;
         auto it = untextured_.find(material);
         if (it == untextured_.end()) {
-            warnings_.push_back(what + " has no TEXCOORD_0 but material " + std::to_string(material) +
-                                " has textures: drawn with an untextured copy of the material");
+            warnings_.push_back(what + " has no TEXCOORD_" + std::to_string(object.has_texcoords() ? set : 0) +
+                                " but material " + std::to_string(material) +
+                                " has textures on it: drawn with an untextured copy of the material");
             extras_at(ExtrasTarget::Material, material, "/materials/" + std::to_string(model_.materials.size()));
             model_.materials.push_back(gltf_material(asset_.scene.materials[material], material, true));
             it = untextured_.emplace(material, int(model_.materials.size()) - 1).first;
@@ -354,6 +387,20 @@ private:
         return result;
     }
 
+    // A set of texture coordinates as KHR_mesh_quantization allows: in [0,1] as normalized uint16;
+    // outside (repeating textures) kept as floats, which the extension allows.
+    int quantized_texcoords(const std::vector<std::array<float, 2>>& values) {
+        const size_t n = values.size();
+        bool unit = true;
+        for (const auto& uv : values) unit = unit && uv[0] >= 0 && uv[0] <= 1 && uv[1] >= 0 && uv[1] <= 1;
+        if (!unit) return add_float_attribute(model_, values, TINYGLTF_TYPE_VEC2, false);
+        std::vector<uint16_t> q(n * 2);
+        for (size_t i = 0; i < n; ++i)
+            for (int k = 0; k < 2; ++k) q[i * 2 + k] = uint16_t(std::lround(values[i][k] * 65535.0));
+        int view = add_buffer_view(model_, q.data(), q.size() * 2, TINYGLTF_TARGET_ARRAY_BUFFER);
+        return add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2, n, {}, {}, true);
+    }
+
     // KHR_mesh_quantization: positions as normalized int16 in the mesh's cube, normals as normalized
     // int8, texture coordinates in [0,1] as normalized uint16, colours as normalized uint16.
     tinygltf::Primitive quantized_primitive(const Mesh& mesh, const Dequantization& dq) {
@@ -388,18 +435,9 @@ private:
                                                      {}, {}, true);
         }
         if (mesh.has_texcoords()) {
-            bool unit = true;
-            for (const auto& uv : mesh.texcoords) unit = unit && uv[0] >= 0 && uv[0] <= 1 && uv[1] >= 0 && uv[1] <= 1;
-            if (unit) {
-                std::vector<uint16_t> q(n * 2);
-                for (size_t i = 0; i < n; ++i)
-                    for (int k = 0; k < 2; ++k) q[i * 2 + k] = uint16_t(std::lround(mesh.texcoords[i][k] * 65535.0));
-                int view = add_buffer_view(model_, q.data(), q.size() * 2, TINYGLTF_TARGET_ARRAY_BUFFER);
-                prim.attributes["TEXCOORD_0"] = add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                                                             TINYGLTF_TYPE_VEC2, n, {}, {}, true);
-            } else {  // outside [0,1] (repeating textures): kept as floats, which the extension allows
-                prim.attributes["TEXCOORD_0"] = add_float_attribute(model_, mesh.texcoords, TINYGLTF_TYPE_VEC2, false);
-            }
+            prim.attributes["TEXCOORD_0"] = quantized_texcoords(mesh.texcoords);
+            for (size_t s = 0; s < mesh.texcoord_sets.size(); ++s)
+                prim.attributes["TEXCOORD_" + std::to_string(s + 1)] = quantized_texcoords(mesh.texcoord_sets[s]);
         }
         if (mesh.has_colors()) {
             const int channels = mesh.colors_have_alpha ? 4 : 3;
@@ -490,6 +528,7 @@ private:
         }
         if (problem.empty() && (decoded.has_normals() != mesh.has_normals() ||
                                 decoded.has_texcoords() != mesh.has_texcoords() ||
+                                decoded.texcoord_sets.size() != mesh.texcoord_sets.size() ||
                                 decoded.has_colors() != mesh.has_colors()))
             problem = "an attribute was lost";
         if (!problem.empty()) {
@@ -517,6 +556,8 @@ private:
         declare("POSITION", ids.position, TINYGLTF_TYPE_VEC3, true);
         if (ids.normal >= 0) declare("NORMAL", ids.normal, TINYGLTF_TYPE_VEC3, false);
         if (ids.texcoord >= 0) declare("TEXCOORD_0", ids.texcoord, TINYGLTF_TYPE_VEC2, false);
+        for (size_t s = 0; s < ids.texcoord_sets.size(); ++s)
+            declare(("TEXCOORD_" + std::to_string(s + 1)).c_str(), ids.texcoord_sets[s], TINYGLTF_TYPE_VEC2, false);
         if (ids.color >= 0)
             declare("COLOR_0", ids.color, mesh.colors_have_alpha ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, false);
         prim.indices = add_accessor(model_, -1,

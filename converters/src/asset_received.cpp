@@ -146,8 +146,20 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
     // Materials that arrived and whose textures are all complete, renumbered. A material still
     // waiting for a texture is not shown at all (its primitives get the default material, as if it
     // had not arrived): a textured material without its texture would show the wrong colours. A
-    // reference to a texture-coordinate set other than TEXCOORD_0 cannot be shown (ellicast
-    // carries TEXCOORD_0 only): it is cleared and the material shown without that texture.
+    // reference to a further texture-coordinate set (format 1.14, spec 30.2) is shown when every
+    // object drawn with the material shows that set, and then waits for its texture like set 0;
+    // otherwise it is cleared and the material shown without that texture.
+    std::map<uint16_t, size_t> material_sets;  // stream material -> sets every object drawn with it shows
+    std::map<uint16_t, uint16_t> lacking_object;  // stream material -> an object that shows fewest
+    for (const auto& [index, m] : stream.scene_meshes())
+        for (const auto& p : m.primitives) {
+            if (p.material == kNone || p.object >= asset.objects.size() || asset.objects[p.object].positions.empty())
+                continue;
+            const Mesh& object = asset.objects[p.object];
+            const size_t sets = object.has_texcoords() ? object.texcoord_sets.size() : 0;
+            auto [it, fresh] = material_sets.emplace(p.material, sets);
+            if (fresh || sets < it->second) it->second = sets, lacking_object[p.material] = p.object;
+        }
     std::map<uint16_t, uint16_t> material_map;
     std::set<uint16_t> waiting_materials;
     uint16_t material_count = 0;
@@ -165,10 +177,17 @@ Asset received_asset(const ReceivedStream& stream, std::vector<Mesh> objects) {
         for (auto [ref, slot] : slots) {
             if (ref->texture == kNone) continue;
             if (ref->texcoord != 0) {
-                warnings.push_back(what + " " + slot + " uses TEXCOORD_" + std::to_string(ref->texcoord) +
-                                   ", which ellicast does not carry; the material is shown without that texture");
-                ref->texture = kNone;
-                continue;
+                const auto sets = material_sets.find(index);
+                if (sets != material_sets.end() && ref->texcoord > sets->second) {
+                    const uint16_t object = lacking_object.at(index);
+                    warnings.push_back(what + " " + slot + " uses TEXCOORD_" + std::to_string(ref->texcoord) +
+                                       ", which object " + std::to_string(object) +
+                                       (ref->texcoord > kMaxTexcoordSets ? " cannot have (ellicast carries TEXCOORD_0 to TEXCOORD_7)"
+                                                                          : " does not show (its TEXCOORDS packets have not arrived)") +
+                                       "; the material is shown without that texture");
+                    ref->texture = kNone;
+                    continue;
+                }
             }
             if (auto it = texture_map.find(ref->texture); it != texture_map.end()) {
                 ref->texture = it->second;

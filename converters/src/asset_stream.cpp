@@ -68,6 +68,7 @@ bool encode_asset(const Asset& asset, const EncodeOptions& options, uint32_t str
     take(scene.required_extensions, out.scene_packets, out.scene_bytes);  // format 1.13, with the base
     take(stream.points, out.point_packets, out.point_bytes);
     take(stream.normals, out.normal_packets, out.normal_bytes);
+    take(stream.texcoords, out.texcoord_packets, out.texcoord_bytes);  // format 1.14
     // Format 1.5: the skin weights of every point of each weighted object (spec 21.2), after the points.
     std::vector<std::vector<uint8_t>> weights;
     for (size_t i = 0; i < out.encoded.contents.size() && with_scene; ++i) {

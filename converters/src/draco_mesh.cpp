@@ -25,10 +25,13 @@ int add_attribute(draco::Mesh& dm, draco::GeometryAttribute::Type type, const st
     return int(pa->unique_id());
 }
 
-// Reads attribute `type` of a decoded mesh, per point, as N floats (false when absent).
+// Reads attribute `type` (the `index`-th of that type) of a decoded mesh, per point, as N floats
+// (false when absent).
 template <size_t N>
-bool read_attribute(const draco::Mesh& dm, draco::GeometryAttribute::Type type, std::vector<std::array<float, N>>& out) {
-    const draco::PointAttribute* pa = dm.GetNamedAttribute(type);
+bool read_attribute(const draco::Mesh& dm, draco::GeometryAttribute::Type type, std::vector<std::array<float, N>>& out,
+                    int index = 0) {
+    if (index >= dm.NumNamedAttributes(type)) return false;
+    const draco::PointAttribute* pa = dm.GetNamedAttribute(type, index);
     if (pa == nullptr) return false;
     out.assign(dm.num_points(), {});
     std::array<float, 4> tmp{};
@@ -67,7 +70,11 @@ std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& setting
     DracoAttributeIds found;
     found.position = add_attribute(dm, draco::GeometryAttribute::POSITION, mesh.positions);
     if (mesh.has_normals()) found.normal = add_attribute(dm, draco::GeometryAttribute::NORMAL, mesh.normals);
-    if (mesh.has_texcoords()) found.texcoord = add_attribute(dm, draco::GeometryAttribute::TEX_COORD, mesh.texcoords);
+    if (mesh.has_texcoords()) {
+        found.texcoord = add_attribute(dm, draco::GeometryAttribute::TEX_COORD, mesh.texcoords);
+        for (const auto& set : mesh.texcoord_sets)  // TEXCOORD_1, ...: further TEX_COORD attributes, in order
+            found.texcoord_sets.push_back(add_attribute(dm, draco::GeometryAttribute::TEX_COORD, set));
+    }
     if (mesh.has_colors()) {
         if (mesh.colors_have_alpha) {
             found.color = add_attribute(dm, draco::GeometryAttribute::COLOR, mesh.colors);
@@ -124,6 +131,9 @@ bool draco_decode(std::span<const uint8_t> bytes, Mesh& out, std::string& error)
     }
     read_attribute(*dm, draco::GeometryAttribute::NORMAL, out.normals);
     read_attribute(*dm, draco::GeometryAttribute::TEX_COORD, out.texcoords);
+    for (int set = 1; set < dm->NumNamedAttributes(draco::GeometryAttribute::TEX_COORD) && set <= 7; ++set)
+        if (!read_attribute(*dm, draco::GeometryAttribute::TEX_COORD, out.texcoord_sets.emplace_back(), set))
+            out.texcoord_sets.pop_back();
     if (const draco::PointAttribute* c = dm->GetNamedAttribute(draco::GeometryAttribute::COLOR)) {
         out.colors_have_alpha = c->num_components() == 4;
         if (out.colors_have_alpha) {

@@ -276,6 +276,20 @@ bool primitive_to_mesh(const tinygltf::Model& model, const tinygltf::Primitive& 
             warnings.push_back(where + ": TEXCOORD_0 is not a VEC2 of the vertex count; ignored");
         }
     }
+    // Further sets (format 1.14, spec 30): TEXCOORD_1 .. TEXCOORD_7, in order, while each is there
+    // and readable (glTF numbers the sets without gaps), and only with a TEXCOORD_0.
+    for (size_t set = 1; set <= kMaxTexcoordSets && mesh.has_texcoords(); ++set) {
+        const std::string name = "TEXCOORD_" + std::to_string(set);
+        auto it = prim.attributes.find(name);
+        if (it == prim.attributes.end()) break;
+        std::vector<double> uv = read_accessor(model, it->second, where + " " + name, comps);
+        if (comps != 2 || uv.size() != 2 * n) {
+            warnings.push_back(where + ": " + name + " is not a VEC2 of the vertex count; it and the sets after it ignored");
+            break;
+        }
+        auto& values = mesh.texcoord_sets.emplace_back(n);
+        for (size_t i = 0; i < n; ++i) values[i] = {float(uv[2 * i]), float(uv[2 * i + 1])};
+    }
     if (auto it = prim.attributes.find("COLOR_0"); it != prim.attributes.end()) {
         std::vector<double> col = read_accessor(model, it->second, where + " COLOR_0", comps);
         if ((comps == 3 || comps == 4) && col.size() == size_t(comps) * n) {
@@ -320,6 +334,8 @@ bool primitive_to_mesh(const tinygltf::Model& model, const tinygltf::Primitive& 
                 if (mesh.has_normals()) sub.normals.push_back(mesh.normals[i]);
                 if (mesh.has_texcoords()) sub.texcoords.push_back(mesh.texcoords[i]);
                 if (mesh.has_colors()) sub.colors.push_back(mesh.colors[i]);
+                sub.texcoord_sets.resize(mesh.texcoord_sets.size());
+                for (size_t s = 0; s < mesh.texcoord_sets.size(); ++s) sub.texcoord_sets[s].push_back(mesh.texcoord_sets[s][i]);
             }
             sub.name = mesh.name;
             mesh = std::move(sub);

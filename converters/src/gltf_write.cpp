@@ -125,8 +125,15 @@ tinygltf::Primitive add_primitive(tinygltf::Model& model, const Mesh& mesh) {
     primitive.attributes["POSITION"] = add_float_attribute(model, mesh.positions, TINYGLTF_TYPE_VEC3, true);
     if (mesh.has_normals())
         primitive.attributes["NORMAL"] = add_float_attribute(model, unit_normals(mesh.normals), TINYGLTF_TYPE_VEC3, false);
-    if (mesh.has_texcoords())
+    if (mesh.has_texcoords()) {
         primitive.attributes["TEXCOORD_0"] = add_float_attribute(model, mesh.texcoords, TINYGLTF_TYPE_VEC2, false);
+        for (size_t s = 0; s < mesh.texcoord_sets.size(); ++s)  // format 1.14: TEXCOORD_1, ...
+            if (mesh.texcoord_sets[s].size() == mesh.positions.size())
+                primitive.attributes["TEXCOORD_" + std::to_string(s + 1)] =
+                    add_float_attribute(model, mesh.texcoord_sets[s], TINYGLTF_TYPE_VEC2, false);
+            else
+                break;
+    }
     if (mesh.has_colors()) {
         std::vector<float> c = clamped_colors(mesh);
         int view = add_buffer_view(model, c.data(), c.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);

@@ -80,6 +80,19 @@ void check_and_repair_mesh(Mesh& mesh, const std::string& source, std::vector<st
     drop_mismatched(mesh.normals, "normal attribute");
     drop_mismatched(mesh.texcoords, "TEXCOORD_0");
     drop_mismatched(mesh.colors, "COLOR_0");
+    // Further sets (format 1.14): only after a TEXCOORD_0, complete, in order.
+    if (!mesh.has_texcoords() && !mesh.texcoord_sets.empty()) {
+        warnings.push_back(source + ": TEXCOORD_1 and above without TEXCOORD_0; dropped");
+        mesh.texcoord_sets.clear();
+    }
+    for (size_t s = 0; s < mesh.texcoord_sets.size(); ++s)
+        if (mesh.texcoord_sets[s].size() != n) {
+            warnings.push_back(source + ": TEXCOORD_" + std::to_string(s + 1) + " has " +
+                               std::to_string(mesh.texcoord_sets[s].size()) + " values for " + std::to_string(n) +
+                               " vertices; it and the sets after it dropped");
+            mesh.texcoord_sets.resize(s);
+            break;
+        }
 
     size_t bad_normals = 0, bad_uv = 0, bad_colors = 0;
     for (auto& v : mesh.normals) {
@@ -97,6 +110,13 @@ void check_and_repair_mesh(Mesh& mesh, const std::string& source, std::vector<st
                 c = 0;
                 ++bad_uv;
             }
+    for (auto& set : mesh.texcoord_sets)
+        for (auto& v : set)
+            for (auto& c : v)
+                if (!std::isfinite(c)) {
+                    c = 0;
+                    ++bad_uv;
+                }
     for (auto& v : mesh.colors)
         for (auto& c : v)
             if (!std::isfinite(c) || c < 0 || c > 1) {

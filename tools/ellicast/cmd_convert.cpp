@@ -143,10 +143,14 @@ int run_convert(const ConvertArgs& a) {
     size_t all_bytes = 0;
     for (const auto& p : encoded.packets) all_bytes += p.size();
     std::printf("stream: %zu packets (%zu stream info, %zu ellipsoids, %zu scene, %zu points, %zu skin weights, "
-                "%zu morph targets, %zu exact layer, %zu repair), %zu bytes\n",
+                "%zu morph targets, %zu exact layer, %zu repair%s), %zu bytes\n",
                 encoded.packets.size(), encoded.stream_info_packets, encoded.ellipsoid_packets, encoded.scene_packets,
                 encoded.point_packets, encoded.weight_packets, encoded.morph_packets, encoded.connectivity_packets,
-                encoded.repair_packets, all_bytes);
+                encoded.repair_packets,
+                encoded.texcoord_packets
+                    ? (", " + std::to_string(encoded.texcoord_packets) + " further texture coordinates").c_str()
+                    : "",
+                all_bytes);
     size_t morphed = 0;
     for (const auto& m : decoded.scene.meshes) morphed += !m.weights.empty();
     const std::string with_targets = morphed ? " (" + std::to_string(morphed) + " with morph targets)" : "";

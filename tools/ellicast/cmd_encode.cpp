@@ -182,6 +182,9 @@ int run_encode(const EncodeArgs& a) {
             std::printf("object %zu: %u of its vertices carried by the exact layer (format 1.11), %u sent as points; "
                         "exact layer %u bytes\n",
                         i, r.carried, r.points, r.connectivity_bytes);
+        if (r.texcoord_sets > 0)
+            std::printf("object %zu: TEXCOORD_1%s (format 1.14) sent for its %u points\n", i,
+                        r.texcoord_sets > 1 ? (" to TEXCOORD_" + std::to_string(r.texcoord_sets)).c_str() : "", r.points);
         if (r.surface_normals)
             std::printf("object %zu: surface normals (format 1.8): %u of %u normals sent, the others within %g degrees "
                         "of the surface's\n",
@@ -190,6 +193,9 @@ int run_encode(const EncodeArgs& a) {
     if (out.normal_packets)
         std::printf("normals: %zu bytes (%zu NORMALS packets), %.2f bytes a point\n", out.normal_bytes, out.normal_packets,
                     points ? double(out.normal_bytes) / double(points) : 0.0);
+    if (out.texcoord_packets)
+        std::printf("further texture coordinates: %zu bytes (%zu TEXCOORDS packets)\n", out.texcoord_bytes,
+                    out.texcoord_packets);
     std::printf("time %.2f s\n", seconds);
     return kExitOk;
 }

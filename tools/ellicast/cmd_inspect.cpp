@@ -102,6 +102,14 @@ nlohmann::json to_json(const StreamReport& r, bool with_packets) {
             }
             if (o.info->surface_normals)  // format 1.8 (spec 24)
                 oj["normal_entries"] = {{"received", o.normal_entries.size()}, {"complete", o.normals_complete()}};
+            if (!o.texcoord_sets.empty()) {  // format 1.14 (spec 30)
+                nlohmann::json sets = nlohmann::json::array();
+                for (size_t s = 0; s < o.texcoord_sets.size(); ++s)
+                    sets.push_back({{"set", s + 1},
+                                    {"received", o.texcoord_sets[s].records.size()},
+                                    {"complete", o.texcoord_sets[s].records.size() == o.info->point_count}});
+                oj["texcoord_sets"] = sets;
+            }
         } else {
             oj["info"] = nullptr;
         }
@@ -259,6 +267,9 @@ void print_text(const StreamReport& r, bool with_packets) {
         if (oi.surface_normals)
             out << "     surface normals (format 1.8): entries " << o.normal_entries.size() << "/" << oi.point_count
                 << (o.normals_complete() ? ", complete" : "") << "\n";
+        for (size_t s = 0; s < o.texcoord_sets.size(); ++s)  // format 1.14 (spec 30)
+            out << "     TEXCOORD_" << s + 1 << " (format 1.14): records " << o.texcoord_sets[s].records.size() << "/"
+                << oi.point_count << (o.texcoord_sets[s].records.size() == oi.point_count ? ", complete" : "") << "\n";
         if (!complete) {
             std::string me = missing_ranges(o.ellipsoids, oi.ellipsoid_count), mp = missing_ranges(o.points, oi.point_count);
             if (!me.empty()) out << "     missing ellipsoids " << me << "\n";

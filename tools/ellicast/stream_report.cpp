@@ -219,6 +219,15 @@ StreamReport analyze_stream(const std::string& path, const std::vector<uint8_t>&
                                                       std::to_string(o.info->point_count) + " points arrived; missing " +
                                                       missing_ranges(o.normal_entries, o.info->point_count), true});
         }
+        // Format 1.14 (spec 30.2): an object with TEXCOORDS packets has every set's record of every point.
+        for (size_t s = 0; s < o.texcoord_sets.size(); ++s) {
+            const auto& records = o.texcoord_sets[s].records;
+            if (records.size() == o.info->point_count) continue;
+            r.violations.push_back({std::nullopt, name + ": the TEXCOORD_" + std::to_string(s + 1) + " records of " +
+                                                      std::to_string(records.size()) + " of " +
+                                                      std::to_string(o.info->point_count) + " points arrived; missing " +
+                                                      missing_ranges(records, o.info->point_count), true});
+        }
     }
     // Format 1.2 repair packets: each symbol must be its row of the code over the points (spec 17.4).
     RepairPacketChecker repair_checker(r.stream);

@@ -18,7 +18,7 @@ struct EncodedAsset {
     EncodeResult encoded;  // stream info, per-object contents, reports, warnings
     // Every packet in transmission order: STREAM_INFO, ELLIPSOIDS, POINT_MAP, then the scene (SCENE,
     // MATERIAL, TEXTURE_FRAGMENT: base data, a receiver wants it before the detail), then POINTS,
-    // then NORMALS (surface normals), then JOINT_WEIGHTS (skin weights), then MORPH_DELTAS (morph targets), then CONNECTIVITY (the exact layer), then POINTS_REPAIR (EncodeOptions::repair_ratio).
+    // then NORMALS (surface normals), then TEXCOORDS (further texture-coordinate sets), then JOINT_WEIGHTS (skin weights), then MORPH_DELTAS (morph targets), then CONNECTIVITY (the exact layer), then POINTS_REPAIR (EncodeOptions::repair_ratio).
     // Sequence numbers count up in this order from 0.
     std::vector<std::vector<uint8_t>> packets;
     size_t stream_info_packets = 0, ellipsoid_packets = 0, scene_packets = 0, point_packets = 0, repair_packets = 0;
@@ -28,6 +28,7 @@ struct EncodedAsset {
     size_t morph_packets = 0, morph_bytes = 0;    // MORPH_DELTAS (format 1.6), after the weights
     size_t map_packets = 0, map_bytes = 0;        // POINT_MAP (format 1.7), right after the ellipsoids
     size_t normal_packets = 0, normal_bytes = 0;  // NORMALS (format 1.8), right after the points
+    size_t texcoord_packets = 0, texcoord_bytes = 0;  // TEXCOORDS (format 1.14), after the normals
 };
 
 // Encodes the objects of `asset` (one stream object each, in their own frames) and, when

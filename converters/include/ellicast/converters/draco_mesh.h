@@ -39,6 +39,7 @@ struct DracoSettings {
 // names them.
 struct DracoAttributeIds {
     int position = -1, normal = -1, texcoord = -1, color = -1;
+    std::vector<int> texcoord_sets;  // TEXCOORD_1, ... (format 1.14)
 };
 
 // The Draco bitstream of `mesh` (Edgebreaker) with every attribute it has (normals, TEXCOORD_0,
