@@ -173,10 +173,10 @@ PY
       "$build/ellicast" compare "$samples/meshes/spot.obj" -o "$results/spot" | tee "$results/spot/stdout.txt" ;;
     corpus)
       # Real glTF assets through convert (issue 16): the shared samples, the small Khronos ones committed
-      # in samples/khronos, and $ELLICAST_CORPUS when set
+      # in samples/khronos, the lightmapped box of samples/multiuv (TEXCOORD_1), and $ELLICAST_CORPUS when set
       # (e.g. a checkout of KhronosGroup/glTF-Sample-Assets/Models).
       echo "== corpus: glTF assets through ellicast convert and the Khronos validator (bench/corpus.py)" >&2
-      folders=("$samples/gltf" "$root/samples/khronos")
+      folders=("$samples/gltf" "$root/samples/khronos" "$root/samples/multiuv")
       [ -n "${ELLICAST_CORPUS:-}" ] && folders+=("$ELLICAST_CORPUS")
       python3 "$root/bench/corpus.py" "$build/ellicast" "$root/.cache/node/node_modules" "$results/corpus" "${folders[@]}" > /dev/null
       rm -rf "$results/corpus/out"

@@ -1,5 +1,5 @@
 // A catalogue converted as a user converts it (`ellicast convert IN OUT.glb`): every glTF sample here
-// (the shared samples, the Khronos samples in samples/khronos) comes back with the same scene, feature
+// (the shared samples, the Khronos samples in samples/khronos, the lightmapped box in samples/multiuv) comes back with the same scene, feature
 // by feature — nodes and their names, cameras and lights on their nodes, materials with their
 // extensions and texture slots, attributes, morph targets, animation channels, skins, extras,
 // extensions used and required — or with a warning that names what it lost: no silent loss. And the
@@ -113,6 +113,7 @@ std::vector<fs::path> gltf_files(const fs::path& folder) {
 
 TEST_CASE("every glTF sample converts with its scene feature by feature, or a warning naming each loss") {
     std::vector<fs::path> assets = gltf_files(source_dir() / "samples" / "khronos");
+    for (const fs::path& p : gltf_files(source_dir() / "samples" / "multiuv")) assets.push_back(p);  // TEXCOORD_1
     if (have_sample("gltf")) {
         const std::vector<fs::path> shared = gltf_files(shared_samples() / "gltf");
         assets.insert(assets.end(), shared.begin(), shared.end());
