@@ -6,6 +6,7 @@
 #include "ellicast/converters/mesh_output.h"
 
 #include "gltf_write.h"
+#include "meshopt_output.h"
 #include "material_extensions.h"
 #include "tangents.h"
 #include "ellicast/converters/image_file.h"
@@ -375,6 +376,8 @@ private:
             } else if (options_.draco && !mesh->is_point_set && !mesh->triangles.empty()) {
                 result = draco_primitive(*mesh, what, tangents);
             } else if (dq) {
+                // meshopt output: vertex-cache and fetch order, which its codecs compress best.
+                if (options_.meshopt) *mesh = meshopt_output::in_fetch_order(*mesh);
                 result = quantized_primitive(*mesh, *dq);
                 if (tangents) add_quantized_tangents(*result, *mesh);
             } else {
@@ -1232,6 +1235,8 @@ private:
 std::string check_asset_write_options(const AssetWriteOptions& o) {
     if (o.draco && o.quantize)
         return "--draco and --quantize cannot be combined (Draco quantizes the attributes itself)";
+    if (o.draco && o.meshopt)
+        return "--draco and --meshopt cannot be combined (each compresses the geometry its own way)";
     auto bits = [](int b, int lo, int hi) { return b >= lo && b <= hi; };
     if (!bits(o.draco_position_bits, 1, 30)) return "Draco position bits must be 1..30";
     if (!bits(o.draco_normal_bits, 1, 30)) return "Draco normal bits must be 1..30";
@@ -1240,6 +1245,14 @@ std::string check_asset_write_options(const AssetWriteOptions& o) {
     if (!bits(o.draco_speed, 0, 10)) return "Draco speed must be 0..10";
     return "";
 }
+
+namespace {
+// What the writer builds: meshopt output is the quantized file, compressed afterwards.
+AssetWriteOptions writer_options(AssetWriteOptions options) {
+    if (options.meshopt) options.quantize = true;
+    return options;
+}
+}  // namespace
 
 bool write_asset(const std::string& path, const Asset& asset, const AssetWriteOptions& options,
                  std::vector<std::string>& warnings, std::string& error) {
@@ -1250,8 +1263,8 @@ bool write_asset(const std::string& path, const Asset& asset, const AssetWriteOp
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     if (ext == ".ply" || ext == ".obj") {
-        if (options.draco || options.quantize) {
-            error = path + ": Draco and quantized output are glTF features (write .glb or .gltf)";
+        if (options.draco || options.quantize || options.meshopt) {
+            error = path + ": Draco, quantized and meshopt output are glTF features (write .glb or .gltf)";
             return false;
         }
         std::vector<Mesh> meshes = flatten_asset(asset);
@@ -1265,9 +1278,11 @@ bool write_asset(const std::string& path, const Asset& asset, const AssetWriteOp
         error = path + ": unknown output type '" + ext + "' (expected .glb, .gltf, .ply or .obj)";
         return false;
     }
-    AssetWriter writer(path, asset, options, warnings);
+    AssetWriter writer(path, asset, writer_options(options), warnings);
     tinygltf::Model model = writer.build();
-    return save_model(path, model, ext == ".glb", error, writer.patches());
+    gltf_write::JsonPatches patches = writer.patches();
+    if (options.meshopt) meshopt_output::compress(model, patches);
+    return save_model(path, model, ext == ".glb", error, patches);
 }
 
 bool write_asset_glb(const Asset& asset, const AssetWriteOptions& options, std::vector<uint8_t>& out,
@@ -1276,9 +1291,11 @@ bool write_asset_glb(const Asset& asset, const AssetWriteOptions& options, std::
         error = bad;
         return false;
     }
-    AssetWriter writer("glb", asset, options, warnings);
+    AssetWriter writer("glb", asset, writer_options(options), warnings);
     tinygltf::Model model = writer.build();
-    return glb_bytes(model, out, error, writer.patches());
+    gltf_write::JsonPatches patches = writer.patches();
+    if (options.meshopt) meshopt_output::compress(model, patches);
+    return glb_bytes(model, out, error, patches);
 }
 
 }  // namespace ellicast

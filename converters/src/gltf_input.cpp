@@ -27,7 +27,8 @@ namespace ellicast {
 namespace gltf_read {
 
 // Extensions we implement, or that change nothing of the geometry we read.
-const std::set<std::string> kGeometryExtensions = {"KHR_draco_mesh_compression", "KHR_mesh_quantization"};
+const std::set<std::string> kGeometryExtensions = {"KHR_draco_mesh_compression", "KHR_mesh_quantization",
+                                                   "EXT_meshopt_compression"};
 const std::set<std::string> kAppearanceOnlyPrefixes = {"KHR_materials_", "KHR_texture_", "EXT_texture_",
                                                        "KHR_lights_", "EXT_lights_"};
 
@@ -637,6 +638,12 @@ void load_model(const std::string& path, tinygltf::Model& model, tinygltf::LoadI
     }
     if (!model.asset.version.empty() && model.asset.version.rfind("2.", 0) != 0)
         throw InputError(path + ": glTF version " + model.asset.version + " (ellicast reads glTF 2.x)");
+    // The file was meshopt-compressed (decoded above, the extension taken out): say so, as the file does,
+    // so that the asset knows how its source was stored.
+    if (!decoded.empty() &&
+        std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), "EXT_meshopt_compression") ==
+            model.extensionsUsed.end())
+        model.extensionsUsed.push_back("EXT_meshopt_compression");
 
     for (const auto& ext : model.extensionsRequired) {
         if (kGeometryExtensions.count(ext)) continue;

@@ -51,6 +51,7 @@ int run_convert_folder(const ConvertArgs& a) {
                    std::to_string(a.seed), "--threads", std::to_string(a.threads), "--grid", std::to_string(a.grid)};
     if (a.write.draco) c.forwarded.push_back("--draco");
     if (a.write.quantize) c.forwarded.push_back("--quantize");
+    if (a.write.meshopt) c.forwarded.push_back("--meshopt");
     if (a.plain) c.forwarded.push_back("--plain");
     if (a.allow_external_paths) c.forwarded.push_back("--allow-external-paths");
     return run_convert_catalogue(c);
@@ -64,9 +65,10 @@ int run_convert(const ConvertArgs& a) {
     if (!mesh_file_type_from_path(a.output, type))
         return fail(kExitUsage, a.output + ": unknown output type (expected .glb, .gltf, .ply or .obj)");
     if (std::string bad = check_asset_write_options(a.write); !bad.empty()) return fail(kExitUsage, bad);
-    if ((a.write.draco || a.write.quantize) && type != MeshFileType::Glb && type != MeshFileType::Gltf)
-        return fail(kExitUsage, "--draco and --quantize need a .glb or .gltf output");
-    if (a.plain && (a.write.draco || a.write.quantize)) return fail(kExitUsage, "--plain excludes --draco and --quantize");
+    if ((a.write.draco || a.write.quantize || a.write.meshopt) && type != MeshFileType::Glb && type != MeshFileType::Gltf)
+        return fail(kExitUsage, "--draco, --quantize and --meshopt need a .glb or .gltf output");
+    if (a.plain && (a.write.draco || a.write.quantize || a.write.meshopt))
+        return fail(kExitUsage, "--plain excludes --draco, --quantize and --meshopt");
     if (output_clobbers_input(a.output, {a.input})) return kExitUsage;
     if (type == MeshFileType::Gltf &&
         output_clobbers_input(std::filesystem::path(a.output).replace_extension(".bin").string(), {a.input}))
@@ -91,20 +93,22 @@ int run_convert(const ConvertArgs& a) {
         return fail(kExitFailure, e.what());
     }
     print_warnings(asset.warnings, a.verbose);
-    // A glTF output is written as its input was stored, unless told otherwise: Draco stays Draco, a
-    // quantized input comes back quantized (meshopt, which ellicast does not write, as quantized: its
-    // nearest), so that an output is not several times its input for the same meshes.
+    // A glTF output is written as its input was stored, unless told otherwise: Draco stays Draco,
+    // meshopt stays meshopt, a quantized input comes back quantized, so that an output is not several
+    // times its input for the same meshes.
     AssetWriteOptions write = a.write;
     std::string written_like;
-    if (!a.plain && !write.draco && !write.quantize && (type == MeshFileType::Glb || type == MeshFileType::Gltf)) {
+    if (!a.plain && !write.draco && !write.quantize && !write.meshopt &&
+        (type == MeshFileType::Glb || type == MeshFileType::Gltf)) {
         if (asset.source_draco) {
             write.draco = true;
             written_like = "Draco (KHR_draco_mesh_compression), as the input";
-        } else if (asset.source_quantized || asset.source_meshopt) {
+        } else if (asset.source_meshopt) {
+            write.meshopt = true;
+            written_like = "meshopt-compressed (EXT_meshopt_compression over KHR_mesh_quantization), as the input";
+        } else if (asset.source_quantized) {
             write.quantize = true;
-            written_like = asset.source_meshopt ? "quantized (KHR_mesh_quantization; the input's EXT_meshopt_compression "
-                                                  "is not written)"
-                                                : "quantized (KHR_mesh_quantization), as the input";
+            written_like = "quantized (KHR_mesh_quantization), as the input";
         }
     }
 
@@ -208,9 +212,11 @@ const RegisterCommand kRegisterConvert({45, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--grid", args->grid, "decoder grid resolution (0: the stream's hint)")->capture_default_str();
     cmd->add_flag("--draco", args->write.draco, "glTF output: compress triangle meshes with KHR_draco_mesh_compression");
     cmd->add_flag("--quantize", args->write.quantize, "glTF output: quantize attributes with KHR_mesh_quantization");
+    cmd->add_flag("--meshopt", args->write.meshopt,
+                  "glTF output: quantize, then compress vertex, index and animation data with EXT_meshopt_compression");
     cmd->add_flag("--plain", args->plain,
-                  "glTF output: plain accessors even when the input was Draco-compressed or quantized (by default "
-                  "the output is written as the input was)");
+                  "glTF output: plain accessors even when the input was Draco-compressed, meshopt-compressed or "
+                  "quantized (by default the output is written as the input was)");
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
     cmd->add_flag("--verbose", args->verbose, "every warning on a line of its own (by default three or more of a kind are one line)");
     cmd->add_flag("--allow-external-paths", args->allow_external_paths,

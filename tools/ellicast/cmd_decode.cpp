@@ -79,8 +79,9 @@ int run_decode(const DecodeArgs& args) {
         return fail(kExitUsage, args.output + ": unknown output type (expected .glb, .gltf, .ply or .obj)");
     if (output_clobbers_input(args.output, {args.input})) return kExitUsage;
     if (std::string bad = check_asset_write_options(args.write); !bad.empty()) return fail(kExitUsage, bad);
-    if ((args.write.draco || args.write.quantize) && type != MeshFileType::Glb && type != MeshFileType::Gltf)
-        return fail(kExitUsage, "--draco and --quantize need a .glb or .gltf output");
+    if ((args.write.draco || args.write.quantize || args.write.meshopt) && type != MeshFileType::Glb &&
+        type != MeshFileType::Gltf)
+        return fail(kExitUsage, "--draco, --quantize and --meshopt need a .glb or .gltf output");
     Region region;
     if (!args.region.empty()) {
         std::string error;
@@ -217,6 +218,8 @@ const RegisterCommand kRegisterDecode{{40, [](CLI::App& app, int& exit_code) {
         ->capture_default_str();
     cmd->add_flag("--draco", args->write.draco, "glTF output: compress triangle meshes with KHR_draco_mesh_compression");
     cmd->add_flag("--quantize", args->write.quantize, "glTF output: quantize attributes with KHR_mesh_quantization");
+    cmd->add_flag("--meshopt", args->write.meshopt,
+                  "glTF output: quantize, then compress vertex, index and animation data with EXT_meshopt_compression");
     cmd->add_option("--key", args->key,
                     "public key (NAME.pub or 64 hex digits): decode only the packets a MANIFEST signed with it lists");
     cmd->add_option("--region", args->region,

@@ -100,6 +100,11 @@ struct AssetWriteOptions {
     // transform goes into a wrapper node under each node showing the mesh), normals as normalized
     // int8, texture coordinates in [0,1] as normalized uint16, colours as normalized uint16.
     bool quantize = false;
+    // EXT_meshopt_compression (what gltfpack and glTF-Transform's `meshopt` write): the quantized
+    // output above (it implies `quantize`), then its vertex, index and animation buffer views
+    // compressed with meshoptimizer's codecs; the file requires the extension (its fallback buffer
+    // holds no bytes). Not with `draco`.
+    bool meshopt = false;
     // Format 1.13 (spec 29.2): name, in a warning, the source's required extensions this output does
     // not use. `ellicast convert` turns it off: its encoder has named them already (once per asset).
     bool warn_unused_required = true;
