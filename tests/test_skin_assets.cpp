@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <set>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -252,4 +254,71 @@ TEST_CASE("a vertex with more than four influences (JOINTS_1 / WEIGHTS_1) keeps 
           }) == 1);  // once for the asset
     CHECK_FALSE(any_warning(eight, "JOINTS_1 not sent"));
     CHECK_FALSE(any_warning(eight, "vertex attribute(s)"));
+}
+
+TEST_CASE("--draco compresses a skinned mesh with its joints and weights, and tracks with the same key times share one input") {
+    std::vector<std::string> inputs = {(source_dir() / "samples" / "khronos" / "RiggedSimple" / "RiggedSimple.gltf").string(),
+                                       (source_dir() / "samples" / "khronos" / "RiggedFigure" / "RiggedFigure.gltf").string()};
+    if (have_sample("gltf/Fox/Fox.gltf")) inputs.push_back((shared_samples() / "gltf/Fox/Fox.gltf").string());
+    const fs::path dir = scratch_dir("skin_draco");
+    for (const std::string& input : inputs) {
+        CAPTURE(input);
+        const std::string stem = fs::path(input).stem().string();
+        const fs::path draco = dir / (stem + "-draco.glb"), plain = dir / (stem + "-plain.glb");
+        for (const auto& [out, flags] : {std::pair{draco, std::string("--draco")}, std::pair{plain, std::string("--plain")}}) {
+            int status = 0;
+            const std::string log = run_command(shell_quoted(ellicast_exe().string()) + " convert -q " + flags + " " +
+                                                    shell_quoted(input) + " " + shell_quoted(out.string()) + " 2>&1",
+                                                status);
+            REQUIRE_MESSAGE(status == 0, log);
+        }
+        check_gltf_clean(draco, {"NODE_SKINNED_MESH_NON_ROOT"});
+        const nlohmann::json doc = gltf_document(draco);
+        size_t skinned = 0;
+        for (const auto& mesh : doc["meshes"])
+            for (const auto& prim : mesh["primitives"]) {
+                if (!prim["attributes"].contains("JOINTS_0")) continue;
+                ++skinned;
+                const auto& ext = prim["extensions"]["KHR_draco_mesh_compression"]["attributes"];
+                CHECK(ext.contains("JOINTS_0"));
+                CHECK(ext.contains("WEIGHTS_0"));
+                // A stream's weights are multiples of 1/255: normalized bytes, exactly.
+                CHECK(doc["accessors"][prim["attributes"]["WEIGHTS_0"].get<size_t>()]["componentType"] == 5121);
+            }
+        CHECK(skinned > 0);
+        // Read back, every object has the weights of the plain file, vertex by vertex (matched by position).
+        const Asset a = load_asset(draco.string()), b = load_asset(plain.string());
+        REQUIRE(a.objects.size() == b.objects.size());
+        REQUIRE(a.weights.size() == b.weights.size());
+        for (size_t o = 0; o < a.objects.size(); ++o) {
+            if (b.weights[o].empty()) continue;
+            REQUIRE(a.weights[o].joints.size() == a.objects[o].positions.size());
+            std::map<std::array<float, 3>, std::map<uint16_t, float>> want;
+            for (size_t v = 0; v < b.objects[o].positions.size(); ++v) want[b.objects[o].positions[v]] = influences(b.weights[o], v);
+            size_t matched = 0;
+            for (size_t v = 0; v < a.objects[o].positions.size(); ++v) {
+                // Draco quantizes positions: the nearest plain vertex.
+                const auto& p = a.objects[o].positions[v];
+                double best = INFINITY;
+                const std::map<uint16_t, float>* w = nullptr;
+                for (const auto& [q, inf] : want) {
+                    const double d = std::hypot(double(p[0]) - q[0], double(p[1]) - q[1], double(p[2]) - q[2]);
+                    if (d < best) best = d, w = &inf;
+                }
+                const auto got = influences(a.weights[o], v);
+                bool same = w && got.size() == w->size();
+                for (const auto& [joint, weight] : got) same = same && w->count(joint) && std::abs(w->at(joint) - weight) < 1e-6f;
+                matched += same;
+            }
+            CHECK(matched >= a.objects[o].positions.size() * 95 / 100);  // vertices Draco moved onto a neighbour aside
+        }
+        // One input accessor per list of key times.
+        std::set<size_t> inputs_used;
+        std::set<std::vector<float>> times;
+        for (const auto& animation : doc.value("animations", nlohmann::json::array()))
+            for (const auto& sampler : animation["samplers"]) inputs_used.insert(sampler["input"].get<size_t>());
+        for (const auto& animation : b.scene.animations)
+            for (const auto& track : animation.tracks) times.insert(track.times);
+        CHECK(inputs_used.size() == times.size());
+    }
 }

@@ -358,11 +358,14 @@ private:
     std::optional<tinygltf::Primitive> object_primitive(size_t o, const std::optional<Dequantization>& dq,
                                                         int dq_key, bool tangents, const std::string& what,
                                                         bool skinned = false, uint8_t targets = 0) {
-        // A skinned object (format 1.5) is written plain: Draco may reorder its vertices away from
-        // their weights, and a dequantizing wrapper node would not move with the skeleton. So is an
-        // object with morph targets (format 1.6): its displacements are per vertex, in its frame.
-        const bool plain = skinned || targets > 0;
-        auto key = std::make_tuple(o, plain ? -2 - int(skinned) - 2 * int(targets) : dq_key, tangents);
+        // A skinned object (format 1.5) is written without KHR_mesh_quantization: a dequantizing wrapper
+        // node would not move with the skeleton; with Draco its joints and weights go into the Draco data,
+        // reordered with its vertices. An object with morph targets (format 1.6) is written plain: its
+        // displacements are per vertex, in its frame.
+        const bool plain = (skinned && !options_.draco) || targets > 0;
+        // (A skinned Draco primitive carries JOINTS_0 and WEIGHTS_0: another key than the object unskinned.)
+        auto key = std::make_tuple(o, plain ? -2 - int(skinned) - 2 * int(targets) : skinned ? -1000 + dq_key : dq_key,
+                                   tangents);
         if (auto it = primitives_.find(key); it != primitives_.end()) return it->second;
         std::optional<tinygltf::Primitive> result;
         if (std::optional<Mesh> mesh = writable_object(asset_.objects[o], what, warnings_)) {
@@ -373,8 +376,11 @@ private:
                     result->attributes["TANGENT"] = add_float_attribute(model_, mesh_tangents(*mesh), TINYGLTF_TYPE_VEC4, false);
                 if (skinned) add_weights(*result, asset_.weights[o]);
                 if (targets > 0) add_targets(*result, *mesh, asset_.morphs[o]);
+            } else if (skinned && (mesh->is_point_set || mesh->triangles.empty())) {
+                result = add_primitive(model_, *mesh);  // Draco covers triangles only
+                add_weights(*result, asset_.weights[o]);
             } else if (options_.draco && !mesh->is_point_set && !mesh->triangles.empty()) {
-                result = draco_primitive(*mesh, what, tangents);
+                result = draco_primitive(*mesh, what, tangents, skinned ? &asset_.weights[o] : nullptr);
             } else if (dq) {
                 // meshopt output: vertex-cache and fetch order, which its codecs compress best.
                 if (options_.meshopt) *mesh = meshopt_output::in_fetch_order(*mesh);
@@ -505,7 +511,8 @@ private:
     // KHR_draco_mesh_compression: the triangles and attributes go through Draco's encoder (the
     // baselines' codec); the accessors take count and bounds from a decode of the encoded data
     // (Edgebreaker reorders and may split vertices).
-    std::optional<tinygltf::Primitive> draco_primitive(const Mesh& input, const std::string& what, bool tangents) {
+    std::optional<tinygltf::Primitive> draco_primitive(const Mesh& input, const std::string& what, bool tangents,
+                                                       const VertexWeights* skin = nullptr) {
         Mesh mesh = input;
         if (mesh.has_colors()) {
             std::vector<float> c = clamped_colors(mesh);
@@ -524,7 +531,7 @@ private:
         Mesh decoded;
         std::string problem;
         try {
-            encoded = draco_encode(mesh, settings, &ids);
+            encoded = draco_encode(mesh, settings, &ids, skin ? DracoSkin{&skin->joints, &skin->weights} : DracoSkin{});
             if (!draco_decode(encoded, decoded, problem)) problem = "it cannot decode its own output: " + problem;
         } catch (const DracoError& e) {
             problem = e.what();
@@ -537,6 +544,7 @@ private:
         if (!problem.empty()) {
             warnings_.push_back(what + ": Draco: " + problem + "; written uncompressed");
             tinygltf::Primitive plain = add_primitive(model_, input);
+            if (skin) add_weights(plain, *skin);
             if (tangents)
                 plain.attributes["TANGENT"] = add_float_attribute(model_, mesh_tangents(input), TINYGLTF_TYPE_VEC4, false);
             return plain;
@@ -545,7 +553,8 @@ private:
         tinygltf::Primitive prim;
         prim.mode = TINYGLTF_MODE_TRIANGLES;
         tinygltf::Value::Object attributes;
-        auto declare = [&](const char* name, int id, int type, bool bounds) {
+        auto declare = [&](const char* name, int id, int type, bool bounds, int component = TINYGLTF_COMPONENT_TYPE_FLOAT,
+                           bool normalized = false) {
             std::vector<double> mn, mx;
             if (bounds) {
                 mn.assign(3, std::numeric_limits<double>::max());
@@ -553,7 +562,7 @@ private:
                 for (const auto& v : decoded.positions)
                     for (int k = 0; k < 3; ++k) mn[k] = std::min(mn[k], double(v[k])), mx[k] = std::max(mx[k], double(v[k]));
             }
-            prim.attributes[name] = add_accessor(model_, -1, TINYGLTF_COMPONENT_TYPE_FLOAT, type, points, mn, mx);
+            prim.attributes[name] = add_accessor(model_, -1, component, type, points, mn, mx, normalized);
             attributes[name] = tinygltf::Value(id);
         };
         declare("POSITION", ids.position, TINYGLTF_TYPE_VEC3, true);
@@ -561,6 +570,13 @@ private:
         if (ids.texcoord >= 0) declare("TEXCOORD_0", ids.texcoord, TINYGLTF_TYPE_VEC2, false);
         for (size_t s = 0; s < ids.texcoord_sets.size(); ++s)
             declare(("TEXCOORD_" + std::to_string(s + 1)).c_str(), ids.texcoord_sets[s], TINYGLTF_TYPE_VEC2, false);
+        if (ids.joints >= 0) {  // a skinned object: its joints and weights in the Draco data too
+            declare("JOINTS_0", ids.joints, TINYGLTF_TYPE_VEC4, false,
+                    ids.joints_8bit ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE : TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+            declare("WEIGHTS_0", ids.weights, TINYGLTF_TYPE_VEC4, false,
+                    ids.weights_8bit ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE : TINYGLTF_COMPONENT_TYPE_FLOAT,
+                    ids.weights_8bit);
+        }
         if (ids.color >= 0)
             declare("COLOR_0", ids.color, mesh.colors_have_alpha ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, false);
         prim.indices = add_accessor(model_, -1,
@@ -936,10 +952,15 @@ private:
                                         " moves a node that is not written (or one another track moves); left out");
                     continue;
                 }
-                const auto [lo, hi] = std::minmax_element(track.times.begin(), track.times.end());
-                const int input_view = add_buffer_view(model_, track.times.data(), track.times.size() * 4, 0);
-                const int input = add_accessor(model_, input_view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
-                                               track.times.size(), {double(*lo)}, {double(*hi)});
+                // Tracks with the same key times share one input accessor (as glTF exporters write them:
+                // the Fox's 63 tracks have 3 lists of times).
+                int& input = animation_inputs_[track.times];
+                if (input == 0) {
+                    const auto [lo, hi] = std::minmax_element(track.times.begin(), track.times.end());
+                    const int input_view = add_buffer_view(model_, track.times.data(), track.times.size() * 4, 0);
+                    input = 1 + add_accessor(model_, input_view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
+                                             track.times.size(), {double(*lo)}, {double(*hi)});
+                }
                 const bool rotation = track.path == AnimationPath::Rotation;
                 const size_t components = weights ? 1 : rotation ? 4 : 3;
                 if (!std::all_of(track.values.begin(), track.values.end(), [](float v) { return std::isfinite(v); })) {
@@ -972,7 +993,7 @@ private:
                                                 weights ? TINYGLTF_TYPE_SCALAR : rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
                                                 values.size() / components);
                 tinygltf::AnimationSampler sampler;
-                sampler.input = input;
+                sampler.input = input - 1;
                 sampler.output = output;
                 sampler.interpolation = track.interpolation == Interpolation::Step          ? "STEP"
                                         : track.interpolation == Interpolation::CubicSpline ? "CUBICSPLINE"
@@ -1228,6 +1249,7 @@ private:
     std::vector<SceneMesh> flat_meshes_;
     bool used_draco_ = false;
     bool used_quantization_ = false;
+    std::map<std::vector<float>, int> animation_inputs_;  // key times -> 1 + their accessor
 };
 
 }  // namespace

@@ -45,6 +45,26 @@ bool read_attribute(const draco::Mesh& dm, draco::GeometryAttribute::Type type, 
     return true;
 }
 
+// Adds a per-vertex integer attribute of 4 components (skin joints), 8- or 16-bit.
+int add_joints(draco::Mesh& dm, const std::vector<std::array<uint16_t, 4>>& joints, bool eight_bit) {
+    draco::GeometryAttribute ga;
+    const draco::DataType type = eight_bit ? draco::DT_UINT8 : draco::DT_UINT16;
+    const size_t size = eight_bit ? 1 : 2;
+    ga.Init(draco::GeometryAttribute::GENERIC, nullptr, 4, type, false, int64_t(4 * size), 0);
+    int id = dm.AddAttribute(ga, true, static_cast<uint32_t>(joints.size()));
+    draco::PointAttribute* pa = dm.attribute(id);
+    for (size_t i = 0; i < joints.size(); ++i) {
+        if (eight_bit) {
+            const std::array<uint8_t, 4> v = {uint8_t(joints[i][0]), uint8_t(joints[i][1]), uint8_t(joints[i][2]),
+                                              uint8_t(joints[i][3])};
+            pa->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), v.data());
+        } else {
+            pa->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), joints[i].data());
+        }
+    }
+    return int(pa->unique_id());
+}
+
 }  // namespace
 
 std::pair<std::array<float, 3>, float> position_cube(const Mesh& mesh) {
@@ -62,7 +82,8 @@ std::pair<std::array<float, 3>, float> position_cube(const Mesh& mesh) {
     return {lo, range};
 }
 
-std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& settings, DracoAttributeIds* ids) {
+std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& settings, DracoAttributeIds* ids,
+                                  const DracoSkin& skin) {
     if (mesh.triangles.empty() || mesh.positions.empty())
         throw DracoError("Draco: mesh '" + mesh.name + "' has no triangles to compress");
     draco::Mesh dm;
@@ -82,6 +103,36 @@ std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& setting
             std::vector<std::array<float, 3>> rgb(mesh.colors.size());
             for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = {mesh.colors[i][0], mesh.colors[i][1], mesh.colors[i][2]};
             found.color = add_attribute(dm, draco::GeometryAttribute::COLOR, rgb);
+        }
+    }
+    if (skin.joints && skin.weights) {
+        if (skin.joints->size() != mesh.positions.size() || skin.weights->size() != mesh.positions.size())
+            throw DracoError("Draco: mesh '" + mesh.name + "' has skin weights for another vertex count");
+        uint16_t top = 0;
+        for (const auto& j : *skin.joints)
+            for (uint16_t x : j) top = std::max(top, x);
+        found.joints_8bit = top < 256;
+        found.joints = add_joints(dm, *skin.joints, found.joints_8bit);
+        // Weights that are multiples of 1/255 (a stream's, spec 21.2) as normalized bytes, exactly;
+        // others as floats, which Draco keeps as they are (no quantization is set for GENERIC).
+        found.weights_8bit = std::all_of(skin.weights->begin(), skin.weights->end(), [](const std::array<float, 4>& w) {
+            return std::all_of(w.begin(), w.end(), [](float x) {
+                return x >= 0 && x <= 1 && std::abs(x * 255.0 - std::round(x * 255.0)) < 1e-3;
+            });
+        });
+        if (found.weights_8bit) {
+            draco::GeometryAttribute ga;
+            ga.Init(draco::GeometryAttribute::GENERIC, nullptr, 4, draco::DT_UINT8, true, 4, 0);
+            const int id = dm.AddAttribute(ga, true, static_cast<uint32_t>(skin.weights->size()));
+            draco::PointAttribute* pa = dm.attribute(id);
+            for (size_t i = 0; i < skin.weights->size(); ++i) {
+                std::array<uint8_t, 4> v{};
+                for (int k = 0; k < 4; ++k) v[size_t(k)] = uint8_t(std::lround((*skin.weights)[i][size_t(k)] * 255.0));
+                pa->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), v.data());
+            }
+            found.weights = int(pa->unique_id());
+        } else {
+            found.weights = add_attribute(dm, draco::GeometryAttribute::GENERIC, *skin.weights);
         }
     }
     dm.SetNumFaces(mesh.triangles.size());

@@ -40,12 +40,24 @@ struct DracoSettings {
 struct DracoAttributeIds {
     int position = -1, normal = -1, texcoord = -1, color = -1;
     std::vector<int> texcoord_sets;  // TEXCOORD_1, ... (format 1.14)
+    // JOINTS_0 (8-bit when joints_8bit, else 16-bit), WEIGHTS_0 (normalized 8-bit when weights_8bit:
+    // every weight a multiple of 1/255, as a stream's are; else float)
+    int joints = -1, weights = -1;
+    bool joints_8bit = false, weights_8bit = false;
+};
+
+// A skinned mesh's JOINTS_0 and WEIGHTS_0, one per vertex, for draco_encode: Draco then reorders them
+// with the vertices (generic attributes, stored losslessly).
+struct DracoSkin {
+    const std::vector<std::array<uint16_t, 4>>* joints = nullptr;
+    const std::vector<std::array<float, 4>>* weights = nullptr;
 };
 
 // The Draco bitstream of `mesh` (Edgebreaker) with every attribute it has (normals, TEXCOORD_0,
 // COLOR_0); `ids`, when given, receives their unique ids. Throws DracoError when the mesh has no
 // triangles or Draco refuses it.
-std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& settings, DracoAttributeIds* ids = nullptr);
+std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& settings, DracoAttributeIds* ids = nullptr,
+                                  const DracoSkin& skin = {});
 
 // Decodes a Draco bitstream into a mesh (positions, triangles, and the attributes it carries).
 // Returns false with `error` set when the bytes are not a decodable Draco mesh.
