@@ -256,7 +256,7 @@ TEST_CASE("a vertex with more than four influences (JOINTS_1 / WEIGHTS_1) keeps 
     CHECK_FALSE(any_warning(eight, "vertex attribute(s)"));
 }
 
-TEST_CASE("--draco compresses a skinned mesh with its joints and weights, and tracks with the same key times share one input") {
+TEST_CASE("--draco compresses a skinned mesh with its joints and weights, --meshopt keeps its positions float and its weights exact, and tracks with the same key times share one input") {
     std::vector<std::string> inputs = {(source_dir() / "samples" / "khronos" / "RiggedSimple" / "RiggedSimple.gltf").string(),
                                        (source_dir() / "samples" / "khronos" / "RiggedFigure" / "RiggedFigure.gltf").string()};
     if (have_sample("gltf/Fox/Fox.gltf")) inputs.push_back((shared_samples() / "gltf/Fox/Fox.gltf").string());
@@ -264,8 +264,10 @@ TEST_CASE("--draco compresses a skinned mesh with its joints and weights, and tr
     for (const std::string& input : inputs) {
         CAPTURE(input);
         const std::string stem = fs::path(input).stem().string();
-        const fs::path draco = dir / (stem + "-draco.glb"), plain = dir / (stem + "-plain.glb");
-        for (const auto& [out, flags] : {std::pair{draco, std::string("--draco")}, std::pair{plain, std::string("--plain")}}) {
+        const fs::path draco = dir / (stem + "-draco.glb"), plain = dir / (stem + "-plain.glb"),
+                       quantized = dir / (stem + "-quantized.glb");
+        for (const auto& [out, flags] : {std::pair{draco, std::string("--draco")}, std::pair{plain, std::string("--plain")},
+                                         std::pair{quantized, std::string("--meshopt")}}) {
             int status = 0;
             const std::string log = run_command(shell_quoted(ellicast_exe().string()) + " convert -q " + flags + " " +
                                                     shell_quoted(input) + " " + shell_quoted(out.string()) + " 2>&1",
@@ -311,6 +313,33 @@ TEST_CASE("--draco compresses a skinned mesh with its joints and weights, and tr
                 matched += same;
             }
             CHECK(matched >= a.objects[o].positions.size() * 95 / 100);  // vertices Draco moved onto a neighbour aside
+        }
+        // --meshopt (and --quantize under it): a skinned mesh keeps float positions (no dequantizing node
+        // under a skeleton), its weights as exact normalized bytes, the same influences per vertex.
+        check_gltf_clean(quantized, {"NODE_SKINNED_MESH_NON_ROOT"});
+        const nlohmann::json qdoc = gltf_document(quantized);
+        for (const auto& mesh : qdoc["meshes"])
+            for (const auto& prim : mesh["primitives"]) {
+                if (!prim["attributes"].contains("JOINTS_0")) continue;
+                CHECK(qdoc["accessors"][prim["attributes"]["POSITION"].get<size_t>()]["componentType"] == 5126);
+                CHECK(qdoc["accessors"][prim["attributes"]["WEIGHTS_0"].get<size_t>()]["componentType"] == 5121);
+            }
+        const Asset q = load_asset(quantized.string());
+        for (size_t o = 0; o < q.objects.size() && o < b.objects.size(); ++o) {
+            if (b.weights[o].empty()) continue;
+            std::map<std::array<float, 3>, std::map<uint16_t, float>> want;
+            for (size_t v = 0; v < b.objects[o].positions.size(); ++v) want[b.objects[o].positions[v]] = influences(b.weights[o], v);
+            size_t same = 0;
+            for (size_t v = 0; v < q.objects[o].positions.size(); ++v) {
+                const auto it = want.find(q.objects[o].positions[v]);
+                if (it == want.end()) continue;
+                const auto got = influences(q.weights[o], v);
+                bool equal = got.size() == it->second.size();
+                for (const auto& [joint, weight] : got)
+                    equal = equal && it->second.count(joint) && std::abs(it->second.at(joint) - weight) < 1e-6f;
+                same += equal;
+            }
+            CHECK(same == q.objects[o].positions.size());
         }
         // One input accessor per list of key times.
         std::set<size_t> inputs_used;

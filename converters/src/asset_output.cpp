@@ -358,10 +358,10 @@ private:
     std::optional<tinygltf::Primitive> object_primitive(size_t o, const std::optional<Dequantization>& dq,
                                                         int dq_key, bool tangents, const std::string& what,
                                                         bool skinned = false, uint8_t targets = 0) {
-        // A skinned object (format 1.5) is written without KHR_mesh_quantization: a dequantizing wrapper
-        // node would not move with the skeleton; with Draco its joints and weights go into the Draco data,
-        // reordered with its vertices. An object with morph targets (format 1.6) is written plain: its
-        // displacements are per vertex, in its frame.
+        // A skinned object (format 1.5) keeps float positions: a dequantizing wrapper node would not move
+        // with the skeleton; with Draco its joints and weights go into the Draco data, reordered with its
+        // vertices. An object with morph targets (format 1.6) is written plain: its displacements are
+        // per vertex, in its frame.
         const bool plain = (skinned && !options_.draco) || targets > 0;
         // (A skinned Draco primitive carries JOINTS_0 and WEIGHTS_0: another key than the object unskinned.)
         auto key = std::make_tuple(o, plain ? -2 - int(skinned) - 2 * int(targets) : skinned ? -1000 + dq_key : dq_key,
@@ -370,7 +370,15 @@ private:
         std::optional<tinygltf::Primitive> result;
         if (std::optional<Mesh> mesh = writable_object(asset_.objects[o], what, warnings_)) {
             tangents = tangents && mesh->has_normals() && mesh->has_texcoords();
-            if (plain) {
+            if (skinned && targets == 0 && options_.quantize) {
+                // Quantized but for its positions (no dequantizing node), weights as exact bytes where
+                // they are multiples of 1/255; for meshopt in vertex-cache and fetch order, weights too.
+                VertexWeights weights = asset_.weights[o];
+                if (options_.meshopt) *mesh = meshopt_output::in_fetch_order(*mesh, &weights);
+                result = quantized_primitive(*mesh, std::nullopt);
+                if (tangents) add_quantized_tangents(*result, *mesh);
+                add_weights(*result, weights, true);
+            } else if (plain) {
                 result = add_primitive(model_, *mesh);
                 if (tangents)
                     result->attributes["TANGENT"] = add_float_attribute(model_, mesh_tangents(*mesh), TINYGLTF_TYPE_VEC4, false);
@@ -412,16 +420,20 @@ private:
 
     // KHR_mesh_quantization: positions as normalized int16 in the mesh's cube, normals as normalized
     // int8, texture coordinates in [0,1] as normalized uint16, colours as normalized uint16.
-    tinygltf::Primitive quantized_primitive(const Mesh& mesh, const Dequantization& dq) {
+    // `dq` nullopt: positions as floats (a skinned mesh, which a dequantizing node would not move with
+    // its skeleton), the other attributes quantized all the same.
+    tinygltf::Primitive quantized_primitive(const Mesh& mesh, const std::optional<Dequantization>& dq) {
         used_quantization_ = true;
         tinygltf::Primitive prim;
         const size_t n = mesh.positions.size();
-        {
+        if (!dq) {
+            prim.attributes["POSITION"] = add_float_attribute(model_, mesh.positions, TINYGLTF_TYPE_VEC3, true);
+        } else {
             std::vector<int16_t> q(n * 4, 0);  // padded to 8 bytes: vertex elements are 4-byte aligned
             std::vector<double> mn(3, 32767), mx(3, -32767);
             for (size_t i = 0; i < n; ++i)
                 for (int k = 0; k < 3; ++k) {
-                    double v = std::round((mesh.positions[i][k] - dq.center[k]) / dq.scale * 32767.0);
+                    double v = std::round((mesh.positions[i][k] - dq->center[k]) / dq->scale * 32767.0);
                     auto s = int16_t(std::clamp(v, -32767.0, 32767.0));
                     q[i * 4 + k] = s;
                     mn[k] = std::min(mn[k], double(s));
@@ -1152,7 +1164,9 @@ private:
 
     // JOINTS_0 (unsigned byte when every joint is below 256, else unsigned short) and WEIGHTS_0
     // (float) of a primitive.
-    void add_weights(tinygltf::Primitive& prim, const VertexWeights& w) {
+    // `quantized`: weights that are all multiples of 1/255 (a stream's) as normalized bytes
+    // (KHR_mesh_quantization), exactly; others as floats.
+    void add_weights(tinygltf::Primitive& prim, const VertexWeights& w, bool quantized = false) {
         uint16_t top = 0;
         for (const auto& j : w.joints)
             for (uint16_t x : j) top = std::max(top, x);
@@ -1169,7 +1183,22 @@ private:
             prim.attributes["JOINTS_0"] =
                 add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, w.joints.size());
         }
-        prim.attributes["WEIGHTS_0"] = add_float_attribute(model_, w.weights, TINYGLTF_TYPE_VEC4, false);
+        const bool bytes = quantized && std::all_of(w.weights.begin(), w.weights.end(), [](const std::array<float, 4>& v) {
+            return std::all_of(v.begin(), v.end(), [](float x) {
+                return x >= 0 && x <= 1 && std::abs(x * 255.0 - std::round(x * 255.0)) < 1e-3;
+            });
+        });
+        if (bytes) {
+            std::vector<uint8_t> q;
+            q.reserve(w.weights.size() * 4);
+            for (const auto& v : w.weights)
+                for (float x : v) q.push_back(uint8_t(std::lround(x * 255.0)));
+            const int view = add_buffer_view(model_, q.data(), q.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
+            prim.attributes["WEIGHTS_0"] = add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                                        TINYGLTF_TYPE_VEC4, w.weights.size(), {}, {}, true);
+        } else {
+            prim.attributes["WEIGHTS_0"] = add_float_attribute(model_, w.weights, TINYGLTF_TYPE_VEC4, false);
+        }
     }
 
     // Shows glTF mesh `mesh` at node `g` (index `at`): directly, or through a child node holding

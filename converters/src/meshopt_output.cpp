@@ -148,7 +148,7 @@ Report compress(tinygltf::Model& model, gltf_write::JsonPatches& patches) {
     return report;
 }
 
-Mesh in_fetch_order(const Mesh& mesh) {
+Mesh in_fetch_order(const Mesh& mesh, VertexWeights* weights) {
     if (mesh.is_point_set || mesh.triangles.empty()) return mesh;
     const size_t n = mesh.positions.size();
     std::vector<unsigned int> indices;
@@ -169,6 +169,11 @@ Mesh in_fetch_order(const Mesh& mesh) {
     reorder(mesh.texcoords, out.texcoords);
     reorder(mesh.colors, out.colors);
     for (size_t s = 0; s < mesh.texcoord_sets.size(); ++s) reorder(mesh.texcoord_sets[s], out.texcoord_sets[s]);
+    if (weights && weights->joints.size() == n && weights->weights.size() == n) {
+        const VertexWeights in = *weights;
+        reorder(in.joints, weights->joints);
+        reorder(in.weights, weights->weights);
+    }
     for (size_t t = 0; t < out.triangles.size(); ++t)
         for (int c = 0; c < 3; ++c) out.triangles[t][size_t(c)] = remap[indices[3 * t + size_t(c)]];
     return out;

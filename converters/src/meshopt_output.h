@@ -7,6 +7,7 @@
 #include "gltf_write.h"
 
 #include "ellicast/codec/mesh.h"
+#include "ellicast/converters/asset.h"
 
 #include <tiny_gltf.h>
 
@@ -30,6 +31,7 @@ Report compress(tinygltf::Model& model, gltf_write::JsonPatches& patches);
 
 // `mesh` with its triangles in vertex-cache order and its vertices in the order they are first used
 // (vertices no triangle uses dropped), which the codecs compress best; a point set as it is.
-Mesh in_fetch_order(const Mesh& mesh);
+// `weights`, when given (one per vertex), are reordered the same way.
+Mesh in_fetch_order(const Mesh& mesh, VertexWeights* weights = nullptr);
 
 }  // namespace ellicast::meshopt_output
