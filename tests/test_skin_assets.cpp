@@ -341,6 +341,27 @@ TEST_CASE("--draco compresses a skinned mesh with its joints and weights, --mesh
             }
             CHECK(same == q.objects[o].positions.size());
         }
+        // Rotation keys (LINEAR or STEP) as normalized int16 there, within 1.6e-5 a component of the plain file's.
+        for (const auto& animation : qdoc.value("animations", nlohmann::json::array()))
+            for (const auto& channel : animation["channels"]) {
+                if (channel["target"]["path"] != "rotation") continue;
+                const auto& sampler = animation["samplers"][channel["sampler"].get<size_t>()];
+                if (sampler.value("interpolation", "LINEAR") == "CUBICSPLINE") continue;
+                const auto& output = qdoc["accessors"][sampler["output"].get<size_t>()];
+                CHECK(output["componentType"] == 5122);
+                CHECK(output["normalized"] == true);
+            }
+        REQUIRE(q.scene.animations.size() == b.scene.animations.size());
+        for (size_t a = 0; a < b.scene.animations.size(); ++a) {
+            REQUIRE(q.scene.animations[a].tracks.size() == b.scene.animations[a].tracks.size());
+            for (size_t t = 0; t < b.scene.animations[a].tracks.size(); ++t) {
+                const auto &x = q.scene.animations[a].tracks[t].values, &y = b.scene.animations[a].tracks[t].values;
+                REQUIRE(x.size() == y.size());
+                float worst = 0;
+                for (size_t k = 0; k < x.size(); ++k) worst = std::max(worst, std::abs(x[k] - y[k]));
+                CHECK(worst <= 2e-5f);
+            }
+        }
         // One input accessor per list of key times.
         std::set<size_t> inputs_used;
         std::set<std::vector<float>> times;

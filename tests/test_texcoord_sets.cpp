@@ -20,6 +20,12 @@ namespace {
 
 fs::path multiuv_box() { return source_dir() / "samples" / "multiuv" / "MultiUVBox.gltf"; }
 
+// A packet of the exact layer (format 1.3 or 1.11) or of its repair.
+bool exact_layer_packet(const std::vector<uint8_t>& p) {
+    return is_packet_type(p, PacketType::Connectivity) || is_packet_type(p, PacketType::ConnectivityRepair) ||
+           is_packet_type(p, PacketType::ExactMesh) || is_packet_type(p, PacketType::ExactMeshRepair);
+}
+
 size_t warnings_with(const std::vector<std::string>& warnings, const std::string& text) {
     return size_t(std::count_if(warnings.begin(), warnings.end(),
                                 [&](const std::string& w) { return w.find(text) != std::string::npos; }));
@@ -150,12 +156,7 @@ TEST_CASE("a reconstruction gives each vertex the further set of the point it st
     const EncodedAsset e = encoded(in);
     const Asset out = received_without(
         e.packets,
-        [&](size_t i) {
-            return is_packet_type(e.packets[i], PacketType::Connectivity) ||
-                   is_packet_type(e.packets[i], PacketType::ConnectivityRepair) ||
-                   is_packet_type(e.packets[i], PacketType::ExactMesh) ||
-                   is_packet_type(e.packets[i], PacketType::ExactMeshRepair);
-        },
+        [&](size_t i) { return exact_layer_packet(e.packets[i]); },
         24);
     REQUIRE(out.objects.size() == 1);
     const Mesh& m = out.objects[0];
@@ -254,12 +255,7 @@ TEST_CASE("points that differ only in TEXCOORD_1 stay apart, and a lost TEXCOORD
     // (the sets are compared when a vertex has several, spec 30.2): its TEXCOORD_1 is its side's.
     const Asset rebuilt = received_without(
         e.packets,
-        [&](size_t i) {
-            return is_packet_type(e.packets[i], PacketType::Connectivity) ||
-                   is_packet_type(e.packets[i], PacketType::ConnectivityRepair) ||
-                   is_packet_type(e.packets[i], PacketType::ExactMesh) ||
-                   is_packet_type(e.packets[i], PacketType::ExactMeshRepair);
-        },
+        [&](size_t i) { return exact_layer_packet(e.packets[i]); },
         48);
     REQUIRE(rebuilt.objects.size() == 1);
     const Mesh& r = rebuilt.objects[0];

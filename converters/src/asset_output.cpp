@@ -7,6 +7,7 @@
 
 #include "gltf_write.h"
 #include "meshopt_output.h"
+#include "skin_weights.h"
 #include "material_extensions.h"
 #include "tangents.h"
 #include "ellicast/converters/image_file.h"
@@ -1000,10 +1001,23 @@ private:
                         warnings_.push_back(what + ": track " + std::to_string(t) + ": " + std::to_string(zero) +
                                             " zero rotation(s) written as the identity");
                 }
-                const int output_view = add_buffer_view(model_, values.data(), values.size() * 4, 0);
-                const int output = add_accessor(model_, output_view, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                                weights ? TINYGLTF_TYPE_SCALAR : rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
-                                                values.size() / components);
+                int output = -1;
+                if (rotation && options_.quantize && track.interpolation != Interpolation::CubicSpline) {
+                    // Quantized output (--quantize, --meshopt): unit quaternions as normalized int16, which
+                    // glTF allows for rotations (within 1.6e-5 a component; a cubic spline's free tangents
+                    // stay float).
+                    std::vector<int16_t> q(values.size());
+                    for (size_t k = 0; k < values.size(); ++k)
+                        q[k] = int16_t(std::lround(std::clamp(values[k], -1.0f, 1.0f) * 32767.0));
+                    const int output_view = add_buffer_view(model_, q.data(), q.size() * 2, 0);
+                    output = add_accessor(model_, output_view, TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC4,
+                                          values.size() / components, {}, {}, true);
+                } else {
+                    const int output_view = add_buffer_view(model_, values.data(), values.size() * 4, 0);
+                    output = add_accessor(model_, output_view, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                          weights ? TINYGLTF_TYPE_SCALAR : rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
+                                          values.size() / components);
+                }
                 tinygltf::AnimationSampler sampler;
                 sampler.input = input - 1;
                 sampler.output = output;
@@ -1183,17 +1197,9 @@ private:
             prim.attributes["JOINTS_0"] =
                 add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, w.joints.size());
         }
-        const bool bytes = quantized && std::all_of(w.weights.begin(), w.weights.end(), [](const std::array<float, 4>& v) {
-            return std::all_of(v.begin(), v.end(), [](float x) {
-                return x >= 0 && x <= 1 && std::abs(x * 255.0 - std::round(x * 255.0)) < 1e-3;
-            });
-        });
-        if (bytes) {
-            std::vector<uint8_t> q;
-            q.reserve(w.weights.size() * 4);
-            for (const auto& v : w.weights)
-                for (float x : v) q.push_back(uint8_t(std::lround(x * 255.0)));
-            const int view = add_buffer_view(model_, q.data(), q.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
+        if (quantized && skin_weights::in_255ths(w.weights)) {
+            const std::vector<std::array<uint8_t, 4>> q = skin_weights::as_bytes(w.weights);
+            const int view = add_buffer_view(model_, q.data(), q.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER);
             prim.attributes["WEIGHTS_0"] = add_accessor(model_, view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                                                         TINYGLTF_TYPE_VEC4, w.weights.size(), {}, {}, true);
         } else {

@@ -1,6 +1,8 @@
 // ellicast::Mesh <-> Draco, at glTF-Transform's default Draco settings.
 #include "ellicast/converters/draco_mesh.h"
 
+#include "skin_weights.h"
+
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
@@ -115,21 +117,14 @@ std::vector<uint8_t> draco_encode(const Mesh& mesh, const DracoSettings& setting
         found.joints = add_joints(dm, *skin.joints, found.joints_8bit);
         // Weights that are multiples of 1/255 (a stream's, spec 21.2) as normalized bytes, exactly;
         // others as floats, which Draco keeps as they are (no quantization is set for GENERIC).
-        found.weights_8bit = std::all_of(skin.weights->begin(), skin.weights->end(), [](const std::array<float, 4>& w) {
-            return std::all_of(w.begin(), w.end(), [](float x) {
-                return x >= 0 && x <= 1 && std::abs(x * 255.0 - std::round(x * 255.0)) < 1e-3;
-            });
-        });
+        found.weights_8bit = skin_weights::in_255ths(*skin.weights);
         if (found.weights_8bit) {
+            const std::vector<std::array<uint8_t, 4>> bytes = skin_weights::as_bytes(*skin.weights);
             draco::GeometryAttribute ga;
             ga.Init(draco::GeometryAttribute::GENERIC, nullptr, 4, draco::DT_UINT8, true, 4, 0);
-            const int id = dm.AddAttribute(ga, true, static_cast<uint32_t>(skin.weights->size()));
+            const int id = dm.AddAttribute(ga, true, static_cast<uint32_t>(bytes.size()));
             draco::PointAttribute* pa = dm.attribute(id);
-            for (size_t i = 0; i < skin.weights->size(); ++i) {
-                std::array<uint8_t, 4> v{};
-                for (int k = 0; k < 4; ++k) v[size_t(k)] = uint8_t(std::lround((*skin.weights)[i][size_t(k)] * 255.0));
-                pa->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), v.data());
-            }
+            for (size_t i = 0; i < bytes.size(); ++i) pa->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), bytes[i].data());
             found.weights = int(pa->unique_id());
         } else {
             found.weights = add_attribute(dm, draco::GeometryAttribute::GENERIC, *skin.weights);

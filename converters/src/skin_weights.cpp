@@ -76,4 +76,19 @@ VertexWeights vertex_weights(const Mesh& decoded, const ReceivedStream& stream, 
     return out;
 }
 
+bool in_255ths(const std::vector<std::array<float, 4>>& weights) {
+    return std::all_of(weights.begin(), weights.end(), [](const std::array<float, 4>& v) {
+        return std::all_of(v.begin(), v.end(), [](float x) {
+            return x >= 0 && x <= 1 && std::abs(x * 255.0 - std::round(x * 255.0)) < 1e-3;
+        });
+    });
+}
+
+std::vector<std::array<uint8_t, 4>> as_bytes(const std::vector<std::array<float, 4>>& weights) {
+    std::vector<std::array<uint8_t, 4>> out(weights.size());
+    for (size_t i = 0; i < weights.size(); ++i)
+        for (size_t k = 0; k < 4; ++k) out[i][k] = uint8_t(std::lround(std::clamp(weights[i][k], 0.0f, 1.0f) * 255.0));
+    return out;
+}
+
 }  // namespace ellicast::skin_weights

@@ -28,4 +28,9 @@ VertexWeights vertex_weights(const Mesh& decoded, const ReceivedStream& stream, 
 // The weights of one record: joints, and the weights divided by 255 (unused slots 0).
 void record_weights(const Influences& record, std::array<uint16_t, 4>& joints, std::array<float, 4>& weights);
 
+// Whether every weight is a multiple of 1/255 in [0, 1] (as a stream's are, spec 21.2), so that
+// normalized bytes hold them exactly; and those bytes.
+bool in_255ths(const std::vector<std::array<float, 4>>& weights);
+std::vector<std::array<uint8_t, 4>> as_bytes(const std::vector<std::array<float, 4>>& weights);
+
 }  // namespace ellicast::skin_weights
