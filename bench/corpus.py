@@ -56,6 +56,7 @@ def census(doc):
     }
 
 
+STORAGE_EXTENSIONS = ('KHR_draco_mesh_compression', 'KHR_mesh_quantization', 'EXT_meshopt_compression')
 TEXTURE_SLOTS = ('baseColorTexture', 'metallicRoughnessTexture', 'normalTexture', 'occlusionTexture', 'emissiveTexture')
 
 
@@ -122,10 +123,14 @@ def features(doc):
             out['animation %s %s of %s' % (a.get('name', ''), t.get('path', ''), on)] = 'animation'
     for k in doc.get('skins', []):
         out['skin %s of %d joints' % (k.get('name', ''), len(k.get('joints', [])))] = 'skin'
+    # How the geometry is stored (Draco, quantized, meshopt) is not a feature of the scene: an object the
+    # output cannot store that way (morph targets stay plain) shows in the size ratio, not here.
     for e in doc.get('extensionsUsed', []):
-        out['uses ' + e] = e
+        if e not in STORAGE_EXTENSIONS:
+            out['uses ' + e] = e
     for e in doc.get('extensionsRequired', []):
-        out['requires ' + e] = e
+        if e not in STORAGE_EXTENSIONS:
+            out['requires ' + e] = e
     if 'extras' in doc.get('asset', {}):
         out['extras of the asset'] = 'extras'
     return out

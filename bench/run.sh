@@ -178,8 +178,29 @@ PY
       echo "== corpus: glTF assets through ellicast convert and the Khronos validator (bench/corpus.py)" >&2
       folders=("$samples/gltf" "$root/samples/khronos" "$root/samples/multiuv")
       [ -n "${ELLICAST_CORPUS:-}" ] && folders+=("$ELLICAST_CORPUS")
+      originals=("${folders[@]}")  # the bytes table below takes each asset once, not its variants
+      # The Draco, quantized and meshopt files a user would make of some of them (glTF-Transform, from
+      # npm like the validator), so that "written like the input" is measured on each encoding.
+      variants="$results/corpus-variants"
+      rm -rf "$variants" && mkdir -p "$variants"
+      gt="$root/.cache/node/node_modules/.bin/gltf-transform"
+      if [ -x "$gt" ]; then
+        for a in "$samples/gltf/Duck/Duck.gltf" "$samples/gltf/CesiumMilkTruck/CesiumMilkTruck.gltf" \
+                 "$samples/gltf/Fox/Fox.gltf" "$root/samples/multiuv/MultiUVBox.gltf" \
+                 "$root/samples/khronos/RiggedFigure/RiggedFigure.gltf" \
+                 "$root/samples/khronos/AnimatedMorphCube/AnimatedMorphCube.gltf"; do
+          [ -f "$a" ] || continue
+          n=$(basename "${a%.*}")
+          for v in draco quantize meshopt; do
+            node "$gt" "$v" "$a" "$variants/$n-$v.glb" > /dev/null 2>&1 || echo "gltf-transform $v failed on $a" >&2
+          done
+        done
+        folders+=("$variants")
+      else
+        echo "(no Draco / quantized / meshopt variants: glTF-Transform is not installed under .cache/node)" >&2
+      fi
       python3 "$root/bench/corpus.py" "$build/ellicast" "$root/.cache/node/node_modules" "$results/corpus" "${folders[@]}" > /dev/null
-      rm -rf "$results/corpus/out"
+      rm -rf "$results/corpus/out" "$variants"
       cat "$results/corpus/corpus.md"
       # What the exact asset costs against Draco and gltfpack (issue 27): the same assets and the
       # shared meshes. gltfpack (npm, a WebAssembly build) is only needed here.
@@ -187,7 +208,7 @@ PY
       [ -x "$node_bin/gltfpack" ] || (cd "$root/.cache/node" && npm install --no-audit --no-fund --loglevel=error gltfpack@0.25.0 >/dev/null) ||
         echo "bench: gltfpack could not be installed; its column stays empty" >&2
       echo "== corpus bytes: ellicast content against Draco and gltfpack (bench/corpus_bytes.py)" >&2
-      python3 "$root/bench/corpus_bytes.py" "$build/ellicast" "$node_bin" "$results/corpus" "$samples/meshes" "${folders[@]}" > /dev/null
+      python3 "$root/bench/corpus_bytes.py" "$build/ellicast" "$node_bin" "$results/corpus" "$samples/meshes" "${originals[@]}" > /dev/null
       rm -rf "$results/corpus/work"
       cat "$results/corpus/bytes.md" ;;
     point-share)

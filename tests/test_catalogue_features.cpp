@@ -91,8 +91,14 @@ std::set<Feature> features(const json& doc) {
         }
     for (const auto& s : doc.value("skins", json::array()))
         add("skin " + name_or(s, "") + " of " + std::to_string(s.value("joints", json::array()).size()) + " joints", "skin");
-    for (const auto& e : doc.value("extensionsUsed", json::array())) add("uses " + e.get<std::string>(), e.get<std::string>());
-    for (const auto& e : doc.value("extensionsRequired", json::array())) add("requires " + e.get<std::string>(), e.get<std::string>());
+    // How the geometry is stored (Draco, quantized, meshopt) is not a feature of the scene (as in bench/corpus.py).
+    auto storage = [](const std::string& e) {
+        return e == "KHR_draco_mesh_compression" || e == "KHR_mesh_quantization" || e == "EXT_meshopt_compression";
+    };
+    for (const auto& e : doc.value("extensionsUsed", json::array()))
+        if (!storage(e.get<std::string>())) add("uses " + e.get<std::string>(), e.get<std::string>());
+    for (const auto& e : doc.value("extensionsRequired", json::array()))
+        if (!storage(e.get<std::string>())) add("requires " + e.get<std::string>(), e.get<std::string>());
     if (doc.contains("asset") && doc["asset"].contains("extras")) add("extras of the asset", "extras");
     return out;
 }
