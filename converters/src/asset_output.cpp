@@ -1265,7 +1265,7 @@ private:
 
     const std::string& path_;
     const Asset& asset_;
-    const AssetWriteOptions& options_;
+    const AssetWriteOptions options_;  // a copy: the caller's may be a temporary
     std::vector<std::string>& warnings_;
     tinygltf::Model model_;
     std::map<std::pair<ExtrasTarget, uint16_t>, const std::string*> extras_;  // format 1.12: (kind, index) -> text
