@@ -718,17 +718,25 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
             if (unusable) exact_note = "its exact layer is unusable (" + why + "): reconstructed";
         }
         std::vector<SurfacePoint> points = stream.points(i);
-        std::vector<uint32_t> indices;  // of the points, in the same order
-        indices.reserve(points.size());
-        for (const auto& [index, q] : objects[i].points) indices.push_back(index);
+        // The points' indices, in the same order: only an object with further sets (format 1.14) needs them.
+        const bool with_sets = !objects[i].texcoord_sets.empty();
+        std::vector<uint32_t> indices;
+        if (with_sets) {
+            indices.reserve(points.size());
+            for (const auto& [index, q] : objects[i].points) indices.push_back(index);
+        }
         size_t held = 0;
         if (options.insert_if) {
             size_t kept = 0;
             for (size_t k = 0; k < points.size(); ++k)
-                if (options.insert_if(i, points[k].position)) points[kept] = points[k], indices[kept++] = indices[k];
+                if (options.insert_if(i, points[k].position)) {
+                    points[kept] = points[k];
+                    if (with_sets) indices[kept] = indices[k];
+                    ++kept;
+                }
             held = points.size() - kept;
             points.resize(kept);
-            indices.resize(kept);
+            if (with_sets) indices.resize(kept);
         }
         const PointTexcoordSets sets = point_sets(objects[i], indices);  // format 1.14
         if (!decode_object(*objects[i].info, stream.ellipsoids(i), points, info.grid_hint, shared, i, mesh,

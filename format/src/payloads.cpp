@@ -333,17 +333,12 @@ Error packetize_stream(const StreamInfo& info_in, const std::vector<ObjectConten
             if (payloads.empty()) return Error::MalformedPayload;
             for (auto& payload : payloads) normals_payloads.emplace_back(static_cast<uint16_t>(i), std::move(payload));
         }
-        if (!content.texcoord_sets.empty()) {
-            // Format 1.14 (spec 30.3): numbered below with the rest, so sequence 0 here.
-            std::vector<std::vector<uint8_t>> packets;
-            if (packetize_texcoords(info_in, static_cast<uint16_t>(i), content.texcoord_sets, 0, 0, packets) != Error::Ok)
-                return Error::MalformedPayload;
-            for (const auto& packet : packets) {
-                PacketView view;
-                if (parse_packet(packet, view) != Error::Ok) return Error::MalformedPayload;
-                texcoords_payloads.emplace_back(static_cast<uint16_t>(i),
-                                                std::vector<uint8_t>(view.payload.begin(), view.payload.end()));
-            }
+        if (!content.texcoord_sets.empty()) {  // format 1.14 (spec 30.3)
+            if (!object.has(kAttrTexcoord)) return Error::MalformedPayload;
+            auto payloads = detail::texcoords_payloads(content.texcoord_sets, uint32_t(content.points.size()),
+                                                       info_in.packet_size);
+            if (payloads.empty()) return Error::MalformedPayload;
+            for (auto& payload : payloads) texcoords_payloads.emplace_back(static_cast<uint16_t>(i), std::move(payload));
         }
         const size_t per_points = point_batch_size(info_in, object);
         if (per_points == 0) return Error::MalformedPayload;

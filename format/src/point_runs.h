@@ -35,6 +35,12 @@ void keep_run(PagedRecords<Record>& held, uint32_t first, const std::vector<Reco
 
 // The NORMALS payloads of one object's entries (one per point): runs of as many points as fit a
 // packet of `packet_size` bytes. Empty when an entry cannot fit (not at 128 bytes and 16 bits).
+// The TEXCOORDS payloads of one object's further sets (spec 30.1): set by set, runs of as many records
+// as fit a packet of `packet_size` bytes. Empty when a set is not what spec 30.1 allows (a record per
+// point, bits 4..16, a finite range with a finite end, at most 7 sets).
+std::vector<std::vector<uint8_t>> texcoords_payloads(const std::vector<TexcoordSet>& sets, uint32_t point_count,
+                                                     size_t packet_size);
+
 std::vector<std::vector<uint8_t>> normals_payloads(const std::vector<NormalEntry>& entries, size_t packet_size,
                                                    unsigned normal_bits);
 

@@ -3,6 +3,7 @@
 #include "ellicast/format.h"
 
 #include "bytes.h"
+#include "point_runs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +12,20 @@
 namespace ellicast {
 
 using namespace detail;
+
+namespace {
+// Spec 30.1's rules for a range (step 11): bits 4..16, every component finite, scales not negative,
+// ends finite in f32.
+bool valid_range(const TexcoordRange& range) {
+    if (range.bits < 4 || range.bits > 16) return false;
+    for (int k = 0; k < 2; ++k) {
+        const float o = range.origin[k], s = range.scale[k];
+        if (!std::isfinite(o) || !std::isfinite(s) || s < 0 || !std::isfinite(static_cast<float>(double(o) + s)))
+            return false;
+    }
+    return true;
+}
+}  // namespace
 
 // ------------------------------------------------------------------------------------------
 // TEXCOORDS payload (spec 30.1)
@@ -48,14 +63,8 @@ Error decode_texcoords_payload(std::span<const uint8_t> payload, TexcoordsRun& o
     for (int k = 0; k < 2; ++k) run.range.origin[k] = get_f32(p + 12 + 4 * k);
     for (int k = 0; k < 2; ++k) run.range.scale[k] = get_f32(p + 20 + 4 * k);
     if (count == 0 || run.set_count == 0 || run.set_count > kMaxTexcoordSets || run.set == 0 ||
-        run.set > run.set_count || run.range.bits < 4 || run.range.bits > 16 ||
-        uint64_t(run.first_index) + count > 0xFFFFFFFFull)
+        run.set > run.set_count || !valid_range(run.range) || uint64_t(run.first_index) + count > 0xFFFFFFFFull)
         return Error::MalformedPayload;
-    for (int k = 0; k < 2; ++k) {
-        const float o = run.range.origin[k], s = run.range.scale[k];
-        if (!std::isfinite(o) || !std::isfinite(s) || s < 0 || !std::isfinite(static_cast<float>(double(o) + s)))
-            return Error::MalformedPayload;
-    }
     if (payload.size() != texcoords_payload_size(count, run.range.bits)) return Error::MalformedPayload;
     run.records.resize(count);
     BitReader r(payload.subspan(kTexcoordsHeaderSize));
@@ -103,36 +112,39 @@ TexcoordRange texcoord_range(const std::vector<std::array<float, 2>>& values, ui
     return range;
 }
 
-Error packetize_texcoords(const StreamInfo& info, uint16_t object_id, const std::vector<TexcoordSet>& sets,
-                          uint32_t stream_id, uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out) {
-    if (object_id >= info.objects.size() || sets.empty() || sets.size() > kMaxTexcoordSets ||
-        info.packet_size < kMinPacketSize || !info.objects[object_id].has(kAttrTexcoord))
-        return Error::MalformedPayload;
-    const uint32_t points = info.objects[object_id].point_count;
-    uint32_t sequence = first_sequence;
+std::vector<std::vector<uint8_t>> detail::texcoords_payloads(const std::vector<TexcoordSet>& sets, uint32_t point_count,
+                                                             size_t packet_size) {
+    std::vector<std::vector<uint8_t>> out;
+    if (sets.empty() || sets.size() > kMaxTexcoordSets || point_count == 0 || packet_size < kMinPacketSize) return {};
     for (size_t s = 0; s < sets.size(); ++s) {
         const TexcoordSet& set = sets[s];
-        if (set.records.size() != points || points == 0 || set.range.bits < 4 || set.range.bits > 16)
-            return Error::MalformedPayload;
-        const size_t capacity = (std::min<size_t>(info.packet_size, kMaxPacketSize) - kPacketOverhead -
-                                 kTexcoordsHeaderSize) * 8 / (2 * size_t(set.range.bits));
+        if (set.records.size() != point_count || !valid_range(set.range)) return {};
+        const size_t capacity = (std::min<size_t>(packet_size, kMaxPacketSize) - kPacketOverhead - kTexcoordsHeaderSize) *
+                                8 / (2 * size_t(set.range.bits));
         const size_t per_packet = std::min<size_t>(capacity, 0xFFFF);
-        for (size_t first = 0; first < points; first += per_packet) {
+        for (size_t first = 0; first < point_count; first += per_packet) {
             TexcoordsRun run;
             run.first_index = static_cast<uint32_t>(first);
             run.set = static_cast<uint8_t>(s + 1);
             run.set_count = static_cast<uint8_t>(sets.size());
             run.range = set.range;
-            const size_t n = std::min(per_packet, points - first);
-            run.records.assign(set.records.begin() + std::ptrdiff_t(first),
-                               set.records.begin() + std::ptrdiff_t(first + n));
-            TexcoordsRun check;
-            std::vector<uint8_t> payload = encode_texcoords_payload(run);
-            if (decode_texcoords_payload(payload, check) != Error::Ok) return Error::MalformedPayload;
-            out.push_back(write_packet(
-                skippable_header(PacketType::Texcoords, kTexcoordsMinor, stream_id, sequence++, object_id), payload));
+            const size_t n = std::min<size_t>(per_packet, point_count - first);
+            run.records.assign(set.records.begin() + std::ptrdiff_t(first), set.records.begin() + std::ptrdiff_t(first + n));
+            out.push_back(encode_texcoords_payload(run));
         }
     }
+    return out;
+}
+
+Error packetize_texcoords(const StreamInfo& info, uint16_t object_id, const std::vector<TexcoordSet>& sets,
+                          uint32_t stream_id, uint32_t first_sequence, std::vector<std::vector<uint8_t>>& out) {
+    if (object_id >= info.objects.size() || !info.objects[object_id].has(kAttrTexcoord)) return Error::MalformedPayload;
+    const auto payloads = detail::texcoords_payloads(sets, info.objects[object_id].point_count, info.packet_size);
+    if (payloads.empty()) return Error::MalformedPayload;
+    uint32_t sequence = first_sequence;
+    for (const auto& payload : payloads)
+        out.push_back(write_packet(
+            skippable_header(PacketType::Texcoords, kTexcoordsMinor, stream_id, sequence++, object_id), payload));
     return Error::Ok;
 }
 
