@@ -123,6 +123,13 @@ bool triangle_meets_unit_ball(const V3 v[3]) {
     }
     for (int j = 0; j < 3; ++j)
         if (v[j][0] * v[j][0] + v[j][1] * v[j][1] + v[j][2] * v[j][2] <= 1.0) return true;
+    // The triangle's plane clearly apart from the ball (the nearest point of the triangle lies on
+    // it or farther): (n . v0)^2 > |n|^2 with a relative margin far above rounding, no square root.
+    const double e1[3] = {v[1][0] - v[0][0], v[1][1] - v[0][1], v[1][2] - v[0][2]};
+    const double e2[3] = {v[2][0] - v[0][0], v[2][1] - v[0][1], v[2][2] - v[0][2]};
+    const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    const double d = n[0] * v[0][0] + n[1] * v[0][1] + n[2] * v[0][2];
+    if (d * d > (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * (1 + 1e-6)) return false;
     static const V3 origin{0, 0, 0};
     V3 p = closest_point_on_triangle(origin, v[0], v[1], v[2]);
     return p[0] * p[0] + p[1] * p[1] + p[2] * p[2] <= 1.0;
@@ -164,6 +171,16 @@ TreeBalls tree_balls(const TriangleTree& tree) {
         const Vec3 g = (a + b + c) / 3.0;
         const double r = std::sqrt(std::max({(a - g).squaredNorm(), (b - g).squaredNorm(), (c - g).squaredNorm()}));
         balls.triangles.push_back({g.x(), g.y(), g.z(), r});
+        Vec3 n = (b - a).cross(c - a);
+        const double length = n.norm();
+        if (!(length > 0) || !std::isfinite(length)) {
+            balls.planes.push_back({0, 0, 0, 0, 0});
+            continue;
+        }
+        n /= length;
+        const double offset = n.dot(a);
+        const double slab = std::max(std::abs(n.dot(b) - offset), std::abs(n.dot(c) - offset));
+        balls.planes.push_back({n.x(), n.y(), n.z(), offset, slab});
     }
     return balls;
 }
@@ -213,16 +230,22 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* bl
         uint32_t node;
         double gap;  // > 0: clearly apart
     };
+    // A node whose box is apart from the ellipsoid's box is not taken (before its gap is computed).
+    auto apart = [&](uint32_t k) {
+        const auto& b = nodes[k].bounds;
+        bool out = false;
+        for (int j = 0; j < 3; ++j) out = out || b.min[j] > c[j] + half[j] || b.max[j] < c[j] - half[j];
+        return out;
+    };
+    constexpr double kApart = 1.0;  // the gap of a node not taken: clearly apart
+    auto gap_of = [&](uint32_t k) { return apart(k) ? kApart : mapped_gap(k); };
     Entry stack[128];
     int top = 0;
-    stack[top++] = {0, mapped_gap(0)};
+    stack[top++] = {0, gap_of(0)};
     while (top > 0) {
         const Entry entry = stack[--top];
+        if (entry.gap > 0) continue;  // only the root
         const auto& node = nodes[entry.node];
-        bool apart = false;
-        for (int k = 0; k < 3; ++k)
-            apart = apart || node.bounds.min[k] > c[k] + half[k] || node.bounds.max[k] < c[k] - half[k];
-        if (apart || entry.gap > 0) continue;
         if (node.is_leaf()) {
             for (uint32_t i = node.first; i < node.first + node.count; ++i) {
                 if (balls) {
@@ -231,6 +254,18 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* bl
                     const auto& ball = balls->triangles[i];
                     const double reach = 1.0 + 1e-9 + ball[3] * inv_rmin;
                     if ((M * (Vec3(ball[0], ball[1], ball[2]) - e.center)).squaredNorm() > reach * reach) continue;
+                    // The triangle's plane (the slab holding it) clearly apart from the ellipsoid:
+                    // the centre lies farther from it than the ellipsoid's support along its normal,
+                    // sqrt(sum_i (r_i a_i . n)^2), with margins far above rounding.
+                    const auto& plane = balls->planes[i];
+                    const Vec3 n(plane[0], plane[1], plane[2]);
+                    const double along = n.dot(e.center);
+                    const double gap =
+                        std::abs(along - plane[3]) - plane[4] - 1e-12 * (std::abs(along) + std::abs(plane[3]));
+                    if (gap > 0) {
+                        const Vec3 u = (e.axes.transpose() * n).cwiseProduct(e.radii);
+                        if (gap * gap > u.squaredNorm() * (1 + 1e-6)) continue;
+                    }
                 }
                 V3 v[3];
                 mapped(tris[i], v);
@@ -243,14 +278,11 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* bl
         }
         if (top + 2 > 128) return false;
         // Nearer child last, so it is visited first: a blocked ellipsoid is found out sooner.
-        const Entry left{node.first, mapped_gap(node.first)}, right{node.right, mapped_gap(node.right)};
-        if (left.gap <= right.gap) {
-            stack[top++] = right;
-            stack[top++] = left;
-        } else {
-            stack[top++] = left;
-            stack[top++] = right;
-        }
+        const Entry left{node.first, gap_of(node.first)}, right{node.right, gap_of(node.right)};
+        const Entry& nearer = left.gap <= right.gap ? left : right;
+        const Entry& farther = left.gap <= right.gap ? right : left;
+        if (farther.gap <= 0) stack[top++] = farther;
+        if (nearer.gap <= 0) stack[top++] = nearer;
     }
     return true;
 }

@@ -99,6 +99,10 @@ struct Candidate {
 // and the distance to its farthest corner.
 struct TreeBalls {
     std::vector<std::array<double, 4>> nodes, triangles;
+    // Per triangle (leaf order): the unit normal n of its plane, the offset n . a of its first corner
+    // and how far its other corners lie off that plane as computed (the slab holding it), or all
+    // zero for a triangle without a normal.
+    std::vector<std::array<double, 5>> planes;
 };
 
 struct GrowthContext {
