@@ -161,6 +161,8 @@ public:
         build(0, at_.size(), 0);
     }
 
+    size_t size() const { return at_.size(); }
+
     // The `k` points nearest to `q` other than a and b, by (squared distance, index), nearest first
     // (k <= kRanks).
     void nearest(const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k,
@@ -169,6 +171,44 @@ public:
         if (query.k > 0) search(query);
         best.clear();
         for (size_t j = 0; j < query.n; ++j) best.emplace_back(query.items[j].d, query.items[j].i);
+    }
+
+    // How many points other than a and b come before (d, x) in the order of nearest(): nearer to `q`
+    // than squared distance d, or as near with an index below x; counting stops at `limit`. The
+    // rank of x among the nearest points is one more (the encoder's question, answered without
+    // finding all kRanks nearest).
+    size_t count_before(const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, uint64_t d, uint32_t x,
+                        size_t limit) const {
+        struct Range {
+            uint32_t lo, hi;
+            int axis;
+        };
+        std::array<Range, 40> stack;  // a level halves the range (at most 33 for 2^32 points)
+        size_t depth = 0, count = 0;
+        stack[depth++] = {0, uint32_t(at_.size()), 0};
+        auto take = [&](const Entry& e) {
+            if (e.index == a || e.index == b) return;
+            const uint64_t de = dist2(e.p, q);
+            count += de < d || (de == d && e.index < x);
+        };
+        while (depth > 0 && count < limit) {
+            const Range r = stack[--depth];
+            if (r.hi - r.lo <= kLeaf) {
+                for (uint32_t j = r.lo; j < r.hi; ++j) take(at_[j]);
+                continue;
+            }
+            const uint32_t mid = (r.lo + r.hi) / 2;
+            const int64_t gap = q[r.axis] - int64_t(at_[mid].p[r.axis]);
+            const uint64_t along = uint64_t(gap * gap);
+            const int next = r.axis == 2 ? 0 : r.axis + 1;
+            // The side of the split away from q, and the split point, lie at least |gap| away.
+            if (along <= d) {
+                take(at_[mid]);
+                stack[depth++] = gap < 0 ? Range{mid + 1, r.hi, next} : Range{r.lo, mid, next};
+            }
+            stack[depth++] = gap < 0 ? Range{r.lo, mid, next} : Range{mid + 1, r.hi, next};
+        }
+        return std::min(count, limit);
     }
 
 private:
@@ -732,6 +772,30 @@ void candidates(const KdTree& tree, const std::array<int64_t, 3>& r, const Gate&
     if (out.size() > k) out.resize(k);
 }
 
+// The rank (1..kRanks) of vertex x among the candidates() of a gate, 0 when it is not one of
+// them: one more than the candidates that come before it, counted rather than listed.
+int candidate_rank(const KdTree& tree, const std::array<int64_t, 3>& r, const Gate& g,
+                   const std::vector<std::pair<uint64_t, uint32_t>>& local,
+                   const std::vector<std::array<uint32_t, 3>>& positions, uint32_t x) {
+    if (x == g.a || x == g.b) return 0;
+    uint64_t d = 0;
+    for (int k = 0; k < 3; ++k) {
+        const int64_t e = int64_t(positions[x][k]) - r[k];
+        d += uint64_t(e * e);
+    }
+    const std::pair<uint64_t, uint32_t> key(d, x);
+    // x is a point (in the tree) or a carried vertex, a candidate only from its gate's local list.
+    bool listed = x < tree.size();
+    size_t before = 0;
+    for (const auto& item : local) {
+        listed = listed || item.second == x;
+        before += item < key;
+    }
+    if (!listed) return 0;
+    before += tree.count_before(r, g.a, g.b, d, x, kRanks);
+    return before < size_t(kRanks) ? int(before) + 1 : 0;
+}
+
 int bit_length(uint64_t u) {
     int c = 0;
     while (u >> c) ++c;
@@ -929,10 +993,7 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
         }
         if (m < carried) rc.bit(ctx.fresh[context], 0);
         const uint32_t xv = id[x];
-        candidates(tree, r, g, kRanks, near, best);
-        int rank = 0;
-        for (size_t k = 0; k < best.size(); ++k)
-            if (best[k].second == xv) rank = int(k) + 1;
+        const int rank = candidate_rank(tree, r, g, near, positions, xv);
         for (int k = 1; k <= kRanks; ++k) {
             rc.bit(ctx.rank[k - 1], k == rank ? 1 : 0);
             if (k == rank) break;
