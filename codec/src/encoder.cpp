@@ -386,7 +386,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
             QuantizedEllipsoid q = quantize_ellipsoid(to_ellipsoid(cur), frame);
             Candidate back = to_candidate(dequantize_ellipsoid(q, frame));
             if (back.radii.minCoeff() <= 0) return false;
-            if (!check || clear_of_surface(tree, back)) {
+            if (!check || clear_of_surface(tree, back, nullptr, &ctx.balls)) {
                 out.push_back(q);
                 if (attempt > 0) ++report.shrunk;
                 return true;

@@ -79,28 +79,39 @@ std::vector<std::array<bool, 3>> sharp_edges(const Mesh& mesh, double crease_deg
     std::vector<uint32_t> weld(mesh.positions.size());
     for (size_t i = 0; i < mesh.positions.size(); ++i)
         weld[i] = ids.emplace(mesh.positions[i], uint32_t(ids.size())).first->second;
-    std::unordered_map<uint64_t, std::vector<uint32_t>> faces;  // edge key -> faces
-    faces.reserve(mesh.triangles.size() * 2);
     auto key = [&](uint32_t a, uint32_t b) {
         a = weld[a], b = weld[b];
         return a < b ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a);
     };
+    // Every edge of every face by its key, the faces along one edge next to each other.
+    struct Use {
+        uint64_t key;
+        uint32_t face;
+        uint32_t edge;
+        bool operator<(const Use& o) const { return key < o.key || (key == o.key && face < o.face); }
+    };
+    std::vector<Use> uses;
+    uses.reserve(mesh.triangles.size() * 3);
     for (size_t t = 0; t < mesh.triangles.size(); ++t)
-        for (int e = 0; e < 3; ++e) faces[key(mesh.triangles[t][e], mesh.triangles[t][(e + 1) % 3])].push_back(uint32_t(t));
+        for (uint32_t e = 0; e < 3; ++e)
+            uses.push_back({key(mesh.triangles[t][e], mesh.triangles[t][(e + 1) % 3]), uint32_t(t), e});
+    std::sort(uses.begin(), uses.end());
     std::vector<std::array<double, 3>> normals(mesh.triangles.size());
     for (size_t t = 0; t < mesh.triangles.size(); ++t) normals[t] = face_normal(mesh, mesh.triangles[t]);
     const double cos_limit = std::cos(crease_degrees * M_PI / 180.0);
     std::vector<std::array<bool, 3>> sharp(mesh.triangles.size());
-    for (size_t t = 0; t < mesh.triangles.size(); ++t)
-        for (int e = 0; e < 3; ++e) {
-            const auto& f = faces[key(mesh.triangles[t][e], mesh.triangles[t][(e + 1) % 3])];
-            if (f.size() != 2) {
-                sharp[t][e] = true;
-                continue;
-            }
-            const auto &n0 = normals[f[0]], &n1 = normals[f[1]];
-            sharp[t][e] = n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] < cos_limit;
+    for (size_t i = 0; i < uses.size();) {
+        size_t j = i;
+        while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+        // Two faces: sharp at a crease; one or more than two: a boundary or a non-manifold edge.
+        bool crease = true;
+        if (j - i == 2) {
+            const auto &n0 = normals[uses[i].face], &n1 = normals[uses[i + 1].face];
+            crease = n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] < cos_limit;
         }
+        for (size_t k = i; k < j; ++k) sharp[uses[k].face][uses[k].edge] = crease;
+        i = j;
+    }
     return sharp;
 }
 
