@@ -349,8 +349,20 @@ void check_ply(const std::string& path) {
     const bool ascii = format == "ascii";
     const bool swap = format == "binary_big_endian";
     std::string token;
+    // A property's type, looked up once: its size in bytes and how its bytes read.
+    enum class Kind { I8, U8, I16, U16, I32, U32, F32, F64 };
+    auto kind_of = [](const std::string& t) {
+        if (t == "char" || t == "int8") return Kind::I8;
+        if (t == "uchar" || t == "uint8") return Kind::U8;
+        if (t == "short" || t == "int16") return Kind::I16;
+        if (t == "ushort" || t == "uint16") return Kind::U16;
+        if (t == "int" || t == "int32") return Kind::I32;
+        if (t == "uint" || t == "uint32") return Kind::U32;
+        if (t == "float" || t == "float32") return Kind::F32;
+        return Kind::F64;
+    };
     // The next value of the body as a double; false at the end of the file or on a non-number.
-    auto next = [&](const std::string& type, double& value) -> bool {
+    auto next = [&](Kind kind, int size, double& value) -> bool {
         if (ascii) {
             if (!(in >> token)) return false;
             char* end = nullptr;
@@ -358,41 +370,52 @@ void check_ply(const std::string& path) {
             return *end == '\0' && std::isfinite(value);
         }
         unsigned char b[8];
-        int n = type_size(type);
-        if (!in.read(reinterpret_cast<char*>(b), n)) return false;
-        if (swap) std::reverse(b, b + n);
-        if (type == "char" || type == "int8") value = double(int8_t(b[0]));
-        else if (type == "uchar" || type == "uint8") value = b[0];
-        else if (type == "short" || type == "int16") { int16_t v; std::memcpy(&v, b, 2); value = v; }
-        else if (type == "ushort" || type == "uint16") { uint16_t v; std::memcpy(&v, b, 2); value = v; }
-        else if (type == "int" || type == "int32") { int32_t v; std::memcpy(&v, b, 4); value = v; }
-        else if (type == "uint" || type == "uint32") { uint32_t v; std::memcpy(&v, b, 4); value = v; }
-        else if (type == "float" || type == "float32") { float v; std::memcpy(&v, b, 4); value = v; }
-        else { double v; std::memcpy(&v, b, 8); value = v; }
+        if (!in.read(reinterpret_cast<char*>(b), size)) return false;
+        if (swap) std::reverse(b, b + size);
+        switch (kind) {
+        case Kind::I8: value = double(int8_t(b[0])); break;
+        case Kind::U8: value = b[0]; break;
+        case Kind::I16: { int16_t v; std::memcpy(&v, b, 2); value = v; break; }
+        case Kind::U16: { uint16_t v; std::memcpy(&v, b, 2); value = v; break; }
+        case Kind::I32: { int32_t v; std::memcpy(&v, b, 4); value = v; break; }
+        case Kind::U32: { uint32_t v; std::memcpy(&v, b, 4); value = v; break; }
+        case Kind::F32: { float v; std::memcpy(&v, b, 4); value = v; break; }
+        case Kind::F64: { double v; std::memcpy(&v, b, 8); value = v; break; }
+        }
         return true;
     };
     for (const auto& e : elements) {
         const bool faces = e.name == "face";
+        struct Read {
+            Kind count_kind, kind;
+            int count_size, size;
+            bool indices;
+        };
+        std::vector<Read> reads;
+        for (const auto& p : e.properties)
+            reads.push_back({kind_of(p.count_type), kind_of(p.type), type_size(p.count_type), type_size(p.type),
+                             faces && (p.name == "vertex_indices" || p.name == "vertex_index")});
         for (uint64_t i = 0; i < e.count; ++i)
-            for (const auto& p : e.properties) {
-                const std::string where = "PLY " + e.name + " " + std::to_string(i) + ", property " + p.name;
+            for (size_t j = 0; j < reads.size(); ++j) {
+                const Read& r = reads[j];
+                // Where a value stands, for a message (made only when one is needed).
+                auto where = [&] { return "PLY " + e.name + " " + std::to_string(i) + ", property " + e.properties[j].name; };
                 double value = 0;
-                if (!p.list) {
-                    if (!next(p.type, value))
-                        throw InputError(path + ": " + where + ": missing or not a finite number (the file is cut "
+                if (!e.properties[j].list) {
+                    if (!next(r.kind, r.size, value))
+                        throw InputError(path + ": " + where() + ": missing or not a finite number (the file is cut "
                                                 "short or damaged)");
                     continue;
                 }
-                if (!next(p.count_type, value) || value < 0 || value > 1024 || value != std::floor(value))
-                    throw InputError(path + ": " + where + ": bad list length");
+                if (!next(r.count_kind, r.count_size, value) || value < 0 || value > 1024 || value != std::floor(value))
+                    throw InputError(path + ": " + where() + ": bad list length");
                 const int items = int(value);
-                const bool indices = faces && (p.name == "vertex_indices" || p.name == "vertex_index");
                 for (int k = 0; k < items; ++k) {
-                    if (!next(p.type, value))
-                        throw InputError(path + ": " + where + ": missing or not a finite number (the file is cut "
+                    if (!next(r.kind, r.size, value))
+                        throw InputError(path + ": " + where() + ": missing or not a finite number (the file is cut "
                                                 "short or damaged)");
-                    if (indices && (value < 0 || value >= double(vertices) || value != std::floor(value)))
-                        throw InputError(path + ": " + where + ": index " + std::to_string(value) +
+                    if (r.indices && (value < 0 || value >= double(vertices) || value != std::floor(value)))
+                        throw InputError(path + ": " + where() + ": index " + std::to_string(value) +
                                          " is not one of the " + std::to_string(vertices) + " vertices");
                 }
             }
