@@ -194,6 +194,8 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* bl
     // M maps the ellipsoid to the unit ball.
     const Eigen::Matrix3d M = e.radii.cwiseInverse().asDiagonal() * e.axes.transpose();
     const double inv_rmin = 1.0 / e.radii.minCoeff();
+    // The ellipsoid's support along a unit vector n is |support n|.
+    const Eigen::Matrix3d support = e.radii.asDiagonal() * e.axes.transpose();
     auto mapped = [&](const TriangleTree::Triangle& t, V3 v[3]) {
         for (int j = 0; j < 3; ++j) {
             Vec3 w = M * (to_vec(t.v[j]) - e.center);
@@ -249,23 +251,21 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* bl
         if (node.is_leaf()) {
             for (uint32_t i = node.first; i < node.first + node.count; ++i) {
                 if (balls) {
-                    // The ball mapped into unit-ball space lies within radius / r_min of its mapped
-                    // centre; a margin keeps rounding from skipping a triangle that touches.
-                    const auto& ball = balls->triangles[i];
-                    const double reach = 1.0 + 1e-9 + ball[3] * inv_rmin;
-                    if ((M * (Vec3(ball[0], ball[1], ball[2]) - e.center)).squaredNorm() > reach * reach) continue;
                     // The triangle's plane (the slab holding it) clearly apart from the ellipsoid:
                     // the centre lies farther from it than the ellipsoid's support along its normal,
-                    // sqrt(sum_i (r_i a_i . n)^2), with margins far above rounding.
+                    // |diag(r) A' n|, with margins far above rounding. Most triangles near an
+                    // ellipsoid that hugs the surface are nearly tangent to it: this settles them.
                     const auto& plane = balls->planes[i];
                     const Vec3 n(plane[0], plane[1], plane[2]);
                     const double along = n.dot(e.center);
                     const double gap =
                         std::abs(along - plane[3]) - plane[4] - 1e-12 * (std::abs(along) + std::abs(plane[3]));
-                    if (gap > 0) {
-                        const Vec3 u = (e.axes.transpose() * n).cwiseProduct(e.radii);
-                        if (gap * gap > u.squaredNorm() * (1 + 1e-6)) continue;
-                    }
+                    if (gap > 0 && gap * gap > (support * n).squaredNorm() * (1 + 1e-6)) continue;
+                    // The ball mapped into unit-ball space lies within radius / r_min of its mapped
+                    // centre; a margin keeps rounding from skipping a triangle that touches.
+                    const auto& ball = balls->triangles[i];
+                    const double reach = 1.0 + 1e-9 + ball[3] * inv_rmin;
+                    if ((M * (Vec3(ball[0], ball[1], ball[2]) - e.center)).squaredNorm() > reach * reach) continue;
                 }
                 V3 v[3];
                 mapped(tris[i], v);
