@@ -22,7 +22,8 @@ whether its streams and reconstructions are byte for byte the same. Speed figure
 only on an otherwise idle machine: the table records the load average. With --instructions, the
 exact decode and the reconstruction of each mesh model are also counted in instructions under
 valgrind's callgrind (deterministic, where this machine's wall times wander by 20-50% between runs),
-for the baseline too: a change of a few percent shows there and nowhere else.
+and so is the encode with one thread of the models up to 50k vertices and the glTF assets, for the
+baseline too: a change of a few percent shows there and nowhere else.
 """
 import math
 import os
@@ -203,30 +204,39 @@ def main():
                 'yes' if same else 'NO', 'yes' if same_rec else 'NO'))
     if count:
         say()
-        say('Instructions (valgrind --tool=callgrind, one run each; deterministic):')
+        say('Instructions (valgrind --tool=callgrind, one run each; deterministic). The encode runs with one thread '
+            '(`--threads 1`; the stream is the same with any number), on the models of at most 50,000 vertices and '
+            'the low-poly glTF assets (the 500k torus would take half an hour under valgrind):')
         say()
-        if baseline:
-            say('| model | exact decode, baseline / now | reconstruction, baseline / now |')
-            say('|---|---:|---:|')
-        else:
-            say('| model | exact decode | reconstruction |')
-            say('|---|---:|---:|')
-        for name, _ in models:
+        say('| model | encode, 1 thread | exact decode | reconstruction |')
+        say('|---|---:|---:|---:|')
+        rows = [(name, path, '.ply', True) for name, path in models]
+        rows += [(os.path.basename(path), path, '.glb', False) for path in (gltf.split(',') if gltf else [])]
+        for name, path, ext, mesh in rows:
             print('speed: counting instructions for %s (valgrind: a few minutes)' % name, file=sys.stderr, flush=True)
             stem = os.path.join(tmp, re.sub(r'\W+', '_', name))
-            def decodes(tool, stream):  # the exact decode and the reconstruction
-                return [[tool, 'decode', '-q', stream, '-o', stem + '.count.ply'],
-                        [tool, 'decode', '-q', '--no-exact', stream, '-o', stem + '.count.ply']]
-            now = [instructions(cmd) for cmd in decodes(ellicast, stem + '.ellc')]
+            def steps(tool, stream):  # the encode (small models), the exact decode and the reconstruction
+                encode = [tool, 'encode', '-q', '--threads', '1', path, '-o', stem + '.count.ellc']
+                return [encode if '500k' not in name else None,
+                        [tool, 'decode', '-q', stream, '-o', stem + '.count' + ext] if mesh else None,
+                        [tool, 'decode', '-q', '--no-exact', stream, '-o', stem + '.count' + ext] if mesh else None]
+            now = [instructions(cmd) if cmd else 0 for cmd in steps(ellicast, stem + '.ellc')]
             if None in now:
                 say('(valgrind is not installed: no instruction counts)')
                 break
-            if baseline:
-                was = [instructions(cmd) for cmd in decodes(baseline, stem + '.before.ellc')]
-                say('| %s | %s |' % (name, ' | '.join('%.1fM / %.1fM (%.2fx)' % (w / 1e6, n / 1e6, n / w)
-                                                       for w, n in zip(was, now))))
-            else:
-                say('| %s | %s |' % (name, ' | '.join('%.1fM' % (n / 1e6) for n in now)))
+            was = [instructions(cmd) if cmd else 0 for cmd in steps(baseline, stem + '.before.ellc')] if baseline else None
+            cells = []
+            for k, n in enumerate(now):
+                if not n:
+                    cells.append('-')
+                elif was:
+                    cells.append('%.1fM / %.1fM (%.2fx)' % (was[k] / 1e6, n / 1e6, n / was[k]))
+                else:
+                    cells.append('%.1fM' % (n / 1e6))
+            say('| %s | %s |' % (name, ' | '.join(cells)))
+        if baseline:
+            say()
+            say('(each cell: baseline / now)')
     with open(out_txt, 'w') as f:
         f.write('\n'.join(lines) + '\n')
 
