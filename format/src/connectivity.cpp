@@ -149,6 +149,16 @@ private:
 
 // ---- the k points nearest to a prediction, ties by index (spec 19.2's candidates)
 
+// Squared distance from a point to a prediction (spec 19.2's order of candidates).
+uint64_t dist2(const std::array<uint32_t, 3>& p, const std::array<int64_t, 3>& q) {
+    uint64_t d = 0;
+    for (int k = 0; k < 3; ++k) {
+        const int64_t e = int64_t(p[k]) - q[k];
+        d += uint64_t(e * e);
+    }
+    return d;
+}
+
 // Ties matter: a stream may put every point at one position, and a search that visits every point
 // at equal distance made each step linear and a whole decode quadratic (issue 29). Points with equal
 // coordinates along a split are ordered by index, ties go to the lower indices first, and a subtree
@@ -230,14 +240,6 @@ private:
     uint32_t lowest(size_t lo, size_t hi) const {
         if (hi <= lo) return UINT32_MAX;
         return hi - lo <= kLeaf ? lowest_in_leaf(lo, hi) : min_index_[(lo + hi) / 2];
-    }
-    static uint64_t dist2(const std::array<uint32_t, 3>& p, const std::array<int64_t, 3>& q) {
-        uint64_t d = 0;
-        for (int k = 0; k < 3; ++k) {
-            const int64_t e = int64_t(p[k]) - q[k];
-            d += uint64_t(e * e);
-        }
-        return d;
     }
     // The point at position j of the tree order, and its index.
     struct Entry {
@@ -728,12 +730,7 @@ public:
                 bool seen = false;
                 for (const auto& e : out) seen |= e.second == v;
                 if (seen) continue;
-                uint64_t d = 0;
-                for (int k = 0; k < 3; ++k) {
-                    const int64_t e = int64_t(p[v][k]) - r[k];
-                    d += uint64_t(e * e);
-                }
-                out.emplace_back(d, v);
+                out.emplace_back(dist2(p[v], r), v);
             }
         std::sort(out.begin(), out.end());
     }
@@ -778,11 +775,7 @@ int candidate_rank(const KdTree& tree, const std::array<int64_t, 3>& r, const Ga
                    const std::vector<std::pair<uint64_t, uint32_t>>& local,
                    const std::vector<std::array<uint32_t, 3>>& positions, uint32_t x) {
     if (x == g.a || x == g.b) return 0;
-    uint64_t d = 0;
-    for (int k = 0; k < 3; ++k) {
-        const int64_t e = int64_t(positions[x][k]) - r[k];
-        d += uint64_t(e * e);
-    }
+    const uint64_t d = dist2(positions[x], r);
     const std::pair<uint64_t, uint32_t> key(d, x);
     // x is a point (in the tree) or a carried vertex, a candidate only from its gate's local list.
     bool listed = x < tree.size();
@@ -925,7 +918,7 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
     Contexts ctx;
     Traversal tr;
     tr.edges.reset(total);
-    std::vector<std::pair<uint64_t, uint32_t>> best, near;
+    std::vector<std::pair<uint64_t, uint32_t>> near;
     carried_order.clear();
     uint32_t m = 0;
     // A carried vertex not yet introduced: the bit fresh 1, its displacement and attributes.
