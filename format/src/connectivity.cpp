@@ -174,10 +174,12 @@ public:
     size_t size() const { return at_.size(); }
 
     // The `k` points nearest to `q` other than a and b, by (squared distance, index), nearest first
-    // (k <= kRanks).
+    // (k <= kRanks). `bound`: a squared distance the k-th nearest is known not to exceed (that of k
+    // points other than a and b), or UINT64_MAX; farther points and subtrees are not looked at.
     void nearest(const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k,
-                 std::vector<std::pair<uint64_t, uint32_t>>& best) const {
+                 std::vector<std::pair<uint64_t, uint32_t>>& best, uint64_t bound = UINT64_MAX) const {
         Query query(q, a, b, std::min<size_t>(k, kRanks));
+        query.worst = bound;
         if (query.k > 0) search(query);
         best.clear();
         for (size_t j = 0; j < query.n; ++j) best.emplace_back(query.items[j].d, query.items[j].i);
@@ -259,18 +261,20 @@ private:
         };
         std::array<Item, kRanks> items;  // the first n are set (not zeroed for every search)
         size_t n = 0;
-        uint64_t worst = UINT64_MAX;  // the k-th's distance and index, set once there are k
+        // The k-th's distance and index once there are k; before, the bound given (no point farther
+        // is taken) with the index UINT32_MAX.
+        uint64_t worst = UINT64_MAX;
         uint32_t worst_index = UINT32_MAX;
         bool full() const { return n == k; }
         // Whether points at least sqrt(box) away may still be taken (the bound of a split point, or
         // of a side with the index test below).
-        bool within(uint64_t box) const { return !full() || box <= worst; }
+        bool within(uint64_t box) const { return box <= worst; }
     };
     static void consider(const Entry& e, Query& s) {
         const uint32_t i = e.index;
         if (i == s.a || i == s.b) return;
         const uint64_t d = dist2(e.p, s.q);
-        if (s.full() && (d > s.worst || (d == s.worst && i > s.worst_index))) return;
+        if (d > s.worst || (d == s.worst && i > s.worst_index)) return;
         // Insertion into the sorted items (at most kRanks): shift the larger ones up.
         size_t j = s.full() ? s.n - 1 : s.n++;
         while (j > 0 && (s.items[j - 1].d > d || (s.items[j - 1].d == d && s.items[j - 1].i > i))) {
@@ -761,8 +765,12 @@ size_t fresh_context(size_t k) { return std::min<size_t>(k, 2); }
 // to the prediction and its local candidates (carried vertices) together, by (squared distance,
 // index).
 void candidates(const KdTree& tree, const std::array<int64_t, 3>& r, const Gate& g, size_t k,
-                const std::vector<std::pair<uint64_t, uint32_t>>& local, std::vector<std::pair<uint64_t, uint32_t>>& out) {
-    tree.nearest(r, g.a, g.b, k, out);
+                const std::vector<std::pair<uint64_t, uint32_t>>& local, std::vector<std::pair<uint64_t, uint32_t>>& out,
+                const std::vector<std::array<uint32_t, 3>>& positions) {
+    // The nearest point lies at most as far from r as the gate's third corner o when o is a point
+    // (never a or b): a bound that spares the search most of the tree.
+    const uint64_t bound = k == 1 && g.o < tree.size() ? dist2(positions[g.o], r) : UINT64_MAX;
+    tree.nearest(r, g.a, g.b, k, out, bound);
     if (local.empty()) return;
     out.insert(out.end(), local.begin(), local.end());
     std::sort(out.begin(), out.end());
@@ -1081,7 +1089,7 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
         for (int k = 1; k <= kRanks && rank == 0; ++k)
             if (rc.bit(ctx.rank[k - 1])) rank = k;
         if (rank > 0) {
-            candidates(tree, r, g, size_t(rank), near, best);
+            candidates(tree, r, g, size_t(rank), near, best, positions);
             if (best.size() < size_t(rank)) {
                 why = "a rank past the gate's candidates";
                 return Error::MalformedPayload;
