@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <deque>
 #include <numeric>
 
 namespace ellicast {
@@ -424,11 +423,11 @@ public:
         lists_.assign(vertices, {});
         overflow_ = KeySet();
     }
+    // An edge already held may be inserted again (a non-manifold input): it then takes a second
+    // place in the list or goes to the overflow set, and contains() answers the same.
     void insert(uint32_t a, uint32_t b) {
         if (a < lists_.size()) {
             auto& list = lists_[a];
-            for (uint32_t k = 1; k <= list[0]; ++k)
-                if (list[k] == b) return;
             if (list[0] < kInPlace) {
                 list[++list[0]] = b;
                 return;
@@ -452,10 +451,33 @@ private:
     KeySet overflow_;
 };
 
+// The gates waiting, first in first out: a vector read from `head_`, its read part dropped once it is
+// half of the vector (each gate moved at most once on average; the vector at most twice the queue).
+class GateQueue {
+public:
+    bool empty() const { return head_ == items_.size(); }
+    void push_back(const Gate& g) { items_.push_back(g); }
+    Gate pop_front() {
+        const Gate g = items_[head_++];
+        if (head_ == items_.size()) {
+            items_.clear();
+            head_ = 0;
+        } else if (head_ >= 1024 && 2 * head_ >= items_.size()) {
+            items_.erase(items_.begin(), items_.begin() + std::ptrdiff_t(head_));
+            head_ = 0;
+        }
+        return g;
+    }
+
+private:
+    std::vector<Gate> items_;
+    size_t head_ = 0;
+};
+
 struct Traversal {
     std::vector<Triangle> triangles;
     EdgeSet edges;
-    std::deque<Gate> gates;
+    GateQueue gates;
     void take(uint32_t a, uint32_t b, uint32_t c) {
         triangles.push_back({a, b, c});
         edges.insert(a, b);
@@ -964,8 +986,7 @@ Error encode_exact_mesh(const std::vector<QuantizedPoint>& vertices, size_t n, c
             take_triangle(tr, lists, corner[0], corner[1], corner[2]);
             continue;
         }
-        const Gate g = tr.gates.front();
-        tr.gates.pop_front();
+        const Gate g = tr.gates.pop_front();
         if (tr.edges.contains(g.b, g.a)) continue;
         // The first input triangle not yet coded with the directed edge b->a (in decoder numbering;
         // a and b are known, so their input indices are found through carried_order).
@@ -1073,8 +1094,7 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
             take_triangle(tr, lists, corner[0], corner[1], corner[2]);
             continue;
         }
-        const Gate g = tr.gates.front();
-        tr.gates.pop_front();
+        const Gate g = tr.gates.pop_front();
         if (tr.edges.contains(g.b, g.a)) continue;
         if (rc.bit(ctx.none)) continue;
         const std::array<int64_t, 3> r = prediction(positions, g);
