@@ -242,6 +242,38 @@ TEST_CASE("points that share positions (every one at one place, or clusters of t
     }
 }
 
+TEST_CASE("the decoder finds each gate's candidates as the encoder ranked them, however the points are spread") {
+    // The encoder counts ranks with a k-d tree; the decoder looks in a grid of cells first and asks a
+    // k-d tree where the grid would read too much. Spreads that push the grid to its limits: points
+    // scattered in a cube (predictions far from every point), a flat sheet with a few far outliers
+    // (cells much larger than the point spacing), piles of points on a few cells, and positions at
+    // both ends of the 14-bit range (predictions outside the grid).
+    const uint32_t n = 60;
+    const std::vector<Triangle> input = grid_triangles(n);
+    std::mt19937 rng(11);
+    auto below = [&](uint32_t m) { return uint32_t(rng() % m); };
+    for (int spread = 0; spread < 4; ++spread) {
+        CAPTURE(spread);
+        std::vector<std::array<uint32_t, 3>> positions;
+        for (uint32_t y = 0; y < n; ++y)
+            for (uint32_t x = 0; x < n; ++x) {
+                switch (spread) {
+                case 0: positions.push_back({below(16384), below(16384), below(16384)}); break;
+                case 1:
+                    positions.push_back({x * 40 + below(9), y * 40 + below(9), 5000 + below(3)});
+                    if (below(400) == 0) positions.back() = {below(16384), below(16384), below(2) * 16383};
+                    break;
+                case 2: positions.push_back({1000 + below(4) * 3, 2000 + below(3), 3000 + (x % 2)}); break;
+                default:
+                    positions.push_back({(x % 2) * 16383 - (x % 2 ? below(50) : 0) + (x % 2 ? 0 : below(50)),
+                                         y * 277, (x * 131 + y * 17) % 16384});
+                }
+            }
+        const auto back = round_trip(positions, input);
+        CHECK(canonical_indices(back) == canonical_indices(input));
+    }
+}
+
 TEST_CASE("a large regular surface costs well under half a byte per vertex") {
     std::vector<std::array<uint32_t, 3>> positions;
     const uint32_t n = 120;

@@ -9,8 +9,10 @@
 #include "ellicast/format.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <optional>
 
 namespace ellicast {
 
@@ -347,6 +349,156 @@ private:
     // indices: a search reads them in sequence.
     std::vector<Entry> at_;
     std::vector<uint32_t> min_index_;  // by a subtree's mid: the lowest point index in it
+};
+
+// The points in the cells of a uniform grid (a cell's points side by side, cells in x, y, z order), for
+// the k points nearest to a prediction, by (squared distance, index) as KdTree::nearest: the cell
+// holding it and those around it first, then every cell the ball through the k-th found reaches. On a
+// surface sampled about evenly this reads a few cells of a few points each; the grid gives up (returns
+// false) where it would read many (points piled in a few cells, a prediction far from every point),
+// and the k-d tree answers then.
+class PointGrid {
+public:
+    explicit PointGrid(const std::vector<std::array<uint32_t, 3>>& p) {
+        if (p.empty()) return;
+        std::array<uint32_t, 3> lo = p[0], hi = p[0];
+        for (const auto& q : p)
+            for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+        // The smallest power-of-two cell for which the grid has at most 8 cells a point.
+        const uint64_t most = 8 * uint64_t(p.size()) + 64;
+        for (shift_ = 0;; ++shift_) {
+            uint64_t cells = 1;
+            for (int k = 0; k < 3; ++k) n_[k] = int64_t((hi[k] - lo[k]) >> shift_) + 1, cells *= uint64_t(n_[k]);
+            if (cells <= most) break;
+        }
+        for (int k = 0; k < 3; ++k) origin_[k] = lo[k];
+        start_.assign(size_t(n_[0] * n_[1] * n_[2]) + 1, 0);
+        for (const auto& q : p) ++start_[cell_of(q) + 1];
+        for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+        at_.resize(p.size());
+        std::vector<uint32_t> next(start_.begin(), start_.end() - 1);
+        for (uint32_t i = 0; i < p.size(); ++i) at_[next[cell_of(p[i])]++] = {p[i], i};
+    }
+
+    // The k (1..kRanks) points nearest to q other than a and b, nearest first, of those at most
+    // sqrt(bound) away (UINT64_MAX: any); false when the grid gives up.
+    bool nearest(const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k, uint64_t bound,
+                 std::vector<std::pair<uint64_t, uint32_t>>& best) const {
+        using Key = std::pair<uint64_t, uint32_t>;
+        best.clear();
+        if (at_.empty() || k == 0 || k > size_t(kRanks)) return false;
+        // The k best so far in order; the worst key still taken: the k-th's once there are k, before
+        // that the bound.
+        std::array<Key, kRanks> items;
+        size_t held = 0;
+        Key worst(bound, UINT32_MAX);
+        size_t read = 0;
+        auto scan = [&](int64_t x, int64_t y, int64_t z) {
+            const size_t c = index(x, y, z);
+            const uint32_t from = start_[c], to = start_[c + 1];
+            if (from == to) return true;
+            if (read + (to - from) > kMostRead) return false;
+            read += to - from;
+            // A cell whose box lies farther than the worst key's distance holds nothing to take.
+            if (worst.first != UINT64_MAX) {
+                uint64_t box = 0;
+                const std::array<int64_t, 3> cell{x, y, z};
+                for (int i = 0; i < 3; ++i) {
+                    const int64_t lo = origin_[i] + (cell[i] << shift_), hi = lo + (int64_t(1) << shift_) - 1;
+                    const int64_t g = q[i] < lo ? lo - q[i] : q[i] > hi ? q[i] - hi : 0;
+                    box += uint64_t(g * g);
+                }
+                if (box > worst.first) return true;
+            }
+            for (uint32_t j = from; j < to; ++j) {
+                const Entry& e = at_[j];
+                if (e.index == a || e.index == b) continue;
+                const Key key(dist2(e.p, q), e.index);
+                if (!(key < worst)) continue;
+                if (k == 1) {  // the common case, without the insertion
+                    items[0] = worst = key;
+                    held = 1;
+                    continue;
+                }
+                size_t at = held < k ? held++ : k - 1;
+                for (; at > 0 && key < items[at - 1]; --at) items[at] = items[at - 1];
+                items[at] = key;
+                if (held == k) worst = items[k - 1];
+            }
+            return true;
+        };
+        // q's own cell (when q lies in the grid), then, while fewer than k points are known and no
+        // bound is, the cells around it; then every other cell the ball through the worst key reaches.
+        std::array<int64_t, 3> cq{}, c0{}, c1{};
+        bool inside = true;
+        for (int i = 0; i < 3; ++i) {
+            cq[i] = (q[i] - origin_[i]) >> shift_;  // floor
+            inside = inside && cq[i] >= 0 && cq[i] < n_[i];
+            const int64_t c = std::clamp<int64_t>(cq[i], 0, n_[i] - 1);
+            c0[i] = std::max<int64_t>(c - 1, 0), c1[i] = std::min<int64_t>(c + 1, n_[i] - 1);
+        }
+        if (inside && !scan(cq[0], cq[1], cq[2])) return false;
+        auto in = [](int64_t x, int64_t y, int64_t z, const std::array<int64_t, 3>& lo, const std::array<int64_t, 3>& hi) {
+            return x >= lo[0] && x <= hi[0] && y >= lo[1] && y <= hi[1] && z >= lo[2] && z <= hi[2];
+        };
+        const bool block = worst.first == UINT64_MAX;
+        if (block)
+            for (int64_t z = c0[2]; z <= c1[2]; ++z)
+                for (int64_t y = c0[1]; y <= c1[1]; ++y)
+                    for (int64_t x = c0[0]; x <= c1[0]; ++x)
+                        if (!(inside && x == cq[0] && y == cq[1] && z == cq[2]) && !scan(x, y, z)) return false;
+        const uint64_t r2 = worst.first;
+        if (r2 == UINT64_MAX) return false;  // fewer than k around q, and no bound: the tree
+        // Above the exact radius whatever the rounding (r2 < 2^64; the cells clamp what lies beyond).
+        const int64_t r = int64_t(std::min(std::sqrt(double(r2)), 1e15)) + 2;
+        std::array<int64_t, 3> r0{}, r1{};
+        uint64_t count = 1;
+        for (int i = 0; i < 3; ++i) {
+            r0[i] = std::clamp<int64_t>((q[i] - origin_[i] - r) >> shift_, 0, n_[i] - 1);  // floor
+            r1[i] = std::clamp<int64_t>((q[i] - origin_[i] + r) >> shift_, 0, n_[i] - 1);
+            count *= uint64_t(r1[i] - r0[i] + 1);
+        }
+        if (count > kMostCells) return false;
+        for (int64_t z = r0[2]; z <= r1[2]; ++z)
+            for (int64_t y = r0[1]; y <= r1[1]; ++y)
+                for (int64_t x = r0[0]; x <= r1[0]; ++x) {
+                    if ((inside && x == cq[0] && y == cq[1] && z == cq[2]) || (block && in(x, y, z, c0, c1))) continue;
+                    if (!scan(x, y, z)) return false;
+                }
+        if (held < k) return false;
+        best.assign(items.begin(), items.begin() + std::ptrdiff_t(k));
+        return true;
+    }
+
+private:
+    static constexpr size_t kMostRead = 512;     // points read by one search before giving up
+    static constexpr uint64_t kMostCells = 343;  // cells one search may visit (7 x 7 x 7)
+    struct Entry {
+        std::array<uint32_t, 3> p;
+        uint32_t index;
+    };
+    size_t index(int64_t x, int64_t y, int64_t z) const { return size_t((z * n_[1] + y) * n_[0] + x); }
+    size_t cell_of(const std::array<uint32_t, 3>& p) const {
+        return index((p[0] - origin_[0]) >> shift_, (p[1] - origin_[1]) >> shift_, (p[2] - origin_[2]) >> shift_);
+    }
+    int shift_ = 0;
+    std::array<int64_t, 3> origin_{}, n_{};
+    std::vector<uint32_t> start_;
+    std::vector<Entry> at_;
+};
+
+// A k-d tree over the points, built when first asked for (a decode the grid serves alone builds none).
+class LazyKdTree {
+public:
+    explicit LazyKdTree(const std::vector<std::array<uint32_t, 3>>& p) : points_(p) {}
+    const KdTree& get() const {
+        if (!tree_) tree_.emplace(points_);
+        return *tree_;
+    }
+
+private:
+    const std::vector<std::array<uint32_t, 3>>& points_;
+    mutable std::optional<KdTree> tree_;
 };
 
 int index_bits(size_t n) {
@@ -786,13 +938,14 @@ size_t fresh_context(size_t k) { return std::min<size_t>(k, 2); }
 // Spec 27.2 (19.2 when nothing is carried): the first `k` candidates of a gate, the points nearest
 // to the prediction and its local candidates (carried vertices) together, by (squared distance,
 // index).
-void candidates(const KdTree& tree, const std::array<int64_t, 3>& r, const Gate& g, size_t k,
-                const std::vector<std::pair<uint64_t, uint32_t>>& local, std::vector<std::pair<uint64_t, uint32_t>>& out,
-                const std::vector<std::array<uint32_t, 3>>& positions) {
+void candidates(const LazyKdTree& tree, const PointGrid& grid, const std::array<int64_t, 3>& r, const Gate& g,
+                size_t k, const std::vector<std::pair<uint64_t, uint32_t>>& local,
+                std::vector<std::pair<uint64_t, uint32_t>>& out, const std::vector<std::array<uint32_t, 3>>& positions,
+                size_t n) {
     // The nearest point lies at most as far from r as the gate's third corner o when o is a point
-    // (never a or b): a bound that spares the search most of the tree.
-    const uint64_t bound = k == 1 && g.o < tree.size() ? dist2(positions[g.o], r) : UINT64_MAX;
-    tree.nearest(r, g.a, g.b, k, out, bound);
+    // (never a or b): a bound that spares the search most cells.
+    const uint64_t bound = k == 1 && g.o < n ? dist2(positions[g.o], r) : UINT64_MAX;
+    if (!grid.nearest(r, g.a, g.b, k, bound, out)) tree.get().nearest(r, g.a, g.b, k, out, bound);
     if (local.empty()) return;
     out.insert(out.end(), local.begin(), local.end());
     std::sort(out.begin(), out.end());
@@ -1048,7 +1201,8 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
         texcoords.push_back(q.texcoord);
     }
     const std::vector<std::array<uint32_t, 3>> point_positions(positions);
-    const KdTree tree(point_positions);
+    const PointGrid grid(point_positions);
+    const LazyKdTree tree(point_positions);  // built for the first search the grid gives up
     CarriedNeighbours lists(total, n);
     RangeDecoder rc(coded);
     Contexts ctx;
@@ -1109,7 +1263,7 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
         for (int k = 1; k <= kRanks && rank == 0; ++k)
             if (rc.bit(ctx.rank[k - 1])) rank = k;
         if (rank > 0) {
-            candidates(tree, r, g, size_t(rank), near, best, positions);
+            candidates(tree, grid, r, g, size_t(rank), near, best, positions, n);
             if (best.size() < size_t(rank)) {
                 why = "a rank past the gate's candidates";
                 return Error::MalformedPayload;
