@@ -178,6 +178,12 @@ bool LiveView::start(const LiveViewOptions& options, std::string& error) {
     return server_.listen(options.bind, options.port, error);
 }
 
+void LiveView::poll(std::chrono::milliseconds timeout) {
+    server_.poll(timeout);
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
+    while (server_.writing() && std::chrono::steady_clock::now() < until) server_.poll(std::chrono::milliseconds(1));
+}
+
 void LiveView::publish_model(const broadcast::Reception& reception, const LiveReconstruction& live, double seconds) {
     publish_asset(received_asset(reception.stream(), live.objects()), seconds);
 }

@@ -54,11 +54,14 @@ public:
     // until each open page has fetched it (at most 200 ms), so that it shows while the full base
     // is built.
     void publish_preview(const broadcast::Reception& reception, double seconds);
-    // Serves the page for at most `timeout`.
-    void poll(std::chrono::milliseconds timeout) { server_.poll(timeout); }
+    // Serves the page for at most `timeout`, then finishes writing any response begun (a model: the
+    // browser reads it in a few milliseconds on this machine, where written a piece per call between
+    // slices of reconstruction it took 130-180 ms), for at most 100 ms more.
+    void poll(std::chrono::milliseconds timeout);
     size_t viewers() const { return server_.event_clients(); }
-    // A page is fetching something (a model): keep the slices of other work short.
-    bool serving() const { return server_.writing(); }
+    // A page is fetching something, or a model published last has not been fetched by every open page
+    // yet: keep the slices of other work short, so that the request is read soon.
+    bool serving() const { return server_.writing() || (model_version_ > 0 && model_fetches_ < server_.event_clients()); }
     // The page's camera when it asks to refine where it looks (GET /camera?eye=X,Y,Z&target=X,Y,Z&fov=DEG&aspect=A;
     // /camera?off ends it), and a number that changes with it.
     const std::optional<Region>& region() const { return region_; }
