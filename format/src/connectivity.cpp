@@ -501,6 +501,17 @@ private:
     mutable std::optional<KdTree> tree_;
 };
 
+// The bits of v (at most 21) spread to every third bit: bit i goes to bit 3i.
+uint64_t spread3(uint32_t v) {
+    uint64_t x = v & 0x1FFFFFu;
+    x = (x | x << 32) & 0x1F00000000FFFFull;
+    x = (x | x << 16) & 0x1F0000FF0000FFull;
+    x = (x | x << 8) & 0x100F00F00F00F00Full;
+    x = (x | x << 4) & 0x10C30C30C30C30C3ull;
+    x = (x | x << 2) & 0x1249249249249249ull;
+    return x;
+}
+
 int index_bits(size_t n) {
     int w = 1;
     while (w < 32 && (uint64_t(1) << w) < n) ++w;
@@ -938,14 +949,10 @@ size_t fresh_context(size_t k) { return std::min<size_t>(k, 2); }
 // Spec 27.2 (19.2 when nothing is carried): the first `k` candidates of a gate, the points nearest
 // to the prediction and its local candidates (carried vertices) together, by (squared distance,
 // index).
-void candidates(const LazyKdTree& tree, const PointGrid& grid, const std::array<int64_t, 3>& r, const Gate& g,
-                size_t k, const std::vector<std::pair<uint64_t, uint32_t>>& local,
-                std::vector<std::pair<uint64_t, uint32_t>>& out, const std::vector<std::array<uint32_t, 3>>& positions,
-                size_t n) {
-    // The nearest point lies at most as far from r as the gate's third corner o when o is a point
-    // (never a or b): a bound that spares the search most cells.
-    const uint64_t bound = k == 1 && g.o < n ? dist2(positions[g.o], r) : UINT64_MAX;
-    if (!grid.nearest(r, g.a, g.b, k, bound, out)) tree.get().nearest(r, g.a, g.b, k, out, bound);
+void candidates(const LazyKdTree& tree, const PointGrid& grid, const std::array<int64_t, 3>& r, uint32_t a, uint32_t b,
+                uint64_t bound, size_t k, const std::vector<std::pair<uint64_t, uint32_t>>& local,
+                std::vector<std::pair<uint64_t, uint32_t>>& out) {
+    if (!grid.nearest(r, a, b, k, bound, out)) tree.get().nearest(r, a, b, k, out, bound);
     if (local.empty()) return;
     out.insert(out.end(), local.begin(), local.end());
     std::sort(out.begin(), out.end());
@@ -1192,15 +1199,33 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
         return Error::MalformedPayload;
     }
     const int w = index_bits(total);
+    // The traversal numbers the points along a Morton curve of their positions (point v of the
+    // stream is `inside[v]`; carried vertices keep their numbers), so that a gate's vertices, which
+    // are neighbours on the surface, lie near each other in memory (the stream's order spreads them
+    // over the surface). Every number read, the candidates' order and the triangles given back stay
+    // in the stream's numbering.
+    std::vector<uint32_t> stream_of(n), inside(n);
+    {
+        std::vector<std::pair<uint64_t, uint32_t>> curve(n);
+        for (uint32_t i = 0; i < n; ++i) {
+            const auto& q = points[i].position;
+            curve[i] = {spread3(q[0]) | spread3(q[1]) << 1 | spread3(q[2]) << 2, i};
+        }
+        std::sort(curve.begin(), curve.end());
+        for (uint32_t j = 0; j < n; ++j) stream_of[j] = curve[j].second, inside[curve[j].second] = j;
+    }
+    auto to_stream = [&](uint32_t v) { return v < n ? stream_of[v] : v; };
+    auto to_inside = [&](uint32_t v) { return v < n ? inside[v] : v; };
     std::vector<std::array<uint32_t, 3>> positions;
     std::vector<std::array<uint32_t, 2>> texcoords;
     positions.reserve(total);
     texcoords.reserve(total);
-    for (const QuantizedPoint& q : points) {
-        positions.push_back(q.position);
-        texcoords.push_back(q.texcoord);
+    for (uint32_t j = 0; j < n; ++j) {
+        positions.push_back(points[stream_of[j]].position);
+        texcoords.push_back(points[stream_of[j]].texcoord);
     }
-    const std::vector<std::array<uint32_t, 3>> point_positions(positions);
+    std::vector<std::array<uint32_t, 3>> point_positions(n);  // in the stream's numbering
+    for (uint32_t i = 0; i < n; ++i) point_positions[i] = points[i].position;
     const PointGrid grid(point_positions);
     const LazyKdTree tree(point_positions);  // built for the first search the grid gives up
     CarriedNeighbours lists(total, n);
@@ -1237,11 +1262,12 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
                         return Error::MalformedPayload;
                     continue;
                 }
-                corner[k] = rc.direct(w);
+                const uint32_t read = rc.direct(w);
                 const size_t now_known = n + fresh_vertices.size();
-                if (corner[k] >= now_known || (k > 0 && corner[k] == corner[0]) || (k > 1 && corner[k] == corner[1])) {
+                corner[k] = read < now_known ? to_inside(read) : read;
+                if (read >= now_known || (k > 0 && corner[k] == corner[0]) || (k > 1 && corner[k] == corner[1])) {
                     why = "seed triangle " + std::to_string(tr.triangles.size()) + " names vertex " +
-                          std::to_string(corner[k]) + " of " + std::to_string(now_known) + " known, or one twice";
+                          std::to_string(read) + " of " + std::to_string(now_known) + " known, or one twice";
                     return Error::MalformedPayload;
                 }
             }
@@ -1263,18 +1289,22 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
         for (int k = 1; k <= kRanks && rank == 0; ++k)
             if (rc.bit(ctx.rank[k - 1])) rank = k;
         if (rank > 0) {
-            candidates(tree, grid, r, g, size_t(rank), near, best, positions, n);
+            // The nearest point lies at most as far from r as the gate's third corner o when o is a
+            // point (never a or b): a bound that spares the search most cells.
+            const uint64_t bound = rank == 1 && g.o < n ? dist2(positions[g.o], r) : UINT64_MAX;
+            candidates(tree, grid, r, to_stream(g.a), to_stream(g.b), bound, size_t(rank), near, best);
             if (best.size() < size_t(rank)) {
                 why = "a rank past the gate's candidates";
                 return Error::MalformedPayload;
             }
-            x = best[size_t(rank) - 1].second;
+            x = to_inside(best[size_t(rank) - 1].second);
         } else {
-            x = rc.direct(w);
-            if (x >= known || x == g.a || x == g.b) {
-                why = "triangle " + std::to_string(tr.triangles.size()) + " names vertex " + std::to_string(x) +
-                      " of " + std::to_string(known) + " known beside " + std::to_string(g.b) + " and " +
-                      std::to_string(g.a);
+            const uint32_t read = rc.direct(w);
+            x = read < known ? to_inside(read) : read;
+            if (read >= known || x == g.a || x == g.b) {
+                why = "triangle " + std::to_string(tr.triangles.size()) + " names vertex " + std::to_string(read) +
+                      " of " + std::to_string(known) + " known beside " + std::to_string(to_stream(g.b)) + " and " +
+                      std::to_string(to_stream(g.a));
                 return Error::MalformedPayload;
             }
         }
@@ -1285,6 +1315,8 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
               " carried vertices are used by no triangle";
         return Error::MalformedPayload;
     }
+    for (Triangle& t : tr.triangles)
+        for (uint32_t& v : t) v = to_stream(v);
     out = std::move(tr.triangles);
     carried = std::move(fresh_vertices);
     return Error::Ok;
