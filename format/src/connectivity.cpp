@@ -948,7 +948,7 @@ size_t fresh_context(size_t k) { return std::min<size_t>(k, 2); }
 
 // Spec 27.2 (19.2 when nothing is carried): the first `k` candidates of a gate, the points nearest
 // to the prediction and its local candidates (carried vertices) together, by (squared distance,
-// index).
+// index). `a`, `b`: the gate's corners in the stream's numbering; `bound` as KdTree::nearest's.
 void candidates(const LazyKdTree& tree, const PointGrid& grid, const std::array<int64_t, 3>& r, uint32_t a, uint32_t b,
                 uint64_t bound, size_t k, const std::vector<std::pair<uint64_t, uint32_t>>& local,
                 std::vector<std::pair<uint64_t, uint32_t>>& out) {
