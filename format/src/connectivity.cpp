@@ -501,17 +501,6 @@ private:
     mutable std::optional<KdTree> tree_;
 };
 
-// The bits of v (at most 21) spread to every third bit: bit i goes to bit 3i.
-uint64_t spread3(uint32_t v) {
-    uint64_t x = v & 0x1FFFFFu;
-    x = (x | x << 32) & 0x1F00000000FFFFull;
-    x = (x | x << 16) & 0x1F0000FF0000FFull;
-    x = (x | x << 8) & 0x100F00F00F00F00Full;
-    x = (x | x << 4) & 0x10C30C30C30C30C3ull;
-    x = (x | x << 2) & 0x1249249249249249ull;
-    return x;
-}
-
 int index_bits(size_t n) {
     int w = 1;
     while (w < 32 && (uint64_t(1) << w) < n) ++w;
@@ -1207,10 +1196,8 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
     std::vector<uint32_t> stream_of(n), inside(n);
     {
         std::vector<std::pair<uint64_t, uint32_t>> curve(n);
-        for (uint32_t i = 0; i < n; ++i) {
-            const auto& q = points[i].position;
-            curve[i] = {spread3(q[0]) | spread3(q[1]) << 1 | spread3(q[2]) << 2, i};
-        }
+        for (uint32_t i = 0; i < n; ++i)
+            curve[i] = {morton_cell(points[i].position, info.position_bits, info.position_bits), i};
         std::sort(curve.begin(), curve.end());
         for (uint32_t j = 0; j < n; ++j) stream_of[j] = curve[j].second, inside[curve[j].second] = j;
     }

@@ -33,11 +33,25 @@ uint32_t mapped_index(uint32_t rank, uint32_t point_count, uint32_t batch) {
     return uint32_t(t * n + j);
 }
 
+namespace {
+// The low 21 bits of v spread to every third bit: bit i goes to bit 3i.
+uint64_t spread3(uint32_t v) {
+    uint64_t x = v & 0x1FFFFFu;
+    x = (x | x << 32) & 0x1F00000000FFFFull;
+    x = (x | x << 16) & 0x1F0000FF0000FFull;
+    x = (x | x << 8) & 0x100F00F00F00F00Full;
+    x = (x | x << 4) & 0x10C30C30C30C30C3ull;
+    x = (x | x << 2) & 0x1249249249249249ull;
+    return x;
+}
+}  // namespace
+
+// Bit b of the cell's coordinate on axis a (bit position_bits - level + b of q[a]) is bit 3b + a.
 uint64_t morton_cell(const std::array<uint32_t, 3>& q, unsigned position_bits, unsigned level) {
-    uint64_t code = 0;
-    for (unsigned b = 0; b < level; ++b)
-        for (unsigned a = 0; a < 3; ++a) code |= uint64_t((q[a] >> (position_bits - level + b)) & 1u) << (3 * b + a);
-    return code;
+    if (level == 0) return 0;
+    const unsigned shift = position_bits - level;
+    const uint32_t mask = level >= 21 ? 0x1FFFFFu : (1u << level) - 1;
+    return spread3((q[0] >> shift) & mask) | spread3((q[1] >> shift) & mask) << 1 | spread3((q[2] >> shift) & mask) << 2;
 }
 
 std::array<uint32_t, 3> cell_corner(uint64_t code, unsigned position_bits, unsigned level) {
