@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <numeric>
 #include <optional>
+#include <span>
 
 namespace ellicast {
 
@@ -357,9 +358,21 @@ private:
 // surface sampled about evenly this reads a few cells of a few points each; the grid gives up (returns
 // false) where it would read many (points piled in a few cells, a prediction far from every point),
 // and the k-d tree answers then.
+// A candidate of a gate as the decoder finds it: its squared distance to the prediction, its number
+// in the stream (which orders candidates as far apart: spec 19.2) and its number in the decoder's
+// traversal (decode_exact_mesh numbers the points along a Morton curve).
+struct Candidate {
+    uint64_t d;
+    uint32_t order;  // the stream's number
+    uint32_t v;      // the traversal's number
+    bool operator<(const Candidate& o) const { return d < o.d || (d == o.d && order < o.order); }
+};
+
 class PointGrid {
 public:
-    explicit PointGrid(const std::vector<std::array<uint32_t, 3>>& p) {
+    // Over points p (numbered as the traversal numbers them), where point i is point order[i] of the
+    // stream.
+    PointGrid(std::span<const std::array<uint32_t, 3>> p, const std::vector<uint32_t>& order) : order_(order) {
         if (p.empty()) return;
         std::array<uint32_t, 3> lo = p[0], hi = p[0];
         for (const auto& q : p)
@@ -380,18 +393,19 @@ public:
         for (uint32_t i = 0; i < p.size(); ++i) at_[next[cell_of(p[i])]++] = {p[i], i};
     }
 
-    // The k (1..kRanks) points nearest to q other than a and b, nearest first, of those at most
-    // sqrt(bound) away (UINT64_MAX: any); false when the grid gives up.
+    // The k (1..kRanks) points nearest to q other than a and b (the traversal's numbers), nearest
+    // first by (squared distance, the stream's number), of those at most sqrt(bound) away
+    // (UINT64_MAX: any); false when the grid gives up.
     bool nearest(const std::array<int64_t, 3>& q, uint32_t a, uint32_t b, size_t k, uint64_t bound,
-                 std::vector<std::pair<uint64_t, uint32_t>>& best) const {
-        using Key = std::pair<uint64_t, uint32_t>;
+                 std::vector<Candidate>& best) const {
+        using Key = Candidate;
         best.clear();
         if (at_.empty() || k == 0 || k > size_t(kRanks)) return false;
         // The k best so far in order; the worst key still taken: the k-th's once there are k, before
         // that the bound.
         std::array<Key, kRanks> items;
         size_t held = 0;
-        Key worst(bound, UINT32_MAX);
+        Key worst{bound, UINT32_MAX, UINT32_MAX};
         size_t read = 0;
         auto scan = [&](int64_t x, int64_t y, int64_t z) {
             const size_t c = index(x, y, z);
@@ -400,7 +414,7 @@ public:
             if (read + (to - from) > kMostRead) return false;
             read += to - from;
             // A cell whose box lies farther than the worst key's distance holds nothing to take.
-            if (worst.first != UINT64_MAX) {
+            if (worst.d != UINT64_MAX) {
                 uint64_t box = 0;
                 const std::array<int64_t, 3> cell{x, y, z};
                 for (int i = 0; i < 3; ++i) {
@@ -408,12 +422,14 @@ public:
                     const int64_t g = q[i] < lo ? lo - q[i] : q[i] > hi ? q[i] - hi : 0;
                     box += uint64_t(g * g);
                 }
-                if (box > worst.first) return true;
+                if (box > worst.d) return true;
             }
             for (uint32_t j = from; j < to; ++j) {
                 const Entry& e = at_[j];
                 if (e.index == a || e.index == b) continue;
-                const Key key(dist2(e.p, q), e.index);
+                const uint64_t d = dist2(e.p, q);
+                if (d > worst.d) continue;
+                const Key key{d, order_[e.index], e.index};  // the stream's number read only here
                 if (!(key < worst)) continue;
                 if (k == 1) {  // the common case, without the insertion
                     items[0] = worst = key;
@@ -441,13 +457,13 @@ public:
         auto in = [](int64_t x, int64_t y, int64_t z, const std::array<int64_t, 3>& lo, const std::array<int64_t, 3>& hi) {
             return x >= lo[0] && x <= hi[0] && y >= lo[1] && y <= hi[1] && z >= lo[2] && z <= hi[2];
         };
-        const bool block = worst.first == UINT64_MAX;
+        const bool block = worst.d == UINT64_MAX;
         if (block)
             for (int64_t z = c0[2]; z <= c1[2]; ++z)
                 for (int64_t y = c0[1]; y <= c1[1]; ++y)
                     for (int64_t x = c0[0]; x <= c1[0]; ++x)
                         if (!(inside && x == cq[0] && y == cq[1] && z == cq[2]) && !scan(x, y, z)) return false;
-        const uint64_t r2 = worst.first;
+        const uint64_t r2 = worst.d;
         if (r2 == UINT64_MAX) return false;  // fewer than k around q, and no bound: the tree
         // Above the exact radius whatever the rounding (r2 < 2^64; the cells clamp what lies beyond).
         const int64_t r = int64_t(std::min(std::sqrt(double(r2)), 1e15)) + 2;
@@ -485,19 +501,25 @@ private:
     std::array<int64_t, 3> origin_{}, n_{};
     std::vector<uint32_t> start_;
     std::vector<Entry> at_;
+    const std::vector<uint32_t>& order_;
 };
 
-// A k-d tree over the points, built when first asked for (a decode the grid serves alone builds none).
+// A k-d tree over the points in the stream's numbering, built when first asked for (a decode the
+// grid serves alone builds none).
 class LazyKdTree {
 public:
-    explicit LazyKdTree(const std::vector<std::array<uint32_t, 3>>& p) : points_(p) {}
+    explicit LazyKdTree(const std::vector<QuantizedPoint>& p) : points_(p) {}
     const KdTree& get() const {
-        if (!tree_) tree_.emplace(points_);
+        if (!tree_) {
+            std::vector<std::array<uint32_t, 3>> positions(points_.size());
+            for (size_t i = 0; i < points_.size(); ++i) positions[i] = points_[i].position;
+            tree_.emplace(positions);
+        }
         return *tree_;
     }
 
 private:
-    const std::vector<std::array<uint32_t, 3>>& points_;
+    const std::vector<QuantizedPoint>& points_;
     mutable std::optional<KdTree> tree_;
 };
 
@@ -937,13 +959,23 @@ size_t fresh_context(size_t k) { return std::min<size_t>(k, 2); }
 
 // Spec 27.2 (19.2 when nothing is carried): the first `k` candidates of a gate, the points nearest
 // to the prediction and its local candidates (carried vertices) together, by (squared distance,
-// index). `a`, `b`: the gate's corners in the stream's numbering; `bound` as KdTree::nearest's.
-void candidates(const LazyKdTree& tree, const PointGrid& grid, const std::array<int64_t, 3>& r, uint32_t a, uint32_t b,
+// the stream's number). `a`, `b`: the gate's corners in the traversal's numbering, where point i is
+// point stream_of[i] of the stream and point j of the stream is point inside[j] (a carried vertex
+// keeps its number in both); `bound` as KdTree::nearest's.
+void candidates(const LazyKdTree& tree, const PointGrid& grid, const std::vector<uint32_t>& stream_of,
+                const std::vector<uint32_t>& inside, const std::array<int64_t, 3>& r, uint32_t a, uint32_t b,
                 uint64_t bound, size_t k, const std::vector<std::pair<uint64_t, uint32_t>>& local,
-                std::vector<std::pair<uint64_t, uint32_t>>& out) {
-    if (!grid.nearest(r, a, b, k, bound, out)) tree.get().nearest(r, a, b, k, out, bound);
+                std::vector<Candidate>& out) {
+    if (!grid.nearest(r, a, b, k, bound, out)) {
+        const size_t n = stream_of.size();
+        auto to_stream = [&](uint32_t v) { return v < n ? stream_of[v] : v; };
+        static thread_local std::vector<std::pair<uint64_t, uint32_t>> found;
+        tree.get().nearest(r, to_stream(a), to_stream(b), k, found, bound);
+        out.clear();
+        for (const auto& [d, j] : found) out.push_back({d, j, inside[j]});
+    }
     if (local.empty()) return;
-    out.insert(out.end(), local.begin(), local.end());
+    for (const auto& [d, v] : local) out.push_back({d, v, v});
     std::sort(out.begin(), out.end());
     if (out.size() > k) out.resize(k);
 }
@@ -1211,10 +1243,8 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
         positions.push_back(points[stream_of[j]].position);
         texcoords.push_back(points[stream_of[j]].texcoord);
     }
-    std::vector<std::array<uint32_t, 3>> point_positions(n);  // in the stream's numbering
-    for (uint32_t i = 0; i < n; ++i) point_positions[i] = points[i].position;
-    const PointGrid grid(point_positions);
-    const LazyKdTree tree(point_positions);  // built for the first search the grid gives up
+    const PointGrid grid(std::span(positions.data(), n), stream_of);
+    const LazyKdTree tree(points);  // built for the first search the grid gives up
     CarriedNeighbours lists(total, n);
     RangeDecoder rc(coded);
     Contexts ctx;
@@ -1224,7 +1254,8 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
     // claim: the others' edges go to the table, which grows with the triangles actually taken).
     tr.edges.reset(std::min<size_t>(total, 2 * n + 4096));
     std::vector<QuantizedPoint> fresh_vertices;
-    std::vector<std::pair<uint64_t, uint32_t>> best, near;
+    std::vector<Candidate> best;
+    std::vector<std::pair<uint64_t, uint32_t>> near;
     auto fresh = [&](const Prediction& r, uint32_t& v) {
         QuantizedPoint q;
         if (!decode_fresh(rc, ctx, r, info, object, q)) {
@@ -1279,12 +1310,12 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
             // The nearest point lies at most as far from r as the gate's third corner o when o is a
             // point (never a or b): a bound that spares the search most cells.
             const uint64_t bound = rank == 1 && g.o < n ? dist2(positions[g.o], r) : UINT64_MAX;
-            candidates(tree, grid, r, to_stream(g.a), to_stream(g.b), bound, size_t(rank), near, best);
+            candidates(tree, grid, stream_of, inside, r, g.a, g.b, bound, size_t(rank), near, best);
             if (best.size() < size_t(rank)) {
                 why = "a rank past the gate's candidates";
                 return Error::MalformedPayload;
             }
-            x = to_inside(best[size_t(rank) - 1].second);
+            x = best[size_t(rank) - 1].v;
         } else {
             const uint32_t read = rc.direct(w);
             x = read < known ? to_inside(read) : read;
