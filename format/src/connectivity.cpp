@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <numeric>
 #include <optional>
+#include <utility>
 #include <span>
 
 namespace ellicast {
@@ -1227,10 +1228,22 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
     // in the stream's numbering.
     std::vector<uint32_t> stream_of(n), inside(n);
     {
-        std::vector<std::pair<uint64_t, uint32_t>> curve(n);
+        // By (code, stream number): a least-significant-digit radix sort of the codes (3
+        // position_bits bits, at most 48), stable, from the stream's order.
+        std::vector<std::pair<uint64_t, uint32_t>> curve(n), scratch(n);
         for (uint32_t i = 0; i < n; ++i)
             curve[i] = {morton_cell(points[i].position, info.position_bits, info.position_bits), i};
-        std::sort(curve.begin(), curve.end());
+        constexpr unsigned kDigit = 12;
+        std::vector<uint32_t> count(size_t(1) << kDigit);
+        for (unsigned low = 0; low < 3u * info.position_bits; low += kDigit) {
+            std::fill(count.begin(), count.end(), 0);
+            const uint64_t mask = (uint64_t(1) << kDigit) - 1;
+            for (const auto& e : curve) ++count[(e.first >> low) & mask];
+            uint32_t sum = 0;
+            for (uint32_t& c : count) sum += std::exchange(c, sum);
+            for (const auto& e : curve) scratch[count[(e.first >> low) & mask]++] = e;
+            curve.swap(scratch);
+        }
         for (uint32_t j = 0; j < n; ++j) stream_of[j] = curve[j].second, inside[curve[j].second] = j;
     }
     auto to_stream = [&](uint32_t v) { return v < n ? stream_of[v] : v; };
