@@ -72,6 +72,28 @@ TEST_CASE("mapped ranks deal the indices to the batches in turn, as spec 23.2's 
         }
 }
 
+TEST_CASE("a cell's Morton code and its corner are each other's inverse at every level and bit depth (spec 23.2)") {
+    std::mt19937 rng(23);
+    for (unsigned P = 8; P <= 16; ++P)
+        for (unsigned L = 1; L < P; ++L)
+            for (int trial = 0; trial < 200; ++trial) {
+                const std::array<uint32_t, 3> q{uint32_t(rng()) & ((1u << P) - 1), uint32_t(rng()) & ((1u << P) - 1),
+                                                uint32_t(rng()) & ((1u << P) - 1)};
+                const uint64_t code = morton_cell(q, P, L);
+                // Spec 23.2 bit by bit: bit b of the cell's coordinate on axis a is bit 3b + a of the code.
+                uint64_t spec_code = 0;
+                for (unsigned b = 0; b < L; ++b)
+                    for (unsigned a = 0; a < 3; ++a) spec_code |= uint64_t((q[a] >> (P - L + b)) & 1u) << (3 * b + a);
+                REQUIRE(code == spec_code);
+                // Bits above the level's 3L are not the cell's: a corner ignores them.
+                const uint64_t noisy = code | (uint64_t(rng()) << (3 * L));
+                for (const uint64_t c : {code, noisy}) {
+                    const std::array<uint32_t, 3> corner = cell_corner(c, P, L);
+                    for (int a = 0; a < 3; ++a) REQUIRE(corner[a] == (q[a] >> (P - L)) << (P - L));
+                }
+            }
+}
+
 TEST_CASE("a POINT_MAP fragment comes back as it was written, and a damaged tree is malformed with its reason") {
     // Cells of level 6 scattered over part of the cube, with counts from 1 to 40.
     std::mt19937 rng(3);

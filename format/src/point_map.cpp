@@ -44,6 +44,17 @@ uint64_t spread3(uint32_t v) {
     x = (x | x << 2) & 0x1249249249249249ull;
     return x;
 }
+
+// The inverse of spread3: every third bit of x (bits 0, 3, 6, ...) gathered into the low 21 bits.
+uint32_t compact3(uint64_t x) {
+    x &= 0x1249249249249249ull;
+    x = (x | x >> 2) & 0x10C30C30C30C30C3ull;
+    x = (x | x >> 4) & 0x100F00F00F00F00Full;
+    x = (x | x >> 8) & 0x1F0000FF0000FFull;
+    x = (x | x >> 16) & 0x1F00000000FFFFull;
+    x = (x | x >> 32) & 0x1FFFFFull;
+    return uint32_t(x);
+}
 }  // namespace
 
 // Bit b of the cell's coordinate on axis a (bit position_bits - level + b of q[a]) is bit 3b + a.
@@ -55,9 +66,9 @@ uint64_t morton_cell(const std::array<uint32_t, 3>& q, unsigned position_bits, u
 }
 
 std::array<uint32_t, 3> cell_corner(uint64_t code, unsigned position_bits, unsigned level) {
-    std::array<uint32_t, 3> c{};
-    for (unsigned b = 0; b < level; ++b)
-        for (unsigned a = 0; a < 3; ++a) c[a] |= uint32_t((code >> (3 * b + a)) & 1u) << b;
+    // Bits 3b + a for b < level only (level <= 21: 63 bits).
+    if (level < 21) code &= (uint64_t(1) << (3 * level)) - 1;
+    std::array<uint32_t, 3> c{compact3(code), compact3(code >> 1), compact3(code >> 2)};
     for (auto& v : c) v <<= (position_bits - level);
     return c;
 }
