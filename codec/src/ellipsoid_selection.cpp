@@ -5,8 +5,9 @@
 // samples that are still far from every chosen ellipsoid (thin parts such as ears and fins).
 #include "encoder_internal.h"
 
+#include "ellicast/format/bits.h"
+
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <optional>
 #include <queue>
@@ -61,15 +62,6 @@ void VoxelBits::set(size_t x, size_t row, bool v) {
 bool VoxelBits::get(size_t x, size_t row) const { return bits_[row * words_per_row_ + x / 64] >> (x % 64) & 1; }
 
 namespace {
-
-// Bits set in w, by the parallel sum (the portable build has no POPCNT instruction, and
-// std::popcount becomes a library call several times slower).
-inline size_t ones(uint64_t w) {
-    w = w - ((w >> 1) & 0x5555555555555555ull);
-    w = (w & 0x3333333333333333ull) + ((w >> 2) & 0x3333333333333333ull);
-    w = (w + (w >> 4)) & 0x0f0f0f0f0f0f0f0full;
-    return size_t((w * 0x0101010101010101ull) >> 56);
-}
 
 // Mask of bits [a, b) within word number `word` of a row.
 uint64_t span_mask(size_t word, size_t a, size_t b) {

@@ -6,6 +6,7 @@
 // index order. Serves the receiver's byte budget (spec/format.md 11.6).
 #pragma once
 
+#include "ellicast/format/bits.h"
 #include "ellicast/format/quantize.h"
 #include "ellicast/format/stream_info.h"
 
@@ -38,8 +39,8 @@ private:
     // Records of the page before `bit`.
     static size_t rank(const Page& page, uint32_t bit) {
         size_t n = 0;
-        for (uint32_t w = 0; w < bit / 64; ++w) n += size_t(std::popcount(page.held[w]));
-        if (bit % 64) n += size_t(std::popcount(page.held[bit / 64] << (64 - bit % 64)));
+        for (uint32_t w = 0; w < bit / 64; ++w) n += ones(page.held[w]);
+        if (bit % 64) n += ones(page.held[bit / 64] << (64 - bit % 64));
         return n;
     }
 
