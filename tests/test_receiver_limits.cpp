@@ -168,6 +168,15 @@ TEST_CASE("paged records keep one record per index in index order, whatever orde
     CHECK((*records.lower_bound(514)).first == 1023);
     CHECK(records.lower_bound(4'000'000'001u) == records.end());
     CHECK(records.find(4) == nullptr);
+    // Counts over ranges, against the indices themselves: within a page, across pages, past the last
+    // index a uint32 holds, empty and reversed ranges.
+    const std::vector<std::pair<uint64_t, uint64_t>> ranges = {
+        {0, 1}, {0, 7}, {5, 512}, {6, 513}, {511, 1024}, {0, 70001}, {1024, 70000}, {0, uint64_t(1) << 33},
+        {4'000'000'000u, 4'000'000'001u}, {7, 7}, {9, 3}};
+    for (const auto& [from, to] : ranges) {
+        const size_t expected = size_t(std::count_if(order.begin(), order.end(), [&](uint32_t i) { return i >= from && i < to; }));
+        CHECK(records.count(from, to) == expected);
+    }
     REQUIRE(records.find(513) != nullptr);
     CHECK(records.find(513)[0] == 513);
     const uint64_t memory = records.memory();

@@ -550,12 +550,11 @@ Error ReceivedStream::take_repair(ReceivedObject& object, const PacketView& pack
         fresh.block = block;
         fresh.held_in_batch.assign(block.source_count(), 0);
         // Records held count, placed or not (spec 23.6).
-        for (const auto* records : {&object.points, &object.unplaced})
-            for (auto p = records->lower_bound(block.first_index);
-                 p != records->end() && (*p).first < uint64_t{block.first_index} + block.point_count; ++p)
-                ++fresh.held_in_batch[((*p).first - block.first_index) / block.batch];
-        for (uint32_t i = 0; i < block.source_count(); ++i)
+        for (uint32_t i = 0; i < block.source_count(); ++i) {
+            const uint64_t from = uint64_t{block.first_index} + uint64_t{i} * block.batch, to = from + block.batch_points(i);
+            fresh.held_in_batch[i] = uint32_t(object.points.count(from, to) + object.unplaced.count(from, to));
             if (fresh.held_in_batch[i] == block.batch_points(i)) ++fresh.batches_held;
+        }
         fresh.complete = fresh.batches_held == block.source_count();
         it = object.repair_blocks.emplace(block.first_index, std::move(fresh)).first;
     }

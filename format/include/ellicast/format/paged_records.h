@@ -10,6 +10,7 @@
 #include "ellicast/format/quantize.h"
 #include "ellicast/format/stream_info.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstddef>
@@ -95,6 +96,19 @@ public:
     }
     // What the held records cost: their pages, elements (as allocated) and bookkeeping.
     uint64_t memory() const { return memory_; }
+    // How many indices in [from, to) hold a record, counted from the pages' bits.
+    size_t count(uint64_t from, uint64_t to) const {
+        size_t n = 0;
+        if (from >= to) return 0;
+        for (auto p = pages_.lower_bound(uint32_t(from / kPagePoints));
+             p != pages_.end() && uint64_t(p->first) * kPagePoints < to; ++p) {
+            const uint64_t base = uint64_t(p->first) * kPagePoints;
+            const uint32_t lo = from > base ? uint32_t(from - base) : 0;
+            const uint32_t hi = uint32_t(std::min<uint64_t>(to - base, kPagePoints));
+            n += rank(p->second, hi) - rank(p->second, lo);
+        }
+        return n;
+    }
 
     // Iterates (index, first element of its record) in index order.
     class const_iterator {
@@ -176,6 +190,8 @@ public:
     bool insert(uint32_t index, const QuantizedPoint& q);
     bool erase(uint32_t index) { return records_.erase(index); }
     uint64_t memory() const { return records_.memory(); }
+    // How many indices in [from, to) hold a record.
+    size_t count(uint64_t from, uint64_t to) const { return records_.count(from, to); }
 
     class const_iterator {
     public:
