@@ -958,22 +958,28 @@ void take_triangle(Traversal& tr, CarriedNeighbours& lists, uint32_t a, uint32_t
 // Spec 27.2: the context of a gate's bit fresh, by the number k of its local candidates.
 size_t fresh_context(size_t k) { return std::min<size_t>(k, 2); }
 
+// The decoder's two numberings of an object's vertices: the stream's, and the traversal's (the
+// points along a Morton curve of their positions). Point i of the traversal is point stream_of[i] of
+// the stream, point j of the stream is point inside[j] of the traversal; a carried vertex (numbered
+// from the point count on) keeps its number in both.
+struct Numbering {
+    std::vector<uint32_t> stream_of, inside;
+    uint32_t to_stream(uint32_t v) const { return v < stream_of.size() ? stream_of[v] : v; }
+    uint32_t to_inside(uint32_t v) const { return v < inside.size() ? inside[v] : v; }
+};
+
 // Spec 27.2 (19.2 when nothing is carried): the first `k` candidates of a gate, the points nearest
 // to the prediction and its local candidates (carried vertices) together, by (squared distance,
-// the stream's number). `a`, `b`: the gate's corners in the traversal's numbering, where point i is
-// point stream_of[i] of the stream and point j of the stream is point inside[j] (a carried vertex
-// keeps its number in both); `bound` as KdTree::nearest's.
-void candidates(const LazyKdTree& tree, const PointGrid& grid, const std::vector<uint32_t>& stream_of,
-                const std::vector<uint32_t>& inside, const std::array<int64_t, 3>& r, uint32_t a, uint32_t b,
-                uint64_t bound, size_t k, const std::vector<std::pair<uint64_t, uint32_t>>& local,
-                std::vector<Candidate>& out) {
+// the stream's number). `a`, `b`: the gate's corners in the traversal's numbering; `bound` as
+// KdTree::nearest's.
+void candidates(const LazyKdTree& tree, const PointGrid& grid, const Numbering& numbers,
+                const std::array<int64_t, 3>& r, uint32_t a, uint32_t b, uint64_t bound, size_t k,
+                const std::vector<std::pair<uint64_t, uint32_t>>& local, std::vector<Candidate>& out) {
     if (!grid.nearest(r, a, b, k, bound, out)) {
-        const size_t n = stream_of.size();
-        auto to_stream = [&](uint32_t v) { return v < n ? stream_of[v] : v; };
         std::vector<std::pair<uint64_t, uint32_t>> found;  // a rare path: 17 of the bunny's 69,436 searches
-        tree.get().nearest(r, to_stream(a), to_stream(b), k, found, bound);
+        tree.get().nearest(r, numbers.to_stream(a), numbers.to_stream(b), k, found, bound);
         out.clear();
-        for (const auto& [d, j] : found) out.push_back({d, j, inside[j]});
+        for (const auto& [d, j] : found) out.push_back({d, j, numbers.to_inside(j)});
     }
     if (local.empty()) return;
     for (const auto& [d, v] : local) out.push_back({d, v, v});
@@ -1221,12 +1227,11 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
         return Error::MalformedPayload;
     }
     const int w = index_bits(total);
-    // The traversal numbers the points along a Morton curve of their positions (point v of the
-    // stream is `inside[v]`; carried vertices keep their numbers), so that a gate's vertices, which
-    // are neighbours on the surface, lie near each other in memory (the stream's order spreads them
-    // over the surface). Every number read, the candidates' order and the triangles given back stay
-    // in the stream's numbering.
-    std::vector<uint32_t> stream_of(n), inside(n);
+    // The traversal numbers the points along a Morton curve of their positions (Numbering), so that a
+    // gate's vertices, which are neighbours on the surface, lie near each other in memory (the
+    // stream's order spreads them over the surface). Every number read, the candidates' order and the
+    // triangles given back stay in the stream's numbering.
+    Numbering numbers{std::vector<uint32_t>(n), std::vector<uint32_t>(n)};
     {
         // By (code, stream number): a least-significant-digit radix sort of the codes (3
         // position_bits bits, at most 48), stable, from the stream's order.
@@ -1234,29 +1239,30 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
         for (uint32_t i = 0; i < n; ++i)
             curve[i] = {morton_cell(points[i].position, info.position_bits, info.position_bits), i};
         constexpr unsigned kDigit = 12;
+        constexpr uint64_t mask = (uint64_t(1) << kDigit) - 1;
         std::vector<uint32_t> count(size_t(1) << kDigit);
         for (unsigned low = 0; low < 3u * info.position_bits; low += kDigit) {
             std::fill(count.begin(), count.end(), 0);
-            const uint64_t mask = (uint64_t(1) << kDigit) - 1;
             for (const auto& e : curve) ++count[(e.first >> low) & mask];
             uint32_t sum = 0;
             for (uint32_t& c : count) sum += std::exchange(c, sum);
             for (const auto& e : curve) scratch[count[(e.first >> low) & mask]++] = e;
             curve.swap(scratch);
         }
-        for (uint32_t j = 0; j < n; ++j) stream_of[j] = curve[j].second, inside[curve[j].second] = j;
+        for (uint32_t j = 0; j < n; ++j) {
+            numbers.stream_of[j] = curve[j].second;
+            numbers.inside[curve[j].second] = j;
+        }
     }
-    auto to_stream = [&](uint32_t v) { return v < n ? stream_of[v] : v; };
-    auto to_inside = [&](uint32_t v) { return v < n ? inside[v] : v; };
     std::vector<std::array<uint32_t, 3>> positions;
     std::vector<std::array<uint32_t, 2>> texcoords;
     positions.reserve(total);
     texcoords.reserve(total);
     for (uint32_t j = 0; j < n; ++j) {
-        positions.push_back(points[stream_of[j]].position);
-        texcoords.push_back(points[stream_of[j]].texcoord);
+        positions.push_back(points[numbers.stream_of[j]].position);
+        texcoords.push_back(points[numbers.stream_of[j]].texcoord);
     }
-    const PointGrid grid(std::span(positions.data(), n), stream_of);
+    const PointGrid grid(std::span(positions.data(), n), numbers.stream_of);
     const LazyKdTree tree(points);  // built for the first search the grid gives up
     CarriedNeighbours lists(total, n);
     RangeDecoder rc(coded);
@@ -1295,7 +1301,7 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
                 }
                 const uint32_t read = rc.direct(w);
                 const size_t now_known = n + fresh_vertices.size();
-                corner[k] = read < now_known ? to_inside(read) : read;
+                corner[k] = read < now_known ? numbers.to_inside(read) : read;
                 if (read >= now_known || (k > 0 && corner[k] == corner[0]) || (k > 1 && corner[k] == corner[1])) {
                     why = "seed triangle " + std::to_string(tr.triangles.size()) + " names vertex " +
                           std::to_string(read) + " of " + std::to_string(now_known) + " known, or one twice";
@@ -1323,7 +1329,7 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
             // The nearest point lies at most as far from r as the gate's third corner o when o is a
             // point (never a or b): a bound that spares the search most cells.
             const uint64_t bound = rank == 1 && g.o < n ? dist2(positions[g.o], r) : UINT64_MAX;
-            candidates(tree, grid, stream_of, inside, r, g.a, g.b, bound, size_t(rank), near, best);
+            candidates(tree, grid, numbers, r, g.a, g.b, bound, size_t(rank), near, best);
             if (best.size() < size_t(rank)) {
                 why = "a rank past the gate's candidates";
                 return Error::MalformedPayload;
@@ -1331,11 +1337,11 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
             x = best[size_t(rank) - 1].v;
         } else {
             const uint32_t read = rc.direct(w);
-            x = read < known ? to_inside(read) : read;
+            x = read < known ? numbers.to_inside(read) : read;
             if (read >= known || x == g.a || x == g.b) {
                 why = "triangle " + std::to_string(tr.triangles.size()) + " names vertex " + std::to_string(read) +
-                      " of " + std::to_string(known) + " known beside " + std::to_string(to_stream(g.b)) + " and " +
-                      std::to_string(to_stream(g.a));
+                      " of " + std::to_string(known) + " known beside " + std::to_string(numbers.to_stream(g.b)) +
+                      " and " + std::to_string(numbers.to_stream(g.a));
                 return Error::MalformedPayload;
             }
         }
@@ -1347,7 +1353,7 @@ Error decode_exact_mesh(std::span<const uint8_t> coded, uint32_t triangle_count,
         return Error::MalformedPayload;
     }
     for (Triangle& t : tr.triangles)
-        for (uint32_t& v : t) v = to_stream(v);
+        for (uint32_t& v : t) v = numbers.to_stream(v);
     out = std::move(tr.triangles);
     carried = std::move(fresh_vertices);
     return Error::Ok;
