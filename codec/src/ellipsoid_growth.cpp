@@ -165,6 +165,13 @@ TreeBalls tree_balls(const TriangleTree& tree) {
     TreeBalls balls;
     balls.nodes.reserve(tree.nodes().size());
     for (const auto& node : tree.nodes()) balls.nodes.push_back(node_ball(node));
+    const auto& nodes = tree.nodes();
+    balls.spans.resize(nodes.size());
+    for (size_t k = nodes.size(); k-- > 0;) {
+        const auto& node = nodes[k];
+        balls.spans[k] = node.is_leaf() ? std::array<uint32_t, 2>{node.first, node.first + node.count}
+                                        : std::array<uint32_t, 2>{balls.spans[node.first][0], balls.spans[node.right][1]};
+    }
     balls.triangles.reserve(tree.triangles().size());
     for (const auto& t : tree.triangles()) {
         const Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), c = to_vec(t.v[2]);
@@ -184,6 +191,16 @@ TreeBalls tree_balls(const TriangleTree& tree) {
     }
     return balls;
 }
+
+namespace {
+
+// A node holding at most this many triangles is read as one leaf by clear_of_surface: its triangles
+// are tested in turn, without visiting (and culling) the nodes below it. The tree's own leaves
+// (at most 4 triangles) serve its closest-point queries; for the ellipsoid test, whose triangle
+// culls are cheaper than a node's, 16 took 6 to 8% off an encode (the 50k torus, one thread).
+constexpr uint32_t kFlatTriangles = 16;
+
+}  // namespace
 
 bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* blockers,
                       const TreeBalls* balls) {
@@ -248,8 +265,10 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* bl
         const Entry entry = stack[--top];
         if (entry.gap > 0) continue;  // only the root
         const auto& node = nodes[entry.node];
-        if (node.is_leaf()) {
-            for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+        const uint32_t lo = balls ? balls->spans[entry.node][0] : node.first;
+        const uint32_t hi = balls ? balls->spans[entry.node][1] : node.first + node.count;
+        if (node.is_leaf() || (balls && hi - lo <= kFlatTriangles)) {
+            for (uint32_t i = lo; i < hi; ++i) {
                 if (balls) {
                     // The triangle's plane (the slab holding it) clearly apart from the ellipsoid:
                     // the centre lies farther from it than the ellipsoid's support along its normal,

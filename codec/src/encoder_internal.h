@@ -103,6 +103,8 @@ struct TreeBalls {
     // and how far its other corners lie off that plane as computed (the slab holding it), or all
     // zero for a triangle without a normal.
     std::vector<std::array<double, 5>> planes;
+    // Per node: the triangles below it, [first, end) in leaf order (a node's triangles are a run).
+    std::vector<std::array<uint32_t, 2>> spans;
 };
 
 struct GrowthContext {
