@@ -8,6 +8,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <set>
 
 using namespace ellicast;
 using namespace ellicast::detail;
@@ -120,4 +121,59 @@ TEST_CASE("the selection of ellipsoids chooses the same with its kept voxel runs
         }
     }
     CHECK(candidates.size() > 100);
+}
+
+TEST_CASE("voxel runs count, clear and fill the bits under them as bit-by-bit reads do, on rows of one word and of several") {
+    for (int width : {5, 63, 64, 65, 130, 200}) {
+        VoxelGrid grid;
+        grid.n[0] = width, grid.n[1] = 7, grid.n[2] = 3;
+        const size_t rows = size_t(grid.n[1]) * grid.n[2];
+        VoxelBits bits(grid, false);
+        Random rng{uint32_t(width)};
+        for (size_t row = 0; row < rows; ++row)
+            for (int x = 0; x < width; ++x)
+                if (rng.uniform() < 0.6) bits.set(size_t(x), row, true);
+        for (int trial = 0; trial < 300; ++trial) {
+            std::vector<Span> spans;
+            for (int k = 0, n = 1 + int(rng.below(6)); k < n; ++k) {
+                const uint32_t row = rng.below(uint32_t(rows));
+                uint32_t x0 = rng.below(uint32_t(width));
+                uint32_t x1 = x0 + 1 + rng.below(uint32_t(width) - x0);
+                if (trial % 7 == 0) x0 = 0, x1 = uint32_t(width);          // a whole row
+                if (trial % 11 == 0 && width >= 128) x0 = 64, x1 = 128;  // exactly one whole word
+                spans.push_back({row, uint16_t(x0), uint16_t(x1)});
+            }
+            size_t expected = 0;
+            for (const Span& s : spans)
+                for (size_t x = s.x0; x < s.x1; ++x) expected += bits.get(x, s.row);
+            REQUIRE(bits.count(spans) == expected);
+            if (trial % 3 == 0) {
+                VoxelBits copy = bits;
+                copy.clear(spans);
+                for (const Span& s : spans)
+                    for (size_t x = s.x0; x < s.x1; ++x) CHECK_FALSE(copy.get(x, s.row));
+                CHECK(copy.count(spans) == 0);
+                std::set<std::pair<size_t, size_t>> under;  // runs may overlap
+                for (const Span& s : spans)
+                    for (size_t x = s.x0; x < s.x1; ++x)
+                        if (bits.get(x, s.row)) under.insert({s.row, x});
+                CHECK(copy.count_all() + under.size() == bits.count_all());
+                copy.fill(spans);
+                size_t width_sum = 0;
+                for (const Span& s : spans) width_sum += size_t(s.x1 - s.x0);
+                if (spans.size() == 1) CHECK(copy.count(spans) == width_sum);
+            }
+        }
+        // Runs one short of a word, a word's last bit, across a word's end.
+        for (uint32_t row = 0; row < rows; ++row)
+            for (uint32_t w = 0; 64 * w < uint32_t(width); ++w)
+                for (auto [a, b] : {std::pair{0u, 63u}, std::pair{1u, 64u}, std::pair{63u, 64u}, std::pair{62u, 66u}}) {
+                    const uint32_t x0 = 64 * w + a, x1 = std::min(64 * w + b, uint32_t(width));
+                    if (x0 >= x1) continue;
+                    size_t expected = 0;
+                    for (size_t x = x0; x < x1; ++x) expected += bits.get(x, row);
+                    CHECK(bits.count({{row, uint16_t(x0), uint16_t(x1)}}) == expected);
+                }
+        CHECK(bits.count({{0, 3, 3}}) == 0);  // an empty run holds nothing
+    }
 }
