@@ -118,6 +118,34 @@ TEST_CASE("the selection of ellipsoids chooses the same with its kept voxel runs
             CHECK(kept.coverage == fresh.coverage);
             CHECK(!fresh.volume.empty());
             CHECK(cache.spans.size() == candidates.size());
+            // Each candidate's near samples, as the surface pass found them through its voxel runs,
+            // are those read one by one: in the candidate grown by `near` and nearest a voxel
+            // under its runs grown by `near` and a voxel.
+            REQUIRE(cache.near_samples.size() == candidates.size());
+            size_t near_pairs = 0;
+            for (size_t i = 0; i < candidates.size(); ++i) {
+                const Candidate& e = candidates[i];
+                const std::vector<Span> runs = rasterize(grid, e, 2 * grid.h);
+                std::vector<uint32_t> expected;
+                for (uint32_t k = 0; k < samples.size(); ++k) {
+                    int idx[3];
+                    bool in_grid = true;
+                    for (int j = 0; j < 3; ++j) {
+                        idx[j] = int(std::lround((samples[k][j] - grid.origin[j]) / grid.h));
+                        in_grid = in_grid && idx[j] >= 0 && idx[j] < grid.n[j];
+                    }
+                    if (!in_grid) continue;
+                    const uint32_t row = uint32_t(idx[1] + idx[2] * grid.n[1]);
+                    bool under = false;
+                    for (const Span& sp : runs) under = under || (sp.row == row && idx[0] >= sp.x0 && idx[0] < sp.x1);
+                    const Vec3 local = e.axes.transpose() * (samples[k] - e.center);
+                    if (under && local.cwiseQuotient(e.radii + Vec3::Constant(grid.h)).squaredNorm() <= 1.0)
+                        expected.push_back(k);
+                }
+                CHECK(cache.near_samples[i] == expected);
+                near_pairs += expected.size();
+            }
+            CHECK(near_pairs > 50);
         }
     }
     CHECK(candidates.size() > 100);

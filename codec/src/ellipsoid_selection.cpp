@@ -219,6 +219,10 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
         if (in_grid) by_voxel.push_back({grid.index(idx[0], idx[1], idx[2]), uint32_t(s)});
     }
     std::sort(by_voxel.begin(), by_voxel.end());
+    // Where each row of voxels starts in by_voxel: a candidate's runs are pieces of rows.
+    std::vector<uint32_t> row_start(rows + 1, 0);
+    for (const auto& entry : by_voxel) ++row_start[entry.first / uint64_t(grid.n[0]) + 1];
+    for (size_t r = 0; r < rows; ++r) row_start[r + 1] += row_start[r];
     std::vector<std::vector<uint32_t>>& near_samples = c.near_samples;
     const size_t found = std::min(near_samples.size(), n);
     near_samples.resize(n);
@@ -227,10 +231,12 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
         near_samples[i].clear();
         for (const Span& sp : rasterize(grid, candidates[i], near + grid.h)) {
             const uint64_t first = uint64_t(sp.row) * grid.n[0] + sp.x0, last = uint64_t(sp.row) * grid.n[0] + sp.x1;
-            auto it = std::lower_bound(by_voxel.begin(), by_voxel.end(), std::make_pair(first, uint32_t(0)));
-            for (; it != by_voxel.end() && it->first < last; ++it)
-                if (inside_inflated(candidates[i], surface_samples[it->second], near))
-                    near_samples[i].push_back(it->second);
+            for (uint32_t j = row_start[sp.row]; j < row_start[sp.row + 1]; ++j) {
+                const auto& [voxel, sample] = by_voxel[j];
+                if (voxel < first) continue;
+                if (voxel >= last) break;
+                if (inside_inflated(candidates[i], surface_samples[sample], near)) near_samples[i].push_back(sample);
+            }
         }
         std::sort(near_samples[i].begin(), near_samples[i].end());
     });
