@@ -56,6 +56,30 @@ TEST_CASE("triangle tree closest point matches a brute-force scan") {
         CHECK(tree.any_within(p, d * 1.01 + 1e-12));
         CHECK_FALSE(tree.any_within(p, d * 0.99));
     }
+    // Outside a corner, every triangle around it is as near: the answer is the first of them in
+    // the input, whatever order the tree visits them in.
+    size_t ties = 0;
+    for (size_t v = 0; v < pos.size(); v += 7) {
+        const std::array<double, 3> p{1.5 * pos[v][0], 1.5 * pos[v][1], 1.5 * pos[v][2]};
+        double brute = INFINITY;
+        uint32_t first = 0, at = 0;
+        for (uint32_t i = 0; i < tri.size(); ++i) {
+            const auto& t = tri[i];
+            std::array<double, 3> a{pos[t[0]][0], pos[t[0]][1], pos[t[0]][2]};
+            std::array<double, 3> b{pos[t[1]][0], pos[t[1]][1], pos[t[1]][2]};
+            std::array<double, 3> c{pos[t[2]][0], pos[t[2]][1], pos[t[2]][2]};
+            auto cp = closest_point_on_triangle(p, a, b, c);
+            double d = (cp[0] - p[0]) * (cp[0] - p[0]) + (cp[1] - p[1]) * (cp[1] - p[1]) + (cp[2] - p[2]) * (cp[2] - p[2]);
+            if (d < brute) brute = d, first = i, at = 1;
+            else if (d == brute) ++at;
+        }
+        ties += at > 1;
+        const ClosestPoint c = tree.closest_point(p);
+        REQUIRE(c.found);
+        CHECK(c.squared_distance == brute);
+        CHECK(c.triangle == first);
+    }
+    CHECK(ties > 10);
 }
 
 TEST_CASE("triangle tree ignores out-of-range indices and non-finite corners, and handles empty input") {

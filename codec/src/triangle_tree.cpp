@@ -123,12 +123,18 @@ ClosestPoint TriangleTree::closest_point(const V3& query, double max_distance) c
     if (nodes_.empty()) return best;
     double best_sq = max_distance * max_distance;
     if (std::isnan(best_sq)) return best;
-    uint32_t stack[128];
+    // Each node with the squared distance of its box, computed once (when its parent is visited).
+    struct Entry {
+        uint32_t node;
+        double d;
+    };
+    Entry stack[128];
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = {0, squared_distance_to_box(query, nodes_[0].bounds)};
     while (top > 0) {
-        const Node& node = nodes_[stack[--top]];
-        if (squared_distance_to_box(query, node.bounds) > best_sq) continue;
+        const Entry entry = stack[--top];
+        if (entry.d > best_sq) continue;
+        const Node& node = nodes_[entry.node];
         if (node.is_leaf()) {
             for (uint32_t i = node.first; i < node.first + node.count; ++i) {
                 const Triangle& t = triangles_[i];
@@ -145,16 +151,15 @@ ClosestPoint TriangleTree::closest_point(const V3& query, double max_distance) c
             }
             continue;
         }
-        double dl = squared_distance_to_box(query, nodes_[node.first].bounds);
-        double dr = squared_distance_to_box(query, nodes_[node.right].bounds);
+        const Entry left{node.first, squared_distance_to_box(query, nodes_[node.first].bounds)};
+        const Entry right{node.right, squared_distance_to_box(query, nodes_[node.right].bounds)};
         if (top + 2 > 128) continue;  // cannot happen for median-split trees of < 2^60 triangles
-        if (dl <= dr) {
-            stack[top++] = node.right;
-            stack[top++] = node.first;
-        } else {
-            stack[top++] = node.first;
-            stack[top++] = node.right;
-        }
+        // The nearer child last, so that it is visited first; a child already farther than the
+        // best is not kept.
+        const Entry& nearer = left.d <= right.d ? left : right;
+        const Entry& farther = left.d <= right.d ? right : left;
+        if (farther.d <= best_sq) stack[top++] = farther;
+        if (nearer.d <= best_sq) stack[top++] = nearer;
     }
     return best;
 }
