@@ -159,6 +159,41 @@ std::array<double, 4> node_ball(const TriangleTree::Node& node) {
     return {mid.x(), mid.y(), mid.z(), ext.norm()};
 }
 
+// Per node, a slab holding its triangles across their mean normal (area-weighted: the sum of their
+// cross products): {n, least n . x, greatest n . x} over their corners; all zero where the normals
+// cancel. Thin where the surface under a node is nearly flat, however large the node.
+std::vector<std::array<double, 5>> node_slabs(const TriangleTree& tree, const std::vector<std::array<uint32_t, 2>>& spans) {
+    const auto& nodes = tree.nodes();
+    const auto& tris = tree.triangles();
+    std::vector<Vec3> sum(nodes.size(), Vec3::Zero());
+    for (size_t k = nodes.size(); k-- > 0;) {  // children after their parent
+        const auto& node = nodes[k];
+        if (!node.is_leaf()) {
+            sum[k] = sum[node.first] + sum[node.right];
+            continue;
+        }
+        for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+            const Vec3 a = to_vec(tris[i].v[0]), b = to_vec(tris[i].v[1]), c = to_vec(tris[i].v[2]);
+            const Vec3 n = (b - a).cross(c - a);
+            if (n.allFinite()) sum[k] += n;
+        }
+    }
+    std::vector<std::array<double, 5>> slabs(nodes.size(), {0, 0, 0, 0, 0});
+    for (size_t k = 0; k < nodes.size(); ++k) {
+        const double length = sum[k].norm();
+        if (!(length > 0) || !std::isfinite(length)) continue;
+        const Vec3 n = sum[k] / length;
+        double lo = INFINITY, hi = -INFINITY;
+        for (uint32_t i = spans[k][0]; i < spans[k][1]; ++i)
+            for (const auto& v : tris[i].v) {
+                const double d = n.dot(to_vec(v));
+                lo = std::min(lo, d), hi = std::max(hi, d);
+            }
+        slabs[k] = {n.x(), n.y(), n.z(), lo, hi};
+    }
+    return slabs;
+}
+
 }  // namespace
 
 TreeBalls tree_balls(const TriangleTree& tree) {
@@ -172,6 +207,7 @@ TreeBalls tree_balls(const TriangleTree& tree) {
         balls.spans[k] = node.is_leaf() ? std::array<uint32_t, 2>{node.first, node.first + node.count}
                                         : std::array<uint32_t, 2>{balls.spans[node.first][0], balls.spans[node.right][1]};
     }
+    balls.slabs = node_slabs(tree, balls.spans);
     balls.triangles.reserve(tree.triangles().size());
     for (const auto& t : tree.triangles()) {
         const Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), c = to_vec(t.v[2]);
@@ -256,8 +292,20 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* bl
         for (int j = 0; j < 3; ++j) out = out || b.min[j] > c[j] + half[j] || b.max[j] < c[j] - half[j];
         return out;
     };
+    // Nor is a node whose slab (tree_balls) lies clearly apart from the ellipsoid, which reaches
+    // |support n| either side of its centre along n, with the margins of the triangles' planes below:
+    // the surface under an ellipsoid that hugs it is such a slab, culled whole where the boxes and
+    // balls reach into it.
+    auto slab_apart = [&](uint32_t k) {
+        if (!balls) return false;
+        const auto& s = balls->slabs[k];
+        const Vec3 n(s[0], s[1], s[2]);
+        const double along = n.dot(e.center);
+        const double gap = std::max(s[3] - along, along - s[4]) - 1e-12 * (std::abs(along) + std::abs(s[3]) + std::abs(s[4]));
+        return gap > 0 && gap * gap > (support * n).squaredNorm() * (1 + 1e-6);
+    };
     constexpr double kApart = 1.0;  // the gap of a node not taken: clearly apart
-    auto gap_of = [&](uint32_t k) { return apart(k) ? kApart : mapped_gap(k); };
+    auto gap_of = [&](uint32_t k) { return apart(k) || slab_apart(k) ? kApart : mapped_gap(k); };
     Entry stack[128];
     int top = 0;
     stack[top++] = {0, gap_of(0)};

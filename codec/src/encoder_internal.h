@@ -105,6 +105,9 @@ struct TreeBalls {
     std::vector<std::array<double, 5>> planes;
     // Per node: the triangles below it, [first, end) in leaf order (a node's triangles are a run).
     std::vector<std::array<uint32_t, 2>> spans;
+    // Per node: a slab holding its triangles, across their mean normal: the unit direction n and
+    // the least and greatest n . x over their corners (all zero where the normals cancel).
+    std::vector<std::array<double, 5>> slabs;
 };
 
 struct GrowthContext {
