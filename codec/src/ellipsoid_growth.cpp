@@ -318,6 +318,12 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* bl
         if (node.is_leaf() || (balls && hi - lo <= kFlatTriangles)) {
             for (uint32_t i = lo; i < hi; ++i) {
                 if (balls) {
+                    // The ball mapped into unit-ball space lies within radius / r_min of its mapped
+                    // centre; a margin keeps rounding from skipping a triangle that touches. First:
+                    // past the node culls, more triangles are settled by it than by their planes.
+                    const auto& ball = balls->triangles[i];
+                    const double reach = 1.0 + 1e-9 + ball[3] * inv_rmin;
+                    if ((M * (Vec3(ball[0], ball[1], ball[2]) - e.center)).squaredNorm() > reach * reach) continue;
                     // The triangle's plane (the slab holding it) clearly apart from the ellipsoid:
                     // the centre lies farther from it than the ellipsoid's support along its normal,
                     // |diag(r) A' n|, with margins far above rounding. Most triangles near an
@@ -328,11 +334,6 @@ bool clear_of_surface(const TriangleTree& tree, const Candidate& e, Blockers* bl
                     const double gap =
                         std::abs(along - plane[3]) - plane[4] - 1e-12 * (std::abs(along) + std::abs(plane[3]));
                     if (gap > 0 && gap * gap > (support * n).squaredNorm() * (1 + 1e-6)) continue;
-                    // The ball mapped into unit-ball space lies within radius / r_min of its mapped
-                    // centre; a margin keeps rounding from skipping a triangle that touches.
-                    const auto& ball = balls->triangles[i];
-                    const double reach = 1.0 + 1e-9 + ball[3] * inv_rmin;
-                    if ((M * (Vec3(ball[0], ball[1], ball[2]) - e.center)).squaredNorm() > reach * reach) continue;
                 }
                 V3 v[3];
                 mapped(tris[i], v);
