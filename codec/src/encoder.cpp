@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <tuple>
@@ -535,13 +536,21 @@ std::vector<QuantizedPoint> encode_points(const Mesh& mesh, const StreamInfo& in
     struct Keyed {
         QuantizedPoint q;
         SetRecords sets;
+        uint32_t vertex;  // the vertex of the mesh this record was made from
     };
     std::vector<Keyed> all;
     all.reserve(mesh.positions.size());
     for (size_t i = 0; i < mesh.positions.size(); ++i)
-        all.push_back({quantize_point(vertex_point(mesh, i), info, object), vertex_sets(mesh, i, ranges)});
+        all.push_back({quantize_point(vertex_point(mesh, i), info, object), vertex_sets(mesh, i, ranges), uint32_t(i)});
     auto key = [](const Keyed& k) { return std::tie(k.q.position, k.q.normal, k.q.texcoord, k.q.color, k.sets); };
     std::sort(all.begin(), all.end(), [&](const Keyed& a, const Keyed& b) { return key(a) < key(b); });
+    // The record each vertex became: a run of equal records in sorted order, numbered here, kept once.
+    std::vector<uint32_t> record_of(vertex_points ? mesh.positions.size() : 0);
+    size_t records = 0;
+    for (size_t i = 0; i < all.size(); ++i) {
+        if (i > 0 && key(all[i]) != key(all[i - 1])) ++records;
+        if (vertex_points) record_of[all[i].vertex] = uint32_t(records);
+    }
     all.erase(std::unique(all.begin(), all.end(), [&](const Keyed& a, const Keyed& b) { return key(a) == key(b); }),
               all.end());
     // Distinct positions; a seam's attribute sets follow each other.
@@ -556,18 +565,16 @@ std::vector<QuantizedPoint> encode_points(const Mesh& mesh, const StreamInfo& in
     std::vector<uint32_t> order = spread_order(positions, info.position_bits, seed);
     std::vector<Keyed> sorted;
     sorted.reserve(all.size());
+    std::vector<uint32_t> point_of(vertex_points ? all.size() : 0);  // per record: its point
     for (uint32_t p : order)
-        for (size_t i = first[p]; i < first[p + 1]; ++i) sorted.push_back(all[i]);
-    if (vertex_points) {
-        // The point each vertex became: its quantized position and attributes, looked up by value.
-        std::map<std::tuple<std::array<uint32_t, 3>, std::array<uint32_t, 2>, std::array<uint32_t, 2>,
-                            std::array<uint32_t, 4>, SetRecords>, uint32_t> index;
-        for (uint32_t i = 0; i < sorted.size(); ++i) index.emplace(key(sorted[i]), i);
-        vertex_points->resize(mesh.positions.size());
-        for (size_t i = 0; i < mesh.positions.size(); ++i) {
-            const Keyed k{quantize_point(vertex_point(mesh, i), info, object), vertex_sets(mesh, i, ranges)};
-            (*vertex_points)[i] = index.at(key(k));
+        for (size_t i = first[p]; i < first[p + 1]; ++i) {
+            if (vertex_points) point_of[i] = uint32_t(sorted.size());
+            sorted.push_back(all[i]);
         }
+    if (vertex_points) {
+        // The point each vertex became: its quantized position and attributes.
+        vertex_points->resize(mesh.positions.size());
+        for (size_t i = 0; i < mesh.positions.size(); ++i) (*vertex_points)[i] = point_of[record_of[i]];
     }
     std::vector<QuantizedPoint> out;
     out.reserve(sorted.size());
