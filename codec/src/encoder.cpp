@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
@@ -110,10 +109,18 @@ Candidate to_candidate(const Ellipsoid& e) {
 }
 
 // Vertices welded by exact position: for the boundary test, glTF seams are not holes.
+// Each vertex's id is the first vertex at its position (positions compared as std::array<float, 3>
+// compares them: 0 and -0 are one position), found by sorting the vertices by position.
 std::vector<uint32_t> weld_by_position(const Mesh& mesh) {
-    std::map<std::array<float, 3>, uint32_t> first;
-    std::vector<uint32_t> id(mesh.positions.size());
-    for (size_t i = 0; i < mesh.positions.size(); ++i) id[i] = first.try_emplace(mesh.positions[i], uint32_t(i)).first->second;
+    const auto& p = mesh.positions;
+    std::vector<uint32_t> by_position(p.size());
+    std::iota(by_position.begin(), by_position.end(), 0u);
+    std::sort(by_position.begin(), by_position.end(), [&](uint32_t a, uint32_t b) { return p[a] < p[b] || (!(p[b] < p[a]) && a < b); });
+    std::vector<uint32_t> id(p.size());
+    for (size_t k = 0, group = 0; k < by_position.size(); ++k) {
+        if (k > 0 && p[by_position[k - 1]] < p[by_position[k]]) group = k;  // a new position: its first vertex leads
+        id[by_position[k]] = by_position[group];
+    }
     return id;
 }
 
