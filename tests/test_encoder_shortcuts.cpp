@@ -205,3 +205,51 @@ TEST_CASE("voxel runs count, clear and fill the bits under them as bit-by-bit re
         CHECK(bits.count({{0, 3, 3}}) == 0);  // an empty run holds nothing
     }
 }
+
+TEST_CASE("the points' order is coarse to fine as the plain reading of it gives, with a set of each level's cells") {
+    // The reference: per level, the cells of every point already taken, then in the seeded shuffle
+    // each point whose cell is still free; what no level separates (duplicates) at the end.
+    auto plain = [](const std::vector<std::array<uint32_t, 3>>& positions, int bits, uint32_t seed) {
+        const size_t n = positions.size();
+        std::vector<uint32_t> shuffled(n);
+        for (uint32_t i = 0; i < n; ++i) shuffled[i] = i;
+        Random rng(seed ^ 0x9E3779B9u);
+        for (size_t i = n; i > 1; --i) std::swap(shuffled[i - 1], shuffled[rng.below(uint32_t(i))]);
+        std::vector<uint32_t> order;
+        std::vector<bool> taken(n, false);
+        for (int level = 1; level <= bits && order.size() < n; ++level) {
+            const int shift = bits - level;
+            auto cell = [&](uint32_t i) {
+                const auto& p = positions[i];
+                return std::array<uint32_t, 3>{p[0] >> shift, p[1] >> shift, p[2] >> shift};
+            };
+            std::set<std::array<uint32_t, 3>> occupied;
+            for (uint32_t i : order) occupied.insert(cell(i));
+            for (uint32_t i : shuffled)
+                if (!taken[i] && occupied.insert(cell(i)).second) taken[i] = true, order.push_back(i);
+        }
+        for (uint32_t i : shuffled)
+            if (!taken[i]) order.push_back(i);
+        return order;
+    };
+    Random rng(11);
+    for (int bits : {8, 14, 16}) {
+        for (size_t n : {size_t(0), size_t(1), size_t(7), size_t(500), size_t(6000)}) {
+            std::vector<std::array<uint32_t, 3>> positions(n);
+            const uint32_t top = (uint32_t(1) << bits) - 1;
+            for (size_t i = 0; i < n; ++i) {
+                if (i % 5 == 4) {  // a duplicate of an earlier point
+                    positions[i] = positions[rng.below(uint32_t(i))];
+                } else if (i % 5 == 3) {  // a cluster in one corner
+                    for (auto& c : positions[i]) c = rng.below(8);
+                } else {
+                    for (auto& c : positions[i]) c = std::min(top, rng.below(top + 1));
+                }
+            }
+            CAPTURE(bits);
+            CAPTURE(n);
+            const std::vector<uint32_t> order = spread_order(positions, bits, 77);
+            CHECK(order == plain(positions, bits, 77));
+        }
+    }
+}
