@@ -443,3 +443,42 @@ TEST_CASE("a box whose faces have their own corners is closed, also where a corn
     CHECK(r.reports[0].closed);
     CHECK(r.warnings.empty());
 }
+
+TEST_CASE("an object's points, made beside its ellipsoids on a guess, are those made after them, the guess right or wrong") {
+    // With worker threads the points start before the ellipsoids are known, guessing flat ellipsoids
+    // (denser samples) on an open surface and none on a closed one; a wrong guess is made again.
+    Mesh sheet;  // open, no inside: flat ellipsoids
+    sheet.name = "sheet";
+    for (int y = 0; y <= 8; ++y)
+        for (int x = 0; x <= 8; ++x) sheet.positions.push_back({0.1f * float(x), 0.1f * float(y), 0.02f * float(x % 2)});
+    for (uint32_t y = 0; y < 8; ++y)
+        for (uint32_t x = 0; x < 8; ++x) {
+            const uint32_t a = y * 9 + x;
+            sheet.triangles.push_back({a, a + 1, a + 10});
+            sheet.triangles.push_back({a, a + 10, a + 9});
+        }
+    Mesh holed = samples::uv_ellipsoid(16, {0, 0, 0}, {1.0, 0.8, 0.6});  // open, bulky: none flat
+    holed.name = "holed";
+    holed.triangles.resize(holed.triangles.size() - 6);
+    Mesh closed = samples::uv_ellipsoid(16, {0, 0, 0}, {1.0, 0.8, 0.6});  // closed: none flat
+    closed.name = "closed";
+    bool open_flat = false, open_none = false;
+    for (const Mesh& m : {sheet, holed, closed}) {
+        CAPTURE(m.name);
+        EncodeOptions one = fast_options(), two = fast_options();
+        one.threads = 1;
+        two.threads = 2;
+        const EncodeResult a = encode_meshes({m}, one), b = encode_meshes({m}, two);
+        std::vector<uint8_t> fa, fb;
+        receive_all(a, &fa);
+        receive_all(b, &fb);
+        CHECK(fa == fb);
+        REQUIRE(a.reports.size() == 1);
+        CHECK(a.reports[0].samples == b.reports[0].samples);
+        CHECK(a.reports[0].flat_ellipsoids == b.reports[0].flat_ellipsoids);
+        CHECK(a.warnings == b.warnings);
+        if (!a.reports[0].closed) (a.reports[0].flat_ellipsoids > 0 ? open_flat : open_none) = true;
+    }
+    CHECK(open_flat);  // the guess right
+    CHECK(open_none);  // and wrong
+}

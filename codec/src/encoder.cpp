@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
@@ -817,6 +818,165 @@ void check_mesh(const Mesh& mesh, size_t m) {
 
 }  // namespace
 
+namespace {
+
+// An object's points and exact layer (everything of it but the ellipsoids), which depend on its
+// ellipsoids only through `sheet` (flat ellipsoids were found: samples twice as dense): what
+// encode_meshes keeps of them. May run beside the ellipsoids' encode, on its own copies.
+struct PointsStage {
+    ObjectContent content;  // all but the ellipsoids
+    ObjectInfo object;
+    ObjectReport report;    // the points' fields only (see take_points_report)
+    std::vector<std::string> warnings;
+    bool sheet = false;     // as made
+};
+
+void take_points_report(const ObjectReport& from, ObjectReport& to) {
+    to.samples = from.samples;
+    to.plain_point_bytes = from.plain_point_bytes;
+    to.map_level = from.map_level;
+    to.map_bytes = from.map_bytes;
+    to.mapped_point_bytes = from.mapped_point_bytes;
+    to.exact_triangles = from.exact_triangles;
+    to.carried = from.carried;
+    to.connectivity_bytes = from.connectivity_bytes;
+    to.surface_normals = from.surface_normals;
+    to.normals_sent = from.normals_sent;
+    to.texcoord_sets = from.texcoord_sets;
+}
+
+PointsStage encode_object_points(const Mesh& mesh, const Mesh& input, size_t m, const StreamInfo& info,
+                                 const ObjectInfo& object_in, const EncodeOptions& options, uint32_t object_seed,
+                                 bool sheet, const Progress* progress) {
+    PointsStage stage;
+    stage.object = object_in;
+    stage.sheet = sheet;
+    ObjectContent& content = stage.content;
+    ObjectInfo& object = stage.object;
+    ObjectReport& report = stage.report;
+    std::vector<std::string>& warnings = stage.warnings;
+    std::vector<uint32_t> vertex_points;  // per vertex of the input (samples come after them)
+    // Format 1.14 (spec 30.3): a range per further texture-coordinate set, at the first set's bits.
+    std::vector<TexcoordRange> set_ranges;
+    for (const auto& values : mesh.texcoord_sets) set_ranges.push_back(texcoord_range(values, options.texcoord_bits));
+    std::vector<SetRecords> point_sets;
+    if (!mesh.is_point_set && !mesh.triangles.empty() && options.sample_spacing > 0) {
+        size_t added = 0;
+        const Mesh sampled = with_surface_samples(mesh, sample_options(mesh, object.frame, options, sheet), added);
+        report.samples = uint32_t(added);
+        content.points = encode_points(sampled, info, object, object_seed, &vertex_points, set_ranges, &point_sets);
+    } else {
+        content.points = encode_points(mesh, info, object, object_seed, &vertex_points, set_ranges, &point_sets);
+    }
+    // Format 1.8 (spec 24): normals left to the exact layer's surface where they agree with it;
+    // the records then carry none, and NORMALS packets say which are sent.
+    if (options.normal_tolerance > 0 && options.exact_layer && object.has(kAttrNormal) && !mesh.is_point_set &&
+        !input.triangles.empty()) {
+        content.normals = surface_normal_entries(content.points, exact_triangles_of(input, vertex_points), info,
+                                                 options.normal_tolerance);
+        // Only where it pays: NORMALS packets (a bit a point, the normals sent, their framing)
+        // smaller than the normals in the records. A box, whose every point is at a crease, keeps
+        // format 1.7's records.
+        size_t sent = 0;
+        for (const NormalEntry& e : content.normals) sent += e.sent;
+        const double record_bits = 2.0 * info.normal_bits * double(content.points.size());
+        const double normals_bits = double(content.points.size()) + 2.0 * info.normal_bits * double(sent);
+        const double packets = std::ceil(normals_bits / (8.0 * double(info.packet_size - kPacketOverhead - kNormalsHeaderSize)));
+        if (sent < content.normals.size() &&
+            normals_bits + 8.0 * double(kPacketOverhead + kNormalsHeaderSize) * packets < record_bits) {
+            object.attributes &= uint8_t(~kAttrNormal);
+            object.surface_normals = true;
+        } else {
+            content.normals.clear();
+        }
+    }
+    // Format 1.11 (spec 27): vertices carried by the exact layer, in an object without per-point
+    // data and without normals in its records (those would travel with each carried vertex); with
+    // surface normals (format 1.8), the vertices whose normal the surface gives back.
+    std::vector<QuantizedPoint> carried;
+    // Nor in an object with further texture-coordinate sets (format 1.14, spec 30.3): TEXCOORDS
+    // records are per point.
+    if (options.point_share < 1 && options.exact_layer && !mesh.is_point_set && !mesh.per_point_data &&
+        set_ranges.empty() && !input.triangles.empty() && !object.has(kAttrNormal))
+        carried = carry_vertices(input, vertex_points, content.points, content.normals, options.point_share);
+    // Format 1.7 (spec 23): points sent over a map of occupied cells, where that takes fewer bytes.
+    // The map deals them to packets along a space-filling curve: the order changes, and every
+    // per-vertex index with it.
+    object.point_count = uint32_t(content.points.size());
+    if (options.point_map) {
+        const PointMapChoice choice = choose_point_map(content.points, info, object);
+        report.plain_point_bytes = choice.plain_bytes;
+        if (choice.level > 0) {
+            const std::vector<uint32_t> order =
+                mapped_order(content.points, info.position_bits, choice.level, choice.batch);
+            std::vector<QuantizedPoint> sorted(order.size());
+            std::vector<uint32_t> new_index(order.size());
+            for (uint32_t i = 0; i < order.size(); ++i) {
+                sorted[i] = content.points[order[i]];
+                new_index[order[i]] = i;
+            }
+            content.points = std::move(sorted);
+            if (!content.normals.empty()) {
+                std::vector<NormalEntry> normals(order.size());
+                for (uint32_t i = 0; i < order.size(); ++i) normals[i] = content.normals[order[i]];
+                content.normals = std::move(normals);
+            }
+            if (!point_sets.empty()) {
+                std::vector<SetRecords> sets(order.size());
+                for (uint32_t i = 0; i < order.size(); ++i) sets[i] = point_sets[order[i]];
+                point_sets = std::move(sets);
+            }
+            for (uint32_t& v : vertex_points)
+                if (v < new_index.size()) v = new_index[v];  // a carried vertex keeps its number
+            object.map_level = choice.level;
+            object.map_batch = choice.batch;
+            report.map_level = choice.level;
+            report.map_bytes = choice.map_bytes;
+            report.mapped_point_bytes = choice.point_bytes;
+        }
+    }
+    // The original triangles as the input has them (not as turned for encoding): the exact layer.
+    if (options.exact_layer && !mesh.is_point_set && !input.triangles.empty()) {
+        if (progress) (*progress)("exact layer", 0.99);
+        uint32_t dropped = 0;
+        object.point_count = uint32_t(content.points.size());
+        encode_exact_layer(input, vertex_points, carried, info, object, content, dropped);
+        report.exact_triangles = content.triangle_count;
+        report.carried = uint32_t(content.carried.size());
+        if (content.connectivity.empty() && !carried.empty())
+            throw std::logic_error("the exact layer that was to carry " + std::to_string(carried.size()) +
+                                   " vertices could not be coded");
+        object.exact_layer = !content.connectivity.empty();
+        report.connectivity_bytes = uint32_t(content.connectivity.size());
+        if (dropped > 0)
+            warnings.push_back("mesh " + std::to_string(m) + (input.name.empty() ? "" : " (" + input.name + ")") + ": " + std::to_string(dropped) +
+                                      " triangle(s) whose corners are one point after quantization are left out "
+                                      "of the exact layer");
+    }
+    if (object.surface_normals && !object.exact_layer) {
+        // No exact layer after all (every triangle degenerate): the normals go in the records.
+        object.surface_normals = false;
+        object.attributes |= kAttrNormal;
+        content.normals.clear();
+    }
+    if (object.surface_normals) {
+        report.surface_normals = true;
+        for (const NormalEntry& e : content.normals) report.normals_sent += e.sent;
+    }
+    // Format 1.14 (spec 30): the further sets, a record per point in the points' final order.
+    for (size_t s = 0; s < set_ranges.size(); ++s) {
+        TexcoordSet set;
+        set.range = set_ranges[s];
+        set.records.reserve(point_sets.size());
+        for (const SetRecords& r : point_sets) set.records.push_back(r[s]);
+        content.texcoord_sets.push_back(std::move(set));
+    }
+    report.texcoord_sets = uint32_t(content.texcoord_sets.size());
+    return stage;
+}
+
+}  // namespace
+
 EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions& options) {
     if (std::string why = check_encode_options(options); !why.empty()) throw std::invalid_argument(why);
     if (meshes.empty()) throw std::invalid_argument("no meshes to encode");
@@ -872,7 +1032,18 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         report.turned_faces = turned;
         ObjectContent content;
         const uint32_t object_seed = options.seed * 2654435761u + uint32_t(m) * 40503u + 1u;
-        if (!mesh.is_point_set && !mesh.triangles.empty()) {
+        // The points stage depends on the ellipsoids only through `sheet` (flat ellipsoids found,
+        // which only an open surface or one without inside has): with worker threads, it starts
+        // beside them on a guess (flat ones on an open surface, none on a closed one), and runs
+        // again after them when the guess was wrong.
+        const bool surface = !mesh.is_point_set && !mesh.triangles.empty();
+        std::future<PointsStage> early;
+        if (surface && options.threads > 1)
+            early = std::async(std::launch::async, [&, m, object_seed] {
+                const bool guess = options.sample_spacing > 0 && !is_closed(mesh, weld_by_position(mesh));
+                return encode_object_points(mesh, input, m, info, object, options, object_seed, guess, nullptr);
+            });
+        if (surface) {
             EncodeOptions object_options = options;
             object_options.max_ellipsoids = ellipsoid_budget(mesh, info, object, options);
             if (object_options.max_ellipsoids < options.max_ellipsoids) report.ellipsoid_budget = object_options.max_ellipsoids;
@@ -882,123 +1053,20 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
             grid_hint = std::max<uint16_t>(grid_hint, uint16_t(std::max({report.grid[0], report.grid[1], report.grid[2]})));
         }
         progress("points", 0.97);
-        std::vector<uint32_t> vertex_points;  // per vertex of the input (samples come after them)
-        // Format 1.14 (spec 30.3): a range per further texture-coordinate set, at the first set's bits.
-        std::vector<TexcoordRange> set_ranges;
-        for (const auto& values : mesh.texcoord_sets) set_ranges.push_back(texcoord_range(values, options.texcoord_bits));
-        std::vector<SetRecords> point_sets;
-        if (!mesh.is_point_set && !mesh.triangles.empty() && options.sample_spacing > 0) {
-            size_t added = 0;
-            const Mesh sampled = with_surface_samples(mesh, sample_options(mesh, object.frame, options, report.flat_ellipsoids > 0), added);
-            report.samples = uint32_t(added);
-            content.points = encode_points(sampled, info, object, object_seed, &vertex_points, set_ranges, &point_sets);
+        const bool sheet = report.flat_ellipsoids > 0 && options.sample_spacing > 0;
+        PointsStage stage;
+        if (early.valid()) {
+            stage = early.get();
+            if (stage.sheet != sheet)
+                stage = encode_object_points(mesh, input, m, info, object, options, object_seed, sheet, &progress);
         } else {
-            content.points = encode_points(mesh, info, object, object_seed, &vertex_points, set_ranges, &point_sets);
+            stage = encode_object_points(mesh, input, m, info, object, options, object_seed, sheet, &progress);
         }
-        // Format 1.8 (spec 24): normals left to the exact layer's surface where they agree with it;
-        // the records then carry none, and NORMALS packets say which are sent.
-        if (options.normal_tolerance > 0 && options.exact_layer && object.has(kAttrNormal) && !mesh.is_point_set &&
-            !input.triangles.empty()) {
-            content.normals = surface_normal_entries(content.points, exact_triangles_of(input, vertex_points), info,
-                                                     options.normal_tolerance);
-            // Only where it pays: NORMALS packets (a bit a point, the normals sent, their framing)
-            // smaller than the normals in the records. A box, whose every point is at a crease, keeps
-            // format 1.7's records.
-            size_t sent = 0;
-            for (const NormalEntry& e : content.normals) sent += e.sent;
-            const double record_bits = 2.0 * info.normal_bits * double(content.points.size());
-            const double normals_bits = double(content.points.size()) + 2.0 * info.normal_bits * double(sent);
-            const double packets = std::ceil(normals_bits / (8.0 * double(info.packet_size - kPacketOverhead - kNormalsHeaderSize)));
-            if (sent < content.normals.size() &&
-                normals_bits + 8.0 * double(kPacketOverhead + kNormalsHeaderSize) * packets < record_bits) {
-                object.attributes &= uint8_t(~kAttrNormal);
-                object.surface_normals = true;
-            } else {
-                content.normals.clear();
-            }
-        }
-        // Format 1.11 (spec 27): vertices carried by the exact layer, in an object without per-point
-        // data and without normals in its records (those would travel with each carried vertex); with
-        // surface normals (format 1.8), the vertices whose normal the surface gives back.
-        std::vector<QuantizedPoint> carried;
-        // Nor in an object with further texture-coordinate sets (format 1.14, spec 30.3): TEXCOORDS
-        // records are per point.
-        if (options.point_share < 1 && options.exact_layer && !mesh.is_point_set && !mesh.per_point_data &&
-            set_ranges.empty() && !input.triangles.empty() && !object.has(kAttrNormal))
-            carried = carry_vertices(input, vertex_points, content.points, content.normals, options.point_share);
-        // Format 1.7 (spec 23): points sent over a map of occupied cells, where that takes fewer bytes.
-        // The map deals them to packets along a space-filling curve: the order changes, and every
-        // per-vertex index with it.
-        object.point_count = uint32_t(content.points.size());
-        if (options.point_map) {
-            const PointMapChoice choice = choose_point_map(content.points, info, object);
-            report.plain_point_bytes = choice.plain_bytes;
-            if (choice.level > 0) {
-                const std::vector<uint32_t> order =
-                    mapped_order(content.points, info.position_bits, choice.level, choice.batch);
-                std::vector<QuantizedPoint> sorted(order.size());
-                std::vector<uint32_t> new_index(order.size());
-                for (uint32_t i = 0; i < order.size(); ++i) {
-                    sorted[i] = content.points[order[i]];
-                    new_index[order[i]] = i;
-                }
-                content.points = std::move(sorted);
-                if (!content.normals.empty()) {
-                    std::vector<NormalEntry> normals(order.size());
-                    for (uint32_t i = 0; i < order.size(); ++i) normals[i] = content.normals[order[i]];
-                    content.normals = std::move(normals);
-                }
-                if (!point_sets.empty()) {
-                    std::vector<SetRecords> sets(order.size());
-                    for (uint32_t i = 0; i < order.size(); ++i) sets[i] = point_sets[order[i]];
-                    point_sets = std::move(sets);
-                }
-                for (uint32_t& v : vertex_points)
-                    if (v < new_index.size()) v = new_index[v];  // a carried vertex keeps its number
-                object.map_level = choice.level;
-                object.map_batch = choice.batch;
-                report.map_level = choice.level;
-                report.map_bytes = choice.map_bytes;
-                report.mapped_point_bytes = choice.point_bytes;
-            }
-        }
-        // The original triangles as the input has them (not as turned for encoding): the exact layer.
-        if (options.exact_layer && !mesh.is_point_set && !input.triangles.empty()) {
-            progress("exact layer", 0.99);
-            uint32_t dropped = 0;
-            object.point_count = uint32_t(content.points.size());
-            encode_exact_layer(input, vertex_points, carried, info, object, content, dropped);
-            report.exact_triangles = content.triangle_count;
-            report.carried = uint32_t(content.carried.size());
-            if (content.connectivity.empty() && !carried.empty())
-                throw std::logic_error("the exact layer that was to carry " + std::to_string(carried.size()) +
-                                       " vertices could not be coded");
-            object.exact_layer = !content.connectivity.empty();
-            report.connectivity_bytes = uint32_t(content.connectivity.size());
-            if (dropped > 0)
-                result.warnings.push_back("mesh " + std::to_string(m) + (input.name.empty() ? "" : " (" + input.name + ")") + ": " + std::to_string(dropped) +
-                                          " triangle(s) whose corners are one point after quantization are left out "
-                                          "of the exact layer");
-        }
-        if (object.surface_normals && !object.exact_layer) {
-            // No exact layer after all (every triangle degenerate): the normals go in the records.
-            object.surface_normals = false;
-            object.attributes |= kAttrNormal;
-            content.normals.clear();
-        }
-        if (object.surface_normals) {
-            report.surface_normals = true;
-            for (const NormalEntry& e : content.normals) report.normals_sent += e.sent;
-        }
-        // Format 1.14 (spec 30): the further sets, a record per point in the points' final order.
-        for (size_t s = 0; s < set_ranges.size(); ++s) {
-            TexcoordSet set;
-            set.range = set_ranges[s];
-            set.records.reserve(point_sets.size());
-            for (const SetRecords& r : point_sets) set.records.push_back(r[s]);
-            content.texcoord_sets.push_back(std::move(set));
-        }
-        report.texcoord_sets = uint32_t(content.texcoord_sets.size());
+        stage.content.ellipsoids = std::move(content.ellipsoids);
+        content = std::move(stage.content);
+        object = stage.object;
+        take_points_report(stage.report, report);
+        for (auto& w : stage.warnings) result.warnings.push_back(std::move(w));
         object.ellipsoid_count = uint32_t(content.ellipsoids.size());
         object.point_count = uint32_t(content.points.size());
         report.points = object.point_count;
