@@ -237,7 +237,7 @@ const RegisterCommand kRegisterEncode({10, [](CLI::App& app, int& exit_code) {
     CLI::Option* stream_id = cmd->add_option("--stream-id", args->stream_id,
                                              "stream id written in every packet (default 1; with --sign, the "
                                              "content id, so that each signed content has its own)");
-    cmd->add_option("--threads", args->threads, "worker threads (1..256; the result does not depend on it)")
+    cmd->add_option("--threads", args->threads, "worker threads (1..256; with more than one, an object's points are made beside its ellipsoids in one more; the result does not depend on it)")
         ->capture_default_str();
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
     cmd->add_flag("--verbose", args->verbose, "every warning on a line of its own (by default three or more of a kind are one line)");

@@ -70,7 +70,7 @@ struct EncodeOptions {
     // picture of an object that small costs more than the object itself. 0: max_ellipsoids alone.
     // [0, 1000]
     double base_ratio = 1.0;
-    unsigned threads = 2;            // worker threads (results do not depend on it)
+    unsigned threads = 2;            // worker threads (results do not depend on it); past 1, one more makes the points beside the ellipsoids
     // Repair packets (format 1.2, spec 17): POINTS_REPAIR symbols per block of POINTS packets, as a
     // multiple of the block's source count (blocks hold at most floor(255 / (1 + ratio)) POINTS
     // packets). 1: as many repair symbols as sources, which the carousel interleaves one for one. 0:
