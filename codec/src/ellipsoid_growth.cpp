@@ -20,11 +20,18 @@ double box_far2(const Vec3& p, const TriangleTree::Box& b) {
     return d;
 }
 
+// Adds a triangle of centroid g and area `area` to moments m.
+void add_moments(std::array<double, 10>& m, const Vec3& g, double area) {
+    m[0] += area;
+    for (int j = 0; j < 3; ++j) m[1 + j] += area * g[j];
+    m[4] += area * g.x() * g.x(), m[5] += area * g.x() * g.y(), m[6] += area * g.x() * g.z();
+    m[7] += area * g.y() * g.y(), m[8] += area * g.y() * g.z(), m[9] += area * g.z() * g.z();
+}
+
 // Area moments of the surface within `radius` of `c` (triangles by their centroids).
 std::array<double, 10> local_moments(const GrowthContext& ctx, const Vec3& c, double radius) {
     std::array<double, 10> m{};
     const auto& nodes = ctx.tree.nodes();
-    const auto& tris = ctx.tree.triangles();
     const double r2 = radius * radius;
     uint32_t stack[128];
     int top = 0;
@@ -40,15 +47,10 @@ std::array<double, 10> local_moments(const GrowthContext& ctx, const Vec3& c, do
         }
         if (node.is_leaf()) {
             for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-                const auto& t = tris[i];
-                Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), cc = to_vec(t.v[2]);
-                Vec3 g = (a + b + cc) / 3.0;
+                const auto& t = ctx.centroids[i];
+                const Vec3 g(t[0], t[1], t[2]);
                 if ((g - c).squaredNorm() > r2) continue;
-                double area = 0.5 * (b - a).cross(cc - a).norm();
-                m[0] += area;
-                for (int j = 0; j < 3; ++j) m[1 + j] += area * g[j];
-                m[4] += area * g.x() * g.x(), m[5] += area * g.x() * g.y(), m[6] += area * g.x() * g.z();
-                m[7] += area * g.y() * g.y(), m[8] += area * g.y() * g.z(), m[9] += area * g.z() * g.z();
+                add_moments(m, g, t[3]);
             }
             continue;
         }
@@ -92,20 +94,21 @@ void prepare_growth(GrowthContext& ctx) {
     const auto& nodes = ctx.tree.nodes();
     const auto& tris = ctx.tree.triangles();
     ctx.balls = tree_balls(ctx.tree);
+    ctx.centroids.resize(tris.size());
+    for (size_t i = 0; i < tris.size(); ++i) {
+        const auto& t = tris[i];
+        const Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), c = to_vec(t.v[2]);
+        const Vec3 g = (a + b + c) / 3.0;
+        ctx.centroids[i] = {g.x(), g.y(), g.z(), 0.5 * (b - a).cross(c - a).norm()};
+    }
     ctx.node_moments.assign(nodes.size(), {});
     for (size_t k = nodes.size(); k-- > 0;) {
         const auto& node = nodes[k];
         auto& m = ctx.node_moments[k];
         if (node.is_leaf()) {
             for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-                const auto& t = tris[i];
-                Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), c = to_vec(t.v[2]);
-                Vec3 g = (a + b + c) / 3.0;
-                double area = 0.5 * (b - a).cross(c - a).norm();
-                m[0] += area;
-                for (int j = 0; j < 3; ++j) m[1 + j] += area * g[j];
-                m[4] += area * g.x() * g.x(), m[5] += area * g.x() * g.y(), m[6] += area * g.x() * g.z();
-                m[7] += area * g.y() * g.y(), m[8] += area * g.y() * g.z(), m[9] += area * g.z() * g.z();
+                const auto& t = ctx.centroids[i];
+                add_moments(m, Vec3(t[0], t[1], t[2]), t[3]);
             }
         } else {
             for (int j = 0; j < 10; ++j) m[j] = ctx.node_moments[node.first][j] + ctx.node_moments[node.right][j];

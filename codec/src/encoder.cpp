@@ -256,7 +256,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         s.n = len > 0 ? Vec3(s.n / len) : Vec3::Zero();
     }
 
-    GrowthContext ctx{tree, grid, winding, report.closed, 0.25 * grid.h, {}, {}};
+    GrowthContext ctx{tree, grid, winding, report.closed, 0.25 * grid.h, {}, {}, {}};
     prepare_growth(ctx);
     const double eps = 0.05 * grid.h;
     std::vector<Candidate> grown(seeds);
