@@ -147,7 +147,8 @@ bool inside_inflated(const Candidate& e, const Vec3& p, double inflate) {
 SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measure,
                                   const std::vector<Candidate>& candidates, const std::vector<Vec3>& surface_samples,
                                   double near, double coverage, uint32_t max_volume, uint32_t max_count,
-                                  const std::function<void(double)>& progress, SelectionCache* cache) {
+                                  const std::function<void(double)>& progress, SelectionCache* cache,
+                                  unsigned threads) {
     SelectionResult result;
     const size_t n = candidates.size();
     SelectionCache own;
@@ -164,7 +165,7 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
     const size_t interior = remaining.count_all();
     std::vector<std::vector<Span>>& spans = c.spans;
     std::vector<size_t> gains(n);
-    parallel_for(n, 2, [&](size_t i) {
+    parallel_for(n, threads, [&](size_t i) {
         if (i >= rasterized) spans[i] = rasterize(grid, candidates[i], 0);
         gains[i] = remaining.count(spans[i]);
     });
@@ -226,7 +227,7 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
     std::vector<std::vector<uint32_t>>& near_samples = c.near_samples;
     const size_t found = std::min(near_samples.size(), n);
     near_samples.resize(n);
-    parallel_for(n - found, 2, [&](size_t k) {
+    parallel_for(n - found, threads, [&](size_t k) {
         const size_t i = found + k;
         near_samples[i].clear();
         for (const Span& sp : rasterize(grid, candidates[i], near + grid.h)) {

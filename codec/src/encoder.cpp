@@ -338,7 +338,7 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
     SelectionCache selection_cache;
     SelectionResult chosen = select_ellipsoids(grid, measure, candidates, samples, near, aim, max_volume,
                                                max_inside, [&](double f) { progress("selection", 0.7 + 0.1 * f); },
-                                               &selection_cache);
+                                               &selection_cache, options.threads);
 
     // More rounds where the first left interior uncovered (corners, crevices, sharp edges, the thin
     // layer under flat faces): seeds at the surface points nearest to uncovered voxels, each growing
@@ -383,7 +383,8 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
             if (more_ok[i]) candidates.push_back(more[i]);
         report.candidates = uint32_t(candidates.size());
         chosen = select_ellipsoids(grid, measure, candidates, samples, near, aim, max_volume, max_inside,
-                                   [&](double f) { progress("selection", 0.9 + 0.05 * f); }, &selection_cache);
+                                   [&](double f) { progress("selection", 0.9 + 0.05 * f); }, &selection_cache,
+                                   options.threads);
         gained = chosen.coverage - before;
     }
 
@@ -492,7 +493,8 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame&
         if (pass >= 2 || !fine || report.coverage >= options.coverage + 0.002 || short_of_aim || select_aim >= 1) break;
         select_aim = std::min(1.0, select_aim + (options.coverage + 0.005 - report.coverage));
         chosen = select_ellipsoids(grid, measure, candidates, samples, near, select_aim, max_volume, max_inside,
-                                   [&](double f) { progress("selection", 0.95 + 0.04 * f); }, &selection_cache);
+                                   [&](double f) { progress("selection", 0.95 + 0.04 * f); }, &selection_cache,
+                                   options.threads);
     }
     if (interior == 0 && report.flat_ellipsoids == 0 && out.empty())
         warnings.push_back(mesh.name + ": no interior volume and no sheet found; no ellipsoids");

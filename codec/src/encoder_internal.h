@@ -218,11 +218,13 @@ struct SelectionCache {
 // the most surface samples still farther than `near` from every chosen ellipsoid. Gains are
 // counted on `grid`; the coverage (when to stop, and the result's) on `measure` when given (a
 // finer grid over the same model: a truer measure than the working grid's voxel centres). With a
-// `cache`, what an earlier call worked out for the same candidates is not worked out again.
+// `cache`, what an earlier call worked out for the same candidates is not worked out again. Its
+// candidates' runs and near samples are found with `threads` threads (the result does not depend on it).
 SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measure,
                                   const std::vector<Candidate>& candidates, const std::vector<Vec3>& surface_samples,
                                   double near, double coverage, uint32_t max_volume, uint32_t max_count,
-                                  const std::function<void(double)>& progress, SelectionCache* cache = nullptr);
+                                  const std::function<void(double)>& progress, SelectionCache* cache = nullptr,
+                                  unsigned threads = 2);
 
 // ---------------------------------------------------------------------------------------------
 // sheet_ellipsoids.cpp
