@@ -116,7 +116,8 @@ std::vector<uint32_t> weld_by_position(const Mesh& mesh) {
     const auto& p = mesh.positions;
     std::vector<uint32_t> by_position(p.size());
     std::iota(by_position.begin(), by_position.end(), 0u);
-    std::sort(by_position.begin(), by_position.end(), [&](uint32_t a, uint32_t b) { return p[a] < p[b] || (!(p[b] < p[a]) && a < b); });
+    std::sort(by_position.begin(), by_position.end(),
+              [&](uint32_t a, uint32_t b) { return p[a] < p[b] || (!(p[b] < p[a]) && a < b); });
     std::vector<uint32_t> id(p.size());
     for (size_t k = 0, group = 0; k < by_position.size(); ++k) {
         if (k > 0 && p[by_position[k - 1]] < p[by_position[k]]) group = k;  // a new position: its first vertex leads
@@ -1057,13 +1058,17 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         progress("points", 0.97);
         const bool sheet = report.flat_ellipsoids > 0 && options.sample_spacing > 0;
         PointsStage stage;
+        bool made = false;
         if (early.valid()) {
-            stage = early.get();
-            if (stage.sheet != sheet)
-                stage = encode_object_points(mesh, input, m, info, object, options, object_seed, sheet, &progress);
-        } else {
-            stage = encode_object_points(mesh, input, m, info, object, options, object_seed, sheet, &progress);
+            // Kept when the guess was right; a guess's error is not this stream's (made again, an
+            // error of the right guess comes back).
+            try {
+                stage = early.get();
+                made = stage.sheet == sheet;
+            } catch (const std::exception&) {
+            }
         }
+        if (!made) stage = encode_object_points(mesh, input, m, info, object, options, object_seed, sheet, &progress);
         stage.content.ellipsoids = std::move(content.ellipsoids);
         content = std::move(stage.content);
         object = stage.object;
