@@ -47,10 +47,10 @@ std::array<double, 10> local_moments(const GrowthContext& ctx, const Vec3& c, do
         }
         if (node.is_leaf()) {
             for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-                const auto& t = ctx.centroids[i];
+                const auto& t = ctx.balls.triangles[i];
                 const Vec3 g(t[0], t[1], t[2]);
                 if ((g - c).squaredNorm() > r2) continue;
-                add_moments(m, g, t[3]);
+                add_moments(m, g, ctx.areas[i]);
             }
             continue;
         }
@@ -94,12 +94,11 @@ void prepare_growth(GrowthContext& ctx) {
     const auto& nodes = ctx.tree.nodes();
     const auto& tris = ctx.tree.triangles();
     ctx.balls = tree_balls(ctx.tree);
-    ctx.centroids.resize(tris.size());
+    ctx.areas.resize(tris.size());
     for (size_t i = 0; i < tris.size(); ++i) {
         const auto& t = tris[i];
         const Vec3 a = to_vec(t.v[0]), b = to_vec(t.v[1]), c = to_vec(t.v[2]);
-        const Vec3 g = (a + b + c) / 3.0;
-        ctx.centroids[i] = {g.x(), g.y(), g.z(), 0.5 * (b - a).cross(c - a).norm()};
+        ctx.areas[i] = 0.5 * (b - a).cross(c - a).norm();
     }
     ctx.node_moments.assign(nodes.size(), {});
     for (size_t k = nodes.size(); k-- > 0;) {
@@ -107,8 +106,8 @@ void prepare_growth(GrowthContext& ctx) {
         auto& m = ctx.node_moments[k];
         if (node.is_leaf()) {
             for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-                const auto& t = ctx.centroids[i];
-                add_moments(m, Vec3(t[0], t[1], t[2]), t[3]);
+                const auto& t = ctx.balls.triangles[i];
+                add_moments(m, Vec3(t[0], t[1], t[2]), ctx.areas[i]);
             }
         } else {
             for (int j = 0; j < 10; ++j) m[j] = ctx.node_moments[node.first][j] + ctx.node_moments[node.right][j];
@@ -201,9 +200,9 @@ std::vector<std::array<double, 5>> node_slabs(const TriangleTree& tree, const st
 
 TreeBalls tree_balls(const TriangleTree& tree) {
     TreeBalls balls;
-    balls.nodes.reserve(tree.nodes().size());
-    for (const auto& node : tree.nodes()) balls.nodes.push_back(node_ball(node));
     const auto& nodes = tree.nodes();
+    balls.nodes.reserve(nodes.size());
+    for (const auto& node : nodes) balls.nodes.push_back(node_ball(node));
     balls.spans.resize(nodes.size());
     for (size_t k = nodes.size(); k-- > 0;) {
         const auto& node = nodes[k];

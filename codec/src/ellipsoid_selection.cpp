@@ -76,21 +76,12 @@ uint64_t span_mask(size_t word, size_t a, size_t b) {
 
 // The selection's inner loop (a candidate's gain, counted again whenever it reaches the top of the
 // queue): compiled twice, with the POPCNT instruction for the processors that have it (chosen when
-// the program loads) and without; a run within one word (every run on a grid of at most 64 voxels
-// a row) takes one mask.
+// the program loads) and without.
 __attribute__((target_clones("popcnt", "default"))) size_t VoxelBits::count(const std::vector<Span>& spans) const {
     size_t total = 0;
     for (const Span& s : spans) {
-        if (s.x1 <= s.x0) continue;
-        const size_t first = s.x0 / 64, last = (size_t(s.x1) - 1) / 64;
         const uint64_t* row = &bits_[s.row * words_per_row_];
-        if (first == last) {
-            const size_t n = size_t(s.x1) - s.x0;
-            const uint64_t m = (n == 64 ? ~uint64_t(0) : (uint64_t(1) << n) - 1) << (s.x0 % 64);
-            total += size_t(__builtin_popcountll(row[first] & m));
-            continue;
-        }
-        for (size_t w = first; w <= last; ++w) total += size_t(__builtin_popcountll(row[w] & span_mask(w, s.x0, s.x1)));
+        for (size_t w = s.x0 / 64; w * 64 < s.x1; ++w) total += size_t(__builtin_popcountll(row[w] & span_mask(w, s.x0, s.x1)));
     }
     return total;
 }

@@ -167,14 +167,15 @@ bool is_cycle(const Mesh& mesh, const std::vector<uint32_t>& weld) {
 // ---------------------------------------------------------------------------------------------
 // Ellipsoids of one triangle mesh
 
-std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const Frame& frame, const EncodeOptions& options,
+// `weld`: weld_by_position(mesh); `closed`: is_closed(mesh, weld).
+std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const std::vector<uint32_t>& weld, bool closed,
+                                                  const Frame& frame, const EncodeOptions& options,
                                                   uint32_t object_seed, double seed_share, ObjectReport& report,
                                                   std::vector<std::string>& warnings, const Progress& progress) {
     std::vector<QuantizedEllipsoid> out;
     TriangleTree tree(mesh.positions, mesh.triangles);
     if (tree.empty()) return out;
-    const auto weld = weld_by_position(mesh);
-    report.closed = is_closed(mesh, weld);
+    report.closed = closed;
 
     WindingNumber winding(tree);
     const TriangleTree::Box box = tree.bounds();
@@ -760,10 +761,11 @@ uint32_t ellipsoid_budget(const Mesh& mesh, const StreamInfo& info, const Object
 // The encoder trusts nothing of a Mesh it is handed: sizes, indices and coordinates are checked.
 // Fills `oriented` with `mesh` repaired by orient_outward() and returns how many triangles it
 // turned (0: `oriented` is left empty and `mesh` is right as it is), with a warning saying what.
-uint32_t orient_for_encoding(const Mesh& mesh, Mesh& oriented, std::vector<std::string>& warnings) {
+uint32_t orient_for_encoding(const Mesh& mesh, const std::vector<uint32_t>& weld, Mesh& oriented,
+                             std::vector<std::string>& warnings) {
     if (mesh.is_point_set || mesh.triangles.empty()) return 0;
     OrientationReport r;
-    auto triangles = orient_outward(mesh, weld_by_position(mesh), r);
+    auto triangles = orient_outward(mesh, weld, r);
     if (r.turned_faces == 0) return 0;
     oriented = mesh;
     oriented.triangles = std::move(triangles);
@@ -1007,9 +1009,13 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         check_mesh(input, m);
         // The inside test and the crease detection need outward-facing triangles: parts that face
         // inward or disagree with themselves are encoded as their repair (orientation.cpp).
+        // Vertices welded once: turning triangles leaves the positions as they are.
+        const bool surface = !input.is_point_set && !input.triangles.empty();
+        const std::vector<uint32_t> weld = surface ? weld_by_position(input) : std::vector<uint32_t>{};
         Mesh oriented;
-        const uint32_t turned = orient_for_encoding(input, oriented, result.warnings);
+        const uint32_t turned = orient_for_encoding(input, weld, oriented, result.warnings);
         const Mesh& mesh = turned > 0 ? oriented : input;
+        const bool closed = surface && is_closed(mesh, weld);
         ObjectInfo object;
         object.frame = frame_of(mesh);
         object.kind = mesh.is_point_set ? ObjectKind::PointSet : ObjectKind::Surface;
@@ -1039,20 +1045,17 @@ EncodeResult encode_meshes(const std::vector<Mesh>& meshes, const EncodeOptions&
         // which only an open surface or one without inside has): with worker threads, it starts
         // beside them on a guess (flat ones on an open surface, none on a closed one), and runs
         // again after them when the guess was wrong.
-        const bool surface = !mesh.is_point_set && !mesh.triangles.empty();
         std::future<PointsStage> early;
         if (surface && options.threads > 1)
-            early = std::async(std::launch::async, [&, m, object_seed] {
-                const bool guess = options.sample_spacing > 0 && !is_closed(mesh, weld_by_position(mesh));
-                return encode_object_points(mesh, input, m, info, object, options, object_seed, guess, nullptr);
-            });
+            early = std::async(std::launch::async, encode_object_points, std::cref(mesh), std::cref(input), m,
+                               std::cref(info), std::cref(object), std::cref(options), object_seed,
+                               options.sample_spacing > 0 && !closed, nullptr);
         if (surface) {
             EncodeOptions object_options = options;
             object_options.max_ellipsoids = ellipsoid_budget(mesh, info, object, options);
             if (object_options.max_ellipsoids < options.max_ellipsoids) report.ellipsoid_budget = object_options.max_ellipsoids;
-            content.ellipsoids = encode_ellipsoids(mesh, object.frame, object_options, object_seed, seed_share, report,
-                                                   result.warnings,
-                                                   progress);
+            content.ellipsoids = encode_ellipsoids(mesh, weld, closed, object.frame, object_options, object_seed,
+                                                   seed_share, report, result.warnings, progress);
             grid_hint = std::max<uint16_t>(grid_hint, uint16_t(std::max({report.grid[0], report.grid[1], report.grid[2]})));
         }
         progress("points", 0.97);

@@ -118,8 +118,8 @@ struct GrowthContext {
     double min_radius = 0;  // smaller spheres are not worth a candidate
     // Per tree node: area, area-weighted centroid sum and second moments (for local PCA).
     std::vector<std::array<double, 10>> node_moments;
-    // Per triangle (leaf order): its centroid and area, as the moments take them.
-    std::vector<std::array<double, 4>> centroids;
+    // Per triangle (leaf order): its area (its centroid is its ball's centre, balls.triangles).
+    std::vector<double> areas;
     // Balls around the tree's nodes and triangles (see clear_of_surface).
     TreeBalls balls;
 };

@@ -5,43 +5,12 @@
 // even random sample of that level rather than one region.
 #include "encoder_internal.h"
 
+#include "ellicast/format/key_set.h"
+
 #include <algorithm>
 #include <numeric>
 
 namespace ellicast::detail {
-
-namespace {
-
-// A set of cell keys (below 2^63) by open addressing: the occupied cells of one level.
-class CellSet {
-public:
-    explicit CellSet(size_t most) {
-        size_t size = 16;
-        while (size < 2 * most) size *= 2;
-        slots_.assign(size, kEmpty);
-        shift_ = 64;
-        for (size_t s = size; s > 1; s >>= 1) --shift_;
-    }
-    void clear() { std::fill(slots_.begin(), slots_.end(), kEmpty); }
-    // True when `key` was not in the set (it is now).
-    bool insert(uint64_t key) {
-        const size_t mask = slots_.size() - 1;
-        for (size_t i = size_t((key * 0x9E3779B97F4A7C15ull) >> shift_);; i = (i + 1) & mask) {
-            if (slots_[i] == key) return false;
-            if (slots_[i] == kEmpty) {
-                slots_[i] = key;
-                return true;
-            }
-        }
-    }
-
-private:
-    static constexpr uint64_t kEmpty = ~uint64_t(0);
-    std::vector<uint64_t> slots_;
-    int shift_ = 0;
-};
-
-}  // namespace
 
 std::vector<uint32_t> spread_order(const std::vector<std::array<uint32_t, 3>>& positions, int bits, uint32_t seed) {
     const size_t n = positions.size();
@@ -53,7 +22,7 @@ std::vector<uint32_t> spread_order(const std::vector<std::array<uint32_t, 3>>& p
     std::vector<uint32_t> order;
     order.reserve(n);
     std::vector<bool> taken(n, false);
-    CellSet occupied(n);  // at most one cell a point
+    KeySet occupied;  // a level's cells (keys below 2^63)
     for (int level = 1; level <= bits && order.size() < n; ++level) {
         const int shift = bits - level;
         auto key = [&](uint32_t i) {

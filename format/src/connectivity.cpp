@@ -7,6 +7,7 @@
 // will read there. Work is linear in the triangles (at most 4 * triangle_count steps, each a k-nearest
 // query), memory in the triangles and points.
 #include "ellicast/format.h"
+#include "ellicast/format/key_set.h"
 
 #include <algorithm>
 #include <cmath>
@@ -543,51 +544,6 @@ std::array<int64_t, 3> prediction(const std::vector<std::array<uint32_t, 3>>& p,
 }
 
 // The decoder's state, shared by both directions: T, D and Q of spec 19.2.
-// A set of edge keys with open addressing (linear probing), grown by doubling at half load. Edge
-// keys never equal kEmpty (vertex numbers are below 2^32 - 1).
-class KeySet {
-public:
-    void insert(uint64_t key) {
-        if (2 * (count_ + 1) > slots_.size()) rehash(std::max<size_t>(16, 2 * slots_.size()));
-        if (place(slots_, key)) ++count_;
-    }
-    bool contains(uint64_t key) const {
-        if (slots_.empty()) return false;
-        const size_t mask = slots_.size() - 1;
-        for (size_t i = hash(key) & mask;; i = (i + 1) & mask) {
-            if (slots_[i] == key) return true;
-            if (slots_[i] == kEmpty) return false;
-        }
-    }
-
-private:
-    static constexpr uint64_t kEmpty = UINT64_MAX;
-    static size_t hash(uint64_t x) {  // the splitmix64 finalizer
-        x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-        x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-        return size_t(x ^ (x >> 31));
-    }
-    // Puts key into slots (a power of two long, never full); false when it was there.
-    static bool place(std::vector<uint64_t>& slots, uint64_t key) {
-        const size_t mask = slots.size() - 1;
-        for (size_t i = hash(key) & mask;; i = (i + 1) & mask) {
-            if (slots[i] == key) return false;
-            if (slots[i] == kEmpty) {
-                slots[i] = key;
-                return true;
-            }
-        }
-    }
-    void rehash(size_t size) {
-        std::vector<uint64_t> slots(size, kEmpty);
-        for (uint64_t key : slots_)
-            if (key != kEmpty) place(slots, key);
-        slots_ = std::move(slots);
-    }
-    std::vector<uint64_t> slots_;
-    size_t count_ = 0;
-};
-
 // The directed edges taken so far, by their first vertex: up to kInPlace of them in place (a closed
 // mesh's vertices start about 6 on average), the rest, and any vertex beyond `vertices`, in a
 // KeySet. Looking an edge up then reads the memory of its vertex, near that of the vertices the
