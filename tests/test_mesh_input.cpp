@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 
 using namespace ellicast;
@@ -336,6 +337,71 @@ TEST_CASE("degenerate and duplicate faces are dropped with a warning") {
     LoadResult r = load_meshes((dir / "dup.obj").string());
     REQUIRE(r.meshes.size() == 1);
     CHECK(r.meshes[0].triangles.size() == 4);
+}
+
+TEST_CASE("the repair keeps the first of each duplicate face, in order, and counts non-manifold edges as a set would") {
+    // A grid of points with faces drawn at random, many of them repeated in another rotation or
+    // orientation, some degenerate: against a plain reading with a std::set of sorted corners and a
+    // std::map of edges.
+    Mesh mesh;
+    for (int i = 0; i < 40; ++i) mesh.positions.push_back({float(i % 4), float(i / 4 % 3), float((i * 7) % 5)});
+    uint32_t state = 12345;
+    auto next = [&] { return (state = state * 1103515245u + 12345u) >> 16; };
+    for (int t = 0; t < 400; ++t) {
+        std::array<uint32_t, 3> tri{next() % 40, next() % 40, next() % 40};
+        if (t % 5 == 0 && !mesh.triangles.empty()) {  // an earlier face again, turned or reversed
+            tri = mesh.triangles[next() % mesh.triangles.size()];
+            if (t % 2) std::swap(tri[1], tri[2]);
+            std::rotate(tri.begin(), tri.begin() + (t % 3), tri.end());
+        }
+        mesh.triangles.push_back(tri);
+    }
+    // Points on a small lattice: some faces have a corner twice, some three corners in line (zero area).
+    std::vector<std::array<uint32_t, 3>> expected;
+    std::set<std::array<uint32_t, 3>> seen;
+    size_t degenerate = 0, duplicate = 0;
+    for (const auto& tri : mesh.triangles) {
+        const auto &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
+        double u[3], w[3];
+        for (int k = 0; k < 3; ++k) u[k] = double(b[k]) - a[k], w[k] = double(c[k]) - a[k];
+        const double cx = u[1] * w[2] - u[2] * w[1], cy = u[2] * w[0] - u[0] * w[2], cz = u[0] * w[1] - u[1] * w[0];
+        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || cx * cx + cy * cy + cz * cz == 0) {
+            ++degenerate;
+            continue;
+        }
+        auto key = tri;
+        std::sort(key.begin(), key.end());
+        if (!seen.insert(key).second) {
+            ++duplicate;
+            continue;
+        }
+        expected.push_back(tri);
+    }
+    std::map<std::pair<uint32_t, uint32_t>, int> faces_of;
+    for (const auto& tri : expected)
+        for (int e = 0; e < 3; ++e) ++faces_of[{std::min(tri[e], tri[(e + 1) % 3]), std::max(tri[e], tri[(e + 1) % 3])}];
+    size_t nonmanifold = 0, two = 0;
+    for (const auto& [edge, count] : faces_of) nonmanifold += count > 2, two += count == 2;
+    REQUIRE(two > 0);
+    REQUIRE(degenerate > 0);
+    REQUIRE(duplicate > 20);
+    REQUIRE(nonmanifold > 0);
+
+    std::vector<std::string> warnings;
+    check_and_repair_mesh(mesh, "random", warnings);
+    CHECK(mesh.triangles == expected);
+    auto said = [&](const std::string& text) { return std::count(warnings.begin(), warnings.end(), text); };
+    CHECK(said("random: " + std::to_string(degenerate) + " degenerate (zero-area) triangles dropped") == 1);
+    CHECK(said("random: " + std::to_string(duplicate) + " duplicate triangles dropped") == 1);
+    CHECK(said("random: " + std::to_string(nonmanifold) +
+               " non-manifold edges (3 or more faces) kept as they are; the encoder does not need a manifold surface") == 1);
+
+    // A corner out of range is named by the first triangle that has one, duplicates or not.
+    Mesh bad;
+    bad.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    bad.triangles = {{0, 1, 2}, {0, 1, 2}, {2, 1, 0}, {0, 1, 7}, {0, 9, 1}};
+    std::vector<std::string> ignored;
+    CHECK_THROWS_WITH_AS(check_and_repair_mesh(bad, "bad", ignored), "bad: triangle 3 refers to vertex 7 of 3", InputError);
 }
 
 namespace {
