@@ -392,22 +392,39 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const std::v
 
     // Quantize each chosen ellipsoid; dequantized it must still be clear of the surface.
     const double radius_step = frame.scale / 8191.0;
-    auto place = [&](const Candidate& c, bool check) -> bool {
+    // The placed ellipsoid, whether it had to shrink, or nothing when none fits.
+    struct Placed {
+        QuantizedEllipsoid q;
+        bool shrunk = false;
+    };
+    auto placed = [&](const Candidate& c, bool check) -> std::optional<Placed> {
         Candidate cur = c;
         for (int attempt = 0; attempt < 40; ++attempt) {
             QuantizedEllipsoid q = quantize_ellipsoid(to_ellipsoid(cur), frame);
             Candidate back = to_candidate(dequantize_ellipsoid(q, frame));
-            if (back.radii.minCoeff() <= 0) return false;
-            if (!check || clear_of_surface(tree, back, nullptr, &ctx.balls)) {
-                out.push_back(q);
-                if (attempt > 0) ++report.shrunk;
-                return true;
-            }
+            if (back.radii.minCoeff() <= 0) return std::nullopt;
+            if (!check || clear_of_surface(tree, back, nullptr, &ctx.balls)) return Placed{q, attempt > 0};
             if (attempt < 8) cur.radii -= Vec3::Constant(radius_step);
             else cur.radii *= 0.95;
-            if (cur.radii.minCoeff() <= radius_step) return false;
+            if (cur.radii.minCoeff() <= radius_step) return std::nullopt;
         }
-        return false;
+        return std::nullopt;
+    };
+    auto keep = [&](const std::optional<Placed>& p) {
+        if (!p) return false;
+        out.push_back(p->q);
+        if (p->shrunk) ++report.shrunk;
+        return true;
+    };
+    // The chosen candidates' placements, found in parallel (each alone; the surface test is most of
+    // the serial tail of an encode) and once per candidate however many passes choose it.
+    std::vector<std::optional<std::optional<Placed>>> placements(candidates.size());
+    auto place_chosen = [&](const std::vector<uint32_t>& chosen_ids) {
+        std::vector<uint32_t> todo;
+        for (uint32_t i : chosen_ids)
+            if (!placements[i]) todo.push_back(i);
+        parallel_for(todo.size(), options.threads, [&](size_t k) { placements[todo[k]] = placed(candidates[todo[k]], true); });
+        for (uint32_t i : chosen_ids) keep(*placements[i]);
     };
 
     // Surface samples far from every chosen ellipsoid (after quantization).
@@ -461,9 +478,9 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const std::v
     for (int pass = 0;; ++pass) {
         out.clear();
         report.shrunk = report.flat_ellipsoids = 0;
-        for (uint32_t i : chosen.volume) place(candidates[i], true);
+        place_chosen(chosen.volume);
         size_t before_surface = out.size();
-        for (uint32_t i : chosen.surface) place(candidates[i], true);
+        place_chosen(chosen.surface);
         report.surface_ellipsoids = uint32_t(out.size() - before_surface);
 
         // Flat ellipsoids go where the surface stays far from the base: on an open surface (a sheet, a
@@ -479,11 +496,14 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const std::v
         if (!sheet_samples.empty() && out.size() < options.max_ellipsoids)
             for (const Candidate& flat : sheet_ellipsoids(sheet_points, sheet_normals, sheet_parts, sheet_samples, grid.h,
                                                           options.max_ellipsoids - out.size()))
-                if (place(flat, false)) ++report.flat_ellipsoids;
+                if (keep(placed(flat, false))) ++report.flat_ellipsoids;
         report.surface_covered = samples.empty() ? 0 : double(near_count(samples, nullptr)) / double(samples.size());
 
         VoxelBits uni(measure_grid, false);
-        for (const auto& q : out) uni.fill(rasterize(measure_grid, to_candidate(dequantize_ellipsoid(q, frame)), 0));
+        std::vector<std::vector<Span>> runs(out.size());
+        parallel_for(out.size(), options.threads,
+                     [&](size_t k) { runs[k] = rasterize(measure_grid, to_candidate(dequantize_ellipsoid(out[k], frame)), 0); });
+        for (const auto& r : runs) uni.fill(r);
         size_t in_cov = 0, out_cov = 0;
         for (size_t row = 0; row < size_t(measure_grid.n[1]) * measure_grid.n[2]; ++row)
             for (int x = 0; x < measure_grid.n[0]; ++x)
