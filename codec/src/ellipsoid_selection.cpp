@@ -8,9 +8,11 @@
 #include "ellicast/format/bits.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <optional>
 #include <queue>
+#include <thread>
 
 namespace ellicast::detail {
 
@@ -175,11 +177,41 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
     }
     size_t covered = 0;
     const size_t target = size_t(std::ceil(coverage * double(measured_interior)));
+    // A chosen candidate's runs on the measuring grid are made when it is taken (most candidates
+    // never are). With a second thread, a helper makes them ahead for the candidates of the largest
+    // first gains, the likeliest to be taken, while the greedy runs on this one (its recounts are
+    // serial); whichever thread claims a candidate first makes its runs, the other waits for them.
+    // The runs are the same whoever makes them.
+    enum : uint8_t { kToMake, kMaking, kMade };
+    std::vector<std::atomic<uint8_t>> fine_state(measured ? n : 0);
+    for (size_t i = 0; i < fine_state.size(); ++i) fine_state[i].store(c.fine_done[i] ? kMade : kToMake, std::memory_order_relaxed);
+    auto make_fine = [&](size_t i) {
+        uint8_t expected = kToMake;
+        if (fine_state[i].compare_exchange_strong(expected, kMaking, std::memory_order_acq_rel)) {
+            c.fine_spans[i] = rasterize(*measure, candidates[i], 0);
+            fine_state[i].store(kMade, std::memory_order_release);
+        }
+    };
+    std::atomic<bool> greedy_done{false};
+    std::thread helper;
+    if (measured && threads > 1) {
+        std::vector<uint32_t> likely;
+        for (size_t i = 0; i < n; ++i)
+            if (gains[i] > 0 && !c.fine_done[i]) likely.push_back(uint32_t(i));
+        std::sort(likely.begin(), likely.end(), [&](uint32_t a, uint32_t b) { return gains[a] > gains[b] || (gains[a] == gains[b] && a < b); });
+        helper = std::thread([&, likely = std::move(likely)] {
+            for (uint32_t i : likely) {
+                if (greedy_done.load(std::memory_order_relaxed)) break;
+                make_fine(i);
+            }
+        });
+    }
     lazy_greedy(
         n, gains, [&](size_t i) { return remaining.count(spans[i]); },
         [&](size_t i) {
             if (measured) {
-                if (!c.fine_done[i]) c.fine_spans[i] = rasterize(*measure, candidates[i], 0), c.fine_done[i] = 1;
+                make_fine(i);
+                while (fine_state[i].load(std::memory_order_acquire) != kMade) std::this_thread::yield();
                 const auto& fine = c.fine_spans[i];
                 covered += measured->count(fine);
                 measured->clear(fine);
@@ -191,6 +223,9 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
             chosen[i] = true;
         },
         [&] { return result.volume.size() < std::min(max_volume, max_count) && covered < target; }, 1);
+    greedy_done.store(true, std::memory_order_relaxed);
+    if (helper.joinable()) helper.join();
+    for (size_t i = 0; i < fine_state.size(); ++i) c.fine_done[i] = fine_state[i].load(std::memory_order_relaxed) == kMade;
     result.coverage = measured_interior ? double(covered) / double(measured_interior) : 0;
     if (progress) progress(0.6);
 
