@@ -2,11 +2,14 @@
 #include "ellicast/codec/decoder.h"
 #include "ellicast/codec/triangle_tree.h"
 #include "filler_simplify.h"
+#include "parallel.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
+#include <optional>
 #include <queue>
 #include <unordered_map>
 
@@ -685,14 +688,28 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
     DecodeOptions shared = options;
     shared.base_grid_nodes = shared_base_grid_nodes(stream, options);
     size_t decoded = 0, failed = 0;
+    // First, in order: the objects whose exact layer is whole, and what each other object's
+    // reconstruction starts from. Then the reconstructions, side by side on options.threads (each
+    // object on its own: its mesh, report and error), and last, in order again, their notes and
+    // meshes: the result does not depend on the thread count.
+    struct Reconstruct {
+        size_t object;
+        std::vector<SurfacePoint> points;
+        PointTexcoordSets sets;
+        size_t held = 0;
+        std::string exact_note, error;
+        Mesh mesh;
+        bool ok = false;
+    };
+    std::vector<std::optional<Mesh>> exact(objects.size());
+    std::vector<Reconstruct> work;
     for (size_t i = 0; i < objects.size(); ++i) {
         if (!objects[i].info) {
             ++report.objects_without_info;
             report.objects[i].notes.push_back("its STREAM_INFO entry never arrived: skipped");
             continue;
         }
-        Mesh mesh;
-        std::string object_error, exact_note;
+        std::string exact_note;
         if (const auto& c = objects[i].connectivity) {
             report.objects[i].has_connectivity = true;
             report.objects[i].connectivity_bytes = c->received_bytes;
@@ -702,6 +719,7 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
         if (options.exact && options.snapshot_every == 0 && objects[i].connectivity) {
             std::string why;
             bool unusable = false;
+            Mesh mesh;
             if (exact_mesh(stream, i, mesh, why, unusable)) {
                 ObjectDecodeReport& r = report.objects[i];
                 r.exact = r.complete = r.has_surface = true;
@@ -709,48 +727,82 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
                 r.points = objects[i].points.size();
                 r.vertices_out = mesh.positions.size();
                 r.faces_out = mesh.triangles.size();
-                ++decoded;
-                mesh.name = "object" + std::to_string(i);
-                meshes.push_back(std::move(mesh));
-                if (mesh_objects) mesh_objects->push_back(i);
+                exact[i] = std::move(mesh);
                 continue;
             }
             if (unusable) exact_note = "its exact layer is unusable (" + why + "): reconstructed";
         }
-        std::vector<SurfacePoint> points = stream.points(i);
+        Reconstruct job;
+        job.object = i;
+        job.exact_note = std::move(exact_note);
+        job.points = stream.points(i);
         // The points' indices, in the same order: only an object with further sets (format 1.14) needs them.
         const bool with_sets = !objects[i].texcoord_sets.empty();
         std::vector<uint32_t> indices;
         if (with_sets) {
-            indices.reserve(points.size());
+            indices.reserve(job.points.size());
             for (const auto& [index, q] : objects[i].points) indices.push_back(index);
         }
-        size_t held = 0;
         if (options.insert_if) {
             size_t kept = 0;
-            for (size_t k = 0; k < points.size(); ++k)
-                if (options.insert_if(i, points[k].position)) {
-                    points[kept] = points[k];
+            for (size_t k = 0; k < job.points.size(); ++k)
+                if (options.insert_if(i, job.points[k].position)) {
+                    job.points[kept] = job.points[k];
                     if (with_sets) indices[kept] = indices[k];
                     ++kept;
                 }
-            held = points.size() - kept;
-            points.resize(kept);
+            job.held = job.points.size() - kept;
+            job.points.resize(kept);
             if (with_sets) indices.resize(kept);
         }
-        const PointTexcoordSets sets = point_sets(objects[i], indices);  // format 1.14
-        if (!decode_object(*objects[i].info, stream.ellipsoids(i), points, info.grid_hint, shared, i, mesh,
-                           report.objects[i], object_error, sets.empty() ? nullptr : &sets)) {
+        job.sets = point_sets(objects[i], indices);  // format 1.14
+        work.push_back(std::move(job));
+    }
+    // Side by side, one progress for them all: each object's share (by its points) of the work done,
+    // its rasterization a tenth of it. Snapshots are made one object after the other.
+    const unsigned threads = options.snapshot_every > 0 ? 1u : std::max(1u, options.threads);
+    std::mutex progress_lock;
+    std::vector<double> done(work.size(), 0.0), weight(work.size());
+    double total_weight = 0;
+    for (size_t k = 0; k < work.size(); ++k) total_weight += weight[k] = double(work[k].points.size()) + 1000;
+    detail::parallel_for(work.size(), threads, [&](size_t k) {
+        Reconstruct& job = work[k];
+        DecodeOptions own = shared;
+        if (options.progress && threads > 1 && work.size() > 1)
+            own.progress = [&, k](const std::string& stage, double fraction) {
+                const std::lock_guard<std::mutex> hold(progress_lock);
+                done[k] = stage == "rasterize" ? 0.1 * fraction : 0.1 + 0.9 * fraction;
+                double sum = 0;
+                for (size_t j = 0; j < work.size(); ++j) sum += weight[j] * done[j];
+                options.progress("decode objects", sum / total_weight);
+            };
+        job.ok = decode_object(*objects[job.object].info, stream.ellipsoids(job.object), job.points, info.grid_hint,
+                               own, job.object, job.mesh, report.objects[job.object], job.error,
+                               job.sets.empty() ? nullptr : &job.sets);
+    });
+    size_t next = 0;  // the next job, in object order
+    for (size_t i = 0; i < objects.size(); ++i) {
+        if (exact[i]) {
+            ++decoded;
+            exact[i]->name = "object" + std::to_string(i);
+            meshes.push_back(std::move(*exact[i]));
+            if (mesh_objects) mesh_objects->push_back(i);
+            continue;
+        }
+        if (next == work.size() || work[next].object != i) continue;  // no STREAM_INFO entry
+        Reconstruct& job = work[next++];
+        if (!job.ok) {
             // One object that cannot be built does not cost the others theirs.
-            if (!exact_note.empty()) report.objects[i].notes.push_back(exact_note);
-            report.objects[i].notes.push_back("not decoded: " + object_error);
-            error += (error.empty() ? "" : "; ") + ("object " + std::to_string(i) + ": " + object_error);
+            if (!job.exact_note.empty()) report.objects[i].notes.push_back(job.exact_note);
+            report.objects[i].notes.push_back("not decoded: " + job.error);
+            error += (error.empty() ? "" : "; ") + ("object " + std::to_string(i) + ": " + job.error);
             ++failed;
             continue;
         }
-        if (!exact_note.empty()) report.objects[i].notes.push_back(exact_note);
-        if (held > 0)
-            report.objects[i].notes.push_back(std::to_string(held) + " of " + std::to_string(held + points.size()) +
+        if (!job.exact_note.empty()) report.objects[i].notes.push_back(job.exact_note);
+        if (job.held > 0)
+            report.objects[i].notes.push_back(std::to_string(job.held) + " of " +
+                                              std::to_string(job.held + job.points.size()) +
                                               " points held outside the region of interest (not inserted)");
         if (const auto& c = objects[i].connectivity) {  // decode_object starts its report afresh
             report.objects[i].has_connectivity = true;
@@ -764,6 +816,7 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
         report.timings.insertion += t.insertion;
         report.timings.cleanup += t.cleanup;
         report.timings.output += t.output;
+        Mesh& mesh = job.mesh;
         if (mesh.positions.empty()) continue;
         fill_missing_sets(mesh, stream, i);
         mesh.name = "object" + std::to_string(i);

@@ -3,6 +3,7 @@
 
 #include "ellicast/codec/mesh.h"
 #include "ellicast/codec/triangle_tree.h"
+#include "parallel.h"
 
 #include <Eigen/Dense>
 
@@ -20,10 +21,6 @@ using V3 = std::array<double, 3>;
 
 inline Vec3 to_vec(const V3& a) { return {a[0], a[1], a[2]}; }
 inline V3 to_arr(const Vec3& a) { return {a.x(), a.y(), a.z()}; }
-
-// Runs body(i) for i in [0, n) on `threads` threads; each index is processed exactly once and
-// results must be written per index, so the outcome does not depend on the thread count.
-void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>& body);
 
 // A deterministic random stream (std::mt19937 is specified exactly; distributions are not).
 class Random {

@@ -1,6 +1,8 @@
 // A minimal deterministic parallel loop: indices are handed out one by one; every result is
 // written by index, so the outcome is the same for any thread count.
-#include "encoder_internal.h"
+#include "parallel.h"
+
+#include <vector>
 
 #include <algorithm>
 #include <atomic>

@@ -31,6 +31,7 @@ struct DecodeArgs {
     std::string key;          // --key: decode only what this sender signed
     AssetWriteOptions write;  // --draco, --quantize
     std::string region;       // --region: refine only there (region_option.h)
+    unsigned threads = DecodeOptions{}.threads;
 };
 
 std::string snapshot_path(const std::string& output, size_t object, size_t points) {
@@ -105,6 +106,7 @@ int run_decode(const DecodeArgs& args) {
     options.grid_resolution = args.grid;
     options.faces_per_point = args.faces_per_point;
     options.exact = !args.no_exact;
+    options.threads = args.threads;
     options.snapshot_every = args.snapshots;
     options.progress = [&](const std::string& stage, double fraction) { bar.update(stage, fraction); };
     if (!args.region.empty()) options.insert_if = region_filter(region, stream);
@@ -228,6 +230,10 @@ const RegisterCommand kRegisterDecode{{40, [](CLI::App& app, int& exit_code) {
                     "world coordinates). An object whose exact layer is whole is still written exact");
     cmd->add_flag("--no-exact", args->no_exact,
                   "reconstruct every object, also one whose exact layer (original triangles) arrived whole");
+    cmd->add_option("--threads", args->threads,
+                    "objects reconstructed side by side (1..256; the result does not depend on it)")
+        ->check(CLI::Range(1u, 256u))
+        ->capture_default_str();
     cmd->add_flag("-q,--quiet", args->quiet, "no progress bar");
     cmd->add_flag("--verbose", args->verbose, "every warning on a line of its own (by default three or more of a kind are one line)");
     cmd->callback([args, &exit_code] { exit_code = run_decode(*args); });

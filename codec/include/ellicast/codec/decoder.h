@@ -422,6 +422,8 @@ struct DecodeOptions {
     // arrived is written as its original triangles. false: always the reconstruction. Not used with
     // snapshot_every > 0: snapshots follow the reconstruction as points arrive.
     bool exact = true;
+    // Objects reconstructed side by side (results do not depend on it; 1 with snapshots).
+    unsigned threads = 2;
     ReconstructionOptions reconstruction;
     // Progress of the current stage: (stage name, fraction 0..1). May be empty.
     std::function<void(const std::string& stage, double fraction)> progress;
