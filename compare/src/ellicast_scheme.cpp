@@ -168,6 +168,7 @@ bool EllicastScheme::reconstruct(const std::vector<uint32_t>& held, Mesh& out) c
     if (!received.info()) return false;
     DecodeOptions options;
     options.grid_resolution = state_->settings.grid_resolution;
+    options.threads = 1;  // the trials run side by side already
     std::vector<Mesh> meshes;
     StreamDecodeReport report;
     std::string error;

@@ -40,6 +40,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     DecodeOptions options;
     options.base_grid_nodes = 64;  // the grid budget (see the top): small, so that meshes stay coarse
     options.grid_nodes_per_element = 4;
+    options.threads = 1;
     std::vector<Mesh> meshes;
     StreamDecodeReport report;
     std::string error;

@@ -129,6 +129,7 @@ int run_convert(const ConvertArgs& a) {
 
     DecodeOptions decode;
     decode.grid_resolution = a.grid;
+    decode.threads = a.threads;
     decode.progress = [bar](const std::string& stage, double f) { bar->update(stage, f); };
     Asset decoded;
     StreamDecodeReport report;
@@ -207,7 +208,7 @@ const RegisterCommand kRegisterConvert({45, [](CLI::App& app, int& exit_code) {
     cmd->add_option("--position-bits", args->position_bits, "bits per position coordinate (8..16)")->capture_default_str();
     cmd->add_option("--packet-size", args->packet_size, "largest packet in bytes (128..65000)")->capture_default_str();
     cmd->add_option("--seed", args->seed, "random seed (same seed, same result)")->capture_default_str();
-    cmd->add_option("--threads", args->threads, "encoder worker threads (the result does not depend on it)")
+    cmd->add_option("--threads", args->threads, "worker threads of the encoder and the decoder (the result does not depend on it)")
         ->capture_default_str();
     cmd->add_option("--grid", args->grid, "decoder grid resolution (0: the stream's hint)")->capture_default_str();
     cmd->add_flag("--draco", args->write.draco, "glTF output: compress triangle meshes with KHR_draco_mesh_compression");
