@@ -105,6 +105,24 @@ TEST_CASE("the base does not depend on the order or duplication of ellipsoids, b
     CHECK(open_or_nonmanifold_edges(m1) == 0);
 }
 
+TEST_CASE("the base drawn in slabs side by side is the base drawn on one thread, bit for bit") {
+    auto ellipsoids = random_ellipsoids(60, 11);
+    EllipsoidGrid one;
+    std::string error;
+    size_t skipped_one = 0;
+    REQUIRE(rasterize_ellipsoids(ellipsoids, kUnitFrame, 48, one, error, &skipped_one, 1));
+    for (unsigned threads : {2u, 3u, 7u, 200u}) {  // 200: more than the grid has planes
+        CAPTURE(threads);
+        EllipsoidGrid many;
+        size_t skipped = 0;
+        REQUIRE(rasterize_ellipsoids(ellipsoids, kUnitFrame, 48, many, error, &skipped, threads));
+        REQUIRE(many.nodes == one.nodes);
+        CHECK(many.origin == one.origin);
+        CHECK(skipped == skipped_one);
+        CHECK(std::memcmp(many.value.data(), one.value.data(), one.value.size() * sizeof(float)) == 0);
+    }
+}
+
 TEST_CASE("rasterization touches only nodes within one cell of an ellipsoid's bounding box") {
     EllipsoidGrid grid;
     std::string error;

@@ -394,7 +394,8 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
     EllipsoidGrid grid;
     report.grid_resolution = resolution;
     progress("rasterize", 0);
-    if (!rasterize_ellipsoids(ellipsoids, info.frame, resolution, grid, error, &report.skipped_ellipsoids))
+    if (!rasterize_ellipsoids(ellipsoids, info.frame, resolution, grid, error, &report.skipped_ellipsoids,
+                              options.threads))
         return false;
     report.timings.rasterize = seconds_since(t0);
     progress("rasterize", 1);
@@ -423,7 +424,8 @@ bool decode_object(const ObjectInfo& info, const std::vector<Ellipsoid>& ellipso
         EllipsoidGrid coarser;
         size_t skipped = 0;    // counted already, at the first grid
         std::string ignored;   // a failure keeps the first grid, and the call's error stays empty
-        if (resolution < wanted && rasterize_ellipsoids(ellipsoids, info.frame, resolution, coarser, ignored, &skipped) &&
+        if (resolution < wanted &&
+            rasterize_ellipsoids(ellipsoids, info.frame, resolution, coarser, ignored, &skipped, options.threads) &&
             !coarser.empty()) {
             DecoderTriMesh smaller = marching_cubes(coarser);
             if (smaller.n_faces() > 0) {
@@ -768,6 +770,7 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
     detail::parallel_for(work.size(), threads, [&](size_t k) {
         Reconstruct& job = work[k];
         DecodeOptions own = shared;
+        if (work.size() > 1) own.threads = 1;  // the objects share the threads
         if (options.progress && threads > 1 && work.size() > 1)
             own.progress = [&, k](const std::string& stage, double fraction) {
                 const std::lock_guard<std::mutex> hold(progress_lock);

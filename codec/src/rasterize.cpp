@@ -1,6 +1,8 @@
 // Ellipsoids -> a grid of clamped signed distances over the part of the object's frame they cover.
 #include "ellicast/codec/decoder.h"
 
+#include "parallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -115,7 +117,7 @@ double ellipsoid_raster_work(const std::vector<Ellipsoid>& ellipsoids, const Fra
 }
 
 bool rasterize_ellipsoids(const std::vector<Ellipsoid>& ellipsoids, const Frame& frame, int resolution,
-                          EllipsoidGrid& out, std::string& error, size_t* skipped) {
+                          EllipsoidGrid& out, std::string& error, size_t* skipped, unsigned threads) {
     out = EllipsoidGrid{};
     if (resolution < kMinGridResolution || resolution > kMaxGridResolution) {
         error = "grid resolution " + std::to_string(resolution) + " is outside " + std::to_string(kMinGridResolution) +
@@ -150,54 +152,60 @@ bool rasterize_ellipsoids(const std::vector<Ellipsoid>& ellipsoids, const Frame&
     out.cell = h;
     out.value.assign(total, float(-h));
 
-    const int nx = out.nodes[0], ny = out.nodes[1], nz = out.nodes[2];
-    for (const auto& e : ellipsoids) {
-        PreparedEllipsoid p;
-        if (!prepare(e, p)) continue;
-        int b0[3], b1[3];
-        for (int k = 0; k < 3; ++k) {
-            b0[k] = std::max(0, int(std::floor((p.c[k] - p.half[k] - out.origin[k]) / h)) - 1);
-            b1[k] = std::min(out.nodes[k] - 1, int(std::ceil((p.c[k] + p.half[k] - out.origin[k]) / h)) + 1);
-        }
-        // Nodes with value above -h satisfy sqrt(q) < 1 + h / r_min; solve the row quadratic for them.
-        const double limit = (1 + h / p.r_min) * (1 + h / p.r_min);
-        // q(i) along a row is |v0 + i * dv|^2 with dv = h * column 0 of m.
-        const double dv[3] = {h * p.m[0][0], h * p.m[1][0], h * p.m[2][0]};
-        const double a = dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2];
-        for (int kz = b0[2]; kz <= b1[2]; ++kz) {
-            const double z = out.origin[2] + kz * h - p.c[2];
-            for (int jy = b0[1]; jy <= b1[1]; ++jy) {
-                const double y = out.origin[1] + jy * h - p.c[1];
-                const double x0 = out.origin[0] - p.c[0];  // x of node i = 0, relative to the centre
-                double v0[3];
-                for (int r = 0; r < 3; ++r) v0[r] = p.m[r][0] * x0 + p.m[r][1] * y + p.m[r][2] * z;
-                const double b = 2 * (v0[0] * dv[0] + v0[1] * dv[1] + v0[2] * dv[2]);
-                const double c = v0[0] * v0[0] + v0[1] * v0[1] + v0[2] * v0[2] - limit;
-                const double disc = b * b - 4 * a * c;
-                if (disc < 0) continue;
-                const double sq = std::sqrt(disc);
-                int i0 = std::max(b0[0], int(std::floor((-b - sq) / (2 * a))));
-                int i1 = std::min(b1[0], int(std::ceil((-b + sq) / (2 * a))));
-                float* row = &out.value[out.index(0, jy, kz)];
-                for (int ix = i0; ix <= i1; ++ix) {
-                    const double x = out.origin[0] + ix * h - p.c[0];
-                    double v[3];
-                    for (int r = 0; r < 3; ++r) v[r] = p.m[r][0] * x + p.m[r][1] * y + p.m[r][2] * z;
-                    const double nv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-                    double g;
-                    if (nv < 1e-12) {
-                        g = p.r_min;
-                    } else {
-                        const double t = std::sqrt(x * x + y * y + z * z);
-                        g = t * (1 - nv) / nv;  // distance along the ray from the centre
+    // Slabs of z planes, one a thread: every ellipsoid is drawn into each slab it reaches.
+    const int slabs = int(std::clamp<unsigned>(threads, 1, unsigned(std::min(out.nodes[2], 64))));
+    detail::parallel_for(size_t(slabs), unsigned(slabs), [&](size_t slab) {
+        const int z_first = int(int64_t(out.nodes[2]) * int64_t(slab) / slabs);
+        const int z_last = int(int64_t(out.nodes[2]) * int64_t(slab + 1) / slabs) - 1;
+        for (const auto& e : ellipsoids) {
+            PreparedEllipsoid p;
+            if (!prepare(e, p)) continue;
+            int b0[3], b1[3];
+            for (int k = 0; k < 3; ++k) {
+                b0[k] = std::max(0, int(std::floor((p.c[k] - p.half[k] - out.origin[k]) / h)) - 1);
+                b1[k] = std::min(out.nodes[k] - 1, int(std::ceil((p.c[k] + p.half[k] - out.origin[k]) / h)) + 1);
+            }
+            b0[2] = std::max(b0[2], z_first);
+            b1[2] = std::min(b1[2], z_last);
+            // Nodes with value above -h satisfy sqrt(q) < 1 + h / r_min; solve the row quadratic for them.
+            const double limit = (1 + h / p.r_min) * (1 + h / p.r_min);
+            // q(i) along a row is |v0 + i * dv|^2 with dv = h * column 0 of m.
+            const double dv[3] = {h * p.m[0][0], h * p.m[1][0], h * p.m[2][0]};
+            const double a = dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2];
+            for (int kz = b0[2]; kz <= b1[2]; ++kz) {
+                const double z = out.origin[2] + kz * h - p.c[2];
+                for (int jy = b0[1]; jy <= b1[1]; ++jy) {
+                    const double y = out.origin[1] + jy * h - p.c[1];
+                    const double x0 = out.origin[0] - p.c[0];  // x of node i = 0, relative to the centre
+                    double v0[3];
+                    for (int r = 0; r < 3; ++r) v0[r] = p.m[r][0] * x0 + p.m[r][1] * y + p.m[r][2] * z;
+                    const double b = 2 * (v0[0] * dv[0] + v0[1] * dv[1] + v0[2] * dv[2]);
+                    const double c = v0[0] * v0[0] + v0[1] * v0[1] + v0[2] * v0[2] - limit;
+                    const double disc = b * b - 4 * a * c;
+                    if (disc < 0) continue;
+                    const double sq = std::sqrt(disc);
+                    int i0 = std::max(b0[0], int(std::floor((-b - sq) / (2 * a))));
+                    int i1 = std::min(b1[0], int(std::ceil((-b + sq) / (2 * a))));
+                    float* row = &out.value[out.index(0, jy, kz)];
+                    for (int ix = i0; ix <= i1; ++ix) {
+                        const double x = out.origin[0] + ix * h - p.c[0];
+                        double v[3];
+                        for (int r = 0; r < 3; ++r) v[r] = p.m[r][0] * x + p.m[r][1] * y + p.m[r][2] * z;
+                        const double nv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+                        double g;
+                        if (nv < 1e-12) {
+                            g = p.r_min;
+                        } else {
+                            const double t = std::sqrt(x * x + y * y + z * z);
+                            g = t * (1 - nv) / nv;  // distance along the ray from the centre
+                        }
+                        float gf = float(std::max(g, -h));
+                        if (gf > row[ix]) row[ix] = gf;
                     }
-                    float gf = float(std::max(g, -h));
-                    if (gf > row[ix]) row[ix] = gf;
                 }
             }
         }
-    }
-    (void)nx, (void)ny, (void)nz;
+    });
     return true;
 }
 

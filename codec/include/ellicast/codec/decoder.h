@@ -77,9 +77,10 @@ struct EllipsoidGrid {
 // of the ellipsoids nor on duplicates. Degenerate ellipsoids (a radius <= 0 or a non-finite value)
 // are skipped and counted in `skipped`. Returns false with `error` set when the grid would exceed
 // kMaxGridNodes or the resolution is out of [kMinGridResolution, kMaxGridResolution]; an empty grid
-// (no usable ellipsoid) is not an error.
+// (no usable ellipsoid) is not an error. With `threads` > 1 the grid's slabs along z are drawn side
+// by side (each node takes the largest value of the ellipsoids over it, so the result is the same).
 bool rasterize_ellipsoids(const std::vector<Ellipsoid>& ellipsoids, const Frame& frame, int resolution,
-                          EllipsoidGrid& out, std::string& error, size_t* skipped = nullptr);
+                          EllipsoidGrid& out, std::string& error, size_t* skipped = nullptr, unsigned threads = 1);
 
 // The node count of the grid rasterize_ellipsoids would build (0 when no ellipsoid is usable,
 // SIZE_MAX when it would overflow), without building it.
