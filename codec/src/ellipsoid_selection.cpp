@@ -157,11 +157,15 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
             if (grid.inside(row * grid.n[0] + x)) remaining.set(x, row, true);
     const size_t interior = remaining.count_all();
     std::vector<std::vector<Span>>& spans = c.spans;
-    std::vector<size_t> gains(n);
-    parallel_for(n, threads, [&](size_t i) {
+    // Every call starts from the whole interior: a candidate's first gain is counted once.
+    const size_t counted = std::min(c.interior_under.size(), n);
+    c.interior_under.resize(n);
+    parallel_for(n - counted, threads, [&](size_t k) {
+        const size_t i = counted + k;
         if (i >= rasterized) spans[i] = rasterize(grid, candidates[i], 0);
-        gains[i] = remaining.count(spans[i]);
+        c.interior_under[i] = remaining.count(spans[i]);
     });
+    const std::vector<size_t>& gains = c.interior_under;
     if (progress) progress(0.3);
 
     std::vector<bool> chosen(n, false);

@@ -207,6 +207,8 @@ struct SelectionCache {
     std::vector<std::vector<Span>> spans;          // on the working grid
     std::vector<std::vector<Span>> fine_spans;     // on the measuring grid, where fine_done
     std::vector<char> fine_done;
+    // The interior voxels under each candidate's runs (its first gain, the same in every call).
+    std::vector<size_t> interior_under;  // of the first interior_under.size() candidates
     std::vector<std::vector<uint32_t>> near_samples;  // of the first near_samples.size() candidates
 };
 
