@@ -6,6 +6,8 @@
 #include "ellicast/codec/decoder.h"
 #include "ellicast/codec/encoder.h"
 #include "ellicast/codec/surface_distance.h"
+#include "ellicast/converters/asset.h"
+#include "ellicast/converters/asset_stream.h"
 #include "ellicast/converters/mesh_input.h"
 #include "ellicast/format.h"
 
@@ -442,58 +444,82 @@ TEST_CASE("a stream with lost, duplicated, reordered and damaged packets decodes
     CHECK(rms < 0.01);
 }
 
-TEST_CASE("objects reconstructed side by side give the same meshes and reports as one after the other") {
-    // OrientationTest: 13 objects. Every packet, and a third of the point packets lost (partial
-    // objects: simplified fillers); reconstructions only (--no-exact).
+TEST_CASE("objects decoded side by side give the same meshes and reports as one after the other") {
+    // OrientationTest: 13 objects, each with its exact layer. Every packet, and a third of the
+    // POINTS and CONNECTIVITY packets lost with every repair packet (partial objects: simplified
+    // fillers, no exact layer).
     const auto path = source_dir() / "samples" / "khronos" / "OrientationTest" / "OrientationTest.gltf";
-    LoadResult loaded = load_meshes(path.string());
-    REQUIRE(loaded.meshes.size() > 4);
-    const EncodeResult encoded = encode_meshes(loaded.meshes, fast_options());
-    StreamPackets packets;
-    REQUIRE(packetize_stream(encoded.info, encoded.contents, 1, packets) == Error::Ok);
+    const Asset asset = load_asset(path.string());
+    REQUIRE(asset.objects.size() > 4);
+    EncodedAsset encoded;
+    std::string error;
+    REQUIRE_MESSAGE(encode_asset(asset, fast_options(), 1, true, encoded, error), error);
     for (const bool lossy : {false, true}) {
         CAPTURE(lossy);
         ReceivedStream stream;
-        size_t where = 0;
-        for (auto* group : {&packets.stream_info, &packets.ellipsoids, &packets.maps, &packets.points, &packets.normals})
-            for (size_t k = 0; k < group->size(); ++k)
-                if (!(lossy && group == &packets.points && k % 3 == 1)) stream.add_packet((*group)[k], where++);
-        std::vector<Mesh> one, three;
-        StreamDecodeReport r1, r3;
-        std::string e1, e3;
-        DecodeOptions o1;
-        o1.exact = false;
-        o1.threads = 1;
-        DecodeOptions o3 = o1;
-        o3.threads = 3;
-        std::vector<double> seen;
-        std::mutex seen_lock;
-        o3.progress = [&](const std::string& stage, double fraction) {
-            const std::lock_guard<std::mutex> hold(seen_lock);
-            CHECK(stage == "decode objects");
-            seen.push_back(fraction);
-        };
-        REQUIRE(decode_stream(stream, o1, one, r1, e1));
-        REQUIRE(decode_stream(stream, o3, three, r3, e3));
-        REQUIRE(one.size() == loaded.meshes.size());
-        REQUIRE(three.size() == one.size());
-        for (size_t i = 0; i < one.size(); ++i) {
-            CAPTURE(i);
-            CHECK(one[i].name == three[i].name);
-            CHECK(one[i].positions == three[i].positions);
-            CHECK(one[i].triangles == three[i].triangles);
-            CHECK(one[i].normals == three[i].normals);
-            CHECK(r1.objects[i].notes == r3.objects[i].notes);
-            CHECK(r1.objects[i].flips == r3.objects[i].flips);
-            CHECK(r1.objects[i].collapses == r3.objects[i].collapses);
-            CHECK(r1.objects[i].complete == r3.objects[i].complete);
+        size_t dropped = 0;
+        for (size_t k = 0; k < encoded.packets.size(); ++k) {
+            PacketView view;
+            REQUIRE(parse_packet(encoded.packets[k], view) == Error::Ok);
+            const uint8_t type = view.header.type;
+            const bool repair = type == uint8_t(PacketType::PointsRepair) || type == uint8_t(PacketType::ConnectivityRepair) ||
+                                type == uint8_t(PacketType::ExactMeshRepair);
+            if (lossy && (repair || ((is_points_type(type) || is_exact_layer_type(type)) && k % 3 == 1))) {
+                ++dropped;
+                continue;
+            }
+            stream.add_packet(encoded.packets[k], k);
         }
-        CHECK(r1.objects_failed == r3.objects_failed);
-        // One progress for all the objects: it never goes back and ends whole.
-        REQUIRE_FALSE(seen.empty());
-        CHECK(std::is_sorted(seen.begin(), seen.end()));
-        CHECK(seen.back() == doctest::Approx(1.0));
-        if (lossy) CHECK_FALSE(r1.objects[0].complete);
+        CHECK((dropped > 0) == lossy);
+        for (const bool exact : {false, true}) {
+            CAPTURE(exact);
+            std::vector<Mesh> one, three;
+            StreamDecodeReport r1, r3;
+            std::string e1, e3;
+            DecodeOptions o1;
+            o1.exact = exact;
+            o1.threads = 1;
+            DecodeOptions o3 = o1;
+            o3.threads = 3;
+            std::vector<double> seen;
+            std::mutex seen_lock;
+            o3.progress = [&](const std::string& stage, double fraction) {
+                const std::lock_guard<std::mutex> hold(seen_lock);
+                CHECK(stage == "decode objects");
+                seen.push_back(fraction);
+            };
+            REQUIRE(decode_stream(stream, o1, one, r1, e1));
+            REQUIRE(decode_stream(stream, o3, three, r3, e3));
+            REQUIRE(one.size() == asset.objects.size());
+            REQUIRE(three.size() == one.size());
+            size_t exact_objects = 0;
+            for (size_t i = 0; i < one.size(); ++i) {
+                CAPTURE(i);
+                CHECK(one[i].name == three[i].name);
+                CHECK(one[i].positions == three[i].positions);
+                CHECK(one[i].triangles == three[i].triangles);
+                CHECK(one[i].normals == three[i].normals);
+                CHECK(r1.objects[i].notes == r3.objects[i].notes);
+                CHECK(r1.objects[i].flips == r3.objects[i].flips);
+                CHECK(r1.objects[i].collapses == r3.objects[i].collapses);
+                CHECK(r1.objects[i].complete == r3.objects[i].complete);
+                CHECK(r1.objects[i].exact == r3.objects[i].exact);
+                exact_objects += r1.objects[i].exact;
+            }
+            CHECK(r1.objects_failed == r3.objects_failed);
+            // Every object exact when every packet came and the exact layer is wanted; else some
+            // (all, without the exact layer) reconstructed, with one progress for them all that never
+            // goes back and ends whole.
+            CHECK((exact_objects == one.size()) == (exact && !lossy));
+            if (exact_objects + 1 < one.size()) {
+                REQUIRE_FALSE(seen.empty());
+                CHECK(std::is_sorted(seen.begin(), seen.end()));
+                CHECK(seen.back() == doctest::Approx(1.0));
+            }
+            size_t incomplete = 0;
+            for (const auto& o : r1.objects) incomplete += !o.complete;
+            CHECK((incomplete > 0) == lossy);
+        }
     }
 }
 

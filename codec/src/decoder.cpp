@@ -690,10 +690,10 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
     DecodeOptions shared = options;
     shared.base_grid_nodes = shared_base_grid_nodes(stream, options);
     size_t decoded = 0, failed = 0;
-    // First, in order: the objects whose exact layer is whole, and what each other object's
-    // reconstruction starts from. Then the reconstructions, side by side on options.threads (each
-    // object on its own: its mesh, report and error), and last, in order again, their notes and
-    // meshes: the result does not depend on the thread count.
+    // First the exact layers, side by side on options.threads; then, in order, the objects whose
+    // exact layer is whole and what each other object's reconstruction starts from; then the
+    // reconstructions, side by side (each object on its own: its mesh, report and error); and last,
+    // in order again, their notes and meshes: the result does not depend on the thread count.
     struct Reconstruct {
         size_t object;
         std::vector<SurfacePoint> points;
@@ -703,6 +703,22 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
         Mesh mesh;
         bool ok = false;
     };
+    const unsigned threads = options.snapshot_every > 0 ? 1u : std::max(1u, options.threads);
+    // Each exact layer is a function of the stream alone.
+    struct Layer {
+        bool ok = false, unusable = false;
+        std::string why;
+        Mesh mesh;
+    };
+    std::vector<Layer> layers(objects.size());
+    std::vector<size_t> with_layer;
+    if (options.exact && options.snapshot_every == 0)
+        for (size_t i = 0; i < objects.size(); ++i)
+            if (objects[i].info && objects[i].connectivity) with_layer.push_back(i);
+    detail::parallel_for(with_layer.size(), threads, [&](size_t k) {
+        Layer& layer = layers[with_layer[k]];
+        layer.ok = exact_mesh(stream, with_layer[k], layer.mesh, layer.why, layer.unusable);
+    });
     std::vector<std::optional<Mesh>> exact(objects.size());
     std::vector<Reconstruct> work;
     for (size_t i = 0; i < objects.size(); ++i) {
@@ -719,10 +735,9 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
         }
         // Snapshots show the reconstruction as points arrive, so they keep to it (spec 13).
         if (options.exact && options.snapshot_every == 0 && objects[i].connectivity) {
-            std::string why;
-            bool unusable = false;
-            Mesh mesh;
-            if (exact_mesh(stream, i, mesh, why, unusable)) {
+            Layer& layer = layers[i];
+            if (layer.ok) {
+                Mesh& mesh = layer.mesh;
                 ObjectDecodeReport& r = report.objects[i];
                 r.exact = r.complete = r.has_surface = true;
                 r.ellipsoids = objects[i].ellipsoids.size();
@@ -732,7 +747,7 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
                 exact[i] = std::move(mesh);
                 continue;
             }
-            if (unusable) exact_note = "its exact layer is unusable (" + why + "): reconstructed";
+            if (layer.unusable) exact_note = "its exact layer is unusable (" + layer.why + "): reconstructed";
         }
         Reconstruct job;
         job.object = i;
@@ -762,7 +777,6 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
     }
     // Side by side, one progress for them all: each object's share (by its points) of the work done,
     // its rasterization a tenth of it. Snapshots are made one object after the other.
-    const unsigned threads = options.snapshot_every > 0 ? 1u : std::max(1u, options.threads);
     std::mutex progress_lock;
     std::vector<double> done(work.size(), 0.0), weight(work.size());
     double total_weight = 0;
