@@ -7,7 +7,10 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <stdexcept>
 #include <set>
 
 using namespace ellicast;
@@ -251,5 +254,24 @@ TEST_CASE("the points' order is coarse to fine as the plain reading of it gives,
             const std::vector<uint32_t> order = spread_order(positions, bits, 77);
             CHECK(order == plain(positions, bits, 77));
         }
+    }
+}
+
+TEST_CASE("a parallel loop's exception comes back to its caller, whatever thread threw it") {
+    for (unsigned threads : {1u, 2u, 4u}) {
+        CAPTURE(threads);
+        std::atomic<size_t> ran{0};
+        CHECK_THROWS_WITH_AS(ellicast::detail::parallel_for(1000, threads,
+                                                           [&](size_t i) {
+                                                               ++ran;
+                                                               if (i == 500) throw std::runtime_error("index 500");
+                                                           }),
+                             "index 500", std::runtime_error);
+        CHECK(ran.load() >= 1);
+        CHECK(ran.load() <= 1000);
+        // Without a throw every index runs once.
+        std::vector<int> seen(1000, 0);
+        ellicast::detail::parallel_for(seen.size(), threads, [&](size_t i) { ++seen[i]; });
+        CHECK(std::all_of(seen.begin(), seen.end(), [](int v) { return v == 1; }));
     }
 }
