@@ -192,21 +192,39 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
     auto make_fine = [&](size_t i) {
         uint8_t expected = kToMake;
         if (fine_state[i].compare_exchange_strong(expected, kMaking, std::memory_order_acq_rel)) {
-            c.fine_spans[i] = rasterize(*measure, candidates[i], 0);
+            try {
+                c.fine_spans[i] = rasterize(*measure, candidates[i], 0);
+            } catch (...) {
+                fine_state[i].store(kToMake, std::memory_order_release);  // to be made by whoever needs it
+                throw;
+            }
             fine_state[i].store(kMade, std::memory_order_release);
         }
     };
     std::atomic<bool> greedy_done{false};
     std::thread helper;
+    // The helper stops and is joined however the greedy ends (an exception included).
+    struct Stop {
+        std::atomic<bool>& done;
+        std::thread& thread;
+        ~Stop() {
+            done.store(true, std::memory_order_relaxed);
+            if (thread.joinable()) thread.join();
+        }
+    } stop{greedy_done, helper};
     if (measured && threads > 1) {
         std::vector<uint32_t> likely;
         for (size_t i = 0; i < n; ++i)
             if (gains[i] > 0 && !c.fine_done[i]) likely.push_back(uint32_t(i));
         std::sort(likely.begin(), likely.end(), [&](uint32_t a, uint32_t b) { return gains[a] > gains[b] || (gains[a] == gains[b] && a < b); });
         helper = std::thread([&, likely = std::move(likely)] {
-            for (uint32_t i : likely) {
-                if (greedy_done.load(std::memory_order_relaxed)) break;
-                make_fine(i);
+            try {
+                for (uint32_t i : likely) {
+                    if (greedy_done.load(std::memory_order_relaxed)) break;
+                    make_fine(i);
+                }
+            } catch (...) {
+                // Only ahead of the greedy: what it needs it makes itself.
             }
         });
     }
@@ -214,8 +232,12 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
         n, gains, [&](size_t i) { return remaining.count(spans[i]); },
         [&](size_t i) {
             if (measured) {
-                make_fine(i);
-                while (fine_state[i].load(std::memory_order_acquire) != kMade) std::this_thread::yield();
+                // Made here unless the helper has claimed it: then wait for it (or make it after all,
+                // should the helper have failed and given it back).
+                while (fine_state[i].load(std::memory_order_acquire) != kMade) {
+                    make_fine(i);
+                    std::this_thread::yield();
+                }
                 const auto& fine = c.fine_spans[i];
                 covered += measured->count(fine);
                 measured->clear(fine);
