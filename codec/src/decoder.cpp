@@ -696,9 +696,8 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
     // in order again, their notes and meshes: the result does not depend on the thread count.
     struct Reconstruct {
         size_t object;
-        std::vector<SurfacePoint> points;
-        PointTexcoordSets sets;
-        size_t held = 0;
+        std::vector<char> keep;  // with a region of interest: which of its points to insert
+        size_t inserted = 0, held = 0;
         std::string exact_note, error;
         Mesh mesh;
         bool ok = false;
@@ -752,27 +751,17 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
         Reconstruct job;
         job.object = i;
         job.exact_note = std::move(exact_note);
-        job.points = stream.points(i);
-        // The points' indices, in the same order: only an object with further sets (format 1.14) needs them.
-        const bool with_sets = !objects[i].texcoord_sets.empty();
-        std::vector<uint32_t> indices;
-        if (with_sets) {
-            indices.reserve(job.points.size());
-            for (const auto& [index, q] : objects[i].points) indices.push_back(index);
-        }
+        job.inserted = objects[i].points.size();
+        // The region of interest is asked here, in order (the caller's function is not asked from
+        // several threads); the points themselves are made where the object is reconstructed, so
+        // that only the objects under way hold theirs.
         if (options.insert_if) {
-            size_t kept = 0;
-            for (size_t k = 0; k < job.points.size(); ++k)
-                if (options.insert_if(i, job.points[k].position)) {
-                    job.points[kept] = job.points[k];
-                    if (with_sets) indices[kept] = indices[k];
-                    ++kept;
-                }
-            job.held = job.points.size() - kept;
-            job.points.resize(kept);
-            if (with_sets) indices.resize(kept);
+            const std::vector<SurfacePoint> points = stream.points(i);
+            job.keep.resize(points.size());
+            for (size_t k = 0; k < points.size(); ++k) job.keep[k] = options.insert_if(i, points[k].position) ? 1 : 0;
+            job.inserted = size_t(std::count(job.keep.begin(), job.keep.end(), 1));
+            job.held = points.size() - job.inserted;
         }
-        job.sets = point_sets(objects[i], indices);  // format 1.14
         work.push_back(std::move(job));
     }
     // Side by side, one progress for them all: each object's share (by its points) of the work done,
@@ -780,9 +769,30 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
     std::mutex progress_lock;
     std::vector<double> done(work.size(), 0.0), weight(work.size());
     double total_weight = 0;
-    for (size_t k = 0; k < work.size(); ++k) total_weight += weight[k] = double(work[k].points.size()) + 1000;
+    for (size_t k = 0; k < work.size(); ++k) total_weight += weight[k] = double(work[k].inserted) + 1000;
     detail::parallel_for(work.size(), threads, [&](size_t k) {
         Reconstruct& job = work[k];
+        const size_t i = job.object;
+        std::vector<SurfacePoint> points = stream.points(i);
+        // The points' indices, in the same order: only an object with further sets (format 1.14) needs them.
+        const bool with_sets = !objects[i].texcoord_sets.empty();
+        std::vector<uint32_t> indices;
+        if (with_sets) {
+            indices.reserve(points.size());
+            for (const auto& [index, q] : objects[i].points) indices.push_back(index);
+        }
+        if (!job.keep.empty()) {
+            size_t kept = 0;
+            for (size_t j = 0; j < points.size(); ++j)
+                if (job.keep[j]) {
+                    points[kept] = points[j];
+                    if (with_sets) indices[kept] = indices[j];
+                    ++kept;
+                }
+            points.resize(kept);
+            if (with_sets) indices.resize(kept);
+        }
+        const PointTexcoordSets sets = point_sets(objects[i], indices);  // format 1.14
         DecodeOptions own = shared;
         if (work.size() > 1) own.threads = 1;  // the objects share the threads
         if (options.progress && threads > 1 && work.size() > 1)
@@ -793,9 +803,8 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
                 for (size_t j = 0; j < work.size(); ++j) sum += weight[j] * done[j];
                 options.progress("decode objects", sum / total_weight);
             };
-        job.ok = decode_object(*objects[job.object].info, stream.ellipsoids(job.object), job.points, info.grid_hint,
-                               own, job.object, job.mesh, report.objects[job.object], job.error,
-                               job.sets.empty() ? nullptr : &job.sets);
+        job.ok = decode_object(*objects[i].info, stream.ellipsoids(i), points, info.grid_hint, own, i, job.mesh,
+                               report.objects[i], job.error, sets.empty() ? nullptr : &sets);
     });
     size_t next = 0;  // the next job, in object order
     for (size_t i = 0; i < objects.size(); ++i) {
@@ -819,7 +828,7 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
         if (!job.exact_note.empty()) report.objects[i].notes.push_back(job.exact_note);
         if (job.held > 0)
             report.objects[i].notes.push_back(std::to_string(job.held) + " of " +
-                                              std::to_string(job.held + job.points.size()) +
+                                              std::to_string(job.held + job.inserted) +
                                               " points held outside the region of interest (not inserted)");
         if (const auto& c = objects[i].connectivity) {  // decode_object starts its report afresh
             report.objects[i].has_connectivity = true;
