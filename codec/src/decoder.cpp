@@ -718,7 +718,6 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
         Layer& layer = layers[with_layer[k]];
         layer.ok = exact_mesh(stream, with_layer[k], layer.mesh, layer.why, layer.unusable);
     });
-    std::vector<std::optional<Mesh>> exact(objects.size());
     std::vector<Reconstruct> work;
     for (size_t i = 0; i < objects.size(); ++i) {
         if (!objects[i].info) {
@@ -734,16 +733,15 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
         }
         // Snapshots show the reconstruction as points arrive, so they keep to it (spec 13).
         if (options.exact && options.snapshot_every == 0 && objects[i].connectivity) {
-            Layer& layer = layers[i];
+            const Layer& layer = layers[i];
             if (layer.ok) {
-                Mesh& mesh = layer.mesh;
+                const Mesh& mesh = layer.mesh;
                 ObjectDecodeReport& r = report.objects[i];
                 r.exact = r.complete = r.has_surface = true;
                 r.ellipsoids = objects[i].ellipsoids.size();
                 r.points = objects[i].points.size();
                 r.vertices_out = mesh.positions.size();
                 r.faces_out = mesh.triangles.size();
-                exact[i] = std::move(mesh);
                 continue;
             }
             if (layer.unusable) exact_note = "its exact layer is unusable (" + layer.why + "): reconstructed";
@@ -808,10 +806,10 @@ bool decode_stream(const ReceivedStream& stream, const DecodeOptions& options, s
     });
     size_t next = 0;  // the next job, in object order
     for (size_t i = 0; i < objects.size(); ++i) {
-        if (exact[i]) {
+        if (layers[i].ok) {
             ++decoded;
-            exact[i]->name = "object" + std::to_string(i);
-            meshes.push_back(std::move(*exact[i]));
+            layers[i].mesh.name = "object" + std::to_string(i);
+            meshes.push_back(std::move(layers[i].mesh));
             if (mesh_objects) mesh_objects->push_back(i);
             continue;
         }

@@ -201,56 +201,57 @@ SelectionResult select_ellipsoids(const VoxelGrid& grid, const VoxelGrid* measur
             fine_state[i].store(kMade, std::memory_order_release);
         }
     };
-    std::atomic<bool> greedy_done{false};
-    std::thread helper;
-    // The helper stops and is joined however the greedy ends (an exception included).
-    struct Stop {
-        std::atomic<bool>& done;
-        std::thread& thread;
-        ~Stop() {
-            done.store(true, std::memory_order_relaxed);
-            if (thread.joinable()) thread.join();
+    {  // the greedy, with the helper beside it
+        std::atomic<bool> greedy_done{false};
+        std::thread helper;
+        // The helper stops and is joined when the greedy ends, however it ends (an exception included).
+        struct Stop {
+            std::atomic<bool>& done;
+            std::thread& thread;
+            ~Stop() {
+                done.store(true, std::memory_order_relaxed);
+                if (thread.joinable()) thread.join();
+            }
+        } stop{greedy_done, helper};
+        if (measured && threads > 1) {
+            std::vector<uint32_t> likely;
+            for (size_t i = 0; i < n; ++i)
+                if (gains[i] > 0 && !c.fine_done[i]) likely.push_back(uint32_t(i));
+            std::sort(likely.begin(), likely.end(),
+                      [&](uint32_t a, uint32_t b) { return gains[a] > gains[b] || (gains[a] == gains[b] && a < b); });
+            helper = std::thread([&, likely = std::move(likely)] {
+                try {
+                    for (uint32_t i : likely) {
+                        if (greedy_done.load(std::memory_order_relaxed)) break;
+                        make_fine(i);
+                    }
+                } catch (...) {
+                    // Only ahead of the greedy: what it needs it makes itself.
+                }
+            });
         }
-    } stop{greedy_done, helper};
-    if (measured && threads > 1) {
-        std::vector<uint32_t> likely;
-        for (size_t i = 0; i < n; ++i)
-            if (gains[i] > 0 && !c.fine_done[i]) likely.push_back(uint32_t(i));
-        std::sort(likely.begin(), likely.end(), [&](uint32_t a, uint32_t b) { return gains[a] > gains[b] || (gains[a] == gains[b] && a < b); });
-        helper = std::thread([&, likely = std::move(likely)] {
-            try {
-                for (uint32_t i : likely) {
-                    if (greedy_done.load(std::memory_order_relaxed)) break;
-                    make_fine(i);
+        lazy_greedy(
+            n, gains, [&](size_t i) { return remaining.count(spans[i]); },
+            [&](size_t i) {
+                if (measured) {
+                    // Made here unless the helper has claimed it: then wait for it (or make it after all,
+                    // should the helper have failed and given it back).
+                    while (fine_state[i].load(std::memory_order_acquire) != kMade) {
+                        make_fine(i);
+                        std::this_thread::yield();
+                    }
+                    const auto& fine = c.fine_spans[i];
+                    covered += measured->count(fine);
+                    measured->clear(fine);
+                } else {
+                    covered += remaining.count(spans[i]);
                 }
-            } catch (...) {
-                // Only ahead of the greedy: what it needs it makes itself.
-            }
-        });
+                remaining.clear(spans[i]);
+                result.volume.push_back(uint32_t(i));
+                chosen[i] = true;
+            },
+            [&] { return result.volume.size() < std::min(max_volume, max_count) && covered < target; }, 1);
     }
-    lazy_greedy(
-        n, gains, [&](size_t i) { return remaining.count(spans[i]); },
-        [&](size_t i) {
-            if (measured) {
-                // Made here unless the helper has claimed it: then wait for it (or make it after all,
-                // should the helper have failed and given it back).
-                while (fine_state[i].load(std::memory_order_acquire) != kMade) {
-                    make_fine(i);
-                    std::this_thread::yield();
-                }
-                const auto& fine = c.fine_spans[i];
-                covered += measured->count(fine);
-                measured->clear(fine);
-            } else {
-                covered += remaining.count(spans[i]);
-            }
-            remaining.clear(spans[i]);
-            result.volume.push_back(uint32_t(i));
-            chosen[i] = true;
-        },
-        [&] { return result.volume.size() < std::min(max_volume, max_count) && covered < target; }, 1);
-    greedy_done.store(true, std::memory_order_relaxed);
-    if (helper.joinable()) helper.join();
     for (size_t i = 0; i < fine_state.size(); ++i) c.fine_done[i] = fine_state[i].load(std::memory_order_relaxed) == kMade;
     result.coverage = measured_interior ? double(covered) / double(measured_interior) : 0;
     if (progress) progress(0.6);

@@ -418,13 +418,15 @@ std::vector<QuantizedEllipsoid> encode_ellipsoids(const Mesh& mesh, const std::v
     };
     // The chosen candidates' placements, found in parallel (each alone; the surface test is most of
     // the serial tail of an encode) and once per candidate however many passes choose it.
-    std::vector<std::optional<std::optional<Placed>>> placements(candidates.size());
+    std::vector<std::optional<Placed>> placements(candidates.size());
+    std::vector<char> tried(candidates.size(), 0);
     auto place_chosen = [&](const std::vector<uint32_t>& chosen_ids) {
-        std::vector<uint32_t> todo;
+        std::vector<uint32_t> unplaced;
         for (uint32_t i : chosen_ids)
-            if (!placements[i]) todo.push_back(i);
-        parallel_for(todo.size(), options.threads, [&](size_t k) { placements[todo[k]] = placed(candidates[todo[k]], true); });
-        for (uint32_t i : chosen_ids) keep(*placements[i]);
+            if (!tried[i]) unplaced.push_back(i), tried[i] = 1;
+        parallel_for(unplaced.size(), options.threads,
+                     [&](size_t k) { placements[unplaced[k]] = placed(candidates[unplaced[k]], true); });
+        for (uint32_t i : chosen_ids) keep(placements[i]);
     };
 
     // Surface samples far from every chosen ellipsoid (after quantization).
